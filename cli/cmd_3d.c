@@ -1,0 +1,11 @@
+/* acd 3d: not built yet in this version of acd; says so and fails. */
+#include <stdio.h>
+
+#include "cli.h"
+
+int acd_cmd_3d(int argc, char **argv) {
+    (void)argc;
+    (void)argv;
+    fprintf(stderr, "acd 3d: this command is not available in this build of acd yet\n");
+    return ACD_EXIT_INTERNAL;
+}

@@ -1,0 +1,49 @@
+/* acd: command-line entry point; dispatches to one file per subcommand. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+typedef struct command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+} command;
+
+static const command commands[] = {
+    {"2d", acd_cmd_2d, "approximate convex decomposition of polygons with holes"},
+    {"3d", acd_cmd_3d, "approximate convex decomposition of polyhedra"},
+    {"segment", acd_cmd_segment, "CoRiSe nearly convex segmentation of a mesh"},
+    {"info", acd_cmd_info, "mesh report: topology, genus, volume, defects"},
+    {"hull", acd_cmd_hull, "convex hull of a mesh or point set"},
+    {"eval", acd_cmd_eval, "score a decomposition (IoU, coverage, surface distance)"},
+    {"segeval", acd_cmd_segeval, "segmentation benchmark metrics between two .seg files"},
+};
+
+static void usage(FILE *f) {
+    fprintf(f, "acd %s: approximate convex decomposition\n\nusage: acd COMMAND [options]\n\ncommands:\n",
+            ACD_VERSION_STRING);
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f, "\n'acd COMMAND --help' describes a command's options.\n");
+}
+
+int main(int argc, char **argv) {
+    if (argc < 2) {
+        usage(stderr);
+        return ACD_EXIT_USAGE;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return ACD_EXIT_OK;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("acd %s\n", ACD_VERSION_STRING);
+        return ACD_EXIT_OK;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "acd: unknown command '%s'\n\n", argv[1]);
+    usage(stderr);
+    return ACD_EXIT_USAGE;
+}

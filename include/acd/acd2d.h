@@ -1,0 +1,103 @@
+/* acd/acd2d.h: approximate convex decomposition of polygons with holes
+ * (Lien, dissertation Ch. IV; spec ../shared/spec/acd2d.md).
+ *
+ * Usage:
+ *   acd2d_params prm = acd2d_default_params();
+ *   prm.tau = 0.5;
+ *   acd2d_result res;
+ *   if (acd2d_decompose(&poly, &prm, &res, &err) == ACD_OK) { ...; acd2d_result_free(&res); }
+ */
+#ifndef ACD_ACD2D_H
+#define ACD_ACD2D_H
+
+#include "acd/base.h"
+#include "acd/polygon.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum acd2d_measure {
+    ACD2D_MEASURE_SL = 0, /* straight-line distance to the bridge */
+    ACD2D_MEASURE_SP,     /* shortest path to the bridge inside the pocket */
+    ACD2D_MEASURE_H1,     /* hybrid 1 (IV.A.1.c) */
+    ACD2D_MEASURE_H2      /* hybrid 2 (IV.A.1.c) */
+} acd2d_measure;
+
+typedef enum acd2d_cut {
+    ACD2D_CUT_RAY = 0,    /* a cut from the notch may end at a new point on the boundary (default) */
+    ACD2D_CUT_DIAGONAL    /* cuts join two existing vertices */
+} acd2d_cut;
+
+#define ACD2D_PARAMS_COOKIE 0x41434432u
+
+typedef struct acd2d_params {
+    uint32_t cookie;          /* set by acd2d_default_params; guards against uninitialized params */
+    double tau;               /* concavity tolerance, >= 0; model units unless normalize (default 0) */
+    acd2d_measure measure;    /* default SL */
+    double sc;                /* weight of concavity in cut selection, Eqn 4.3 (default 0.1) */
+    double sd;                /* weight of distance in cut selection, Eqn 4.3 (default 1) */
+    acd2d_cut cut;            /* default ACD2D_CUT_RAY */
+    int normalize;            /* non-zero: tau is relative to R (max distance of outer vertices from their mean) */
+    double notch_tolerance;   /* a vertex is a notch when cross((v-u),(w-v)) < -notch_tolerance (raw units;
+                                 default 1e-5, reproducing Table 2); 0 means exact predicates */
+    acd_progress_fn progress; /* optional; may cancel */
+    void *progress_user;
+} acd2d_params;
+
+acd2d_params acd2d_default_params(void);
+const char *acd2d_measure_name(acd2d_measure m);            /* "sl", "sp", "h1", "h2" */
+int acd2d_measure_parse(const char *name, acd2d_measure *out); /* 1 on success */
+
+/* One node of the decomposition tree (Fig. 9b). Node 0 is the input polygon. A node with
+ * children was cut (or had a hole merged, then it has one child) by `cut`. */
+typedef struct acd2d_node {
+    int parent;              /* -1 for the root */
+    int child[2];            /* -1 where absent */
+    double concavity;        /* concavity of this node's polygon under the measure */
+    acd_vec2 cut[2];         /* the cut (or hole-merging diagonal) applied to this node, if any */
+    int is_hole_merge;       /* the operation on this node merged a hole (one child) */
+    acd_polygon polygon;     /* this node's polygon (holes still present until merged) */
+} acd2d_node;
+
+typedef struct acd2d_component {
+    acd_vec2 *points;        /* counterclockwise simple polygon, first point not repeated */
+    size_t npoints;
+    acd_vec2 *hull;          /* its convex hull, counterclockwise */
+    size_t nhull;
+    double concavity;        /* under the measure used */
+    int node;                /* the tree node it is */
+} acd2d_component;
+
+typedef struct acd2d_result {
+    double tau;              /* in model units (after normalization, if requested) */
+    acd2d_measure measure;
+    size_t input_vertices, input_notches, input_holes;
+    acd2d_component *components;
+    size_t ncomponents;
+    acd_vec2 (*cuts)[2];     /* every cut made, in order */
+    size_t ncuts;
+    acd2d_node *nodes;
+    size_t nnodes;
+    double max_concavity;    /* over the components */
+    double seconds;          /* wall time of the decomposition */
+} acd2d_result;
+
+/* Decomposes one validated polygon with holes. The polygon must pass acd_polygon_validate. */
+acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *params, acd2d_result *out,
+                           acd_error *err);
+
+/* Reads the decomposition for a coarser tolerance tau2 >= result->tau out of the tree without
+ * recomputing: out gets the components (and cuts) of the frontier where concavity <= tau2. */
+acd_status acd2d_result_at_tau(const acd2d_result *result, double tau2, acd2d_result *out, acd_error *err);
+
+void acd2d_result_free(acd2d_result *r);
+
+/* Concavity of a simple polygon (no holes) under a measure: the maximum over its vertices.
+ * `witness` (may be NULL) receives the index of the vertex attaining it. */
+double acd2d_concavity(const acd_vec2 *pts, size_t n, acd2d_measure m, double tau, size_t *witness);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

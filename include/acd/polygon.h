@@ -1,0 +1,89 @@
+/* acd/polygon.h: polygons with holes; reading (.poly, GeoJSON, WKT), validation, writing.
+ *
+ * A polygon is one outer ring followed by zero or more hole rings, stored as one point array
+ * with ring offsets. After acd_polygon_normalize (done by every reader and by
+ * acd_polygon_validate with fix=1) the outer ring is counterclockwise, holes clockwise,
+ * consecutive repeated vertices are dropped and no ring repeats its first point at its end. */
+#ifndef ACD_POLYGON_H
+#define ACD_POLYGON_H
+
+#include "acd/base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct acd_vec2 {
+    double x, y;
+} acd_vec2;
+
+typedef struct acd_polygon {
+    acd_vec2 *points;   /* all rings, one after the other */
+    size_t *ring_start; /* ring r is points[ring_start[r] .. ring_start[r+1]-1]; nrings+1 entries */
+    size_t nrings;      /* 1 outer + holes; 0 for an empty polygon */
+} acd_polygon;
+
+typedef struct acd_polygon_set {
+    acd_polygon *polygons;
+    size_t count;
+} acd_polygon_set;
+
+/* Input formats. ACD_FORMAT_AUTO detects from the content. */
+typedef enum acd_polygon_format {
+    ACD_POLY_FORMAT_AUTO = 0,
+    ACD_POLY_FORMAT_POLY,    /* Lien's .poly */
+    ACD_POLY_FORMAT_GEOJSON, /* Polygon, MultiPolygon, Feature, FeatureCollection, GeometryCollection */
+    ACD_POLY_FORMAT_WKT      /* POLYGON, MULTIPOLYGON */
+} acd_polygon_format;
+
+/* What normalization changed, so a verbose CLI can say so. */
+typedef struct acd_polygon_fixes {
+    size_t repeated_dropped;   /* consecutive duplicate vertices removed (incl. closing repeat) */
+    size_t rings_reversed;     /* rings whose orientation was flipped */
+} acd_polygon_fixes;
+
+/* Builds a polygon from rings given as arrays (ring 0 outer). Copies the data. */
+acd_status acd_polygon_from_rings(acd_polygon *out, const acd_vec2 *const *rings, const size_t *ring_sizes,
+                                  size_t nrings, acd_error *err);
+void acd_polygon_free(acd_polygon *p);
+void acd_polygon_set_free(acd_polygon_set *s);
+acd_status acd_polygon_copy(acd_polygon *dst, const acd_polygon *src);
+
+static inline size_t acd_polygon_ring_size(const acd_polygon *p, size_t r) {
+    return p->ring_start[r + 1] - p->ring_start[r];
+}
+static inline const acd_vec2 *acd_polygon_ring(const acd_polygon *p, size_t r) {
+    return p->points + p->ring_start[r];
+}
+static inline size_t acd_polygon_num_points(const acd_polygon *p) {
+    return p->nrings ? p->ring_start[p->nrings] : 0;
+}
+
+/* Signed area (outer minus holes once normalized). */
+double acd_polygon_area(const acd_polygon *p);
+
+/* Parses text (NUL-terminated or of length len) in the given format. `name` is used in
+ * messages (a file name). Every polygon found is normalized; fixes are summed (may be NULL). */
+acd_status acd_polygon_set_parse(acd_polygon_set *out, const char *text, size_t len, acd_polygon_format fmt,
+                                 const char *name, acd_polygon_fixes *fixes, acd_error *err);
+acd_status acd_polygon_set_read_file(acd_polygon_set *out, const char *path, acd_polygon_format fmt,
+                                     acd_polygon_fixes *fixes, acd_error *err);
+
+/* Normalizes in place: drops consecutive repeated vertices, makes the outer ring CCW and
+ * holes CW. */
+acd_status acd_polygon_normalize(acd_polygon *p, acd_polygon_fixes *fixes, acd_error *err);
+
+/* Checks that p is a valid polygon with holes: every ring has >= 3 distinct vertices, all
+ * coordinates finite, no ring self-intersects or touches itself, no two rings intersect or
+ * touch, every hole lies inside the outer ring, no hole lies inside another. The message names
+ * the ring ("chain") and vertex indices and coordinates. `index` names the polygon in messages. */
+acd_status acd_polygon_validate(const acd_polygon *p, size_t index, acd_error *err);
+
+/* Writers. */
+acd_status acd_polygon_set_write_poly(const acd_polygon_set *s, const char *path, acd_error *err);
+acd_status acd_polygon_set_write_geojson(const acd_polygon_set *s, const char *path, acd_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,23 @@
+/* core/tolerance: scale of an input, from which every tolerance is derived. */
+#include "core/tolerance.h"
+
+#include <float.h>
+#include <math.h>
+
+acd_scale acd_scale_of_points(const double *pts, size_t n, int dim) {
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < dim; k++) {
+            double v = pts[i * (size_t)dim + (size_t)k];
+            if (i == 0 || v < lo[k]) lo[k] = v;
+            if (i == 0 || v > hi[k]) hi[k] = v;
+        }
+    double d2 = 0;
+    for (int k = 0; k < dim; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    acd_scale s;
+    s.extent = sqrt(d2);
+    if (!(s.extent > DBL_MIN)) s.extent = 1.0; /* a single point: any unit will do */
+    s.weld = ACD_TOL_REL_WELD * s.extent;
+    s.dist = ACD_TOL_REL_DIST * s.extent;
+    return s;
+}
