@@ -1,0 +1,37 @@
+/* acd/hull.h: 3D convex hulls (through qhull's reentrant library), with defined results for
+ * degenerate input and facet adjacency for the decomposition code. Implemented in src/geom3/. */
+#ifndef ACD_HULL_H
+#define ACD_HULL_H
+
+#include "acd/base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct acd_hull {
+    int dim;              /* affine dimension of the input: 3 (solid), 2 (planar), 1 (collinear), 0 (one point), -1 empty */
+    double *vertices;     /* 3 * nvertices: the hull's vertices */
+    size_t nvertices;
+    uint32_t *triangles;  /* 3 * ntriangles, counterclockwise seen from outside (dim 3); for dim 2 the
+                             polygon triangulated (both sides not duplicated); none for dim < 2 */
+    size_t ntriangles;
+    uint32_t *neighbors;  /* 3 * ntriangles: the triangle across edge (t[i], t[i+1 mod 3]) */
+    double *planes;       /* 4 * ntriangles: outward unit normal n and offset d, n.x + d = 0 (dim 3) */
+    uint32_t *source;     /* nvertices: index of each hull vertex in the input points */
+    double volume;        /* 0 unless dim == 3 */
+    double area;
+} acd_hull;
+
+/* Hull of n points (3 doubles each). Duplicates, coplanar and collinear sets and n < 4 give a
+ * hull of lower dim rather than an error; NaN/Inf coordinates are ACD_ERR_INVALID_INPUT. */
+acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_error *err);
+void acd_hull_free(acd_hull *h);
+
+/* Signed distance from p to the hull's boundary planes: max over facets of n.p + d (<= 0 inside). dim 3 only. */
+double acd_hull_plane_distance(const acd_hull *h, const double p[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
