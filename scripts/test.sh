@@ -12,26 +12,47 @@ bash scripts/install-deps.sh
 echo "== release build"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build -j"$JOBS"
-(cd build && ctest --output-on-failure -j"$JOBS")
+TOTAL_PASS=0; TOTAL_FAIL=0; TOTAL_SKIP=0
+run_ctest() { # dir, extra args: runs ctest, keeps the counts for the closing line
+  local dir=$1; shift
+  local log; log=$(mktemp)
+  local rc=0
+  (cd "$dir" && ctest --output-on-failure -j"$JOBS" "$@") 2>&1 | tee "$log" || rc=1
+  local total failed skipped
+  total=$(sed -n 's/.*tests passed, \([0-9]*\) tests\{0,1\} failed out of \([0-9]*\).*/\2/p' "$log" | tail -1)
+  failed=$(sed -n 's/.*tests passed, \([0-9]*\) tests\{0,1\} failed out of.*/\1/p' "$log" | tail -1)
+  skipped=$(grep -c '\*\*\*Skipped\| Not Run' "$log" || true)
+  TOTAL_PASS=$((TOTAL_PASS + ${total:-0} - ${failed:-0} - skipped))
+  TOTAL_FAIL=$((TOTAL_FAIL + ${failed:-0}))
+  TOTAL_SKIP=$((TOTAL_SKIP + skipped))
+  rm -f "$log"
+  return $rc
+}
+run_ctest build
 
 echo "== ASan+UBSan build"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DACD_SANITIZE=ON -DACD_BUILD_BENCH=OFF >/dev/null
 cmake --build build-asan -j"$JOBS"
-(cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-   ctest --output-on-failure -j"$JOBS" -LE slow)
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 run_ctest build-asan -LE slow
 
 echo "== libFuzzer targets (${FUZZ_SECONDS}s each)"
 CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DACD_FUZZ=ON >/dev/null
 cmake --build build-fuzz -j"$JOBS"
 shopt -s nullglob
-for f in build-fuzz/fuzz/fuzz_*; do
+targets=(build-fuzz/fuzz/fuzz_*)
+for f in "${targets[@]}"; do
   name=$(basename "$f")
   corpus=fuzz/corpus/${name#fuzz_}
   work=$(mktemp -d)
   [ -d "$corpus" ] && cp -r "$corpus"/. "$work"/
   echo "-- $name"
-  "$f" -max_total_time="$FUZZ_SECONDS" -max_len=65536 -timeout=10 -rss_limit_mb=2048 "$work" 2>&1 | tail -n 3
-  rm -rf "$work"
+  if "$f" -max_total_time="$FUZZ_SECONDS" -max_len=65536 -timeout=10 -rss_limit_mb=2048 "$work" > "$work.log" 2>&1; then
+    tail -n 2 "$work.log"; TOTAL_PASS=$((TOTAL_PASS + 1))
+  else
+    tail -n 60 "$work.log"; echo "FUZZ FAILURE in $name"; TOTAL_FAIL=$((TOTAL_FAIL + 1))
+  fi
+  rm -rf "$work" "$work.log"
 done
-echo "fuzz: $(ls build-fuzz/fuzz | wc -l) targets ran without a crash"
-echo "== all tests passed"
+echo "== summary (ctest release + ctest ASan + fuzz targets)"
+echo "all: ${TOTAL_PASS} passed, ${TOTAL_FAIL} failed, ${TOTAL_SKIP} skipped"
+[ "$TOTAL_FAIL" -eq 0 ]
