@@ -1,0 +1,682 @@
+/* geom3/bvh: bounding-volume hierarchy over a triangle mesh.
+ *
+ * Binned SAH build after I. Wald, "On fast construction of SAH-based bounding volume
+ * hierarchies" (IEEE RT 2007, sec. 3: 16 bins over the centroid bounds, cost = area * count);
+ * closest point on a triangle after C. Ericson, "Real-Time Collision Detection" (2005, sec.
+ * 5.1.5); ray/triangle after Moller and Trumbore (JGT 1997). */
+#include "geom3/bvh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+#define BVH_BINS 16
+#define BVH_STACK 128 /* depth bound: the SAH/median split always separates, depth < 64 in practice */
+
+static const double *vtx(const acd_bvh *b, uint32_t i) { return b->vertices + 3 * (size_t)i; }
+
+static void tri_box(const acd_bvh *b, uint32_t t, double lo[3], double hi[3]) {
+    const uint32_t *tr = b->triangles + 3 * (size_t)t;
+    for (int k = 0; k < 3; k++) {
+        double x = b->vertices[3 * (size_t)tr[0] + k], y = b->vertices[3 * (size_t)tr[1] + k],
+               z = b->vertices[3 * (size_t)tr[2] + k];
+        lo[k] = fmin(x, fmin(y, z));
+        hi[k] = fmax(x, fmax(y, z));
+    }
+}
+
+static double box_area(const double lo[3], const double hi[3]) {
+    double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    if (dx < 0) return 0;
+    return dx * dy + dy * dz + dz * dx;
+}
+
+static void box_empty(double lo[3], double hi[3]) {
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+}
+
+static void box_grow(double lo[3], double hi[3], const double l2[3], const double h2[3]) {
+    for (int k = 0; k < 3; k++) {
+        if (l2[k] < lo[k]) lo[k] = l2[k];
+        if (h2[k] > hi[k]) hi[k] = h2[k];
+    }
+}
+
+typedef struct build_item {
+    uint32_t node;
+    uint32_t start, end;
+    uint32_t depth;
+} build_item;
+
+/* Below this depth SAH chooses the split; deeper, the median split bounds the depth by
+ * BVH_SAH_DEPTH + log2(n) whatever the distribution of the triangles. */
+#define BVH_SAH_DEPTH 48
+
+/* Partitions order[start, end) by the split; returns the first index of the right half. */
+static uint32_t partition(uint32_t *order, const double *cent, uint32_t start, uint32_t end, int axis,
+                          double split) {
+    uint32_t i = start, j = end;
+    while (i < j) {
+        if (cent[3 * (size_t)order[i] + axis] < split) {
+            i++;
+        } else {
+            j--;
+            uint32_t t = order[i];
+            order[i] = order[j];
+            order[j] = t;
+        }
+    }
+    return i;
+}
+
+static int cmp_u32(const void *a, const void *b) {
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* (centroid[axis], index) order: a strict total order, so the split is deterministic. */
+static int cent_less(const double *cent, int axis, uint32_t a, uint32_t b) {
+    double ka = cent[3 * (size_t)a + axis], kb = cent[3 * (size_t)b + axis];
+    return ka < kb || (ka == kb && a < b);
+}
+
+/* Puts the element of rank k (within [start, end)) at position k, smaller ones before it,
+ * larger after (quickselect with a median-of-three pivot). */
+static void median_split(uint32_t *order, const double *cent, uint32_t start, uint32_t end, int axis, uint32_t k) {
+    uint32_t lo = start, hi = end - 1;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        uint32_t a = order[lo], b = order[mid], c = order[hi], piv;
+        if (cent_less(cent, axis, a, b)) piv = cent_less(cent, axis, b, c) ? b : (cent_less(cent, axis, a, c) ? c : a);
+        else piv = cent_less(cent, axis, a, c) ? a : (cent_less(cent, axis, b, c) ? c : b);
+        uint32_t i = lo, j = hi;
+        while (i <= j) {
+            while (cent_less(cent, axis, order[i], piv)) i++;
+            while (cent_less(cent, axis, piv, order[j])) j--;
+            if (i <= j) {
+                uint32_t t = order[i];
+                order[i] = order[j];
+                order[j] = t;
+                i++;
+                if (j == 0) break;
+                j--;
+            }
+        }
+        if (k <= j) hi = j;
+        else if (k >= i) lo = i;
+        else break;
+    }
+}
+
+acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
+                         size_t ntriangles, acd_error *err) {
+    memset(bvh, 0, sizeof *bvh);
+    if (ntriangles > 0 && (!vertices || !triangles))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "bvh: NULL vertex or triangle array");
+    if (ntriangles >= UINT32_MAX / 2)
+        return acd_fail(err, ACD_ERR_INVALID_INPUT, "bvh: too many triangles (%zu)", ntriangles);
+    bvh->vertices = vertices;
+    bvh->nvertices = nvertices;
+    bvh->triangles = triangles;
+    bvh->ntriangles = ntriangles;
+    if (ntriangles == 0) return ACD_OK;
+    for (size_t t = 0; t < ntriangles; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = triangles[3 * t + k];
+            if (v >= nvertices)
+                return acd_fail(err, ACD_ERR_INVALID_INPUT,
+                                "bvh: triangle %zu refers to vertex %u, but there are %zu vertices", t, v,
+                                nvertices);
+            const double *p = vertices + 3 * (size_t)v;
+            if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+                return acd_fail(err, ACD_ERR_INVALID_INPUT,
+                                "bvh: triangle %zu uses vertex %u with a non-finite coordinate (%g %g %g)", t, v,
+                                p[0], p[1], p[2]);
+        }
+    size_t maxnodes = 2 * ntriangles;
+    bvh->nodes = malloc(maxnodes * sizeof *bvh->nodes);
+    bvh->order = malloc(ntriangles * sizeof *bvh->order);
+    double *tbox = malloc(ntriangles * 6 * sizeof(double));
+    double *cent = malloc(ntriangles * 3 * sizeof(double));
+    build_item *stack = malloc(maxnodes * sizeof *stack);
+    if (!bvh->nodes || !bvh->order || !tbox || !cent || !stack) {
+        free(tbox);
+        free(cent);
+        free(stack);
+        acd_bvh_free(bvh);
+        return acd_fail(err, ACD_ERR_NOMEM, "bvh: out of memory for %zu triangles", ntriangles);
+    }
+    for (uint32_t t = 0; t < (uint32_t)ntriangles; t++) {
+        tri_box(bvh, t, tbox + 6 * (size_t)t, tbox + 6 * (size_t)t + 3);
+        for (int k = 0; k < 3; k++) cent[3 * (size_t)t + k] = 0.5 * (tbox[6 * (size_t)t + k] + tbox[6 * (size_t)t + 3 + k]);
+        bvh->order[t] = t;
+    }
+    size_t nnodes = 1, sp = 0;
+    stack[sp++] = (build_item){0, 0, (uint32_t)ntriangles, 0};
+    while (sp > 0) {
+        build_item it = stack[--sp];
+        acd_bvh_node *nd = &bvh->nodes[it.node];
+        double clo[3], chi[3];
+        box_empty(nd->lo, nd->hi);
+        box_empty(clo, chi);
+        for (uint32_t i = it.start; i < it.end; i++) {
+            uint32_t t = bvh->order[i];
+            box_grow(nd->lo, nd->hi, tbox + 6 * (size_t)t, tbox + 6 * (size_t)t + 3);
+            box_grow(clo, chi, cent + 3 * (size_t)t, cent + 3 * (size_t)t);
+        }
+        uint32_t n = it.end - it.start;
+        if (n <= 2) {
+            nd->first = it.start;
+            nd->count = n;
+            continue;
+        }
+        /* binned SAH over the three axes */
+        int best_axis = -1;
+        double best_cost = INFINITY, best_split = 0;
+        for (int ax = 0; ax < 3; ax++) {
+            double ext = chi[ax] - clo[ax];
+            if (!(ext > 0) || it.depth >= BVH_SAH_DEPTH) continue;
+            double blo[BVH_BINS][3], bhi[BVH_BINS][3];
+            uint32_t bcnt[BVH_BINS] = {0};
+            for (int b = 0; b < BVH_BINS; b++) box_empty(blo[b], bhi[b]);
+            double scale = BVH_BINS / ext;
+            for (uint32_t i = it.start; i < it.end; i++) {
+                uint32_t t = bvh->order[i];
+                int b = (int)((cent[3 * (size_t)t + ax] - clo[ax]) * scale);
+                if (b >= BVH_BINS) b = BVH_BINS - 1;
+                if (b < 0) b = 0;
+                bcnt[b]++;
+                box_grow(blo[b], bhi[b], tbox + 6 * (size_t)t, tbox + 6 * (size_t)t + 3);
+            }
+            double rarea[BVH_BINS];
+            uint32_t rcnt[BVH_BINS];
+            double lo[3], hi[3];
+            box_empty(lo, hi);
+            uint32_t c = 0;
+            for (int b = BVH_BINS - 1; b > 0; b--) {
+                box_grow(lo, hi, blo[b], bhi[b]);
+                c += bcnt[b];
+                rarea[b] = box_area(lo, hi);
+                rcnt[b] = c;
+            }
+            box_empty(lo, hi);
+            c = 0;
+            for (int b = 0; b < BVH_BINS - 1; b++) {
+                box_grow(lo, hi, blo[b], bhi[b]);
+                c += bcnt[b];
+                if (c == 0 || rcnt[b + 1] == 0) continue;
+                double cost = box_area(lo, hi) * c + rarea[b + 1] * rcnt[b + 1];
+                if (cost < best_cost) {
+                    best_cost = cost;
+                    best_axis = ax;
+                    best_split = clo[ax] + (b + 1) / scale;
+                }
+            }
+        }
+        uint32_t mid;
+        if (best_axis >= 0) {
+            double leaf_cost = box_area(nd->lo, nd->hi) * n;
+            if (n <= ACD_BVH_LEAF_MAX && leaf_cost <= best_cost + 0.5 * box_area(nd->lo, nd->hi)) {
+                nd->first = it.start;
+                nd->count = n;
+                continue;
+            }
+            mid = partition(bvh->order, cent, it.start, it.end, best_axis, best_split);
+            if (mid == it.start || mid == it.end) { /* rounding at the bin edge: fall back */
+                mid = it.start + n / 2;
+                median_split(bvh->order, cent, it.start, it.end, best_axis, mid);
+            }
+        } else if (it.depth >= BVH_SAH_DEPTH && n > ACD_BVH_LEAF_MAX) {
+            int ax = 0;
+            for (int k = 1; k < 3; k++)
+                if (chi[k] - clo[k] > chi[ax] - clo[ax]) ax = k;
+            mid = it.start + n / 2;
+            median_split(bvh->order, cent, it.start, it.end, ax, mid);
+        } else {
+            /* all centroids coincide: split the index range in half (sorted for determinism) */
+            if (n <= ACD_BVH_LEAF_MAX) {
+                nd->first = it.start;
+                nd->count = n;
+                continue;
+            }
+            qsort(bvh->order + it.start, n, sizeof(uint32_t), cmp_u32);
+            mid = it.start + n / 2;
+        }
+        uint32_t left = (uint32_t)nnodes;
+        nnodes += 2;
+        nd->first = left;
+        nd->count = 0;
+        /* push right first so the left subtree is built (and numbered) first */
+        stack[sp++] = (build_item){left + 1, mid, it.end, it.depth + 1};
+        stack[sp++] = (build_item){left, it.start, mid, it.depth + 1};
+    }
+    bvh->nnodes = nnodes;
+    free(tbox);
+    free(cent);
+    free(stack);
+    return ACD_OK;
+}
+
+void acd_bvh_free(acd_bvh *bvh) {
+    if (!bvh) return;
+    free(bvh->nodes);
+    free(bvh->order);
+    memset(bvh, 0, sizeof *bvh);
+}
+
+/* ---- closest point ---- */
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void sub3(double r[3], const double a[3], const double b[3]) {
+    r[0] = a[0] - b[0];
+    r[1] = a[1] - b[1];
+    r[2] = a[2] - b[2];
+}
+static double dist2(const double a[3], const double b[3]) {
+    double d[3];
+    sub3(d, a, b);
+    return dot3(d, d);
+}
+
+static double closest_segment(const double p[3], const double a[3], const double b[3], double q[3]) {
+    double ab[3], ap[3];
+    sub3(ab, b, a);
+    sub3(ap, p, a);
+    double l2 = dot3(ab, ab), t = 0;
+    if (l2 > 0) {
+        t = dot3(ap, ab) / l2;
+        if (t < 0) t = 0;
+        if (t > 1) t = 1;
+    }
+    for (int k = 0; k < 3; k++) q[k] = a[k] + t * ab[k];
+    return dist2(p, q);
+}
+
+double acd_closest_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
+                                  double q[3]) {
+    double ab[3], ac[3], ap[3], bp[3], cp[3];
+    sub3(ab, b, a);
+    sub3(ac, c, a);
+    sub3(ap, p, a);
+    double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+    if (d1 <= 0 && d2 <= 0) {
+        memcpy(q, a, 3 * sizeof(double));
+        return dist2(p, q);
+    }
+    sub3(bp, p, b);
+    double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    if (d3 >= 0 && d4 <= d3) {
+        memcpy(q, b, 3 * sizeof(double));
+        return dist2(p, q);
+    }
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) {
+        double v = d1 / (d1 - d3);
+        for (int k = 0; k < 3; k++) q[k] = a[k] + v * ab[k];
+        return dist2(p, q);
+    }
+    sub3(cp, p, c);
+    double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    if (d6 >= 0 && d5 <= d6) {
+        memcpy(q, c, 3 * sizeof(double));
+        return dist2(p, q);
+    }
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) {
+        double w = d2 / (d2 - d6);
+        for (int k = 0; k < 3; k++) q[k] = a[k] + w * ac[k];
+        return dist2(p, q);
+    }
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0 && (d4 - d3) + (d5 - d6) > 0) {
+        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        for (int k = 0; k < 3; k++) q[k] = b[k] + w * (c[k] - b[k]);
+        return dist2(p, q);
+    }
+    double den = va + vb + vc;
+    if (den > 0 && va >= 0 && vb >= 0 && vc >= 0) {
+        double v = vb / den, w = vc / den;
+        for (int k = 0; k < 3; k++) q[k] = a[k] + ab[k] * v + ac[k] * w;
+        return dist2(p, q);
+    }
+    /* degenerate (collinear or repeated vertices) or rounding: best of the three edges */
+    double q2[3], best = closest_segment(p, a, b, q);
+    double d = closest_segment(p, b, c, q2);
+    if (d < best) {
+        best = d;
+        memcpy(q, q2, sizeof q2);
+    }
+    d = closest_segment(p, c, a, q2);
+    if (d < best) {
+        best = d;
+        memcpy(q, q2, sizeof q2);
+    }
+    return best;
+}
+
+static double box_dist2(const acd_bvh_node *n, const double p[3]) {
+    double d = 0;
+    for (int k = 0; k < 3; k++) {
+        double e = 0;
+        if (p[k] < n->lo[k]) e = n->lo[k] - p[k];
+        else if (p[k] > n->hi[k]) e = p[k] - n->hi[k];
+        d += e * e;
+    }
+    return d;
+}
+
+int acd_bvh_closest(const acd_bvh *bvh, const double p[3], double max_dist2, acd_bvh_closest_result *out) {
+    if (bvh->nnodes == 0) return 0;
+    uint32_t stack[BVH_STACK];
+    int sp = 0, found = 0;
+    double best = max_dist2;
+    if (box_dist2(&bvh->nodes[0], p) > best) return 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const acd_bvh_node *n = &bvh->nodes[stack[--sp]];
+        if (box_dist2(n, p) > best) continue;
+        if (n->count) {
+            for (uint32_t i = 0; i < n->count; i++) {
+                uint32_t t = bvh->order[n->first + i];
+                const uint32_t *tr = bvh->triangles + 3 * (size_t)t;
+                double q[3];
+                double d = acd_closest_point_triangle(p, vtx(bvh, tr[0]), vtx(bvh, tr[1]), vtx(bvh, tr[2]), q);
+                if (d < best || (d == best && (!found || t < out->triangle))) {
+                    best = d;
+                    found = 1;
+                    out->dist2 = d;
+                    memcpy(out->point, q, sizeof q);
+                    out->triangle = t;
+                }
+            }
+            continue;
+        }
+        double dl = box_dist2(&bvh->nodes[n->first], p), dr = box_dist2(&bvh->nodes[n->first + 1], p);
+        if (sp + 2 > BVH_STACK) return found; /* cannot happen for a tree built here */
+        /* visit the nearer child first (push it last) */
+        if (dl <= dr) {
+            if (dr <= best) stack[sp++] = n->first + 1;
+            if (dl <= best) stack[sp++] = n->first;
+        } else {
+            if (dl <= best) stack[sp++] = n->first;
+            if (dr <= best) stack[sp++] = n->first + 1;
+        }
+    }
+    return found;
+}
+
+/* ---- rays ---- */
+
+static int ray_box(const acd_bvh_node *n, const double o[3], const double inv[3], double tmax) {
+    double t0 = 0, t1 = tmax;
+    for (int k = 0; k < 3; k++) {
+        if (isinf(inv[k])) {
+            if (o[k] < n->lo[k] || o[k] > n->hi[k]) return 0;
+            continue;
+        }
+        double a = (n->lo[k] - o[k]) * inv[k], b = (n->hi[k] - o[k]) * inv[k];
+        if (a > b) {
+            double t = a;
+            a = b;
+            b = t;
+        }
+        /* widen by a few ulps so rounding never drops a box the ray touches */
+        a -= fabs(a) * 1e-15;
+        b += fabs(b) * 1e-15;
+        if (a > t0) t0 = a;
+        if (b < t1) t1 = b;
+        if (t0 > t1) return 0;
+    }
+    return 1;
+}
+
+int acd_bvh_raycast(const acd_bvh *bvh, const double o[3], const double d[3], double tmax, double *tout,
+                    uint32_t *triangle) {
+    if (bvh->nnodes == 0) return 0;
+    double inv[3];
+    for (int k = 0; k < 3; k++) inv[k] = d[k] != 0 ? 1.0 / d[k] : INFINITY;
+    uint32_t stack[BVH_STACK];
+    int sp = 0, hit = 0;
+    double best = tmax;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const acd_bvh_node *n = &bvh->nodes[stack[--sp]];
+        if (!ray_box(n, o, inv, best)) continue;
+        if (n->count) {
+            for (uint32_t i = 0; i < n->count; i++) {
+                uint32_t t = bvh->order[n->first + i];
+                const uint32_t *tr = bvh->triangles + 3 * (size_t)t;
+                const double *a = vtx(bvh, tr[0]), *b = vtx(bvh, tr[1]), *c = vtx(bvh, tr[2]);
+                double e1[3], e2[3], s[3], pv[3], qv[3];
+                sub3(e1, b, a);
+                sub3(e2, c, a);
+                pv[0] = d[1] * e2[2] - d[2] * e2[1];
+                pv[1] = d[2] * e2[0] - d[0] * e2[2];
+                pv[2] = d[0] * e2[1] - d[1] * e2[0];
+                double det = dot3(e1, pv);
+                if (det == 0) continue;
+                double id = 1.0 / det;
+                sub3(s, o, a);
+                double u = dot3(s, pv) * id;
+                if (u < 0 || u > 1) continue;
+                qv[0] = s[1] * e1[2] - s[2] * e1[1];
+                qv[1] = s[2] * e1[0] - s[0] * e1[2];
+                qv[2] = s[0] * e1[1] - s[1] * e1[0];
+                double v = dot3(d, qv) * id;
+                if (v < 0 || u + v > 1) continue;
+                double tt = dot3(e2, qv) * id;
+                if (tt < 0 || tt > best) continue;
+                if (!hit || tt < best || (tt == best && t < *triangle)) {
+                    best = tt;
+                    *tout = tt;
+                    *triangle = t;
+                    hit = 1;
+                }
+            }
+            continue;
+        }
+        if (sp + 2 > BVH_STACK) return hit;
+        stack[sp++] = n->first + 1;
+        stack[sp++] = n->first;
+    }
+    return hit;
+}
+
+/* ---- box and line queries ---- */
+
+static int box_meets(const double alo[3], const double ahi[3], const double blo[3], const double bhi[3]) {
+    for (int k = 0; k < 3; k++)
+        if (alo[k] > bhi[k] || blo[k] > ahi[k]) return 0;
+    return 1;
+}
+
+int acd_bvh_query_box(const acd_bvh *bvh, const double lo[3], const double hi[3], acd_bvh_tri_fn fn, void *user) {
+    if (bvh->nnodes == 0) return 0;
+    uint32_t stack[BVH_STACK];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const acd_bvh_node *n = &bvh->nodes[stack[--sp]];
+        if (!box_meets(n->lo, n->hi, lo, hi)) continue;
+        if (n->count) {
+            for (uint32_t i = 0; i < n->count; i++) {
+                uint32_t t = bvh->order[n->first + i];
+                double tl[3], th[3];
+                tri_box(bvh, t, tl, th);
+                if (box_meets(tl, th, lo, hi) && fn(user, t)) return 1;
+            }
+            continue;
+        }
+        if (sp + 2 > BVH_STACK) return 0;
+        stack[sp++] = n->first + 1;
+        stack[sp++] = n->first;
+    }
+    return 0;
+}
+
+static int line_meets(const double lo[3], const double hi[3], const double p[3], int axis, int forward) {
+    for (int k = 0; k < 3; k++) {
+        if (k == axis) {
+            if (forward && hi[k] < p[k]) return 0;
+        } else if (p[k] < lo[k] || p[k] > hi[k]) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+int acd_bvh_query_axis_line(const acd_bvh *bvh, const double p[3], int axis, int forward, acd_bvh_tri_fn fn,
+                            void *user) {
+    if (bvh->nnodes == 0 || axis < 0 || axis > 2) return 0;
+    uint32_t stack[BVH_STACK];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const acd_bvh_node *n = &bvh->nodes[stack[--sp]];
+        if (!line_meets(n->lo, n->hi, p, axis, forward)) continue;
+        if (n->count) {
+            for (uint32_t i = 0; i < n->count; i++) {
+                uint32_t t = bvh->order[n->first + i];
+                double tl[3], th[3];
+                tri_box(bvh, t, tl, th);
+                if (line_meets(tl, th, p, axis, forward) && fn(user, t)) return 1;
+            }
+            continue;
+        }
+        if (sp + 2 > BVH_STACK) return 0;
+        stack[sp++] = n->first + 1;
+        stack[sp++] = n->first;
+    }
+    return 0;
+}
+
+/* ---- overlapping pairs ---- */
+
+static void grow_box(const double lo[3], const double hi[3], double m, double l2[3], double h2[3]) {
+    for (int k = 0; k < 3; k++) {
+        l2[k] = lo[k] - m;
+        h2[k] = hi[k] + m;
+    }
+}
+
+typedef struct pair_item {
+    uint32_t a, b;
+} pair_item;
+
+int acd_bvh_overlap_pairs(const acd_bvh *bvh, double margin, acd_bvh_pair_fn fn, void *user) {
+    if (bvh->nnodes == 0) return 0;
+    if (!(margin >= 0)) margin = 0;
+    /* (a, a) means "pairs within node a"; the stack holds at most depth * 3 items */
+    pair_item stack[3 * BVH_STACK];
+    int sp = 0;
+    stack[sp++] = (pair_item){0, 0};
+    while (sp > 0) {
+        pair_item it = stack[--sp];
+        const acd_bvh_node *na = &bvh->nodes[it.a], *nb = &bvh->nodes[it.b];
+        if (it.a == it.b) {
+            if (na->count) {
+                for (uint32_t i = 0; i < na->count; i++) {
+                    uint32_t t = bvh->order[na->first + i];
+                    double l1[3], h1[3];
+                    tri_box(bvh, t, l1, h1);
+                    grow_box(l1, h1, margin, l1, h1);
+                    for (uint32_t j = i + 1; j < na->count; j++) {
+                        uint32_t u = bvh->order[na->first + j];
+                        double l2[3], h2[3];
+                        tri_box(bvh, u, l2, h2);
+                        grow_box(l2, h2, margin, l2, h2);
+                        if (box_meets(l1, h1, l2, h2) && fn(user, t < u ? t : u, t < u ? u : t)) return 1;
+                    }
+                }
+                continue;
+            }
+            if (sp + 3 > 3 * BVH_STACK) return 0;
+            stack[sp++] = (pair_item){na->first, na->first + 1};
+            stack[sp++] = (pair_item){na->first + 1, na->first + 1};
+            stack[sp++] = (pair_item){na->first, na->first};
+            continue;
+        }
+        double la[3], ha[3], lb[3], hb[3];
+        grow_box(na->lo, na->hi, margin, la, ha);
+        grow_box(nb->lo, nb->hi, margin, lb, hb);
+        if (!box_meets(la, ha, lb, hb)) continue;
+        if (na->count && nb->count) {
+            for (uint32_t i = 0; i < na->count; i++) {
+                uint32_t t = bvh->order[na->first + i];
+                double l1[3], h1[3];
+                tri_box(bvh, t, l1, h1);
+                grow_box(l1, h1, margin, l1, h1);
+                for (uint32_t j = 0; j < nb->count; j++) {
+                    uint32_t u = bvh->order[nb->first + j];
+                    double l2[3], h2[3];
+                    tri_box(bvh, u, l2, h2);
+                    grow_box(l2, h2, margin, l2, h2);
+                    if (box_meets(l1, h1, l2, h2) && fn(user, t < u ? t : u, t < u ? u : t)) return 1;
+                }
+            }
+            continue;
+        }
+        if (sp + 2 > 3 * BVH_STACK) return 0;
+        /* descend into the larger (or the inner) node */
+        int split_a = nb->count || (!na->count && box_area(na->lo, na->hi) >= box_area(nb->lo, nb->hi));
+        if (split_a) {
+            stack[sp++] = (pair_item){na->first + 1, it.b};
+            stack[sp++] = (pair_item){na->first, it.b};
+        } else {
+            stack[sp++] = (pair_item){it.a, nb->first + 1};
+            stack[sp++] = (pair_item){it.a, nb->first};
+        }
+    }
+    return 0;
+}
+
+typedef struct pair_vec {
+    uint32_t *data;
+    size_t n, cap;
+    int failed;
+} pair_vec;
+
+static int collect_pair(void *user, uint32_t a, uint32_t b) {
+    pair_vec *v = user;
+    if (v->n == v->cap) {
+        size_t cap = v->cap ? 2 * v->cap : 1024;
+        uint32_t *d = realloc(v->data, cap * 2 * sizeof(uint32_t));
+        if (!d) {
+            v->failed = 1;
+            return 1;
+        }
+        v->data = d;
+        v->cap = cap;
+    }
+    v->data[2 * v->n] = a;
+    v->data[2 * v->n + 1] = b;
+    v->n++;
+    return 0;
+}
+
+static int cmp_pair(const void *x, const void *y) {
+    const uint32_t *a = x, *b = y;
+    if (a[0] != b[0]) return a[0] < b[0] ? -1 : 1;
+    return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+acd_status acd_bvh_collect_pairs(const acd_bvh *bvh, double margin, uint32_t **pairs, size_t *npairs,
+                                 acd_error *err) {
+    pair_vec v = {0};
+    acd_bvh_overlap_pairs(bvh, margin, collect_pair, &v);
+    if (v.failed) {
+        free(v.data);
+        *pairs = NULL;
+        *npairs = 0;
+        return acd_fail(err, ACD_ERR_NOMEM, "bvh: out of memory collecting %zu overlapping pairs", v.n);
+    }
+    if (v.n) qsort(v.data, v.n, 2 * sizeof(uint32_t), cmp_pair);
+    *pairs = v.data;
+    *npairs = v.n;
+    return ACD_OK;
+}
