@@ -9,6 +9,8 @@
 extern "C" {
 #endif
 
+#define ACD_HULL_NO_NEIGHBOR UINT32_MAX
+
 typedef struct acd_hull {
     int dim;              /* affine dimension of the input: 3 (solid), 2 (planar), 1 (collinear), 0 (one point), -1 empty */
     double *vertices;     /* 3 * nvertices: the hull's vertices */
@@ -16,19 +18,29 @@ typedef struct acd_hull {
     uint32_t *triangles;  /* 3 * ntriangles, counterclockwise seen from outside (dim 3); for dim 2 the
                              polygon triangulated (both sides not duplicated); none for dim < 2 */
     size_t ntriangles;
-    uint32_t *neighbors;  /* 3 * ntriangles: the triangle across edge (t[i], t[i+1 mod 3]) */
-    double *planes;       /* 4 * ntriangles: outward unit normal n and offset d, n.x + d = 0 (dim 3) */
+    uint32_t *neighbors;  /* 3 * ntriangles: the triangle across edge (t[i], t[i+1 mod 3]);
+                             ACD_HULL_NO_NEIGHBOR on the boundary of a planar (dim 2) hull */
+    double *planes;       /* 4 * ntriangles: outward unit normal n and offset d, n.x + d = 0 (dim 3);
+                             for dim 2 every row is the polygon's plane, n the side seen counterclockwise */
     uint32_t *source;     /* nvertices: index of each hull vertex in the input points */
     double volume;        /* 0 unless dim == 3 */
     double area;
 } acd_hull;
 
 /* Hull of n points (3 doubles each). Duplicates, coplanar and collinear sets and n < 4 give a
- * hull of lower dim rather than an error; NaN/Inf coordinates are ACD_ERR_INVALID_INPUT. */
+ * hull of lower dim rather than an error; NaN/Inf coordinates are ACD_ERR_INVALID_INPUT.
+ * The dimension is the numerical affine dimension at ACD_TOL_REL_DIST x the bounding-box diagonal:
+ * points within that distance of a plane (line, point) give a dim 2 (1, 0) hull (docs/geom3.md).
+ * dim 0: one vertex; dim 1: the two extreme points, in input order along the line; dim 2: the convex
+ * polygon's vertices in counterclockwise order (seen from the planes' normal), fanned into triangles.
+ * Every hull vertex is an input point (source gives which). out is caller-owned, freed with
+ * acd_hull_free (also safe after a failure). */
 acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_error *err);
 void acd_hull_free(acd_hull *h);
 
-/* Signed distance from p to the hull's boundary planes: max over facets of n.p + d (<= 0 inside). dim 3 only. */
+/* dim 3: max over facets of n.p + d (<= 0 inside; a lower bound of the signed distance outside).
+ * dim 0, 1, 2: the Euclidean distance from p to the point, segment or polygon (>= 0).
+ * Empty hull: +INFINITY. */
 double acd_hull_plane_distance(const acd_hull *h, const double p[3]);
 
 #ifdef __cplusplus

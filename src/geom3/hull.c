@@ -1,0 +1,591 @@
+/* geom3/hull: 3D convex hull through qhull's reentrant library (Quickhull: Barber, Dobkin and
+ * Huhdanpaa 1996), wrapped so that degenerate input has a defined result.
+ *
+ * CH_P is the basic object of Lien's ACD (dissertation D §II.A.3, polyhedra paper P §2: bridges are
+ * hull facets not on the surface). The wrapper:
+ *   - rejects NaN/Inf, normalises the points into [-1/2, 1/2]^3 (centre and longest side of the
+ *     bounding box) so that huge and tiny coordinates behave the same;
+ *   - finds the numerical affine dimension (0..3) at ACD_TOL_REL_DIST x diagonal and handles dim < 3
+ *     itself: point, extreme segment, convex polygon by Andrew's monotone chain with exact orient2d;
+ *   - runs qhull only on full-dimensional sets, with 'Qt' (triangulated output), never letting its
+ *     longjmp escape: qh_new_qhull's own setjmp catches errors and returns a code, errors go to a
+ *     memory stream that becomes our message; after it returns only plain data structure walks are done;
+ *   - if qhull still reports a precision failure, retries on a copy joggled with a fixed-seed
+ *     generator (deterministic), then gives up with ACD_ERR_DEGENERATE.
+ * Orientation comes from qhull's facet toporient flag (topologically consistent, counterclockwise
+ * seen from outside); adjacency from the simplicial facets' neighbour sets (neighbour i is opposite
+ * vertex i). */
+#include "acd/hull.h"
+
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <libqhull_r/qhull_ra.h>
+
+#include "core/error.h"
+#include "core/predicates.h"
+#include "core/rng.h"
+#include "core/tolerance.h"
+
+/* Joggle tried when qhull fails on a nearly degenerate full-dimensional set, relative to the
+ * normalised extent (1); each retry multiplies it by 100. */
+#define HULL_JOGGLE_REL (100.0 * ACD_TOL_REL_WELD)
+#define HULL_JOGGLE_TRIES 3
+#define HULL_JOGGLE_SEED 0x6a6f67676c65ull
+
+static void sub3(const double *a, const double *b, double *r) {
+    r[0] = a[0] - b[0];
+    r[1] = a[1] - b[1];
+    r[2] = a[2] - b[2];
+}
+static void cross3(const double *a, const double *b, double *r) {
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double norm3(const double *a) { return sqrt(dot3(a, a)); }
+
+void acd_hull_free(acd_hull *h) {
+    if (!h) return;
+    free(h->vertices);
+    free(h->triangles);
+    free(h->neighbors);
+    free(h->planes);
+    free(h->source);
+    memset(h, 0, sizeof *h);
+    h->dim = -1;
+}
+
+/* Allocates the output arrays. */
+static acd_status hull_alloc(acd_hull *h, size_t nv, size_t nt, acd_error *err) {
+    h->vertices = malloc((nv ? nv : 1) * 3 * sizeof *h->vertices);
+    h->source = malloc((nv ? nv : 1) * sizeof *h->source);
+    h->triangles = malloc((nt ? nt : 1) * 3 * sizeof *h->triangles);
+    h->neighbors = malloc((nt ? nt : 1) * 3 * sizeof *h->neighbors);
+    h->planes = malloc((nt ? nt : 1) * 4 * sizeof *h->planes);
+    if (!h->vertices || !h->source || !h->triangles || !h->neighbors || !h->planes) {
+        acd_hull_free(h);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for a hull of %zu vertices and %zu triangles", nv, nt);
+    }
+    h->nvertices = nv;
+    h->ntriangles = nt;
+    return ACD_OK;
+}
+
+static void set_vertex(acd_hull *h, size_t k, const double *points, size_t src) {
+    memcpy(h->vertices + 3 * k, points + 3 * src, 3 * sizeof(double));
+    h->source[k] = (uint32_t)src;
+}
+
+/* Index of the point of w farthest from a (ties: lowest index). */
+static size_t farthest_from_point(const double *w, size_t n, const double *a, double *dist) {
+    size_t best = 0;
+    double bd = -1;
+    for (size_t i = 0; i < n; i++) {
+        double d[3];
+        sub3(w + 3 * i, a, d);
+        double v = dot3(d, d);
+        if (v > bd) {
+            bd = v;
+            best = i;
+        }
+    }
+    *dist = sqrt(bd);
+    return best;
+}
+
+/* ---------- dim 2: convex polygon by Andrew's monotone chain on a coordinate projection ---------- */
+
+typedef struct proj_pt {
+    double p[2];
+    size_t idx;
+} proj_pt;
+
+static int cmp_proj(const void *a, const void *b) {
+    const proj_pt *x = a, *y = b;
+    if (x->p[0] != y->p[0]) return x->p[0] < y->p[0] ? -1 : 1;
+    if (x->p[1] != y->p[1]) return x->p[1] < y->p[1] ? -1 : 1;
+    return x->idx < y->idx ? -1 : (x->idx > y->idx);
+}
+
+/* Counterclockwise convex polygon of the projections (strictly convex: collinear points dropped).
+ * Writes indices into hullidx (capacity n + 1), returns the count. */
+static size_t monotone_chain(proj_pt *pp, size_t n, size_t *hullidx) {
+    qsort(pp, n, sizeof *pp, cmp_proj);
+    /* drop exact duplicates of the projection (keep the lowest input index) */
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (m == 0 || pp[i].p[0] != pp[m - 1].p[0] || pp[i].p[1] != pp[m - 1].p[1]) pp[m++] = pp[i];
+    if (m < 3) {
+        for (size_t i = 0; i < m; i++) hullidx[i] = i;
+        return m;
+    }
+    size_t *st = hullidx, k = 0;
+    for (size_t i = 0; i < m; i++) { /* lower hull */
+        while (k >= 2 && acd_orient2d(pp[st[k - 2]].p, pp[st[k - 1]].p, pp[i].p) <= 0) k--;
+        st[k++] = i;
+    }
+    size_t lower = k + 1;
+    for (size_t i = m - 1; i-- > 0;) { /* upper hull */
+        while (k >= lower && acd_orient2d(pp[st[k - 2]].p, pp[st[k - 1]].p, pp[i].p) <= 0) k--;
+        st[k++] = i;
+    }
+    return k - 1; /* the last point repeats the first */
+}
+
+static acd_status hull_planar(const double *points, const double *w, size_t n, const double *nrm, double s,
+                              acd_hull *out, acd_error *err) {
+    int ax = 0;
+    for (int k = 1; k < 3; k++)
+        if (fabs(nrm[k]) > fabs(nrm[ax])) ax = k;
+    int i0 = (ax + 1) % 3, i1 = (ax + 2) % 3;
+    proj_pt *pp = malloc(n * sizeof *pp);
+    size_t *hidx = malloc((n + 1) * sizeof *hidx);
+    if (!pp || !hidx) {
+        free(pp);
+        free(hidx);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the planar hull of %zu points", n);
+    }
+    for (size_t i = 0; i < n; i++) {
+        pp[i].p[0] = w[3 * i + i0];
+        pp[i].p[1] = w[3 * i + i1];
+        pp[i].idx = i;
+    }
+    size_t m = monotone_chain(pp, n, hidx);
+    if (m < 3) { /* projection collapsed: cannot happen above the dimension tolerance */
+        free(pp);
+        free(hidx);
+        return acd_fail(err, ACD_ERR_INTERNAL, "planar hull of %zu points collapsed to %zu vertices", n, m);
+    }
+    /* normal of the counterclockwise polygon: +e_ax side */
+    double un[3];
+    memcpy(un, nrm, sizeof un);
+    if (un[ax] < 0) un[0] = -un[0], un[1] = -un[1], un[2] = -un[2];
+    acd_status st = hull_alloc(out, m, m - 2, err);
+    if (st != ACD_OK) {
+        free(pp);
+        free(hidx);
+        return st;
+    }
+    out->dim = 2;
+    for (size_t k = 0; k < m; k++) set_vertex(out, k, points, pp[hidx[k]].idx);
+    double d = 0;
+    for (size_t k = 0; k < m; k++) {
+        double v = -dot3(un, out->vertices + 3 * k);
+        if (k == 0 || v < d) d = v;
+    }
+    double area = 0;
+    for (size_t t = 0; t + 2 < m; t++) {
+        uint32_t *tri = out->triangles + 3 * t, *nb = out->neighbors + 3 * t;
+        tri[0] = 0;
+        tri[1] = (uint32_t)(t + 1);
+        tri[2] = (uint32_t)(t + 2);
+        nb[0] = t > 0 ? (uint32_t)(t - 1) : ACD_HULL_NO_NEIGHBOR;
+        nb[1] = ACD_HULL_NO_NEIGHBOR;
+        nb[2] = t + 3 < m ? (uint32_t)(t + 1) : ACD_HULL_NO_NEIGHBOR;
+        memcpy(out->planes + 4 * t, un, sizeof un);
+        out->planes[4 * t + 3] = d;
+        const double *a = w + 3 * pp[hidx[0]].idx, *b = w + 3 * pp[hidx[t + 1]].idx, *c = w + 3 * pp[hidx[t + 2]].idx;
+        double e1[3], e2[3], cr[3];
+        sub3(b, a, e1);
+        sub3(c, a, e2);
+        cross3(e1, e2, cr);
+        area += 0.5 * norm3(cr);
+    }
+    out->area = area * s * s;
+    out->volume = 0;
+    free(pp);
+    free(hidx);
+    return ACD_OK;
+}
+
+/* ---------- dim 3 through qhull ---------- */
+
+typedef struct qhull_run {
+    qhT *qh;
+    FILE *errf;
+    char *errbuf;
+    size_t errlen;
+    int exitcode;
+} qhull_run;
+
+static void qhull_run_free(qhull_run *r) {
+    if (r->qh) {
+        int curlong, totlong;
+        qh_freeqhull(r->qh, !qh_ALL);
+        qh_memfreeshort(r->qh, &curlong, &totlong);
+        free(r->qh);
+        r->qh = NULL;
+    }
+    if (r->errf) {
+        fclose(r->errf);
+        r->errf = NULL;
+    }
+    free(r->errbuf);
+    r->errbuf = NULL;
+}
+
+/* Runs qhull on the normalised points; returns qhull's exit code (0 = success) or -1 when memory
+ * for the run itself was missing. */
+static int qhull_run_do(qhull_run *r, double *w, size_t n) {
+    memset(r, 0, sizeof *r);
+    r->qh = calloc(1, sizeof *r->qh);
+    if (!r->qh) return -1;
+    r->errf = open_memstream(&r->errbuf, &r->errlen);
+    if (!r->errf) r->errf = fopen("/dev/null", "w");
+    if (!r->errf) {
+        free(r->qh);
+        r->qh = NULL;
+        return -1;
+    }
+    char flags[] = "qhull Qt";
+    qh_zero(r->qh, r->errf);
+    /* qh_new_qhull sets its own setjmp for the whole build and sets NOerrexit again before returning */
+    r->exitcode = qh_new_qhull(r->qh, 3, (int)n, w, False, flags, NULL, r->errf);
+    r->qh->NOerrexit = True;
+    fflush(r->errf);
+    return r->exitcode;
+}
+
+/* First line of qhull's error text (for the message). */
+static void qhull_first_line(const qhull_run *r, char *buf, size_t size) {
+    buf[0] = '\0';
+    if (!r->errbuf) return;
+    const char *s = r->errbuf;
+    while (*s == '\n' || *s == ' ') s++;
+    size_t k = 0;
+    while (s[k] && s[k] != '\n' && k + 1 < size) {
+        buf[k] = s[k];
+        k++;
+    }
+    buf[k] = '\0';
+}
+
+static acd_status hull_from_qhull(qhull_run *r, const double *points, const double *w, size_t n, double s,
+                                  acd_hull *out, acd_error *err) {
+    qhT *qh = r->qh;
+    facetT *facet;
+    vertexT *vertex, **vertexp;
+    facetT *neighbor, **neighborp;
+    size_t nf = 0;
+    FORALLfacets nf++;
+    unsigned idcap = qh->facet_id + 1;
+    uint32_t *fidx = malloc(idcap * sizeof *fidx);
+    uint32_t *vmap = malloc(n * sizeof *vmap);
+    if (!fidx || !vmap) {
+        free(fidx);
+        free(vmap);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for a hull of %zu facets", nf);
+    }
+    for (size_t i = 0; i < n; i++) vmap[i] = UINT32_MAX;
+    size_t t = 0;
+    FORALLfacets {
+        int nv = 0, nn = 0;
+        FOREACHvertex_(facet->vertices) {
+            int pid = qh_pointid(qh, vertex->point);
+            if (pid < 0 || (size_t)pid >= n) {
+                free(fidx);
+                free(vmap);
+                return acd_fail(err, ACD_ERR_INTERNAL, "qhull facet f%u has a vertex that is no input point", facet->id);
+            }
+            vmap[pid] = 0;
+            nv++;
+        }
+        FOREACHneighbor_(facet) nn++;
+        if (nv != 3 || nn != 3 || facet->id >= idcap) {
+            free(fidx);
+            free(vmap);
+            return acd_fail(err, ACD_ERR_INTERNAL, "qhull facet f%u is not a triangle (%d vertices, %d neighbours)",
+                            facet->id, nv, nn);
+        }
+        fidx[facet->id] = (uint32_t)t++;
+    }
+    size_t nverts = 0;
+    for (size_t i = 0; i < n; i++)
+        if (vmap[i] == 0) vmap[i] = (uint32_t)nverts++;
+    acd_status st = hull_alloc(out, nverts, nf, err);
+    if (st != ACD_OK) {
+        free(fidx);
+        free(vmap);
+        return st;
+    }
+    out->dim = 3;
+    for (size_t i = 0; i < n; i++)
+        if (vmap[i] != UINT32_MAX) set_vertex(out, vmap[i], points, i);
+    double o[3] = {0, 0, 0};
+    for (size_t k = 0; k < nverts; k++)
+        for (int c = 0; c < 3; c++) o[c] += w[3 * out->source[k] + c];
+    for (int c = 0; c < 3; c++) o[c] /= (double)nverts;
+    /* qhull's toporient gives a consistent orientation; which parity means outward is read off the
+     * facet whose (unoriented) triangle normal agrees best, in magnitude, with qhull's outward normal */
+    int flip = 0;
+    double bestdot = -1;
+    FORALLfacets {
+        const double *pv[3];
+        int i = 0;
+        FOREACHvertex_(facet->vertices) pv[i++] = w + 3 * qh_pointid(qh, vertex->point);
+        double e1[3], e2[3], cr[3];
+        sub3(pv[1], pv[0], e1);
+        sub3(pv[2], pv[0], e2);
+        cross3(e1, e2, cr);
+        double dt = dot3(cr, facet->normal);
+        if (fabs(dt) > bestdot) {
+            bestdot = fabs(dt);
+            flip = (dt > 0) != (facet->toporient != 0);
+        }
+    }
+    double vol = 0, area = 0;
+    t = 0;
+    FORALLfacets {
+        uint32_t v[3], opp[3];
+        int i = 0;
+        FOREACHvertex_(facet->vertices) v[i++] = vmap[qh_pointid(qh, vertex->point)];
+        i = 0;
+        FOREACHneighbor_(facet) opp[i++] = fidx[neighbor->id];
+        if ((facet->toporient != 0) == flip) { /* inward as listed: swap the first two */
+            uint32_t x = v[0];
+            v[0] = v[1];
+            v[1] = x;
+            x = opp[0];
+            opp[0] = opp[1];
+            opp[1] = x;
+        }
+        uint32_t *tri = out->triangles + 3 * t, *nb = out->neighbors + 3 * t;
+        for (int k = 0; k < 3; k++) {
+            tri[k] = v[k];
+            nb[k] = opp[(k + 2) % 3]; /* across edge (k, k+1) = opposite vertex k+2 */
+        }
+        double nrm[3] = {facet->normal[0], facet->normal[1], facet->normal[2]};
+        double len = norm3(nrm);
+        if (len > 0)
+            for (int c = 0; c < 3; c++) nrm[c] /= len;
+        double d = 0;
+        for (int k = 0; k < 3; k++) {
+            double dv = -dot3(nrm, out->vertices + 3 * tri[k]);
+            if (k == 0 || dv < d) d = dv;
+        }
+        memcpy(out->planes + 4 * t, nrm, sizeof nrm);
+        out->planes[4 * t + 3] = d;
+        const double *a = w + 3 * out->source[tri[0]], *b = w + 3 * out->source[tri[1]], *c = w + 3 * out->source[tri[2]];
+        double e1[3], e2[3], e3[3], cr[3];
+        sub3(b, a, e1);
+        sub3(c, a, e2);
+        cross3(e1, e2, cr);
+        area += 0.5 * norm3(cr);
+        sub3(a, o, e3);
+        double ao[3], bo[3], co[3], bc[3];
+        sub3(a, o, ao);
+        sub3(b, o, bo);
+        sub3(c, o, co);
+        cross3(bo, co, bc);
+        vol += dot3(ao, bc) / 6.0;
+        t++;
+    }
+    out->volume = vol * s * s * s;
+    out->area = area * s * s;
+    free(fidx);
+    free(vmap);
+    return ACD_OK;
+}
+
+static acd_status hull_solid(const double *points, double *w, size_t n, double s, acd_hull *out, acd_error *err) {
+    qhull_run r;
+    int code = qhull_run_do(&r, w, n);
+    char msg[200] = "";
+    if (code == 0) {
+        acd_status st = hull_from_qhull(&r, points, w, n, s, out, err);
+        qhull_run_free(&r);
+        return st;
+    }
+    qhull_first_line(&r, msg, sizeof msg);
+    qhull_run_free(&r);
+    if (code < 0) return acd_fail(err, ACD_ERR_NOMEM, "out of memory starting qhull on %zu points", n);
+    /* precision trouble on a nearly degenerate set: joggle a copy deterministically */
+    double *j = malloc(3 * n * sizeof *j);
+    if (!j) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for a joggled copy of %zu points", n);
+    acd_rng rng;
+    acd_rng_seed(&rng, HULL_JOGGLE_SEED);
+    double amp = HULL_JOGGLE_REL;
+    for (int attempt = 0; attempt < HULL_JOGGLE_TRIES; attempt++, amp *= 100.0) {
+        for (size_t i = 0; i < 3 * n; i++) j[i] = w[i] + amp * (2.0 * acd_rng_uniform(&rng) - 1.0);
+        code = qhull_run_do(&r, j, n);
+        if (code == 0) {
+            acd_status st = hull_from_qhull(&r, points, w, n, s, out, err);
+            qhull_run_free(&r);
+            free(j);
+            return st;
+        }
+        qhull_run_free(&r);
+        if (code < 0) break;
+    }
+    free(j);
+    return acd_fail(err, ACD_ERR_DEGENERATE, "qhull failed on %zu points (exit code %d): %s", n, code,
+                    msg[0] ? msg : "no message");
+}
+
+acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_error *err) {
+    if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_hull_compute: out is NULL");
+    memset(out, 0, sizeof *out);
+    out->dim = -1;
+    if (n > 0 && !points) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_hull_compute: points is NULL");
+    if (n > (size_t)INT_MAX || n >= UINT32_MAX)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_hull_compute: %zu points exceed the limit %d", n, INT_MAX);
+    double lo[3], hi[3];
+    for (size_t i = 0; i < n; i++) {
+        const double *p = points + 3 * i;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "hull: point %zu has a non-finite coordinate (%g, %g, %g)", i,
+                            p[0], p[1], p[2]);
+        for (int k = 0; k < 3; k++) {
+            if (i == 0 || p[k] < lo[k]) lo[k] = p[k];
+            if (i == 0 || p[k] > hi[k]) hi[k] = p[k];
+        }
+    }
+    acd_error_clear(err);
+    if (n == 0) return ACD_OK;
+    double c[3], s = 0;
+    for (int k = 0; k < 3; k++) {
+        double side = hi[k] - lo[k];
+        if (!isfinite(side))
+            return acd_fail(err, ACD_ERR_INVALID_INPUT,
+                            "hull: coordinate range along axis %d ([%g, %g]) overflows a double", k, lo[k], hi[k]);
+        if (side > s) s = side;
+        c[k] = lo[k] + 0.5 * side;
+    }
+    if (s == 0 || n == 1) { /* all points identical */
+        acd_status st = hull_alloc(out, 1, 0, err);
+        if (st != ACD_OK) return st;
+        out->dim = 0;
+        set_vertex(out, 0, points, 0);
+        return ACD_OK;
+    }
+    double *w = malloc(3 * n * sizeof *w);
+    if (!w) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu hull points", n);
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) w[3 * i + k] = (points[3 * i + k] - c[k]) / s;
+    double diag = 0;
+    for (int k = 0; k < 3; k++) diag += ((hi[k] - lo[k]) / s) * ((hi[k] - lo[k]) / s);
+    diag = sqrt(diag);
+    double tol = ACD_TOL_REL_DIST * diag;
+    acd_status st = ACD_OK;
+    /* numerical affine dimension: a far point, the point farthest from it, from their line, from the plane */
+    double zero[3] = {0, 0, 0}, dist;
+    size_t ia = farthest_from_point(w, n, zero, &dist);
+    size_t ib = farthest_from_point(w, n, w + 3 * ia, &dist);
+    if (dist <= tol) {
+        st = hull_alloc(out, 1, 0, err);
+        if (st == ACD_OK) {
+            out->dim = 0;
+            set_vertex(out, 0, points, ia < ib ? ia : ib);
+        }
+        free(w);
+        return st;
+    }
+    double u[3];
+    sub3(w + 3 * ib, w + 3 * ia, u);
+    double ulen = norm3(u);
+    for (int k = 0; k < 3; k++) u[k] /= ulen;
+    size_t ic = 0;
+    double best = -1;
+    for (size_t i = 0; i < n; i++) {
+        double d[3], cr[3];
+        sub3(w + 3 * i, w + 3 * ia, d);
+        cross3(u, d, cr);
+        double v = norm3(cr);
+        if (v > best) best = v, ic = i;
+    }
+    if (best <= tol) { /* collinear: the extreme points along u */
+        size_t imin = 0, imax = 0;
+        double tmin = 0, tmax = 0;
+        for (size_t i = 0; i < n; i++) {
+            double d[3];
+            sub3(w + 3 * i, w + 3 * ia, d);
+            double tt = dot3(d, u);
+            if (i == 0 || tt < tmin) tmin = tt, imin = i;
+            if (i == 0 || tt > tmax) tmax = tt, imax = i;
+        }
+        st = hull_alloc(out, 2, 0, err);
+        if (st == ACD_OK) {
+            out->dim = 1;
+            size_t first = imin < imax ? imin : imax, second = imin < imax ? imax : imin;
+            set_vertex(out, 0, points, first);
+            set_vertex(out, 1, points, second);
+        }
+        free(w);
+        return st;
+    }
+    double e1[3], e2[3], nrm[3];
+    sub3(w + 3 * ib, w + 3 * ia, e1);
+    sub3(w + 3 * ic, w + 3 * ia, e2);
+    cross3(e1, e2, nrm);
+    double nlen = norm3(nrm);
+    for (int k = 0; k < 3; k++) nrm[k] /= nlen;
+    best = -1;
+    for (size_t i = 0; i < n; i++) {
+        double d[3];
+        sub3(w + 3 * i, w + 3 * ia, d);
+        double v = fabs(dot3(d, nrm));
+        if (v > best) best = v;
+    }
+    if (best <= tol)
+        st = hull_planar(points, w, n, nrm, s, out, err);
+    else
+        st = hull_solid(points, w, n, s, out, err);
+    free(w);
+    if (st != ACD_OK) acd_hull_free(out);
+    return st;
+}
+
+/* Distance from p to the segment [a, b]. */
+static double seg_dist(const double *p, const double *a, const double *b) {
+    double ab[3], ap[3];
+    sub3(b, a, ab);
+    sub3(p, a, ap);
+    double l2 = dot3(ab, ab), t = l2 > 0 ? dot3(ap, ab) / l2 : 0;
+    if (t < 0) t = 0;
+    if (t > 1) t = 1;
+    double q[3] = {a[0] + t * ab[0] - p[0], a[1] + t * ab[1] - p[1], a[2] + t * ab[2] - p[2]};
+    return norm3(q);
+}
+
+double acd_hull_plane_distance(const acd_hull *h, const double p[3]) {
+    if (!h || h->nvertices == 0) return INFINITY;
+    if (h->dim == 3) {
+        double m = -INFINITY;
+        for (size_t t = 0; t < h->ntriangles; t++) {
+            const double *pl = h->planes + 4 * t;
+            double v = pl[0] * p[0] + pl[1] * p[1] + pl[2] * p[2] + pl[3];
+            if (v > m) m = v;
+        }
+        return m;
+    }
+    if (h->dim == 0 || h->nvertices == 1) {
+        double d[3];
+        sub3(p, h->vertices, d);
+        return norm3(d);
+    }
+    if (h->dim == 1 || h->ntriangles == 0) return seg_dist(p, h->vertices, h->vertices + 3);
+    /* dim 2: polygon in order 0..m-1, counterclockwise about the plane normal */
+    const double *pl = h->planes;
+    double hgt = pl[0] * p[0] + pl[1] * p[1] + pl[2] * p[2] + pl[3];
+    double q[3] = {p[0] - hgt * pl[0], p[1] - hgt * pl[1], p[2] - hgt * pl[2]};
+    size_t m = h->nvertices;
+    int inside = 1;
+    double edge = INFINITY;
+    for (size_t i = 0; i < m; i++) {
+        const double *a = h->vertices + 3 * i, *b = h->vertices + 3 * ((i + 1) % m);
+        double ab[3], aq[3], cr[3];
+        sub3(b, a, ab);
+        sub3(q, a, aq);
+        cross3(ab, aq, cr);
+        if (dot3(cr, pl) < 0) inside = 0;
+        double de = seg_dist(p, a, b);
+        if (de < edge) edge = de;
+    }
+    return inside ? fabs(hgt) : edge;
+}

@@ -1,0 +1,411 @@
+/* Tests of geom3/hull: the qhull wrapper checked against brute force (every triple of points whose
+ * plane has all points on one side) on random points, and on degenerate sets: 0-3 points,
+ * duplicates, collinear, coplanar, huge and tiny coordinates, NaN. */
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/hull.h"
+#include "core/predicates.h"
+#include "core/rng.h"
+
+static double extent_of(const double *p, size_t n) {
+    double lo[3], hi[3];
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            if (i == 0 || p[3 * i + k] < lo[k]) lo[k] = p[3 * i + k];
+            if (i == 0 || p[3 * i + k] > hi[k]) hi[k] = p[3 * i + k];
+        }
+    double d = 0;
+    for (int k = 0; k < 3; k++) d += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    return sqrt(d);
+}
+
+/* Structural checks valid for every dim 3 hull: vertices are input points, closed 2-manifold with
+ * consistent neighbours, every input point inside every facet plane within tol, Euler. */
+static void check_solid_hull(const acd_hull *h, const double *pts, size_t n) {
+    assert_int_equal(h->dim, 3);
+    double tol = 1e-10 * extent_of(pts, n);
+    for (size_t v = 0; v < h->nvertices; v++) {
+        assert_true(h->source[v] < n);
+        assert_memory_equal(h->vertices + 3 * v, pts + 3 * h->source[v], 3 * sizeof(double));
+    }
+    assert_int_equal(h->ntriangles, 2 * h->nvertices - 4); /* Euler for a triangulated sphere */
+    for (size_t t = 0; t < h->ntriangles; t++) {
+        const uint32_t *tri = h->triangles + 3 * t;
+        for (int e = 0; e < 3; e++) {
+            uint32_t a = tri[e], b = tri[(e + 1) % 3];
+            assert_true(a < h->nvertices);
+            uint32_t u = h->neighbors[3 * t + e];
+            assert_true(u < h->ntriangles);
+            const uint32_t *ot = h->triangles + 3 * u;
+            int found = 0;
+            for (int f = 0; f < 3; f++)
+                if (ot[f] == b && ot[(f + 1) % 3] == a) {
+                    found = 1;
+                    assert_int_equal(h->neighbors[3 * u + f], t);
+                }
+            assert_true(found);
+        }
+        const double *pl = h->planes + 4 * t;
+        assert_true(fabs(pl[0] * pl[0] + pl[1] * pl[1] + pl[2] * pl[2] - 1) < 1e-12);
+        for (size_t i = 0; i < n; i++) {
+            double v = pl[0] * pts[3 * i] + pl[1] * pts[3 * i + 1] + pl[2] * pts[3 * i + 2] + pl[3];
+            if (v > tol) print_message("point %zu is %g outside facet %zu (tol %g)\n", i, v, t, tol);
+            assert_true(v <= tol);
+        }
+        /* vertices lie on the plane */
+        for (int k = 0; k < 3; k++) {
+            const double *q = h->vertices + 3 * tri[k];
+            assert_true(fabs(pl[0] * q[0] + pl[1] * q[1] + pl[2] * q[2] + pl[3]) <= tol);
+        }
+    }
+}
+
+/* Brute force for points in general position: facets are the triples with all points on one side. */
+static void brute_hull(const double *p, size_t n, size_t *nfacets, double *volume, int *is_vertex) {
+    double o[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) o[k] += p[3 * i + k] / (double)n;
+    size_t nf = 0;
+    double vol = 0;
+    for (size_t i = 0; i < n; i++) is_vertex[i] = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++)
+            for (size_t k = j + 1; k < n; k++) {
+                int pos = 0, neg = 0;
+                for (size_t m = 0; m < n && !(pos && neg); m++) {
+                    if (m == i || m == j || m == k) continue;
+                    int s = acd_orient3d_sign(p + 3 * i, p + 3 * j, p + 3 * k, p + 3 * m);
+                    pos += s > 0;
+                    neg += s < 0;
+                }
+                if (pos && neg) continue;
+                nf++;
+                is_vertex[i] = is_vertex[j] = is_vertex[k] = 1;
+                double a[3], b[3], c[3];
+                for (int q = 0; q < 3; q++) {
+                    a[q] = p[3 * i + q] - o[q];
+                    b[q] = p[3 * j + q] - o[q];
+                    c[q] = p[3 * k + q] - o[q];
+                }
+                double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                             a[2] * (b[0] * c[1] - b[1] * c[0]);
+                vol += fabs(det) / 6.0;
+            }
+    *nfacets = nf;
+    *volume = vol;
+}
+
+static void test_random_vs_brute_force(void **state) {
+    (void)state;
+    acd_rng r;
+    acd_rng_seed(&r, 11);
+    for (int trial = 0; trial < 40; trial++) {
+        size_t n = 4 + (size_t)acd_rng_below(&r, 50);
+        double *p = malloc(3 * n * sizeof *p);
+        int *isv = malloc(n * sizeof *isv);
+        assert_non_null(p);
+        assert_non_null(isv);
+        int sphere = trial % 3 == 0;
+        for (size_t i = 0; i < n; i++) {
+            for (int k = 0; k < 3; k++) p[3 * i + k] = 2 * acd_rng_uniform(&r) - 1;
+            if (sphere) { /* many points on the hull */
+                double l = sqrt(p[3 * i] * p[3 * i] + p[3 * i + 1] * p[3 * i + 1] + p[3 * i + 2] * p[3 * i + 2]);
+                for (int k = 0; k < 3; k++) p[3 * i + k] /= l;
+            }
+        }
+        acd_hull h;
+        acd_error err;
+        assert_int_equal(acd_hull_compute(p, n, &h, &err), ACD_OK);
+        check_solid_hull(&h, p, n);
+        size_t nf;
+        double vol;
+        brute_hull(p, n, &nf, &vol, isv);
+        assert_int_equal(h.ntriangles, nf);
+        assert_true(fabs(h.volume - vol) <= 1e-12 * vol);
+        size_t nv = 0;
+        for (size_t i = 0; i < n; i++) nv += (size_t)isv[i];
+        assert_int_equal(h.nvertices, nv);
+        for (size_t v = 0; v < h.nvertices; v++) assert_true(isv[h.source[v]]);
+        /* triangles outward: every point on the inner side, decided exactly */
+        for (size_t t = 0; t < h.ntriangles; t++) {
+            const uint32_t *tri = h.triangles + 3 * t;
+            for (size_t i = 0; i < n; i++)
+                assert_true(acd_orient3d_sign(h.vertices + 3 * tri[0], h.vertices + 3 * tri[1], h.vertices + 3 * tri[2],
+                                              p + 3 * i) >= 0);
+        }
+        acd_hull_free(&h);
+        free(p);
+        free(isv);
+    }
+}
+
+static void test_large_random_cloud(void **state) {
+    (void)state;
+    acd_rng r;
+    acd_rng_seed(&r, 12);
+    size_t n = 20000;
+    double *p = malloc(3 * n * sizeof *p);
+    assert_non_null(p);
+    for (size_t i = 0; i < 3 * n; i++) p[i] = acd_rng_uniform(&r);
+    acd_hull h, h2;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(p, n, &h, &err), ACD_OK);
+    check_solid_hull(&h, p, n);
+    assert_true(h.volume > 0.95 && h.volume <= 1.0);
+    /* determinism */
+    assert_int_equal(acd_hull_compute(p, n, &h2, &err), ACD_OK);
+    assert_int_equal(h.ntriangles, h2.ntriangles);
+    assert_memory_equal(h.triangles, h2.triangles, 3 * h.ntriangles * sizeof(uint32_t));
+    assert_memory_equal(h.planes, h2.planes, 4 * h.ntriangles * sizeof(double));
+    acd_hull_free(&h);
+    acd_hull_free(&h2);
+    free(p);
+}
+
+/* A unit cube's corners, plus points on its faces and edges, interior points and duplicates. */
+static size_t cube_cloud(double *p, acd_rng *r, double scale, double off) {
+    size_t n = 0;
+    for (int c = 0; c < 8; c++) {
+        p[3 * n] = c & 1;
+        p[3 * n + 1] = (c >> 1) & 1;
+        p[3 * n + 2] = (c >> 2) & 1;
+        n++;
+    }
+    for (int i = 0; i < 60; i++) { /* on faces (exactly coplanar with facets) */
+        int ax = i % 3;
+        for (int k = 0; k < 3; k++) p[3 * n + k] = acd_rng_uniform(r);
+        p[3 * n + ax] = (i / 3) % 2;
+        n++;
+    }
+    for (int i = 0; i < 12; i++) { /* on edges */
+        for (int k = 0; k < 3; k++) p[3 * n + k] = (i >> k) & 1;
+        p[3 * n + i % 3] = 0.25 + 0.5 * acd_rng_uniform(r);
+        n++;
+    }
+    for (int i = 0; i < 30; i++, n++)
+        for (int k = 0; k < 3; k++) p[3 * n + k] = 0.1 + 0.8 * acd_rng_uniform(r);
+    for (int i = 0; i < 8; i++, n++) memcpy(p + 3 * n, p + 3 * (size_t)i, 3 * sizeof(double)); /* duplicates */
+    for (size_t i = 0; i < 3 * n; i++) p[i] = p[i] * scale + off;
+    return n;
+}
+
+static void test_cube_with_coplanar_and_duplicates(void **state) {
+    (void)state;
+    double scales[][2] = {{1, 0}, {1e100, 3e100}, {1e-100, -7e-100}, {1e6, 1e9}};
+    for (size_t s = 0; s < sizeof scales / sizeof scales[0]; s++) {
+        acd_rng r;
+        acd_rng_seed(&r, 13);
+        double p[3 * 200];
+        size_t n = cube_cloud(p, &r, scales[s][0], scales[s][1]);
+        acd_hull h;
+        acd_error err;
+        assert_int_equal(acd_hull_compute(p, n, &h, &err), ACD_OK);
+        check_solid_hull(&h, p, n);
+        double sc = scales[s][0];
+        assert_int_equal(h.nvertices, 8);
+        if (!(fabs(h.volume / (sc * sc * sc) - 1) < 1e-9)) print_message("scale %g: volume %.17g nv %zu\n", sc, h.volume / (sc * sc * sc), h.nvertices);
+        assert_true(fabs(h.volume / (sc * sc * sc) - 1) < 1e-9);
+        assert_true(fabs(h.area / (sc * sc) - 6) < 1e-9);
+        /* distances: centre inside by half a side, a point outside by 2 sides */
+        double c[3] = {0.5 * sc + scales[s][1], 0.5 * sc + scales[s][1], 0.5 * sc + scales[s][1]};
+        assert_true(fabs(acd_hull_plane_distance(&h, c) / sc + 0.5) < 1e-9);
+        c[0] = 3 * sc + scales[s][1];
+        assert_true(fabs(acd_hull_plane_distance(&h, c) / sc - 2) < 1e-9);
+        acd_hull_free(&h);
+    }
+}
+
+static void test_few_points(void **state) {
+    (void)state;
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(NULL, 0, &h, &err), ACD_OK);
+    assert_int_equal(h.dim, -1);
+    assert_int_equal(h.nvertices, 0);
+    assert_true(isinf(acd_hull_plane_distance(&h, (double[3]){0, 0, 0})));
+    acd_hull_free(&h);
+
+    double one[3] = {1, 2, 3};
+    assert_int_equal(acd_hull_compute(one, 1, &h, &err), ACD_OK);
+    assert_int_equal(h.dim, 0);
+    assert_int_equal(h.nvertices, 1);
+    assert_int_equal(h.ntriangles, 0);
+    assert_true(fabs(acd_hull_plane_distance(&h, (double[3]){1, 2, 5}) - 2) < 1e-15);
+    acd_hull_free(&h);
+
+    double same[9] = {1, 2, 3, 1, 2, 3, 1, 2, 3};
+    assert_int_equal(acd_hull_compute(same, 3, &h, &err), ACD_OK);
+    assert_int_equal(h.dim, 0);
+    assert_int_equal(h.nvertices, 1);
+    acd_hull_free(&h);
+
+    double two[6] = {0, 0, 0, 1, 1, 1};
+    assert_int_equal(acd_hull_compute(two, 2, &h, &err), ACD_OK);
+    assert_int_equal(h.dim, 1);
+    assert_int_equal(h.nvertices, 2);
+    assert_int_equal(h.source[0], 0);
+    assert_int_equal(h.source[1], 1);
+    assert_true(fabs(acd_hull_plane_distance(&h, (double[3]){2, 2, 2}) - sqrt(3)) < 1e-15);
+    acd_hull_free(&h);
+
+    double three[9] = {0, 0, 0, 2, 0, 0, 0, 3, 1};
+    assert_int_equal(acd_hull_compute(three, 3, &h, &err), ACD_OK);
+    assert_int_equal(h.dim, 2);
+    assert_int_equal(h.nvertices, 3);
+    assert_int_equal(h.ntriangles, 1);
+    assert_true(fabs(h.area - 0.5 * 2 * sqrt(10)) < 1e-14);
+    assert_true(h.volume == 0);
+    for (int e = 0; e < 3; e++) assert_int_equal(h.neighbors[e], ACD_HULL_NO_NEIGHBOR);
+    assert_true(fabs(acd_hull_plane_distance(&h, (double[3]){0.5, 0.3, 0.1})) < 1e-15);
+    acd_hull_free(&h);
+
+    double tet[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    assert_int_equal(acd_hull_compute(tet, 4, &h, &err), ACD_OK);
+    check_solid_hull(&h, tet, 4);
+    assert_true(fabs(h.volume - 1.0 / 6) < 1e-15);
+    acd_hull_free(&h);
+}
+
+static void test_collinear(void **state) {
+    (void)state;
+    acd_rng r;
+    acd_rng_seed(&r, 14);
+    double p[3 * 50];
+    size_t imin = 0, imax = 0;
+    double tmin = 2, tmax = -1;
+    for (size_t i = 0; i < 50; i++) {
+        double t = acd_rng_uniform(&r);
+        if (i == 7) t = tmin < 2 ? tmin : t; /* a duplicate of an earlier extreme */
+        p[3 * i] = 1 + 0.3 * t;
+        p[3 * i + 1] = -2 + 0.7 * t;
+        p[3 * i + 2] = 5 - 0.1 * t;
+        if (t < tmin) tmin = t, imin = i;
+        if (t > tmax) tmax = t, imax = i;
+    }
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(p, 50, &h, &err), ACD_OK);
+    assert_int_equal(h.dim, 1);
+    assert_int_equal(h.nvertices, 2);
+    uint32_t a = h.source[0], b = h.source[1];
+    assert_true((a == imin && b == imax) || (a == imax && b == imin));
+    acd_hull_free(&h);
+}
+
+static void test_coplanar(void **state) {
+    (void)state;
+    acd_rng r;
+    acd_rng_seed(&r, 15);
+    for (int trial = 0; trial < 10; trial++) {
+        size_t n = 3 + (size_t)acd_rng_below(&r, 60);
+        double U[3] = {1, 2, -0.5}, V[3] = {-0.3, 0.4, 2}, O[3] = {10, -20, 3};
+        double scale = trial % 2 ? 1e-120 : 1e120;
+        double *uv = malloc(2 * n * sizeof *uv), *p = malloc(3 * n * sizeof *p);
+        assert_non_null(uv);
+        assert_non_null(p);
+        for (size_t i = 0; i < n; i++) {
+            uv[2 * i] = acd_rng_uniform(&r);
+            uv[2 * i + 1] = acd_rng_uniform(&r);
+            if (i > 0 && i % 5 == 0) memcpy(uv + 2 * i, uv, 2 * sizeof(double)); /* duplicates */
+            for (int k = 0; k < 3; k++) p[3 * i + k] = (O[k] + uv[2 * i] * U[k] + uv[2 * i + 1] * V[k]) * scale;
+        }
+        /* brute force 2D hull area in (u, v) */
+        double area2 = 0;
+        for (size_t i = 0; i < n; i++)
+            for (size_t j = 0; j < n; j++) {
+                if ((i > 0 && i % 5 == 0) || (j > 0 && j % 5 == 0)) continue; /* copies of point 0 */
+                if (uv[2 * i] == uv[2 * j] && uv[2 * i + 1] == uv[2 * j + 1]) continue;
+                int ok = 1;
+                for (size_t k = 0; k < n && ok; k++)
+                    if (acd_orient2d(uv + 2 * i, uv + 2 * j, uv + 2 * k) < 0) ok = 0;
+                if (ok) area2 += uv[2 * i] * uv[2 * j + 1] - uv[2 * j] * uv[2 * i + 1];
+            }
+        double cr[3] = {U[1] * V[2] - U[2] * V[1], U[2] * V[0] - U[0] * V[2], U[0] * V[1] - U[1] * V[0]};
+        double expect = 0.5 * area2 * sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]) * scale * scale;
+        acd_hull h;
+        acd_error err;
+        assert_int_equal(acd_hull_compute(p, n, &h, &err), ACD_OK);
+        if (n == 3 && expect == 0) {
+            acd_hull_free(&h);
+            free(uv);
+            free(p);
+            continue;
+        }
+        assert_int_equal(h.dim, 2);
+        assert_int_equal(h.ntriangles, h.nvertices - 2);
+        if (!(fabs(h.area - expect) <= 1e-9 * expect)) print_message("n %zu area %.17g expect %.17g\n", n, h.area, expect);
+        assert_true(fabs(h.area - expect) <= 1e-9 * expect);
+        double tol = 1e-10 * extent_of(p, n);
+        for (size_t i = 0; i < n; i++) assert_true(acd_hull_plane_distance(&h, p + 3 * i) <= tol);
+        for (size_t v = 0; v < h.nvertices; v++)
+            assert_memory_equal(h.vertices + 3 * v, p + 3 * h.source[v], 3 * sizeof(double));
+        acd_hull_free(&h);
+        free(uv);
+        free(p);
+    }
+    /* a square: 4 coplanar points */
+    double sq[12] = {0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+    acd_hull h;
+    assert_int_equal(acd_hull_compute(sq, 4, &h, NULL), ACD_OK);
+    assert_int_equal(h.dim, 2);
+    assert_int_equal(h.nvertices, 4);
+    assert_true(fabs(h.area - 1) < 1e-15);
+    assert_true(fabs(acd_hull_plane_distance(&h, (double[3]){0.5, 0.5, 3}) - 2) < 1e-15);
+    assert_true(fabs(acd_hull_plane_distance(&h, (double[3]){2, 0.5, 1}) - 1) < 1e-15);
+    acd_hull_free(&h);
+}
+
+static void test_nearly_flat(void **state) {
+    (void)state;
+    /* a slab much thinner than the dimension tolerance is planar; a thin but real one is solid */
+    acd_rng r;
+    acd_rng_seed(&r, 16);
+    double p[3 * 100];
+    for (int thick = 0; thick < 2; thick++) {
+        double eps = thick ? 1e-6 : 1e-14;
+        for (int i = 0; i < 100; i++) {
+            p[3 * i] = acd_rng_uniform(&r);
+            p[3 * i + 1] = acd_rng_uniform(&r);
+            p[3 * i + 2] = eps * acd_rng_uniform(&r);
+        }
+        acd_hull h;
+        acd_error err;
+        assert_int_equal(acd_hull_compute(p, 100, &h, &err), ACD_OK);
+        assert_int_equal(h.dim, thick ? 3 : 2);
+        if (thick) check_solid_hull(&h, p, 100);
+        acd_hull_free(&h);
+    }
+}
+
+static void test_nan_rejected(void **state) {
+    (void)state;
+    double p[12] = {0, 0, 0, 1, 0, 0, 0, NAN, 0, 0, 0, 1};
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(p, 4, &h, &err), ACD_ERR_INVALID_INPUT);
+    assert_non_null(strstr(err.message, "point 2"));
+    p[7] = INFINITY;
+    assert_int_equal(acd_hull_compute(p, 4, &h, &err), ACD_ERR_INVALID_INPUT);
+    acd_hull_free(&h);
+    double big[6] = {-1.5e308, 0, 0, 1.5e308, 0, 0};
+    assert_int_equal(acd_hull_compute(big, 2, &h, &err), ACD_ERR_INVALID_INPUT);
+    acd_hull_free(&h);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_random_vs_brute_force),
+        cmocka_unit_test(test_large_random_cloud),
+        cmocka_unit_test(test_cube_with_coplanar_and_duplicates),
+        cmocka_unit_test(test_few_points),
+        cmocka_unit_test(test_collinear),
+        cmocka_unit_test(test_coplanar),
+        cmocka_unit_test(test_nearly_flat),
+        cmocka_unit_test(test_nan_rejected),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
