@@ -1,0 +1,181 @@
+/* Shared helpers of the exact2d / triangulation tests: random polygons with holes, a small reader
+ * of Lien's .poly files (test-local until the library reader is used everywhere), exact
+ * point-in-polygon. Header-only, static functions. */
+#ifndef ACD_TESTS_POLY2_SUPPORT_H
+#define ACD_TESTS_POLY2_SUPPORT_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/polygon.h"
+#include "core/predicates.h"
+#include "core/rng.h"
+
+#define V2(p) ((const double *)(const void *)(p))
+
+/* Star-shaped polygon around (cx, cy): n vertices at angles (i + u_i 0.8) 2 pi / n (so no gap
+ * reaches 2 * 2 pi / n), radii in [rmin, rmax], counterclockwise. */
+static inline void p2_random_star(acd_rng *g, acd_vec2 *out, size_t n, double cx, double cy, double rmin,
+                                  double rmax) {
+    for (size_t i = 0; i < n; i++) {
+        double a = 6.283185307179586 * ((double)i + 0.8 * acd_rng_uniform(g)) / (double)n;
+        double r = rmin + (rmax - rmin) * acd_rng_uniform(g);
+        out[i].x = cx + r * cos(a);
+        out[i].y = cy + r * sin(a);
+    }
+}
+
+/* Random polygon with nholes holes: a star-shaped outer ring of max(n, 8) vertices (radius in
+ * [0.8, 1], so it contains the disc of radius 0.56) and holes of 3..hv vertices in distinct cells of a grid inside radius 0.5. Rings are
+ * randomly reversed when `mix_orientation` (the triangulator must cope). */
+static inline int p2_random_polygon(acd_rng *g, acd_polygon *p, size_t n, size_t nholes, size_t hv,
+                                    int mix_orientation) {
+    size_t k = 1;
+    while (k * k < nholes) k++;
+    size_t nrings = 1 + nholes;
+    acd_vec2 **rings = calloc(nrings, sizeof *rings);
+    size_t *sizes = calloc(nrings, sizeof *sizes);
+    if (nholes && n < 8) n = 8;
+    sizes[0] = n;
+    rings[0] = malloc(n * sizeof(acd_vec2));
+    p2_random_star(g, rings[0], n, 0, 0, nholes ? 0.8 : 0.3, 1.0);
+    double cell = 0.7 / (double)k;
+    for (size_t h = 0; h < nholes; h++) {
+        size_t m = 3 + (size_t)acd_rng_below(g, hv > 3 ? hv - 2 : 1);
+        sizes[h + 1] = m;
+        rings[h + 1] = malloc(m * sizeof(acd_vec2));
+        double cx = -0.35 + cell * ((double)(h % k) + 0.5), cy = -0.35 + cell * ((double)(h / k) + 0.5);
+        p2_random_star(g, rings[h + 1], m, cx, cy, cell * 0.15, cell * 0.45);
+        /* holes clockwise */
+        for (size_t i = 0; i < m / 2; i++) {
+            acd_vec2 t = rings[h + 1][i];
+            rings[h + 1][i] = rings[h + 1][m - 1 - i];
+            rings[h + 1][m - 1 - i] = t;
+        }
+    }
+    if (mix_orientation)
+        for (size_t r = 0; r < nrings; r++)
+            if (acd_rng_below(g, 2))
+                for (size_t i = 0; i < sizes[r] / 2; i++) {
+                    acd_vec2 t = rings[r][i];
+                    rings[r][i] = rings[r][sizes[r] - 1 - i];
+                    rings[r][sizes[r] - 1 - i] = t;
+                }
+    int ok = acd_polygon_from_rings(p, (const acd_vec2 *const *)rings, sizes, nrings, NULL) == ACD_OK;
+    for (size_t r = 0; r < nrings; r++) free(rings[r]);
+    free(rings);
+    free(sizes);
+    return ok;
+}
+
+/* |area| of the outer ring minus |area| of the holes, whatever the orientations. */
+static inline double p2_region_area(const acd_vec2 *pts, const size_t *rs, size_t nrings) {
+    double total = 0;
+    for (size_t r = 0; r < nrings; r++) {
+        double a = 0;
+        size_t s = rs[r], n = rs[r + 1] - s;
+        for (size_t i = 0; i < n; i++) {
+            const acd_vec2 *p = &pts[s + i], *q = &pts[s + (i + 1) % n];
+            a += p->x * q->y - q->x * p->y;
+        }
+        total += r == 0 ? fabs(a) / 2 : -fabs(a) / 2;
+    }
+    return total;
+}
+
+/* Exact even-odd test: 1 if q is strictly inside the region (0 on a boundary or outside). */
+static inline int p2_point_inside(const acd_vec2 *pts, const size_t *rs, size_t nrings, const double q[2]) {
+    int in = 0;
+    for (size_t r = 0; r < nrings; r++) {
+        size_t s = rs[r], n = rs[r + 1] - s;
+        for (size_t i = 0; i < n; i++) {
+            const double *a = V2(&pts[s + i]), *b = V2(&pts[s + (i + 1) % n]);
+            if (acd_point_on_segment(q, a, b)) return 0;
+            if ((a[1] <= q[1]) != (b[1] <= q[1])) {
+                int o = acd_orient2d_sign(a, b, q);
+                if ((b[1] > a[1] && o > 0) || (b[1] < a[1] && o < 0)) in ^= 1;
+            }
+        }
+    }
+    return in;
+}
+
+/* Minimal reader of Lien's .poly (see shared/data/polygons-lien/POLY_FORMAT.txt): every "out"
+ * chain starts a polygon, every "in" chain adds a hole to the last one. Returns the number of
+ * polygons read into out[] (at most cap), or -1 on a parse error. */
+static inline int p2_read_poly(const char *path, acd_polygon *out, int cap) {
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    char line[4096];
+    int nchains = -1, npoly = 0, bad = 0;
+    acd_vec2 **rings = NULL;
+    size_t *sizes = NULL, nr = 0;
+    int chain = 0;
+    while (!bad && (nchains < 0 || chain < nchains)) {
+        /* next non-empty, non-comment line */
+        int got = 0;
+        while (fgets(line, sizeof line, f)) {
+            char *h = strchr(line, '#');
+            if (h) *h = 0;
+            if (strspn(line, " \t\r\n") != strlen(line)) {
+                got = 1;
+                break;
+            }
+        }
+        if (!got) break;
+        if (nchains < 0) {
+            nchains = atoi(line);
+            continue;
+        }
+        size_t m;
+        char kind[16];
+        if (sscanf(line, "%zu %15s", &m, kind) != 2 || m < 3 || m > 10000000) {
+            bad = 1;
+            break;
+        }
+        int is_out = strcmp(kind, "out") == 0;
+        acd_vec2 *raw = malloc(m * sizeof *raw), *ord = malloc(m * sizeof *ord);
+        for (size_t i = 0; i < m && !bad; i++)
+            if (fscanf(f, "%lf %lf", &raw[i].x, &raw[i].y) != 2) bad = 1;
+        for (size_t i = 0; i < m && !bad; i++) {
+            long idx;
+            if (fscanf(f, "%ld", &idx) != 1 || idx < 1 || (size_t)idx > m) bad = 1;
+            else ord[i] = raw[idx - 1];
+        }
+        free(raw);
+        if (bad) {
+            free(ord);
+            break;
+        }
+        if (is_out && nr) {
+            if (npoly < cap &&
+                acd_polygon_from_rings(&out[npoly], (const acd_vec2 *const *)rings, sizes, nr, NULL) == ACD_OK)
+                npoly++;
+            for (size_t r = 0; r < nr; r++) free(rings[r]);
+            nr = 0;
+        }
+        rings = realloc(rings, (nr + 1) * sizeof *rings);
+        sizes = realloc(sizes, (nr + 1) * sizeof *sizes);
+        rings[nr] = ord;
+        sizes[nr] = m;
+        nr++;
+        chain++;
+        if (chain == nchains) break;
+    }
+    if (!bad && nr && npoly < cap &&
+        acd_polygon_from_rings(&out[npoly], (const acd_vec2 *const *)rings, sizes, nr, NULL) == ACD_OK)
+        npoly++;
+    for (size_t r = 0; r < nr; r++) free(rings[r]);
+    free(rings);
+    free(sizes);
+    fclose(f);
+    if (bad) {
+        for (int i = 0; i < npoly; i++) acd_polygon_free(&out[i]);
+        return -1;
+    }
+    return npoly;
+}
+
+#endif
