@@ -1,5 +1,11 @@
-/* acd/mesh.h: indexed triangle meshes. I/O, validation and repair are declared here as they
- * are built (see src/mesh/). */
+/* acd/mesh.h: indexed triangle meshes: reading and writing (OBJ, OFF, PLY, STL, optionally
+ * gzip-compressed), multi-part OBJ (o/g groups), validation report and repair.
+ *
+ * Readers take what real files contain (open, non-manifold, badly oriented meshes, polygon
+ * soups): polygons are fanned into triangles, STL soups are welded on exact coordinates, and the
+ * result is reported on by acd_mesh_validate rather than refused. A reader fails only on a file
+ * it cannot make sense of (malformed syntax, index out of range, NaN/Inf coordinate), with a
+ * message naming the file and the line (text formats) or byte offset (binary formats). */
 #ifndef ACD_MESH_H
 #define ACD_MESH_H
 
@@ -16,7 +22,78 @@ typedef struct acd_mesh {
     size_t ntriangles;
 } acd_mesh;
 
+/* Frees the arrays of m (not m itself) and zeroes it. NULL is allowed. */
 void acd_mesh_free(acd_mesh *m);
+
+/* Deep copy; dst is overwritten (not freed first). */
+acd_status acd_mesh_copy(acd_mesh *dst, const acd_mesh *src, acd_error *err);
+
+/* ---------------------------------------------------------------------------------------
+ * Reading and writing */
+
+typedef enum acd_mesh_format {
+    ACD_MESH_FORMAT_AUTO = 0,  /* read: from the content; write: from the file name's extension */
+    ACD_MESH_FORMAT_OBJ,       /* Wavefront OBJ (write: %.17g coordinates) */
+    ACD_MESH_FORMAT_OFF,       /* Geomview OFF (write: %.17g coordinates) */
+    ACD_MESH_FORMAT_PLY,       /* read: any PLY; write: binary little-endian, double xyz, uint32 indices */
+    ACD_MESH_FORMAT_PLY_ASCII, /* write: ASCII PLY with %.17g coordinates */
+    ACD_MESH_FORMAT_STL,       /* read: ASCII or binary STL; write: binary STL (float32) */
+    ACD_MESH_FORMAT_STL_ASCII  /* write: ASCII STL with %.17g coordinates (not rounded to float) */
+} acd_mesh_format;
+
+/* Static name of a format ("obj", "off", "ply", "ply-ascii", "stl", "stl-ascii", "auto"). */
+const char *acd_mesh_format_name(acd_mesh_format f);
+
+/* Format from a file name's extension (.obj .off .ply .stl, optionally followed by .gz);
+ * ACD_MESH_FORMAT_AUTO when unknown. */
+acd_mesh_format acd_mesh_format_from_path(const char *path);
+
+/* Reads a mesh file. The format is detected from the content (gzip is decompressed first); the
+ * extension is used only when the content is not conclusive (e.g. a truncated binary STL).
+ * Every o/g group of an OBJ goes into the one mesh. *out is overwritten; free with
+ * acd_mesh_free. On failure *out is empty and err says what and where. */
+acd_status acd_mesh_read(const char *path, acd_mesh *out, acd_error *err);
+
+/* Same from memory. hint: the format if known, else AUTO. name: used in error messages (may be
+ * NULL). data need not be NUL-terminated. */
+acd_status acd_mesh_read_memory(const void *data, size_t size, acd_mesh_format hint, const char *name,
+                                acd_mesh *out, acd_error *err);
+
+/* Writes m to path. fmt AUTO: from the extension. A path ending in ".gz" is gzip-compressed.
+ * Indices must be < nvertices (checked: ACD_ERR_INVALID_ARGUMENT). */
+acd_status acd_mesh_write(const char *path, const acd_mesh *m, acd_mesh_format fmt, acd_error *err);
+
+/* Same into a malloc'd buffer (*data, *size; caller frees *data). fmt must not be AUTO. */
+acd_status acd_mesh_write_memory(const acd_mesh *m, acd_mesh_format fmt, void **data, size_t *size,
+                                 acd_error *err);
+
+/* ---------------------------------------------------------------------------------------
+ * Multi-part meshes: one mesh per OBJ o/g group, e.g. the convex parts written by V-HACD or
+ * CoACD. */
+
+typedef struct acd_mesh_part {
+    char *name;     /* the o/g statement's name ("" for faces before any o/g); owned */
+    acd_mesh mesh;  /* only the vertices this part uses, in order of first use */
+} acd_mesh_part;
+
+typedef struct acd_mesh_parts {
+    acd_mesh_part *parts;
+    size_t count;
+} acd_mesh_parts;
+
+void acd_mesh_parts_free(acd_mesh_parts *p);
+
+/* Reads a mesh as parts. OBJ: every o or g statement starts a new part (in file order); parts
+ * without faces are dropped; a name that appears again starts another part of that name.
+ * Other formats: one part named "". */
+acd_status acd_mesh_read_parts(const char *path, acd_mesh_parts *out, acd_error *err);
+acd_status acd_mesh_read_parts_memory(const void *data, size_t size, acd_mesh_format hint, const char *name,
+                                      acd_mesh_parts *out, acd_error *err);
+/* acd_mesh_read_parts restricted to OBJ files (another format is ACD_ERR_UNSUPPORTED). */
+acd_status acd_mesh_read_obj_groups(const char *path, acd_mesh_parts *out, acd_error *err);
+
+/* Writes parts as one OBJ ("o NAME" per part, %.17g coordinates); ".gz" compresses. */
+acd_status acd_mesh_write_obj_parts(const char *path, const acd_mesh_parts *parts, acd_error *err);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,194 @@
+/* mesh/io_obj: Wavefront OBJ reader and writer.
+ *
+ * Reads v (extra w or colour values ignored), f (v, v/vt, v//vn, v/vt/vn; negative indices
+ * relative to the vertices read so far; polygons fanned from their first vertex), o and g
+ * (group starts, kept for acd_mesh_read_parts). vt, vn, vp, l, p, s, usemtl, mtllib and the
+ * free-form curve keywords are skipped. Positive indices may refer to vertices defined later in
+ * the file (checked at the end). Writes %.17g coordinates, which round-trip exactly. */
+#include "mesh/io_formats.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/error.h"
+
+static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+static int is_eol(char c) { return c == '\n' || c == '\0' || c == '#'; }
+static int is_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+
+int acd_obj_sniff(const char *buf, size_t len) {
+    /* the first statement line begins with a known OBJ keyword */
+    acd_text t = {buf, buf + len, 1, NULL};
+    for (int lines = 0; lines < 200 && t.p < t.end; lines++) {
+        acd_text_skip_blank(&t);
+        const char *p = t.p;
+        if (*p == '#' || *p == '\n') {
+            acd_text_next_line(&t);
+            continue;
+        }
+        static const char *const kw[] = {"v", "vt", "vn", "vp", "f", "o", "g", "s", "l", "p", "usemtl", "mtllib"};
+        for (size_t k = 0; k < sizeof kw / sizeof kw[0]; k++) {
+            size_t n = strlen(kw[k]);
+            if (!strncmp(p, kw[k], n) && (is_blank(p[n]) || p[n] == '\n' || p[n] == '\0')) return 1;
+        }
+        return 0;
+    }
+    return 0;
+}
+
+acd_status acd_obj_read(const char *buf, size_t len, const char *name, acd_mesh_builder *b, acd_error *err) {
+    acd_text t = {buf, buf + len, 1, name};
+    int64_t max_index = 0;
+    size_t max_line = 0;
+    const size_t v0 = b->nv;
+    while (t.p < t.end) {
+        acd_text_skip_blank(&t);
+        const char *p = t.p;
+        char c = p[0];
+        if (c == '\n' || c == '#' || c == '\0') {
+            if (c == '\0' && p < t.end)
+                return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: NUL byte in an OBJ file (binary data?)", name, t.line);
+            acd_text_next_line(&t);
+            continue;
+        }
+        if (c == 'v' && is_blank(p[1])) {
+            double x[3];
+            p += 1;
+            for (int k = 0; k < 3; k++) {
+                const char *q = acd_parse_double(p, &x[k]);
+                if (!q || !(is_blank(*q) || *q == '\n' || *q == '\0' || *q == '#'))
+                    return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: vertex needs 3 numbers (coordinate %d is missing or malformed)",
+                                    name, t.line, k + 1);
+                if (!isfinite(x[k]))
+                    return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: vertex coordinate %d is not finite", name, t.line, k + 1);
+                p = q;
+            }
+            if (!acd_builder_vertex(b, x[0], x[1], x[2]))
+                return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory (or more than 2^32-1 vertices)", name, t.line);
+            t.p = p;
+            acd_text_next_line(&t);
+            continue;
+        }
+        if (c == 'f' && is_blank(p[1])) {
+            p += 1;
+            b->npoly = 0;
+            for (;;) {
+                while (is_blank(*p)) p++;
+                if (is_eol(*p)) break;
+                if (*p == '\\' && (p[1] == '\n' || (p[1] == '\r' && p[2] == '\n'))) {
+                    /* line continuation */
+                    p += p[1] == '\n' ? 2 : 3;
+                    t.line++;
+                    continue;
+                }
+                int64_t idx;
+                const char *q = acd_parse_int64(p, &idx);
+                if (!q)
+                    return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face corner %zu: expected a vertex index, found '%.12s'",
+                                    name, t.line, b->npoly + 1, p);
+                /* skip /vt, /vt/vn, //vn */
+                for (int k = 0; k < 2 && *q == '/'; k++) {
+                    q++;
+                    int64_t dummy;
+                    const char *r = acd_parse_int64(q, &dummy);
+                    if (r) q = r;
+                }
+                if (!(is_blank(*q) || is_eol(*q) || *q == '\\'))
+                    return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face corner %zu: malformed index '%.12s'", name, t.line,
+                                    b->npoly + 1, p);
+                int64_t nv = (int64_t)(b->nv - v0);
+                int64_t r;
+                if (idx > 0) {
+                    r = idx - 1;
+                    if (idx > max_index) {
+                        max_index = idx;
+                        max_line = t.line;
+                    }
+                } else if (idx < 0) {
+                    if (-idx > nv)
+                        return acd_fail(err, ACD_ERR_PARSE,
+                                        "%s:%zu: relative vertex index %lld refers before the first vertex (%lld read so far)",
+                                        name, t.line, (long long)idx, (long long)nv);
+                    r = nv + idx;
+                } else {
+                    return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: vertex index 0 (OBJ indices start at 1)", name, t.line);
+                }
+                if (r >= (int64_t)UINT32_MAX)
+                    return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: vertex index %lld too large", name, t.line, (long long)idx);
+                if (!acd_builder_poly_push(b, (uint32_t)(r + (int64_t)v0)))
+                    return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory", name, t.line);
+                p = q;
+            }
+            if (b->npoly < 3)
+                return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face with %zu vertices (at least 3 needed)", name, t.line,
+                                b->npoly);
+            if (!acd_builder_fan(b)) return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory", name, t.line);
+            t.p = p;
+            acd_text_next_line(&t);
+            continue;
+        }
+        if ((c == 'o' || c == 'g') && (is_blank(p[1]) || p[1] == '\n' || p[1] == '\0')) {
+            p += 1;
+            while (is_blank(*p)) p++;
+            const char *e = p;
+            while (*e != '\n' && *e != '\0') e++;
+            while (e > p && is_blank(e[-1])) e--;
+            if (!acd_builder_group(b, p, (size_t)(e - p)))
+                return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory", name, t.line);
+            acd_text_next_line(&t);
+            continue;
+        }
+        if (is_alpha(c)) { /* vt, vn, vp, l, p, s, usemtl, mtllib, curves: not needed */
+            acd_text_next_line(&t);
+            continue;
+        }
+        return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: unexpected text '%.16s' (not an OBJ statement)", name, t.line, p);
+    }
+    if (max_index > (int64_t)(b->nv - v0))
+        return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: vertex index %lld out of range (the file has %zu vertices)", name,
+                        max_line, (long long)max_index, b->nv - v0);
+    return ACD_OK;
+}
+
+static void write_vertices(acd_obuf *o, const acd_mesh *m) {
+    for (size_t i = 0; i < m->nvertices; i++) {
+        const double *v = m->vertices + 3 * i;
+        acd_obuf_write(o, "v ", 2);
+        acd_obuf_double(o, v[0]);
+        acd_obuf_write(o, " ", 1);
+        acd_obuf_double(o, v[1]);
+        acd_obuf_write(o, " ", 1);
+        acd_obuf_double(o, v[2]);
+        acd_obuf_write(o, "\n", 1);
+    }
+}
+
+static void write_faces(acd_obuf *o, const acd_mesh *m, uint64_t base) {
+    for (size_t i = 0; i < m->ntriangles; i++) {
+        const uint32_t *t = m->triangles + 3 * i;
+        acd_obuf_write(o, "f", 1);
+        for (int k = 0; k < 3; k++) {
+            acd_obuf_write(o, " ", 1);
+            acd_obuf_u64(o, base + t[k] + 1);
+        }
+        acd_obuf_write(o, "\n", 1);
+    }
+}
+
+void acd_obj_write(acd_obuf *o, const acd_mesh *m) {
+    acd_obuf_printf(o, "# acd %s: %zu vertices, %zu triangles\n", ACD_VERSION_STRING, m->nvertices, m->ntriangles);
+    write_vertices(o, m);
+    write_faces(o, m, 0);
+}
+
+void acd_obj_write_parts(acd_obuf *o, const acd_mesh_parts *p) {
+    acd_obuf_printf(o, "# acd %s: %zu parts\n", ACD_VERSION_STRING, p->count);
+    uint64_t base = 0;
+    for (size_t i = 0; i < p->count; i++) {
+        const char *nm = p->parts[i].name;
+        acd_obuf_printf(o, "o %s\n", nm && nm[0] ? nm : "part");
+        write_vertices(o, &p->parts[i].mesh);
+        write_faces(o, &p->parts[i].mesh, base);
+        base += p->parts[i].mesh.nvertices;
+    }
+}

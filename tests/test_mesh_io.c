@@ -1,0 +1,402 @@
+/* Tests of the mesh readers and writers: exact round trips in every format (17 significant
+ * digits), gzip, OBJ groups as parts, and a clear error (with line or byte offset) for every
+ * malformed-file case. */
+#include "testutil.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "acd/mesh.h"
+#include "core/rng.h"
+
+/* An octahedron with awkward coordinates (not short decimals) so that only 17 digits round-trip. */
+static void make_octa(acd_mesh *m, uint64_t seed) {
+    static const uint32_t tri[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                       {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    static const double dir[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    acd_rng r;
+    acd_rng_seed(&r, seed);
+    m->nvertices = 6;
+    m->ntriangles = 8;
+    m->vertices = malloc(18 * sizeof(double));
+    m->triangles = malloc(24 * sizeof(uint32_t));
+    assert_non_null(m->vertices);
+    assert_non_null(m->triangles);
+    for (int i = 0; i < 6; i++)
+        for (int k = 0; k < 3; k++)
+            m->vertices[3 * i + k] = dir[i][k] * (1.0 + acd_rng_uniform(&r) / 3.0) + acd_rng_uniform(&r) * 1e-7;
+    memcpy(m->triangles, tri, sizeof tri);
+}
+
+/* Same mesh; with float_precision 1 (binary STL) or 2 (ASCII STL) (STL: a soup welded on read, so the vertex order follows the
+ * triangles) the triangles' corners must have the float-rounded coordinates of the original. */
+static void assert_same_mesh(const acd_mesh *a, const acd_mesh *b, int float_precision) {
+    assert_int_equal(a->nvertices, b->nvertices);
+    assert_int_equal(a->ntriangles, b->ntriangles);
+    if (float_precision) {
+        /* 1: rounded to float */
+        for (size_t t = 0; t < a->ntriangles; t++)
+            for (int c = 0; c < 3; c++)
+                for (int k = 0; k < 3; k++) {
+                    double expect = a->vertices[3 * a->triangles[3 * t + c] + k];
+                    if (float_precision == 1) expect = (double)(float)expect;
+                    double got = b->vertices[3 * b->triangles[3 * t + c] + k];
+                    if (expect != got) fail_msg("triangle %zu corner %d: %.17g != %.17g", t, c, expect, got);
+                }
+        return;
+    }
+    for (size_t i = 0; i < 3 * a->nvertices; i++) {
+        double expect = float_precision ? (double)(float)a->vertices[i] : a->vertices[i];
+        if (expect != b->vertices[i]) fail_msg("coordinate %zu: %.17g != %.17g", i, expect, b->vertices[i]);
+    }
+    assert_memory_equal(a->triangles, b->triangles, 3 * a->ntriangles * sizeof(uint32_t));
+}
+
+static void roundtrip(acd_mesh_format fmt, int float_precision) {
+    acd_mesh m, back;
+    make_octa(&m, 7 + (uint64_t)fmt);
+    void *data = NULL;
+    size_t size = 0;
+    acd_error err;
+    assert_int_equal(acd_mesh_write_memory(&m, fmt, &data, &size, &err), ACD_OK);
+    /* read back with no hint: the format must be recognised from the content */
+    acd_status s = acd_mesh_read_memory(data, size, ACD_MESH_FORMAT_AUTO, "rt", &back, &err);
+    if (s != ACD_OK) fail_msg("%s: %s", acd_mesh_format_name(fmt), err.message);
+    assert_same_mesh(&m, &back, float_precision);
+    free(data);
+    acd_mesh_free(&back);
+    acd_mesh_free(&m);
+}
+
+static void test_roundtrip_obj(void **state) { (void)state; roundtrip(ACD_MESH_FORMAT_OBJ, 0); }
+static void test_roundtrip_off(void **state) { (void)state; roundtrip(ACD_MESH_FORMAT_OFF, 0); }
+static void test_roundtrip_stl(void **state) { (void)state; roundtrip(ACD_MESH_FORMAT_STL, 1); }
+static void test_roundtrip_stl_ascii(void **state) { (void)state; roundtrip(ACD_MESH_FORMAT_STL_ASCII, 2); }
+
+static void tmp_path(char *buf, size_t n, const char *suffix) {
+    snprintf(buf, n, "/tmp/acd_test_mesh_io_%ld%s", (long)getpid(), suffix);
+}
+
+static void test_roundtrip_files_and_gzip(void **state) {
+    (void)state;
+    static const char *const suffixes[] = {".obj", ".off", ".stl", ".obj.gz", ".off.gz", ".stl.gz"};
+    for (size_t i = 0; i < sizeof suffixes / sizeof suffixes[0]; i++) {
+        acd_mesh m, back;
+        make_octa(&m, 100 + i);
+        char path[256];
+        tmp_path(path, sizeof path, suffixes[i]);
+        acd_error err;
+        assert_int_equal(acd_mesh_write(path, &m, ACD_MESH_FORMAT_AUTO, &err), ACD_OK);
+        if (strstr(suffixes[i], ".gz")) { /* really compressed */
+            size_t len;
+            char *raw = tu_read_file(path, &len);
+            assert_non_null(raw);
+            assert_true(len > 2 && (unsigned char)raw[0] == 0x1f && (unsigned char)raw[1] == 0x8b);
+            free(raw);
+        }
+        acd_status s = acd_mesh_read(path, &back, &err);
+        if (s != ACD_OK) fail_msg("%s: %s", suffixes[i], err.message);
+        assert_same_mesh(&m, &back, strstr(suffixes[i], ".stl") != NULL);
+        unlink(path);
+        acd_mesh_free(&m);
+        acd_mesh_free(&back);
+    }
+}
+
+static acd_status read_str(const char *text, acd_mesh_format hint, acd_mesh *m, acd_error *err) {
+    return acd_mesh_read_memory(text, strlen(text), hint, "t", m, err);
+}
+
+static void test_obj_features(void **state) {
+    (void)state;
+    /* quads fanned, negative indices, v/vt/vn, comments, w coordinate, vertex colours */
+    const char *text = "# a quad and a triangle\n"
+                       "mtllib x.mtl\n"
+                       "v 0 0 0 1\n"
+                       "v 1 0 0 1 0.5 0.5\n"
+                       "v 1 1 0\r\n"
+                       "v 0 1 0\n"
+                       "vt 0 0\nvn 0 0 1\n"
+                       "usemtl a\ns off\n"
+                       "f 1/1/1 2/1/1 3/1/1 4/1/1\n"
+                       "v 0.5 0.5 1\n"
+                       "f -5//1 -4//1 -1//1 # comment\n"
+                       "l 1 2\n";
+    acd_mesh m;
+    acd_error err;
+    acd_status s = read_str(text, ACD_MESH_FORMAT_AUTO, &m, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.nvertices, 5);
+    assert_int_equal(m.ntriangles, 3);
+    const uint32_t expect[9] = {0, 1, 2, 0, 2, 3, 0, 1, 4};
+    assert_memory_equal(m.triangles, expect, sizeof expect);
+    assert_true(m.vertices[3 * 4 + 2] == 1.0);
+    acd_mesh_free(&m);
+}
+
+static void test_obj_groups(void **state) {
+    (void)state;
+    const char *text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 5 5\n"
+                       "o first\nf 1 2 3\nf 1 2 4\n"
+                       "o empty\n"
+                       "g second part  \nf 5 2 3\n"
+                       "o first\nf 4 3 2\n";
+    acd_mesh_parts p;
+    acd_error err;
+    acd_status s = acd_mesh_read_parts_memory(text, strlen(text), ACD_MESH_FORMAT_AUTO, "groups", &p, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(p.count, 3);
+    assert_string_equal(p.parts[0].name, "first");
+    assert_string_equal(p.parts[1].name, "second part");
+    assert_string_equal(p.parts[2].name, "first");
+    assert_int_equal(p.parts[0].mesh.nvertices, 4);
+    assert_int_equal(p.parts[0].mesh.ntriangles, 2);
+    assert_int_equal(p.parts[1].mesh.nvertices, 3);
+    assert_int_equal(p.parts[1].mesh.ntriangles, 1);
+    /* part vertices are the used ones, in order of first use */
+    assert_true(p.parts[1].mesh.vertices[0] == 5.0);
+    const uint32_t t1[3] = {0, 1, 2};
+    assert_memory_equal(p.parts[1].mesh.triangles, t1, sizeof t1);
+    assert_true(p.parts[2].mesh.vertices[0] == 0 && p.parts[2].mesh.vertices[2] == 1.0);
+
+    /* written as parts and read back: same parts */
+    char path[256];
+    tmp_path(path, sizeof path, "_parts.obj");
+    assert_int_equal(acd_mesh_write_obj_parts(path, &p, &err), ACD_OK);
+    acd_mesh_parts q;
+    s = acd_mesh_read_obj_groups(path, &q, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(q.count, 3);
+    for (size_t i = 0; i < 3; i++) {
+        assert_string_equal(q.parts[i].name, p.parts[i].name);
+        assert_same_mesh(&p.parts[i].mesh, &q.parts[i].mesh, 0);
+    }
+    /* the whole file as one mesh: all 4 triangles */
+    acd_mesh all;
+    assert_int_equal(acd_mesh_read(path, &all, &err), ACD_OK);
+    assert_int_equal(all.ntriangles, 4);
+    acd_mesh_free(&all);
+    unlink(path);
+    acd_mesh_parts_free(&q);
+    acd_mesh_parts_free(&p);
+
+    /* no groups: one part named "" ; an OFF file is not OBJ for read_obj_groups */
+    s = acd_mesh_read_parts_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 32, ACD_MESH_FORMAT_AUTO, "x", &p, &err);
+    assert_int_equal(s, ACD_OK);
+    assert_int_equal(p.count, 1);
+    assert_string_equal(p.parts[0].name, "");
+    acd_mesh_parts_free(&p);
+    tmp_path(path, sizeof path, "_parts.off");
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", f);
+    fclose(f);
+    assert_int_equal(acd_mesh_read_obj_groups(path, &p, &err), ACD_ERR_UNSUPPORTED);
+    assert_int_equal(acd_mesh_read_parts(path, &p, &err), ACD_OK);
+    assert_int_equal(p.count, 1);
+    acd_mesh_parts_free(&p);
+    unlink(path);
+}
+
+static void test_off_features(void **state) {
+    (void)state;
+    /* counts on the header line, comments, colours after vertices and faces, a quad */
+    const char *text = "COFF 5 2 0 # header with counts\n"
+                       "# comment\n"
+                       "0 0 0 255 0 0 255\n1 0 0 255 0 0 255\n1 1 0 0 0 0 0\n0 1 0 1 1 1 1\n\n0.5 0.5 1 0 0 0 0\n"
+                       "4 0 1 2 3 0.1 0.2 0.3\n3 0 1 4\n";
+    acd_mesh m;
+    acd_error err;
+    acd_status s = read_str(text, ACD_MESH_FORMAT_AUTO, &m, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.nvertices, 5);
+    assert_int_equal(m.ntriangles, 3);
+    acd_mesh_free(&m);
+}
+
+static void test_stl_ascii_and_weld(void **state) {
+    (void)state;
+    const char *text = "solid t\n"
+                       " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n  endloop\n endfacet\n"
+                       " FACET NORMAL 0 0 1\n  OUTER LOOP\n   VERTEX 1 0 0\n   VERTEX 1 1 0\n   VERTEX -0 1 0\n  ENDLOOP\n ENDFACET\n"
+                       "endsolid t\n";
+    acd_mesh m;
+    acd_error err;
+    acd_status s = read_str(text, ACD_MESH_FORMAT_AUTO, &m, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.ntriangles, 2);
+    assert_int_equal(m.nvertices, 4); /* shared corners welded, -0 == 0 */
+    acd_mesh_free(&m);
+
+    /* a binary STL whose header starts with "solid" is still binary */
+    acd_mesh o;
+    make_octa(&o, 3);
+    void *data;
+    size_t size;
+    assert_int_equal(acd_mesh_write_memory(&o, ACD_MESH_FORMAT_STL, &data, &size, &err), ACD_OK);
+    memcpy(data, "solid fake", 10);
+    s = acd_mesh_read_memory(data, size, ACD_MESH_FORMAT_AUTO, "b", &m, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_same_mesh(&o, &m, 1);
+    acd_mesh_free(&m);
+    /* truncated binary: error with byte offset (detected by the .stl hint) */
+    s = acd_mesh_read_memory(data, size - 7, ACD_MESH_FORMAT_STL, "trunc.stl", &m, &err);
+    assert_int_equal(s, ACD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "truncated"));
+    assert_non_null(strstr(err.message, "byte offset"));
+    /* NaN coordinate in binary: error with byte offset */
+    float nan = NAN;
+    memcpy((char *)data + 84 + 50 * 2 + 12 + 4 * 4, &nan, 4);
+    s = acd_mesh_read_memory(data, size, ACD_MESH_FORMAT_AUTO, "nan.stl", &m, &err);
+    assert_int_equal(s, ACD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "byte offset 212"));
+    free(data);
+    acd_mesh_free(&o);
+}
+
+/* Each malformed text must fail with the given status and a message containing `where`. */
+typedef struct bad_case {
+    const char *text;
+    acd_mesh_format hint;
+    acd_status status;
+    const char *where;
+} bad_case;
+
+static void test_malformed(void **state) {
+    (void)state;
+    static const bad_case cases[] = {
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4:"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4: vertex index 0"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4:"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4: face with 2"},
+        {"v 0 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:1: vertex needs 3"},
+        {"v 0 0 nan\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:1: vertex coordinate 3 is not finite"},
+        {"v 0 0 1e999\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "not finite"},
+        {"v 0 0 0x\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:1:"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3x\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4: face corner 3"},
+        {"v 0 0 0\n1 2 3\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:2: unexpected text"},
+        {"v 0 0 0\nf 1 2 99999999999\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:2:"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:6: face 0: vertex index 3"},
+        {"OFF\n3 1 0\n0 0 0\n1 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:5: vertex 1: coordinate 3 is missing"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:6: face 0 has 2"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "face 0: vertex index 2"},
+        {"OFF\nx 1 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:2: expected the number of vertices"},
+        {"OFF\n3\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "number of faces"},
+        {"OFF\n99999999 1 0\n0 0 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "exceed"},
+        {"4OFF\n1 0 0\n0 0 0 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_UNSUPPORTED, "t:1:"},
+        {"OFF BINARY\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_UNSUPPORTED, "binary OFF"},
+        {"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:6: facet with 2"},
+        {"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 q 0\n", ACD_MESH_FORMAT_AUTO,
+         ACD_ERR_PARSE, "t:6: vertex coordinate 2"},
+        {"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:8: expected 'endfacet'"},
+        {"solid x\nfacet normal 0 0 1\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "expected 'outer'"},
+        {"solid x\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "no 'endsolid'"},
+        {"", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "empty file"},
+        {"hello world\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_UNSUPPORTED, "unrecognised"},
+        {"short", ACD_MESH_FORMAT_STL, ACD_ERR_PARSE, "shorter than its 84-byte header"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        acd_mesh m;
+        acd_error err;
+        acd_status s = read_str(cases[i].text, cases[i].hint, &m, &err);
+        if (s != cases[i].status || !strstr(err.message, cases[i].where))
+            fail_msg("case %zu: status %d (want %d), message '%s' (want '%s')", i, (int)s, (int)cases[i].status,
+                     s == ACD_OK ? "" : err.message, cases[i].where);
+        assert_null(m.vertices);
+        assert_int_equal(m.ntriangles, 0);
+    }
+}
+
+static void test_gzip_errors(void **state) {
+    (void)state;
+    acd_mesh m;
+    make_octa(&m, 1);
+    char path[256];
+    tmp_path(path, sizeof path, "_bad.obj.gz");
+    acd_error err;
+    assert_int_equal(acd_mesh_write(path, &m, ACD_MESH_FORMAT_AUTO, &err), ACD_OK);
+    acd_mesh_free(&m);
+    size_t len;
+    char *raw = tu_read_file(path, &len);
+    assert_non_null(raw);
+    unlink(path);
+    /* truncated compressed stream */
+    acd_status s = acd_mesh_read_memory(raw, len / 2, ACD_MESH_FORMAT_AUTO, "half.gz", &m, &err);
+    assert_int_equal(s, ACD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "gzip"));
+    /* corrupt deflate data */
+    for (size_t i = 12; i < len - 8; i++) raw[i] = (char)0xff;
+    s = acd_mesh_read_memory(raw, len, ACD_MESH_FORMAT_AUTO, "corrupt.gz", &m, &err);
+    assert_int_equal(s, ACD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "gzip"));
+    free(raw);
+    /* a missing file is an I/O error naming the file */
+    s = acd_mesh_read("/nonexistent/dir/x.obj", &m, &err);
+    assert_int_equal(s, ACD_ERR_IO);
+    assert_non_null(strstr(err.message, "/nonexistent/dir/x.obj"));
+}
+
+static void test_write_checks(void **state) {
+    (void)state;
+    acd_mesh m;
+    make_octa(&m, 2);
+    void *data;
+    size_t size;
+    acd_error err;
+    m.triangles[5] = 6;
+    assert_int_equal(acd_mesh_write_memory(&m, ACD_MESH_FORMAT_OBJ, &data, &size, &err), ACD_ERR_INVALID_ARGUMENT);
+    m.triangles[5] = 0;
+    m.vertices[4] = NAN;
+    assert_int_equal(acd_mesh_write_memory(&m, ACD_MESH_FORMAT_OFF, &data, &size, &err), ACD_ERR_INVALID_ARGUMENT);
+    m.vertices[4] = 1e300;
+    assert_int_equal(acd_mesh_write_memory(&m, ACD_MESH_FORMAT_STL, &data, &size, &err), ACD_ERR_INVALID_ARGUMENT);
+    assert_int_equal(acd_mesh_write_memory(&m, ACD_MESH_FORMAT_OBJ, &data, &size, &err), ACD_OK);
+    free(data);
+    assert_int_equal(acd_mesh_write("/tmp/x.unknown", &m, ACD_MESH_FORMAT_AUTO, &err), ACD_ERR_INVALID_ARGUMENT);
+    acd_mesh_free(&m);
+    assert_int_equal(acd_mesh_format_from_path("a/B.OBJ.gz"), ACD_MESH_FORMAT_OBJ);
+    assert_int_equal(acd_mesh_format_from_path("x.stl"), ACD_MESH_FORMAT_STL);
+    assert_int_equal(acd_mesh_format_from_path("x.txt"), ACD_MESH_FORMAT_AUTO);
+}
+
+static void test_number_parsing_exact(void **state) {
+    (void)state;
+    /* numbers the fast path and the strtod path both must get exactly right */
+    static const char *const nums[] = {"0.1", "-2.5e-3", "123456789012345678", "1.7976931348623157e308",
+                                       "4.9406564584124654e-324", "0.30000000000000004", "9007199254740993",
+                                       "1e22", "1e23", "-0", "3.14159265358979323846264338327950288"};
+    for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++) {
+        char text[256];
+        snprintf(text, sizeof text, "v %s 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n", nums[i]);
+        acd_mesh m;
+        acd_error err;
+        assert_int_equal(read_str(text, ACD_MESH_FORMAT_AUTO, &m, &err), ACD_OK);
+        double expect = strtod(nums[i], NULL);
+        if (memcmp(&expect, &m.vertices[0], sizeof expect) != 0) fail_msg("%s read as %.17g", nums[i], m.vertices[0]);
+        acd_mesh_free(&m);
+    }
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_roundtrip_obj),
+        cmocka_unit_test(test_roundtrip_off),
+        cmocka_unit_test(test_roundtrip_stl),
+        cmocka_unit_test(test_roundtrip_stl_ascii),
+        cmocka_unit_test(test_roundtrip_files_and_gzip),
+        cmocka_unit_test(test_obj_features),
+        cmocka_unit_test(test_obj_groups),
+        cmocka_unit_test(test_off_features),
+        cmocka_unit_test(test_stl_ascii_and_weld),
+        cmocka_unit_test(test_malformed),
+        cmocka_unit_test(test_gzip_errors),
+        cmocka_unit_test(test_write_checks),
+        cmocka_unit_test(test_number_parsing_exact),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
