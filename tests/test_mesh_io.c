@@ -76,13 +76,110 @@ static void test_roundtrip_off(void **state) { (void)state; roundtrip(ACD_MESH_F
 static void test_roundtrip_stl(void **state) { (void)state; roundtrip(ACD_MESH_FORMAT_STL, 1); }
 static void test_roundtrip_stl_ascii(void **state) { (void)state; roundtrip(ACD_MESH_FORMAT_STL_ASCII, 2); }
 
+static acd_status read_str(const char *text, acd_mesh_format hint, acd_mesh *m, acd_error *err) {
+    return acd_mesh_read_memory(text, strlen(text), hint, "t", m, err);
+}
+
+static void test_roundtrip_ply(void **state) { (void)state; roundtrip(ACD_MESH_FORMAT_PLY, 0); }
+static void test_roundtrip_ply_ascii(void **state) { (void)state; roundtrip(ACD_MESH_FORMAT_PLY_ASCII, 0); }
+
+/* Appends v as n bytes in the given byte order. */
+static size_t put(unsigned char *b, size_t at, uint64_t v, int n, int big) {
+    for (int i = 0; i < n; i++) b[at + (size_t)i] = (unsigned char)(v >> (8 * (big ? n - 1 - i : i)));
+    return at + (size_t)n;
+}
+
+static uint64_t f32bits(float f) {
+    uint32_t u;
+    memcpy(&u, &f, 4);
+    return u;
+}
+
+/* A binary PLY in either byte order with extra properties, an extra element, a quad face and a
+ * face property after the list; returns its size. */
+static size_t make_binary_ply(unsigned char *b, int big) {
+    int n = sprintf((char *)b,
+                    "ply\nformat %s 1.0\ncomment test\nelement vertex 4\nproperty float x\nproperty uchar red\n"
+                    "property float y\nproperty float z\nproperty double nx\nelement edge 1\nproperty list uchar int ids\n"
+                    "element face 2\nproperty list uchar int vertex_indices\nproperty ushort flags\nend_header\n",
+                    big ? "binary_big_endian" : "binary_little_endian");
+    size_t at = (size_t)n;
+    static const float xyz[4][3] = {{0, 0, 0}, {1.5f, 0, 0}, {1.5f, 1, 0}, {0, 1, -0.25f}};
+    for (int i = 0; i < 4; i++) {
+        at = put(b, at, f32bits(xyz[i][0]), 4, big);
+        at = put(b, at, 200, 1, big);
+        at = put(b, at, f32bits(xyz[i][1]), 4, big);
+        at = put(b, at, f32bits(xyz[i][2]), 4, big);
+        at = put(b, at, 0x3ff0000000000000ull, 8, big);
+    }
+    at = put(b, at, 2, 1, big); /* edge 0 1 */
+    at = put(b, at, 0, 4, big);
+    at = put(b, at, 1, 4, big);
+    at = put(b, at, 4, 1, big); /* quad */
+    for (int i = 0; i < 4; i++) at = put(b, at, (uint64_t)i, 4, big);
+    at = put(b, at, 7, 2, big);
+    at = put(b, at, 3, 1, big); /* triangle 0 2 1 */
+    at = put(b, at, 0, 4, big);
+    at = put(b, at, 2, 4, big);
+    at = put(b, at, 1, 4, big);
+    at = put(b, at, 7, 2, big);
+    return at;
+}
+
+static void test_ply_binary_both_endians(void **state) {
+    (void)state;
+    for (int big = 0; big < 2; big++) {
+        unsigned char b[2048];
+        size_t n = make_binary_ply(b, big);
+        acd_mesh m;
+        acd_error err;
+        acd_status s = acd_mesh_read_memory(b, n, ACD_MESH_FORMAT_AUTO, "be", &m, &err);
+        if (s != ACD_OK) fail_msg("%s", err.message);
+        assert_int_equal(m.nvertices, 4);
+        assert_int_equal(m.ntriangles, 3);
+        assert_true(m.vertices[3] == 1.5 && m.vertices[7] == 1.0 && m.vertices[11] == -0.25);
+        const uint32_t expect[9] = {0, 1, 2, 0, 2, 3, 0, 2, 1};
+        assert_memory_equal(m.triangles, expect, sizeof expect);
+        acd_mesh_free(&m);
+        /* every truncation is an error naming a byte offset (or the header) */
+        for (size_t cut = 4; cut < n; cut += 3) {
+            s = acd_mesh_read_memory(b, cut, ACD_MESH_FORMAT_AUTO, "cut", &m, &err);
+            if (s == ACD_OK) fail_msg("cut at %zu of %zu read", cut, n);
+            assert_true(strstr(err.message, "byte offset") || strstr(err.message, "header") ||
+                        strstr(err.message, "cut:"));
+        }
+        /* index out of range */
+        b[n - 2 - 4 - 1] = big ? 9 : 0;
+        b[n - 2 - 4 - 4] = big ? 0 : 9;
+        s = acd_mesh_read_memory(b, n, ACD_MESH_FORMAT_AUTO, "idx", &m, &err);
+        assert_int_equal(s, ACD_ERR_PARSE);
+        assert_non_null(strstr(err.message, "vertex index 9 out of range"));
+    }
+}
+
+static void test_ply_ascii_features(void **state) {
+    (void)state;
+    const char *text = "ply\r\nformat ascii 1.0\r\ncomment x\r\nobj_info y\r\nelement vertex 3\r\nproperty double x\r\n"
+                       "property double y\r\nproperty double z\r\nproperty uchar red\r\nelement face 1\r\n"
+                       "property list uint8 int32 vertex_index\r\nend_header\r\n"
+                       "0 0 0 1\r\n1e0 0 0 2\r\n0 0.5 0 3\r\n3 0 1 2\r\n";
+    acd_mesh m;
+    acd_error err;
+    acd_status s = read_str(text, ACD_MESH_FORMAT_AUTO, &m, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.nvertices, 3);
+    assert_int_equal(m.ntriangles, 1);
+    assert_true(m.vertices[7] == 0.5);
+    acd_mesh_free(&m);
+}
+
 static void tmp_path(char *buf, size_t n, const char *suffix) {
     snprintf(buf, n, "/tmp/acd_test_mesh_io_%ld%s", (long)getpid(), suffix);
 }
 
 static void test_roundtrip_files_and_gzip(void **state) {
     (void)state;
-    static const char *const suffixes[] = {".obj", ".off", ".stl", ".obj.gz", ".off.gz", ".stl.gz"};
+    static const char *const suffixes[] = {".obj", ".off", ".stl", ".ply", ".obj.gz", ".off.gz", ".stl.gz", ".ply.gz"};
     for (size_t i = 0; i < sizeof suffixes / sizeof suffixes[0]; i++) {
         acd_mesh m, back;
         make_octa(&m, 100 + i);
@@ -106,9 +203,6 @@ static void test_roundtrip_files_and_gzip(void **state) {
     }
 }
 
-static acd_status read_str(const char *text, acd_mesh_format hint, acd_mesh *m, acd_error *err) {
-    return acd_mesh_read_memory(text, strlen(text), hint, "t", m, err);
-}
 
 static void test_obj_features(void **state) {
     (void)state;
@@ -298,6 +392,28 @@ static void test_malformed(void **state) {
         {"solid x\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "no 'endsolid'"},
         {"", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "empty file"},
         {"hello world\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_UNSUPPORTED, "unrecognised"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "no end_header"},
+        {"ply\nformat ascii 2.0\nend_header\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_UNSUPPORTED, "t:2: PLY version"},
+        {"ply\nformat text 1.0\nend_header\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:2: unknown PLY format"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE,
+         "t:4: unknown property type"},
+        {"ply\nformat ascii 1.0\nproperty float x\nend_header\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:3: property before"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "lacks property"},
+        {"ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 1\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "vertex 1: expected a number"},
+        {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+         "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:13: face 0: vertex index 3 out of range"},
+        {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+         "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "face 0 has 2 vertices"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 inf 0\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:8: vertex 0: coordinate y is not finite"},
+        {"ply\nformat ascii 1.0\nelement vertex 100000\nproperty float x\nend_header\n0\n", ACD_MESH_FORMAT_AUTO,
+         ACD_ERR_PARSE, "exceeds"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty int x\nproperty int y\nproperty int z\nend_header\n0 0.5 0\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "integer property"},
         {"short", ACD_MESH_FORMAT_STL, ACD_ERR_PARSE, "shorter than its 84-byte header"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -388,6 +504,10 @@ int main(void) {
         cmocka_unit_test(test_roundtrip_off),
         cmocka_unit_test(test_roundtrip_stl),
         cmocka_unit_test(test_roundtrip_stl_ascii),
+        cmocka_unit_test(test_roundtrip_ply),
+        cmocka_unit_test(test_roundtrip_ply_ascii),
+        cmocka_unit_test(test_ply_binary_both_endians),
+        cmocka_unit_test(test_ply_ascii_features),
         cmocka_unit_test(test_roundtrip_files_and_gzip),
         cmocka_unit_test(test_obj_features),
         cmocka_unit_test(test_obj_groups),
