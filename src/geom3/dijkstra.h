@@ -1,0 +1,72 @@
+/* geom3/dijkstra: shortest paths on a mesh's edge graph (Dijkstra 1959, binary heap).
+ *
+ * Lien's ACD uses Dijkstra to project hull edges onto the surface (D §V.B.1, P §4.1), between knots
+ * (D §V.B.2), for handle cuts with several sources (D §V.C) and, in CoRiSe, along the surface.
+ * Ties are broken deterministically: the heap orders by (distance, vertex id) and, at equal distance,
+ * a vertex keeps the predecessor with the smaller vertex id. */
+#ifndef ACD_GEOM3_DIJKSTRA_H
+#define ACD_GEOM3_DIJKSTRA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "acd/base.h"
+
+#define ACD_NO_VERTEX UINT32_MAX
+
+/* Undirected edge graph in compressed rows. Edge e joins edge_v[2e] < edge_v[2e+1]; edges are
+ * numbered in increasing (lower, upper) vertex order; each row lists neighbours by increasing id. */
+typedef struct acd_edge_graph {
+    size_t nvertices;
+    size_t nedges;
+    uint32_t *edge_v;   /* 2 * nedges */
+    double *length;     /* nedges: Euclidean length (graphs built from a mesh) or the given weight */
+    size_t *row;        /* nvertices + 1 */
+    uint32_t *adj;      /* 2 * nedges: neighbour vertex */
+    uint32_t *adj_edge; /* 2 * nedges: the edge id of that incidence */
+} acd_edge_graph;
+
+/* Edge graph of a triangle mesh (edges of the triangles, Euclidean lengths). Triangle indices must be
+ * < nvertices (ACD_ERR_INVALID_INPUT names the triangle otherwise). Free with acd_edge_graph_free. */
+acd_status acd_edge_graph_from_mesh(const double *vertices, size_t nvertices, const uint32_t *triangles,
+                                    size_t ntriangles, acd_edge_graph *g, acd_error *err);
+/* Edge graph of explicit edges (pairs of vertex ids; duplicates merged keeping the smallest weight;
+ * self-loops dropped). weights: one per edge, finite and >= 0, NULL for all 1. */
+acd_status acd_edge_graph_from_edges(size_t nvertices, const uint32_t *edges, const double *weights, size_t nedges,
+                                     acd_edge_graph *g, acd_error *err);
+void acd_edge_graph_free(acd_edge_graph *g);
+/* Edge id joining a and b, or ACD_NO_VERTEX. O(degree). */
+uint32_t acd_edge_graph_find(const acd_edge_graph *g, uint32_t a, uint32_t b);
+
+/* Options of a search; zero-initialise and set what is needed. */
+typedef struct acd_dijkstra_opts {
+    const double *weights;          /* per edge, >= 0; NULL: g->length */
+    const uint8_t *edge_blocked;    /* per edge, non-zero: not crossed (barriers); NULL: none */
+    const uint8_t *vertex_allowed;  /* per vertex, zero: not entered (regions); NULL: all */
+    uint32_t target;                /* stop once this vertex is settled; ACD_NO_VERTEX: settle all */
+    double max_distance;            /* stop beyond this distance; 0 or less: no limit */
+} acd_dijkstra_opts;
+
+/* Shortest-path forest. Unreached vertices have dist = +INFINITY and pred = ACD_NO_VERTEX. */
+typedef struct acd_sp_tree {
+    size_t nvertices;
+    double *dist;
+    uint32_t *pred;      /* predecessor vertex */
+    uint32_t *pred_edge; /* edge to the predecessor */
+    uint32_t *origin;    /* index (in the sources array) of the source the vertex was reached from */
+} acd_sp_tree;
+
+/* Multi-source Dijkstra from sources[0..nsources) (all at distance 0). opts may be NULL. */
+acd_status acd_dijkstra(const acd_edge_graph *g, const uint32_t *sources, size_t nsources,
+                        const acd_dijkstra_opts *opts, acd_sp_tree *tree, acd_error *err);
+void acd_sp_tree_free(acd_sp_tree *t);
+
+/* Vertices of the path from the tree's source to target, source first, in a malloc'd array
+ * (*len vertices). ACD_ERR_DEGENERATE when target was not reached. */
+acd_status acd_sp_path(const acd_sp_tree *t, uint32_t target, uint32_t **path, size_t *len, acd_error *err);
+
+/* Convenience: one shortest path from s to t (vertices, s first). */
+acd_status acd_shortest_path(const acd_edge_graph *g, uint32_t s, uint32_t t, const acd_dijkstra_opts *opts,
+                             uint32_t **path, size_t *len, double *length, acd_error *err);
+
+#endif

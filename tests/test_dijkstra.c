@@ -1,0 +1,274 @@
+/* Tests of geom3/dijkstra: distances against Bellman-Ford on random graphs, exact grid distances,
+ * deterministic tie-breaks, barriers, regions, several sources, early stop. */
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/rng.h"
+#include "geom3/dijkstra.h"
+
+static void check_tree_consistent(const acd_edge_graph *g, const acd_sp_tree *t, const double *w) {
+    for (size_t v = 0; v < g->nvertices; v++) {
+        if (t->pred[v] == ACD_NO_VERTEX) continue;
+        uint32_t e = t->pred_edge[v];
+        assert_true(e < g->nedges);
+        uint32_t u = t->pred[v];
+        assert_true((g->edge_v[2 * e] == u && g->edge_v[2 * e + 1] == v) ||
+                    (g->edge_v[2 * e] == v && g->edge_v[2 * e + 1] == u));
+        assert_true(t->dist[v] == t->dist[u] + w[e]);
+        assert_int_equal(t->origin[v], t->origin[u]);
+    }
+}
+
+static void test_random_vs_bellman_ford(void **state) {
+    (void)state;
+    acd_rng r;
+    acd_rng_seed(&r, 21);
+    for (int trial = 0; trial < 30; trial++) {
+        size_t nv = 2 + (size_t)acd_rng_below(&r, 60), ne = (size_t)acd_rng_below(&r, 4 * nv);
+        uint32_t *edges = malloc((ne + 1) * 2 * sizeof *edges);
+        double *wt = malloc((ne + 1) * sizeof *wt);
+        assert_non_null(edges);
+        assert_non_null(wt);
+        for (size_t e = 0; e < ne; e++) {
+            edges[2 * e] = (uint32_t)acd_rng_below(&r, nv);
+            edges[2 * e + 1] = (uint32_t)acd_rng_below(&r, nv);
+            wt[e] = trial % 2 ? (double)acd_rng_below(&r, 4) : acd_rng_uniform(&r); /* integer weights: ties */
+        }
+        acd_edge_graph g;
+        acd_error err;
+        assert_int_equal(acd_edge_graph_from_edges(nv, edges, wt, ne, &g, &err), ACD_OK);
+        /* Bellman-Ford from the merged graph's own weights */
+        double *bf = malloc(nv * sizeof *bf);
+        assert_non_null(bf);
+        uint32_t src[2] = {(uint32_t)acd_rng_below(&r, nv), (uint32_t)acd_rng_below(&r, nv)};
+        size_t nsrc = 1 + (size_t)(trial % 2);
+        for (size_t v = 0; v < nv; v++) bf[v] = INFINITY;
+        for (size_t s = 0; s < nsrc; s++) bf[src[s]] = 0;
+        for (size_t it = 0; it < nv; it++)
+            for (size_t e = 0; e < g.nedges; e++) {
+                uint32_t a = g.edge_v[2 * e], b = g.edge_v[2 * e + 1];
+                if (bf[a] + g.length[e] < bf[b]) bf[b] = bf[a] + g.length[e];
+                if (bf[b] + g.length[e] < bf[a]) bf[a] = bf[b] + g.length[e];
+            }
+        acd_sp_tree t;
+        assert_int_equal(acd_dijkstra(&g, src, nsrc, NULL, &t, &err), ACD_OK);
+        for (size_t v = 0; v < nv; v++) {
+            if (isinf(bf[v])) {
+                assert_true(isinf(t.dist[v]));
+                assert_int_equal(t.pred[v], ACD_NO_VERTEX);
+            } else {
+                assert_true(fabs(t.dist[v] - bf[v]) <= 1e-12 * (1 + bf[v]));
+            }
+        }
+        check_tree_consistent(&g, &t, g.length);
+        /* the path to every reached vertex sums to its distance */
+        for (uint32_t v = 0; v < nv; v++) {
+            uint32_t *path;
+            size_t len;
+            acd_status st = acd_sp_path(&t, v, &path, &len, &err);
+            if (isinf(t.dist[v])) {
+                assert_int_equal(st, ACD_ERR_DEGENERATE);
+                continue;
+            }
+            assert_int_equal(st, ACD_OK);
+            assert_int_equal(path[len - 1], v);
+            assert_true(path[0] == src[0] || path[0] == src[nsrc - 1]);
+            assert_int_equal(path[0], src[t.origin[v]]);
+            double sum = 0;
+            for (size_t i = 0; i + 1 < len; i++) {
+                uint32_t e = acd_edge_graph_find(&g, path[i], path[i + 1]);
+                assert_true(e != ACD_NO_VERTEX);
+                sum += g.length[e];
+            }
+            assert_true(sum == t.dist[v]);
+            free(path);
+        }
+        acd_sp_tree_free(&t);
+        acd_edge_graph_free(&g);
+        free(bf);
+        free(edges);
+        free(wt);
+    }
+}
+
+/* An n x n grid of unit squares, each split into two triangles along (i,j)-(i+1,j+1). */
+static void grid_mesh(int n, double **verts, uint32_t **tris, size_t *nv, size_t *nt) {
+    *nv = (size_t)(n + 1) * (size_t)(n + 1);
+    *nt = (size_t)2 * (size_t)n * (size_t)n;
+    *verts = malloc(*nv * 3 * sizeof **verts);
+    *tris = malloc(*nt * 3 * sizeof **tris);
+    assert_non_null(*verts);
+    assert_non_null(*tris);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            size_t v = (size_t)j * (size_t)(n + 1) + (size_t)i;
+            (*verts)[3 * v] = i;
+            (*verts)[3 * v + 1] = j;
+            (*verts)[3 * v + 2] = 0;
+        }
+    size_t t = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            uint32_t a = (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)(n + 1) + 1, d = a + (uint32_t)(n + 1);
+            uint32_t *q = *tris + 3 * t;
+            q[0] = a, q[1] = b, q[2] = c, q[3] = a, q[4] = c, q[5] = d;
+            t += 2;
+        }
+}
+
+static void test_grid_distances_and_ties(void **state) {
+    (void)state;
+    int n = 10;
+    double *verts;
+    uint32_t *tris;
+    size_t nv, nt;
+    grid_mesh(n, &verts, &tris, &nv, &nt);
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(verts, nv, tris, nt, &g, &err), ACD_OK);
+    assert_int_equal(g.nedges, (size_t)3 * n * n + 2 * n); /* 2n(n+1) axis edges + n^2 diagonals */
+    acd_sp_tree t;
+    uint32_t s = 0;
+    assert_int_equal(acd_dijkstra(&g, &s, 1, NULL, &t, &err), ACD_OK);
+    /* exact: with diagonals along (1,1), distance = |dx - dy| + sqrt2 min(dx, dy) */
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            double expect = fabs((double)(i - j)) + sqrt(2.0) * (i < j ? i : j);
+            assert_true(fabs(t.dist[j * (n + 1) + i] - expect) < 1e-12);
+        }
+    check_tree_consistent(&g, &t, g.length);
+    acd_sp_tree_free(&t);
+
+    /* unit weights: many equal paths; the tie rule picks the smaller predecessor id, so the
+     * path from corner 0 to the far corner is the same on every run and fixed by the rule */
+    double *unit = malloc(g.nedges * sizeof *unit);
+    assert_non_null(unit);
+    for (size_t e = 0; e < g.nedges; e++) unit[e] = 1;
+    acd_dijkstra_opts o;
+    memset(&o, 0, sizeof o);
+    o.weights = unit;
+    o.target = ACD_NO_VERTEX;
+    assert_int_equal(acd_dijkstra(&g, &s, 1, &o, &t, &err), ACD_OK);
+    for (size_t v = 0; v < nv; v++) {
+        if (t.pred[v] == ACD_NO_VERTEX) continue;
+        /* every neighbour at distance d(v) - 1 has an id >= the chosen predecessor */
+        for (size_t k = g.row[v]; k < g.row[v + 1]; k++) {
+            uint32_t u = g.adj[k];
+            if (t.dist[u] + 1 == t.dist[v]) assert_true(u >= t.pred[v]);
+        }
+    }
+    uint32_t *p1, *p2;
+    size_t l1, l2;
+    double len;
+    uint32_t far = (uint32_t)(nv - 1);
+    assert_int_equal(acd_shortest_path(&g, 0, far, &o, &p1, &l1, &len, &err), ACD_OK);
+    assert_true(len == 10);
+    assert_int_equal(acd_shortest_path(&g, 0, far, &o, &p2, &l2, &len, &err), ACD_OK);
+    assert_int_equal(l1, l2);
+    assert_memory_equal(p1, p2, l1 * sizeof *p1);
+    free(p1);
+    free(p2);
+    acd_sp_tree_free(&t);
+
+    /* barrier: block every edge crossing the vertical line x = 5.5 except at the top row */
+    uint8_t *blocked = calloc(g.nedges, 1);
+    assert_non_null(blocked);
+    for (size_t e = 0; e < g.nedges; e++) {
+        double xa = verts[3 * g.edge_v[2 * e]], xb = verts[3 * g.edge_v[2 * e + 1]];
+        double ya = verts[3 * g.edge_v[2 * e] + 1];
+        if (((xa <= 5 && xb >= 6) || (xb <= 5 && xa >= 6)) && ya < n) blocked[e] = 1;
+    }
+    memset(&o, 0, sizeof o);
+    o.edge_blocked = blocked;
+    o.target = ACD_NO_VERTEX;
+    assert_int_equal(acd_dijkstra(&g, &s, 1, &o, &t, &err), ACD_OK);
+    /* (6, 0) must be reached over the top: 5 + 10 + 1 + 10 at least with unit axis steps */
+    double d60 = t.dist[6];
+    assert_true(d60 >= 2 * n + 1 - 1e-9);
+    acd_sp_tree_free(&t);
+
+    /* region: only the bottom row allowed: distances along it are |i| */
+    uint8_t *allowed = calloc(nv, 1);
+    assert_non_null(allowed);
+    for (int i = 0; i <= n; i++) allowed[i] = 1;
+    memset(&o, 0, sizeof o);
+    o.vertex_allowed = allowed;
+    o.target = ACD_NO_VERTEX;
+    assert_int_equal(acd_dijkstra(&g, &s, 1, &o, &t, &err), ACD_OK);
+    for (int i = 0; i <= n; i++) assert_true(t.dist[i] == i);
+    for (size_t v = (size_t)n + 1; v < nv; v++) assert_true(isinf(t.dist[v]));
+    acd_sp_tree_free(&t);
+
+    /* two sources: every vertex labelled with the nearer one (ties to the smaller predecessor) */
+    uint32_t two[2] = {0, (uint32_t)(nv - 1)};
+    assert_int_equal(acd_dijkstra(&g, two, 2, NULL, &t, &err), ACD_OK);
+    acd_sp_tree t0, t1;
+    assert_int_equal(acd_dijkstra(&g, &two[0], 1, NULL, &t0, &err), ACD_OK);
+    assert_int_equal(acd_dijkstra(&g, &two[1], 1, NULL, &t1, &err), ACD_OK);
+    for (size_t v = 0; v < nv; v++) {
+        double m = t0.dist[v] < t1.dist[v] ? t0.dist[v] : t1.dist[v];
+        assert_true(t.dist[v] == m);
+        if (t0.dist[v] < t1.dist[v]) assert_int_equal(t.origin[v], 0);
+        if (t1.dist[v] < t0.dist[v]) assert_int_equal(t.origin[v], 1);
+    }
+    acd_sp_tree_free(&t0);
+    acd_sp_tree_free(&t1);
+    acd_sp_tree_free(&t);
+
+    /* early stop at a target and at a distance limit */
+    memset(&o, 0, sizeof o);
+    o.target = 12;
+    assert_int_equal(acd_dijkstra(&g, &s, 1, &o, &t, &err), ACD_OK);
+    assert_true(fabs(t.dist[12] - sqrt(2.0)) < 1e-15);
+    assert_true(isinf(t.dist[nv - 1]));
+    acd_sp_tree_free(&t);
+    memset(&o, 0, sizeof o);
+    o.target = ACD_NO_VERTEX;
+    o.max_distance = 3.5;
+    assert_int_equal(acd_dijkstra(&g, &s, 1, &o, &t, &err), ACD_OK);
+    for (size_t v = 0; v < nv; v++) assert_true(isinf(t.dist[v]) || t.dist[v] <= 3.5);
+    assert_true(t.dist[3] == 3);
+    assert_true(isinf(t.dist[4]));
+    acd_sp_tree_free(&t);
+
+    free(allowed);
+    free(blocked);
+    free(unit);
+    acd_edge_graph_free(&g);
+    free(verts);
+    free(tris);
+}
+
+static void test_bad_input(void **state) {
+    (void)state;
+    acd_edge_graph g;
+    acd_error err;
+    uint32_t tri[3] = {0, 1, 7};
+    double v[9] = {0};
+    assert_int_equal(acd_edge_graph_from_mesh(v, 3, tri, 1, &g, &err), ACD_ERR_INVALID_INPUT);
+    assert_non_null(strstr(err.message, "triangle 0"));
+    uint32_t e[2] = {0, 1};
+    double w = -1;
+    assert_int_equal(acd_edge_graph_from_edges(2, e, &w, 1, &g, &err), ACD_ERR_INVALID_INPUT);
+    w = NAN;
+    assert_int_equal(acd_edge_graph_from_edges(2, e, &w, 1, &g, &err), ACD_ERR_INVALID_INPUT);
+    w = 2;
+    assert_int_equal(acd_edge_graph_from_edges(2, e, &w, 1, &g, &err), ACD_OK);
+    acd_sp_tree t;
+    uint32_t s = 5;
+    assert_int_equal(acd_dijkstra(&g, &s, 1, NULL, &t, &err), ACD_ERR_INVALID_ARGUMENT);
+    acd_sp_tree_free(&t);
+    acd_edge_graph_free(&g);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_random_vs_bellman_ford),
+        cmocka_unit_test(test_grid_distances_and_ties),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
