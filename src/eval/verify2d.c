@@ -405,7 +405,7 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
         box b = seg_box(Y->p[v->ey[a]], Y->p[Y->nxt[v->ey[a]]], tol);
         v->items[ni++] = (sweep_item){b.x0, b.x1, b.y0, b.y1, 1, v->ey[a]};
     }
-    qsort(v->items, ni, sizeof *v->items, cmp_item);
+    if (ni > 1) qsort(v->items, ni, sizeof *v->items, cmp_item);
     v->nsplits = 0;
     for (size_t i = 0; i < ni; i++) {
         const sweep_item *A = &v->items[i];
@@ -437,7 +437,7 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
             }
         }
     }
-    qsort(v->splits, v->nsplits, sizeof *v->splits, cmp_split);
+    if (v->nsplits > 1) qsort(v->splits, v->nsplits, sizeof *v->splits, cmp_split);
     locate_side(v, X, Y, v->ex, nx, 0, v->splits, v->nsplits, &it->sx);
     locate_side(v, Y, X, v->ey, ny, 1, v->splits, v->nsplits, &it->sy);
     /* edges outside the common box lie outside the other region altogether */
