@@ -40,6 +40,8 @@ typedef enum acd_polygon_format {
 typedef struct acd_polygon_fixes {
     size_t repeated_dropped;   /* consecutive duplicate vertices removed (incl. closing repeat) */
     size_t rings_reversed;     /* rings whose orientation was flipped */
+    size_t chains_ignored;     /* .poly: well-formed chains after the declared number of chains,
+                                  read and ignored as the reference reader does (simple5.poly) */
 } acd_polygon_fixes;
 
 /* Builds a polygon from rings given as arrays (ring 0 outer). Copies the data. */
