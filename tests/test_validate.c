@@ -235,7 +235,9 @@ static void test_large_polygon_fast(void **state) {
     if (st != ACD_OK) fail_msg("%s", err.message);
     print_message("[  INFO    ] %zu vertices, %zu holes validated in %.1f ms\n", acd_polygon_num_points(&p), nh,
                   secs * 1000);
-    assert_true(secs < 2.0);
+#ifdef NDEBUG
+    assert_true(secs < 1.0); /* optimized builds only; sanitizers are much slower */
+#endif
     /* move one outer vertex across the ring: now it self-intersects */
     p.points[n / 2].x = 0;
     p.points[n / 2].y = 995;

@@ -318,19 +318,78 @@ static int cmp_ring_box(const void *a, const void *b) {
     return p->ring < q->ring ? -1 : p->ring > q->ring;
 }
 
+typedef struct yquery {
+    double x, y;
+    size_t id;
+} yquery;
+
+static int cmp_yquery(const void *a, const void *b) {
+    const yquery *p = a, *q = b;
+    if (p->y < q->y) return -1;
+    if (p->y > q->y) return 1;
+    return p->id < q->id ? -1 : p->id > q->id;
+}
+
+/* Crossing parity of many points against one ring at once (same rule as point_in_ring): the
+ * points sorted by y, each edge visits only the points in its y-slab [ylo, yhi). */
+static void points_in_ring(const acd_vec2 *v, size_t n, yquery *q, size_t nq, unsigned char *inside) {
+    qsort(q, nq, sizeof *q, cmp_yquery);
+    for (size_t k = 0; k < nq; k++) inside[q[k].id] = 0;
+    for (size_t i = 0, j = n - 1; i < n; j = i++) {
+        double a[2] = {v[j].x, v[j].y}, b[2] = {v[i].x, v[i].y};
+        double ylo = dmin(a[1], b[1]), yhi = dmax(a[1], b[1]);
+        double xlo = dmin(a[0], b[0]), xhi = dmax(a[0], b[0]);
+        if (!(ylo < yhi)) continue;
+        size_t lo = 0, hi = nq; /* first point with y >= ylo */
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo) / 2;
+            if (q[mid].y < ylo) lo = mid + 1;
+            else hi = mid;
+        }
+        int up = b[1] > a[1];
+        for (size_t k = lo; k < nq && q[k].y < yhi; k++) {
+            if (q[k].x > xhi) continue; /* the edge crosses left of the point */
+            int cross;
+            if (q[k].x < xlo) cross = 1;
+            else {
+                double pp[2] = {q[k].x, q[k].y};
+                int o = acd_orient2d_sign(a, b, pp);
+                cross = up ? o > 0 : o < 0;
+            }
+            if (cross) inside[q[k].id] ^= 1;
+        }
+    }
+}
+
 static acd_status check_nesting(const vctx *c) {
     const acd_polygon *p = c->p;
-    const acd_vec2 *outer = acd_polygon_ring(p, 0);
-    size_t nout = acd_polygon_ring_size(p, 0);
+    size_t nh = p->nrings - 1;
+    if (nh == 0) return ACD_OK;
+    yquery *yq = malloc(nh * sizeof *yq);
+    unsigned char *in = malloc(nh);
+    if (!yq || !in) {
+        free(yq);
+        free(in);
+        return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory validating polygon %zu", c->index);
+    }
     for (size_t h = 1; h < p->nrings; h++) {
         acd_vec2 q = acd_polygon_ring(p, h)[0];
-        if (!point_in_ring(outer, nout, q))
+        yq[h - 1].x = q.x;
+        yq[h - 1].y = q.y;
+        yq[h - 1].id = h - 1;
+    }
+    points_in_ring(acd_polygon_ring(p, 0), acd_polygon_ring_size(p, 0), yq, nh, in);
+    free(yq);
+    for (size_t h = 1; h < p->nrings; h++)
+        if (!in[h - 1]) {
+            free(in);
+            acd_vec2 q = acd_polygon_ring(p, h)[0];
             return acd_fail(c->err, ACD_ERR_INVALID_INPUT,
                             "polygon %zu: hole chain %zu lies outside the outer boundary (chain 0): its vertex 0 "
                             "(%.17g, %.17g) is outside",
                             c->index, h, q.x, q.y);
-    }
-    size_t nh = p->nrings - 1;
+        }
+    free(in);
     if (nh < 2) return ACD_OK;
     ring_box *bx = malloc(nh * sizeof *bx);
     if (!bx) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory validating polygon %zu", c->index);
