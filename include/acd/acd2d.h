@@ -58,6 +58,8 @@ typedef struct acd2d_node {
     acd_vec2 cut[2];         /* the cut (or hole-merging diagonal) applied to this node, if any */
     int is_hole_merge;       /* the operation on this node merged a hole (one child) */
     acd_polygon polygon;     /* this node's polygon (holes still present until merged) */
+    int acceptable;          /* 1 if the polygon is simple, without holes or hole-merging slits: only
+                                such nodes can be components (acd2d_result_at_tau) */
 } acd2d_node;
 
 typedef struct acd2d_component {
@@ -93,9 +95,14 @@ acd_status acd2d_result_at_tau(const acd2d_result *result, double tau2, acd2d_re
 
 void acd2d_result_free(acd2d_result *r);
 
-/* Concavity of a simple polygon (no holes) under a measure: the maximum over its vertices.
- * `witness` (may be NULL) receives the index of the vertex attaining it. */
+/* Concavity of a simple counterclockwise polygon (no holes) under a measure, as the
+ * decomposition measures it: the largest concavity of a notch (cross((v-u),(w-v)) < -1e-5, the
+ * default notch tolerance), 0 when there is none. `witness` (may be NULL) receives the index of
+ * that notch (SIZE_MAX when none). tau matters for H2 only. Returns a negative value when out of
+ * memory. */
 double acd2d_concavity(const acd_vec2 *pts, size_t n, acd2d_measure m, double tau, size_t *witness);
+/* The same with the measure, tau (model units: no normalization) and notch tolerance of params. */
+double acd2d_concavity_params(const acd_vec2 *pts, size_t n, const acd2d_params *params, size_t *witness);
 
 #ifdef __cplusplus
 }

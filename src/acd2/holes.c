@@ -1,0 +1,281 @@
+/* acd2/holes: hole resolution (Lien dissertation IV.A.2 "concavity of hole points", IV.A.2.b
+ * principal axis, Eqn 4.1; IV.A.2.c hole concavity, Eqn 4.2; IV.B ordering, Fig. 23; Alg. 5
+ * line 4; spec acd2d.md §4.6 with ★ decisions §11 A6-A8, A16).
+ *
+ * design:
+ *  1. for every hole, the two principal-axis extremes p, q (unweighted covariance eigenvector);
+ *  2. for every alive hole and extreme e (a notch of P): aim at the nearest boundary point
+ *     strictly inside e's resolving cone (vertices and perpendicular feet on edges, over the
+ *     outer ring and all alive holes), or along the cone bisector when there is none; shoot a
+ *     ray from e towards it; the first boundary point met is e's target (visible by
+ *     construction: exact re-check in acd2_shoot_multi);
+ *  3. a hole whose target (for either extreme; the nearer one) is on the outer ring is ready;
+ *     merge the ready hole with the largest Eqn 4.2 value
+ *        concavity(x) + |x - p| + |p - cw(p)|      (delta = concavity(P0) is common to all)
+ *     where x is the target and concavity(x) its stored concavity (a merged hole's value for
+ *     points on merged holes);
+ *  4. when no hole is ready (each is hidden behind others), splice the hole whose target is the
+ *     nearest point on another hole into that hole, and go on.
+ * Cost: O(h N) per merge (h holes, N vertices). */
+#include "acd2/holes.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd2/cut.h"
+#include "core/error.h"
+
+void acd2_pa_extremes(const acd_vec2 *p, size_t n, size_t *lo, size_t *hi) {
+    double cx = 0, cy = 0;
+    for (size_t i = 0; i < n; i++) { cx += p[i].x; cy += p[i].y; }
+    cx /= (double)n;
+    cy /= (double)n;
+    double sxx = 0, sxy = 0, syy = 0;
+    for (size_t i = 0; i < n; i++) {
+        double dx = p[i].x - cx, dy = p[i].y - cy;
+        sxx += dx * dx; sxy += dx * dy; syy += dy * dy;
+    }
+    double th = 0.5 * atan2(2 * sxy, sxx - syy);
+    double ex = cos(th), ey = sin(th);
+    size_t a = 0, b = 0;
+    double mn = INFINITY, mx = -INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        double t = (p[i].x - cx) * ex + (p[i].y - cy) * ey;
+        if (t < mn) { mn = t; a = i; }
+        if (t > mx) { mx = t; b = i; }
+    }
+    *lo = a;
+    *hi = b;
+}
+
+static int ring_from(acd2_ring *r, const acd_vec2 *p, size_t n, int64_t id0) {
+    memset(r, 0, sizeof *r);
+    if (acd2_ring_reserve(r, n)) return -1;
+    for (size_t i = 0; i < n; i++) { r->p[i] = p[i]; r->id[i] = id0 + (int64_t)i; }
+    r->n = n;
+    return 0;
+}
+
+acd_status acd2_holes_init(acd2_holes *hs, const acd_polygon *poly, const double *outer_conc, double far,
+                           acd_error *err) {
+    memset(hs, 0, sizeof *hs);
+    size_t np = acd_polygon_num_points(poly);
+    hs->nh = poly->nrings - 1;
+    hs->alive = hs->nh;
+    hs->far = far;
+    hs->next_id = (int64_t)np;
+    hs->idcap = (int64_t)np + 4 * (int64_t)hs->nh + 8;
+    hs->idconc = calloc((size_t)hs->idcap, sizeof *hs->idconc);
+    hs->h = calloc(hs->nh ? hs->nh : 1, sizeof *hs->h);
+    if (!hs->idconc || !hs->h) goto nomem;
+    if (ring_from(&hs->outer, acd_polygon_ring(poly, 0), acd_polygon_ring_size(poly, 0), 0)) goto nomem;
+    for (size_t k = 0; k < hs->outer.n; k++) hs->idconc[k] = outer_conc[k];
+    for (size_t i = 0; i < hs->nh; i++) {
+        acd2_hole *h = &hs->h[i];
+        if (ring_from(&h->ring, acd_polygon_ring(poly, i + 1), acd_polygon_ring_size(poly, i + 1),
+                      (int64_t)poly->ring_start[i + 1]))
+            goto nomem;
+        acd2_pa_extremes(h->ring.p, h->ring.n, &h->ext[0], &h->ext[1]);
+        h->alive = 1;
+    }
+    return ACD_OK;
+nomem:
+    acd2_holes_free(hs);
+    return acd_fail(err, ACD_ERR_NOMEM, "out of memory while preparing %zu holes", poly->nrings - 1);
+}
+
+void acd2_holes_free(acd2_holes *hs) {
+    acd2_ring_free(&hs->outer);
+    for (size_t i = 0; i < hs->nh; i++) acd2_ring_free(&hs->h[i].ring);
+    free(hs->h);
+    free(hs->idconc);
+    memset(hs, 0, sizeof *hs);
+}
+
+typedef struct target {
+    int ok;
+    size_t owner;     /* 0 = outer, else 1 + hole index */
+    acd2_hit hit;
+    size_t e;         /* extreme position in the hole ring */
+    double dist;
+} target;
+
+/* nearest point of segment (a, b) to R (strictly inside the cone u R w), if any */
+static int nearest_on_edge(acd_vec2 u, acd_vec2 R, acd_vec2 w, acd_vec2 a, acd_vec2 b, acd_vec2 *out) {
+    double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+    if (!(l2 > 0)) return 0;
+    double s = ((R.x - a.x) * dx + (R.y - a.y) * dy) / l2;
+    if (!(s > 0 && s < 1)) return 0;
+    acd_vec2 f = {a.x + s * dx, a.y + s * dy};
+    if (acd2_same(f, R) || !acd2_in_resolving_cone(u, R, w, f)) return 0;
+    *out = f;
+    return 1;
+}
+
+/* rings[0] = outer, rings[1 + k] = alive hole idx[k] */
+static void find_target(const acd2_holes *hs, const acd2_ring *rings, size_t nr, size_t self, size_t e,
+                        target *t) {
+    const acd2_ring *hr = &rings[self];
+    size_t n = hr->n;
+    acd_vec2 u = hr->p[acd2_prev(e, n)], R = hr->p[e], w = hr->p[acd2_next(e, n)];
+    t->ok = 0;
+    if (acd2_orient_sign(u, R, w) >= 0) return; /* not a notch of P (degenerate extreme) */
+    double best = INFINITY;
+    acd_vec2 aim = R;
+    for (size_t g = 0; g < nr; g++) {
+        const acd2_ring *rg = &rings[g];
+        for (size_t k = 0; k < rg->n; k++) {
+            acd_vec2 q = rg->p[k];
+            if (!acd2_same(q, R) && acd2_in_resolving_cone(u, R, w, q)) {
+                double d = hypot(q.x - R.x, q.y - R.y);
+                if (d < best) { best = d; aim = q; }
+            }
+            size_t k2 = acd2_next(k, rg->n);
+            if (g == self && (k == e || k2 == e)) continue;
+            acd_vec2 f;
+            if (nearest_on_edge(u, R, w, q, rg->p[k2], &f)) {
+                double d = hypot(f.x - R.x, f.y - R.y);
+                if (d < best) { best = d; aim = f; }
+            }
+        }
+    }
+    if (best == INFINITY) { /* bisector of the cone */
+        double ax = R.x - u.x, ay = R.y - u.y, bx = R.x - w.x, by = R.y - w.y;
+        double la = hypot(ax, ay), lb = hypot(bx, by);
+        double dx = ax / la + bx / lb, dy = ay / la + by / lb, l = hypot(dx, dy);
+        if (!(l > 0)) return;
+        aim.x = R.x + dx / l * hs->far;
+        aim.y = R.y + dy / l * hs->far;
+    } else {
+        /* aim past the nearest point so that a point on an edge is met as an edge crossing */
+        aim.x = R.x + (aim.x - R.x) * 2;
+        aim.y = R.y + (aim.y - R.y) * 2;
+    }
+    acd2_hit hit;
+    if (acd2_shoot_multi(rings, nr, self, e, aim, &hit)) return;
+    t->ok = 1;
+    t->owner = hit.ring;
+    t->hit = hit;
+    t->e = e;
+    t->dist = hypot(hit.z.x - R.x, hit.z.y - R.y);
+}
+
+/* splices hole ring `h` (merge from its vertex e) into ring `dst` at hit (vertex or edge) */
+static int splice(acd2_ring *dst, const acd2_ring *h, size_t e, const acd2_hit *hit, int64_t new_id) {
+    acd2_ring out = {0};
+    size_t n = dst->n, j = hit->j;
+    int rc = 0;
+    rc |= acd2_ring_append_range(&out, dst, 0, j + 1);
+    if (!hit->is_vertex) rc |= acd2_ring_push(&out, hit->z, new_id);
+    rc |= acd2_ring_append_range(&out, h, e, h->n);
+    rc |= acd2_ring_push(&out, h->p[e], h->id[e]);
+    if (hit->is_vertex) rc |= acd2_ring_push(&out, dst->p[j], dst->id[j]);
+    else rc |= acd2_ring_push(&out, hit->z, new_id);
+    if (j + 1 < n) rc |= acd2_ring_append_range(&out, dst, j + 1, n - j - 1);
+    if (rc) {
+        acd2_ring_free(&out);
+        return -1;
+    }
+    acd2_ring_free(dst);
+    *dst = out;
+    return 0;
+}
+
+static double anchor_conc(const acd2_holes *hs, const acd2_ring *rg, const acd2_hit *hit) {
+    int64_t a = rg->id[hit->j];
+    double c = a >= 0 && a < hs->idcap ? hs->idconc[a] : 0;
+    if (!hit->is_vertex) {
+        int64_t b = rg->id[acd2_next(hit->j, rg->n)];
+        double cb = b >= 0 && b < hs->idcap ? hs->idconc[b] : 0;
+        if (cb > c) c = cb;
+    }
+    return c;
+}
+
+acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, double *value, acd_error *err) {
+    size_t nr = 1 + hs->alive;
+    acd2_ring *rings = malloc(nr * sizeof *rings);
+    size_t *which = malloc(nr * sizeof *which);
+    target *tg = malloc(2 * nr * sizeof *tg);
+    if (!rings || !which || !tg) {
+        free(rings); free(which); free(tg);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory while merging holes");
+    }
+    rings[0] = hs->outer;
+    size_t k = 1;
+    for (size_t i = 0; i < hs->nh; i++)
+        if (hs->h[i].alive) { rings[k] = hs->h[i].ring; which[k] = i; k++; }
+    /* targets of both extremes of every alive hole */
+    int best_ready = -1, best_other = -1;
+    double best_val = -INFINITY, best_dist = INFINITY;
+    for (size_t g = 1; g < nr; g++) {
+        const acd2_hole *h = &hs->h[which[g]];
+        target *t = &tg[2 * g];
+        for (int x = 0; x < 2; x++) find_target(hs, rings, nr, g, h->ext[x], &t[x]);
+        /* the extreme reaching the outer ring, the nearer if both do */
+        int pick = -1;
+        for (int x = 0; x < 2; x++)
+            if (t[x].ok && t[x].owner == 0 && (pick < 0 || t[x].dist < t[pick].dist)) pick = x;
+        if (pick >= 0) {
+            const acd2_ring *hr = &rings[g];
+            acd_vec2 P = hr->p[t[pick].e], Q = hr->p[h->ext[1 - pick]];
+            double val = anchor_conc(hs, &rings[0], &t[pick].hit) + t[pick].dist + hypot(P.x - Q.x, P.y - Q.y);
+            if (val > best_val) { best_val = val; best_ready = (int)(2 * g + (size_t)pick); }
+        } else {
+            for (int x = 0; x < 2; x++)
+                if (t[x].ok && t[x].owner != g && t[x].dist < best_dist) {
+                    best_dist = t[x].dist;
+                    best_other = (int)(2 * g + (size_t)x);
+                }
+        }
+    }
+    acd_status st = ACD_OK;
+    int chosen = best_ready >= 0 ? best_ready : best_other;
+    if (chosen < 0) {
+        st = acd_fail(err, ACD_ERR_INTERNAL, "no hole could be connected to the outer boundary or another hole");
+        goto done;
+    }
+    size_t g = (size_t)chosen / 2;
+    target *t = &tg[chosen];
+    acd2_hole *h = &hs->h[which[g]];
+    acd_vec2 P = h->ring.p[t->e];
+    seg[0] = P;
+    seg[1] = t->hit.z;
+    int64_t nid = hs->next_id;
+    if (nid >= hs->idcap) {
+        st = acd_fail(err, ACD_ERR_INTERNAL, "too many new points while merging holes");
+        goto done;
+    }
+    if (best_ready >= 0) {
+        double val = best_val;
+        hs->idconc[nid] = anchor_conc(hs, &rings[0], &t->hit);
+        if (splice(&hs->outer, &h->ring, t->e, &t->hit, nid)) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory while merging a hole");
+            goto done;
+        }
+        for (size_t q = 0; q < h->ring.n; q++)
+            if (h->ring.id[q] >= 0 && h->ring.id[q] < hs->idcap) hs->idconc[h->ring.id[q]] = val;
+        *into_outer = 1;
+        *value = val;
+    } else {
+        acd2_hole *J = &hs->h[which[t->owner]];
+        hs->idconc[nid] = 0;
+        if (splice(&J->ring, &h->ring, t->e, &t->hit, nid)) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory while merging two holes");
+            goto done;
+        }
+        acd2_pa_extremes(J->ring.p, J->ring.n, &J->ext[0], &J->ext[1]);
+        *into_outer = 0;
+        *value = 0;
+    }
+    if (!t->hit.is_vertex) hs->next_id++;
+    acd2_ring_free(&h->ring);
+    h->alive = 0;
+    hs->alive--;
+done:
+    free(rings);
+    free(which);
+    free(tg);
+    return st;
+}

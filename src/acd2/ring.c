@@ -1,0 +1,130 @@
+/* acd2/ring: growable struct-of-arrays ring and exact local tests (spec acd2d.md §3.0, §5.3). */
+#include "acd2/ring.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int acd2_ring_reserve(acd2_ring *r, size_t cap) {
+    if (cap <= r->cap) return 0;
+    size_t nc = r->cap ? r->cap : 8;
+    while (nc < cap) nc *= 2;
+    acd_vec2 *p = realloc(r->p, nc * sizeof *p);
+    if (!p) return -1;
+    r->p = p;
+    int64_t *id = realloc(r->id, nc * sizeof *id);
+    if (!id) return -1;
+    r->id = id;
+    r->cap = nc;
+    return 0;
+}
+
+int acd2_ring_push(acd2_ring *r, acd_vec2 p, int64_t id) {
+    if (r->n == r->cap && acd2_ring_reserve(r, r->n + 1)) return -1;
+    r->p[r->n] = p;
+    r->id[r->n] = id;
+    r->n++;
+    return 0;
+}
+
+void acd2_ring_free(acd2_ring *r) {
+    free(r->p);
+    free(r->id);
+    memset(r, 0, sizeof *r);
+}
+
+int acd2_ring_append_range(acd2_ring *dst, const acd2_ring *src, size_t from, size_t count) {
+    if (acd2_ring_reserve(dst, dst->n + count)) return -1;
+    size_t k = from;
+    for (size_t c = 0; c < count; c++) {
+        dst->p[dst->n] = src->p[k];
+        dst->id[dst->n] = src->id[k];
+        dst->n++;
+        k = acd2_next(k, src->n);
+    }
+    return 0;
+}
+
+double acd2_ring_area2(const acd_vec2 *p, size_t n) {
+    if (n < 3) return 0.0;
+    double s = 0.0;
+    for (size_t i = 1; i + 1 < n; i++) {
+        double ax = p[i].x - p[0].x, ay = p[i].y - p[0].y;
+        double bx = p[i + 1].x - p[0].x, by = p[i + 1].y - p[0].y;
+        s += ax * by - ay * bx;
+    }
+    return s;
+}
+
+void acd2_ring_clean(acd2_ring *r) {
+    int changed = 1;
+    while (changed && r->n >= 3) {
+        changed = 0;
+        size_t k = 0;
+        for (size_t i = 0; i < r->n; i++) { /* drop repeats of the previous kept vertex */
+            if (k > 0 && acd2_same(r->p[i], r->p[k - 1])) { changed = 1; continue; }
+            r->p[k] = r->p[i];
+            r->id[k] = r->id[i];
+            k++;
+        }
+        while (k > 1 && acd2_same(r->p[k - 1], r->p[0])) { k--; changed = 1; }
+        r->n = k;
+        if (r->n < 3) break;
+        /* spikes u, v, u: remove v and the second u */
+        for (size_t i = 0; i < r->n && r->n >= 3; i++) {
+            size_t a = acd2_prev(i, r->n), c = acd2_next(i, r->n);
+            if (acd2_same(r->p[a], r->p[c])) {
+                size_t lo = i < c ? i : c, hi = i < c ? c : i;
+                /* delete positions i and c (c may have wrapped to 0) */
+                memmove(r->p + hi, r->p + hi + 1, (r->n - hi - 1) * sizeof *r->p);
+                memmove(r->id + hi, r->id + hi + 1, (r->n - hi - 1) * sizeof *r->id);
+                r->n--;
+                memmove(r->p + lo, r->p + lo + 1, (r->n - lo - 1) * sizeof *r->p);
+                memmove(r->id + lo, r->id + lo + 1, (r->n - lo - 1) * sizeof *r->id);
+                r->n--;
+                changed = 1;
+                break;
+            }
+        }
+    }
+}
+
+int acd2_ring_find_repeat(const acd2_ring *r, size_t *i, size_t *j, unsigned char *mark, int64_t id_limit) {
+    /* mark[] has id_limit entries, all zero on entry and on exit */
+    int found = 0;
+    size_t fi = 0, fj = 0;
+    for (size_t k = 0; k < r->n && !found; k++) {
+        int64_t id = r->id[k];
+        if (id < 0 || id >= id_limit) continue;
+        if (mark[id]) {
+            found = 1;
+            fj = k;
+            for (size_t q = 0; q < k; q++)
+                if (r->id[q] == id) { fi = q; break; }
+        }
+        mark[id] = 1;
+    }
+    for (size_t k = 0; k < r->n; k++)
+        if (r->id[k] >= 0 && r->id[k] < id_limit) mark[r->id[k]] = 0;
+    if (found) { *i = fi; *j = fj; }
+    return found;
+}
+
+int acd2_in_wedge(acd_vec2 u, acd_vec2 v, acd_vec2 w, acd_vec2 q) {
+    int a = acd2_orient_sign(u, v, q), b = acd2_orient_sign(v, w, q);
+    if (acd2_orient_sign(u, v, w) > 0) return a > 0 && b > 0;
+    /* reflex or straight: the complement of the closed convex exterior cone */
+    return a > 0 || b > 0;
+}
+
+int acd2_between(acd_vec2 a, acd_vec2 b, acd_vec2 q, int incl_b) {
+    double dx = b.x - a.x, dy = b.y - a.y;
+    double lo, hi, t;
+    if ((dx < 0 ? -dx : dx) >= (dy < 0 ? -dy : dy)) {
+        lo = a.x; hi = b.x; t = q.x;
+    } else {
+        lo = a.y; hi = b.y; t = q.y;
+    }
+    if (incl_b && t == hi) return 1;
+    if (lo < hi) return t > lo && t < hi;
+    return t < lo && t > hi;
+}

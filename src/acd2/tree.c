@@ -1,0 +1,120 @@
+/* acd2/tree: level-of-detail readout of the decomposition tree (Lien dissertation Ch. III,
+ * Alg. 1 and Fig. 9b: "the recursion forms a binary tree"; spec acd2d.md §2).
+ *
+ * For measures that do not depend on tau (SL, SP, H1) the cut made at a node depends only on
+ * the node's polygon, so a fresh run at tau' >= tau makes exactly the cuts of the tree nodes
+ * whose concavity exceeds tau' (or which are not yet simple polygons), in the same preorder:
+ * the frontier read here equals that run. H2 depends on tau; its readout is the tree's
+ * frontier, which may differ from a fresh H2 run at tau'. */
+#include "acd2/tree.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/tolerance.h"
+#include "geom2/hull2d.h"
+
+int acd2_cuts_push(acd2_cuts_list *l, const acd_vec2 seg[2]) {
+    if (l->n == l->cap) {
+        size_t nc = l->cap ? 2 * l->cap : 32;
+        acd_vec2(*q)[2] = realloc(l->v, nc * sizeof *q);
+        if (!q) return -1;
+        l->v = q;
+        l->cap = nc;
+    }
+    l->v[l->n][0] = seg[0];
+    l->v[l->n][1] = seg[1];
+    l->n++;
+    return 0;
+}
+
+void acd2d_result_free(acd2d_result *r) {
+    if (!r) return;
+    for (size_t i = 0; i < r->ncomponents; i++) {
+        free(r->components[i].points);
+        free(r->components[i].hull);
+    }
+    free(r->components);
+    for (size_t i = 0; i < r->nnodes; i++) acd_polygon_free(&r->nodes[i].polygon);
+    free(r->nodes);
+    free(r->cuts);
+    memset(r, 0, sizeof *r);
+}
+
+static acd_status add_comp(acd2d_result *out, size_t *cap, const acd2d_node *nd, int node, acd_error *err) {
+    if (out->ncomponents == *cap) {
+        size_t nc = *cap ? 2 * *cap : 16;
+        acd2d_component *q = realloc(out->components, nc * sizeof *q);
+        if (!q) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+        out->components = q;
+        *cap = nc;
+    }
+    size_t n = acd_polygon_ring_size(&nd->polygon, 0);
+    acd2d_component *c = &out->components[out->ncomponents];
+    memset(c, 0, sizeof *c);
+    c->points = malloc(n * sizeof *c->points);
+    c->hull = malloc((n + 1) * sizeof *c->hull);
+    size_t *idx = malloc((n + 1) * sizeof *idx), *scr = malloc((n + 1) * sizeof *scr);
+    if (!c->points || !c->hull || !idx || !scr) {
+        free(c->points); free(c->hull); free(idx); free(scr);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    memcpy(c->points, nd->polygon.points, n * sizeof *c->points);
+    c->npoints = n;
+    size_t nh = acd_hull2d_indices(c->points, n, idx, scr);
+    for (size_t i = 0; i < nh; i++) c->hull[i] = c->points[idx[i]];
+    c->nhull = nh;
+    c->concavity = nd->concavity;
+    c->node = node;
+    free(idx);
+    free(scr);
+    out->ncomponents++;
+    if (nd->concavity > out->max_concavity) out->max_concavity = nd->concavity;
+    return ACD_OK;
+}
+
+acd_status acd2d_result_at_tau(const acd2d_result *res, double tau2, acd2d_result *out, acd_error *err) {
+    if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd2d_result_at_tau: out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!res || res->nnodes == 0) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd2d_result_at_tau: no tree");
+    if (!(tau2 >= res->tau))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd2d_result_at_tau: tau %g is below the tree's tau %g", tau2,
+                        res->tau);
+    const acd_polygon *root = &res->nodes[0].polygon;
+    acd_scale sc = acd_scale_of_points(&root->points[0].x, acd_polygon_num_points(root), 2);
+    double eps = sc.dist;
+    out->tau = tau2;
+    out->measure = res->measure;
+    out->input_vertices = res->input_vertices;
+    out->input_notches = res->input_notches;
+    out->input_holes = res->input_holes;
+    size_t comp_cap = 0;
+    acd2_cuts_list cl = {0};
+    int *stack = malloc((res->nnodes + 1) * sizeof *stack);
+    if (!stack) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    size_t ns = 0;
+    stack[ns++] = 0;
+    acd_status st = ACD_OK;
+    while (ns > 0 && st == ACD_OK) {
+        int v = stack[--ns];
+        const acd2d_node *nd = &res->nodes[v];
+        int leaf = nd->child[0] < 0 && nd->child[1] < 0;
+        if (leaf || (nd->acceptable && nd->concavity <= tau2 + eps)) {
+            st = add_comp(out, &comp_cap, nd, v, err);
+            continue;
+        }
+        int zero = nd->cut[0].x == nd->cut[1].x && nd->cut[0].y == nd->cut[1].y;
+        if (!zero && acd2_cuts_push(&cl, nd->cut)) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            break;
+        }
+        if (nd->child[1] >= 0) stack[ns++] = nd->child[1];
+        if (nd->child[0] >= 0) stack[ns++] = nd->child[0];
+    }
+    free(stack);
+    out->cuts = cl.v;
+    out->ncuts = cl.n;
+    if (st != ACD_OK) acd2d_result_free(out);
+    return st;
+}
