@@ -371,6 +371,11 @@ static double box_dist2(const acd_bvh_node *n, const double p[3]) {
 }
 
 int acd_bvh_closest(const acd_bvh *bvh, const double p[3], double max_dist2, acd_bvh_closest_result *out) {
+    return acd_bvh_closest_filtered(bvh, p, max_dist2, NULL, NULL, out);
+}
+
+int acd_bvh_closest_filtered(const acd_bvh *bvh, const double p[3], double max_dist2, acd_bvh_accept_fn accept,
+                             void *user, acd_bvh_closest_result *out) {
     if (bvh->nnodes == 0) return 0;
     uint32_t stack[BVH_STACK];
     int sp = 0, found = 0;
@@ -386,7 +391,7 @@ int acd_bvh_closest(const acd_bvh *bvh, const double p[3], double max_dist2, acd
                 const uint32_t *tr = bvh->triangles + 3 * (size_t)t;
                 double q[3];
                 double d = acd_closest_point_triangle(p, vtx(bvh, tr[0]), vtx(bvh, tr[1]), vtx(bvh, tr[2]), q);
-                if (d < best || (d == best && (!found || t < out->triangle))) {
+                if ((d < best || (d == best && (!found || t < out->triangle))) && (!accept || accept(user, t, q))) {
                     best = d;
                     found = 1;
                     out->dist2 = d;

@@ -63,6 +63,13 @@ typedef struct acd_bvh_closest_result {
  * for no limit). Returns 1 and fills *out when one exists, else 0. */
 int acd_bvh_closest(const acd_bvh *bvh, const double p[3], double max_dist2, acd_bvh_closest_result *out);
 
+/* The same restricted to closest points that `accept` accepts (called with the triangle and the
+ * candidate point; non-zero accepts). Finds the nearest accepted candidate among the per-triangle
+ * closest points: an accepted triangle whose own closest point is refused is not searched further. */
+typedef int (*acd_bvh_accept_fn)(void *user, uint32_t triangle, const double point[3]);
+int acd_bvh_closest_filtered(const acd_bvh *bvh, const double p[3], double max_dist2, acd_bvh_accept_fn accept,
+                             void *user, acd_bvh_closest_result *out);
+
 /* First intersection of the ray origin + t dir, 0 <= t <= tmax, with the mesh (Moller-Trumbore in
  * floating point: not exact at edges; spatial.h gives exact inside/outside). Returns 1 with *t
  * and *triangle set on a hit, else 0. */

@@ -83,4 +83,35 @@ static inline tm_mesh tm_octahedron(void) {
     return m;
 }
 
+/* Prism: the counterclockwise polygon (n points, 2 doubles each) between z0 and z1. The caps are
+ * fanned from polygon vertex `fan` (the polygon must be star-shaped from it). */
+static inline tm_mesh tm_prism(const double *poly, size_t n, size_t fan, double z0, double z1) {
+    tm_mesh m;
+    m.nv = 2 * n;
+    m.nt = 2 * (n - 2) + 2 * n;
+    m.v = malloc(3 * m.nv * sizeof(double));
+    m.t = malloc(3 * m.nt * sizeof(uint32_t));
+    if (!m.v || !m.t) abort();
+    for (size_t i = 0; i < n; i++) {
+        m.v[3 * i] = m.v[3 * (n + i)] = poly[2 * i];
+        m.v[3 * i + 1] = m.v[3 * (n + i) + 1] = poly[2 * i + 1];
+        m.v[3 * i + 2] = z0;
+        m.v[3 * (n + i) + 2] = z1;
+    }
+    size_t k = 0;
+    for (size_t j = 1; j + 1 < n; j++) {
+        uint32_t a = (uint32_t)fan, b = (uint32_t)((fan + j) % n), c = (uint32_t)((fan + j + 1) % n);
+        uint32_t bot[3] = {a, c, b}, top[3] = {(uint32_t)n + a, (uint32_t)n + b, (uint32_t)n + c};
+        memcpy(m.t + 3 * k++, bot, sizeof bot);
+        memcpy(m.t + 3 * k++, top, sizeof top);
+    }
+    for (size_t i = 0; i < n; i++) {
+        uint32_t a = (uint32_t)i, b = (uint32_t)((i + 1) % n);
+        uint32_t t1[3] = {a, b, (uint32_t)n + b}, t2[3] = {a, (uint32_t)n + b, (uint32_t)n + a};
+        memcpy(m.t + 3 * k++, t1, sizeof t1);
+        memcpy(m.t + 3 * k++, t2, sizeof t2);
+    }
+    return m;
+}
+
 #endif

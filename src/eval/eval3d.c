@@ -1,0 +1,587 @@
+/* eval/eval3d: scoring a 3D decomposition against its mesh (issue "3D mesh foundation", item 6).
+ *
+ * Volumes: stratified Monte Carlo over the box holding the mesh and the hulls. The box is cut into
+ * nx * ny * nz cells of about equal sides, one sample per cell. The (y, z) jitter is drawn once per
+ * row of cells along x (each sample is still uniform in its cell), so one line serves all samples
+ * of a row: the mesh's crossings of the line are found once through the BVH and every sample is
+ * classified exactly from them (src/geom3/spatial.h), and each hull's interval on the line comes
+ * from its planes. Integer counts only, so the figures do not depend on the thread count.
+ *
+ * Surface distances (docs/eval.md, "Distance to the boundary of the union"): d(p, dU) for p on
+ * the mesh is the distance to the nearest hull-surface point when p is outside every hull or that
+ * point lies on dU (a probe pushed out of its facet lands in no other hull): exact; otherwise the
+ * nearest point among hull-surface points on dU (closest-point search with the boundary test as
+ * filter, and the boundary samples): an upper bound within the boundary sample spacing. The
+ * boundary dU is sampled by area-uniform points on the hull surfaces kept by the same probe test.
+ *
+ * Lien's dissertation, Ch. V, measures a decomposition by the concavity left in its components;
+ * the distance between the mesh and the hulls' union boundary is that concavity seen from outside,
+ * in the form used by V-HACD and CoACD (Wei et al., SIGGRAPH 2022, sec. 3.1: Hausdorff distance
+ * between the mesh boundary and the hulls' boundary). */
+#include "eval/eval3d.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <cjson/cJSON.h>
+
+#include "acd/eval.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "geom3/spatial.h"
+
+/* ------------------------------------------------------------------------------------------ */
+/* the union of hulls */
+
+acd_status acd_hullset_build(acd_hullset *hs, const acd_hull *hulls, size_t nhulls, double diagonal,
+                             acd_error *err) {
+    memset(hs, 0, sizeof *hs);
+    size_t nh = 0, nv = 0, nt = 0;
+    for (size_t i = 0; i < nhulls; i++)
+        if (hulls[i].dim == 3) {
+            nh++;
+            nv += hulls[i].nvertices;
+            nt += hulls[i].ntriangles;
+        }
+    hs->probe = ACD_EVAL_PROBE_REL * diagonal;
+    if (nv >= UINT32_MAX) return acd_fail(err, ACD_ERR_INVALID_INPUT, "eval: too many hull vertices (%zu)", nv);
+    hs->hulls = calloc(nh ? nh : 1, sizeof *hs->hulls);
+    hs->planes = malloc((nt ? nt : 1) * 4 * sizeof(double));
+    hs->vertices = malloc((nv ? nv : 1) * 3 * sizeof(double));
+    hs->triangles = malloc((nt ? nt : 1) * 3 * sizeof(uint32_t));
+    hs->tri_hull = malloc((nt ? nt : 1) * sizeof(uint32_t));
+    hs->tri_normal = malloc((nt ? nt : 1) * 3 * sizeof(double));
+    if (!hs->hulls || !hs->planes || !hs->vertices || !hs->triangles || !hs->tri_hull || !hs->tri_normal) {
+        acd_hullset_free(hs);
+        return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu hulls", nh);
+    }
+    size_t np = 0;
+    for (size_t i = 0; i < nhulls; i++) {
+        const acd_hull *h = &hulls[i];
+        if (h->dim != 3) continue;
+        acd_hullset_hull *o = &hs->hulls[hs->nhulls];
+        o->first_plane = np;
+        o->first_vertex = hs->nvertices;
+        o->nvertices = h->nvertices;
+        for (int k = 0; k < 3; k++) {
+            o->lo[k] = INFINITY;
+            o->hi[k] = -INFINITY;
+            o->centroid[k] = 0;
+        }
+        for (size_t v = 0; v < h->nvertices; v++)
+            for (int k = 0; k < 3; k++) {
+                double x = h->vertices[3 * v + k];
+                if (!isfinite(x)) {
+                    acd_hullset_free(hs);
+                    return acd_fail(err, ACD_ERR_INVALID_INPUT, "eval: hull %zu vertex %zu has a non-finite coordinate",
+                                    i, v);
+                }
+                o->lo[k] = fmin(o->lo[k], x);
+                o->hi[k] = fmax(o->hi[k], x);
+                o->centroid[k] += x / (double)h->nvertices;
+                hs->vertices[3 * (hs->nvertices + v) + k] = x;
+            }
+        for (size_t t = 0; t < h->ntriangles; t++) {
+            const double *pl = h->planes + 4 * t;
+            size_t q = o->first_plane;
+            while (q < np && memcmp(hs->planes + 4 * q, pl, 4 * sizeof(double)) != 0) q++;
+            if (q == np) memcpy(hs->planes + 4 * np++, pl, 4 * sizeof(double));
+            for (int k = 0; k < 3; k++) {
+                hs->triangles[3 * hs->ntriangles + k] = (uint32_t)(hs->nvertices + h->triangles[3 * t + k]);
+                hs->tri_normal[3 * hs->ntriangles + k] = pl[k];
+            }
+            hs->tri_hull[hs->ntriangles] = (uint32_t)hs->nhulls;
+            hs->ntriangles++;
+        }
+        o->nplanes = np - o->first_plane;
+        hs->nvertices += h->nvertices;
+        hs->nhulls++;
+    }
+    acd_status st = acd_bvh_build(&hs->bvh, hs->vertices, hs->nvertices, hs->triangles, hs->ntriangles, err);
+    if (st != ACD_OK) acd_hullset_free(hs);
+    return st;
+}
+
+void acd_hullset_free(acd_hullset *hs) {
+    if (!hs) return;
+    acd_bvh_free(&hs->bvh);
+    free(hs->hulls);
+    free(hs->planes);
+    free(hs->vertices);
+    free(hs->triangles);
+    free(hs->tri_hull);
+    free(hs->tri_normal);
+    memset(hs, 0, sizeof *hs);
+}
+
+int acd_hullset_in_hull(const acd_hullset *hs, size_t h, const double p[3]) {
+    const acd_hullset_hull *o = &hs->hulls[h];
+    for (int k = 0; k < 3; k++)
+        if (p[k] < o->lo[k] || p[k] > o->hi[k]) return 0;
+    const double *pl = hs->planes + 4 * o->first_plane;
+    for (size_t i = 0; i < o->nplanes; i++, pl += 4)
+        if (pl[0] * p[0] + pl[1] * p[1] + pl[2] * p[2] + pl[3] > 0) return 0;
+    return 1;
+}
+
+size_t acd_hullset_find(const acd_hullset *hs, const double p[3], size_t skip) {
+    for (size_t h = 0; h < hs->nhulls; h++)
+        if (h != skip && acd_hullset_in_hull(hs, h, p)) return h;
+    return SIZE_MAX;
+}
+
+int acd_hullset_on_boundary(const acd_hullset *hs, size_t h, const double q[3], const double dir[3]) {
+    double x[3] = {q[0] + hs->probe * dir[0], q[1] + hs->probe * dir[1], q[2] + hs->probe * dir[2]};
+    return acd_hullset_find(hs, x, h) == SIZE_MAX;
+}
+
+int acd_hullset_x_interval(const acd_hullset *hs, size_t h, double y, double z, double *t0, double *t1) {
+    const acd_hullset_hull *o = &hs->hulls[h];
+    if (y < o->lo[1] || y > o->hi[1] || z < o->lo[2] || z > o->hi[2]) return 0;
+    double a = -INFINITY, b = INFINITY;
+    const double *pl = hs->planes + 4 * o->first_plane;
+    for (size_t i = 0; i < o->nplanes; i++, pl += 4) {
+        double c = pl[1] * y + pl[2] * z + pl[3];
+        if (pl[0] > 0) b = fmin(b, -c / pl[0]);
+        else if (pl[0] < 0) a = fmax(a, -c / pl[0]);
+        else if (c > 0) return 0;
+        if (a > b) return 0;
+    }
+    *t0 = a;
+    *t1 = b;
+    return 1;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* evaluation */
+
+acd_eval_params acd_eval_default_params(void) {
+    acd_eval_params p;
+    memset(&p, 0, sizeof p);
+    p.cookie = ACD_EVAL_PARAMS_COOKIE;
+    p.samples = 1000000;
+    p.surface_samples = 200000;
+    p.seed = 1;
+    return p;
+}
+
+static double now_seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Independent generator for (stream, index): results do not depend on the order of the work. */
+static void rng_for(acd_rng *r, uint64_t seed, uint64_t stream, uint64_t index) {
+    acd_rng_seed(r, seed ^ (0x9E3779B97F4A7C15ull * (index + 1)) ^ (0xD1B54A32D192ED03ull * (stream + 1)));
+}
+
+static int progress(const acd_eval_params *p, double f, const char *stage) {
+    return p->progress ? p->progress(p->progress_user, f, stage) : 0;
+}
+
+typedef struct eval_ctx {
+    const acd_eval_params *prm;
+    const acd_spatial *mesh;
+    const acd_hullset *hs;
+    double lo[3], hi[3]; /* sampling box */
+    double diag;
+} eval_ctx;
+
+typedef struct interval {
+    double a, b;
+} interval;
+
+/* Monte Carlo counts over the box: samples in M, in U, in both. */
+static acd_status volume_counts(const eval_ctx *c, size_t *nsamples, size_t counts[3], acd_error *err) {
+    double ext[3], vol = 1;
+    for (int k = 0; k < 3; k++) {
+        ext[k] = c->hi[k] - c->lo[k];
+        vol *= ext[k];
+    }
+    double cell = cbrt(vol / (double)c->prm->samples);
+    size_t n[3];
+    for (int k = 0; k < 3; k++) {
+        double m = floor(ext[k] / cell + 0.5);
+        n[k] = m < 1 ? 1 : (size_t)m;
+    }
+    double h[3] = {ext[0] / (double)n[0], ext[1] / (double)n[1], ext[2] / (double)n[2]};
+    size_t rows = n[1] * n[2];
+    *nsamples = n[0] * rows;
+    size_t cm = 0, cu = 0, cmu = 0;
+    int failed = 0;
+    interval *iv = malloc((c->hs->nhulls ? c->hs->nhulls : 1) * sizeof *iv);
+    acd_spatial_line line = {0};
+    if (!iv) return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for line intervals");
+    for (size_t row = 0; row < rows && !failed; row++) {
+        if (row % 1024 == 0 && progress(c->prm, 0.5 * (double)row / (double)rows, "volume")) {
+            failed = 2;
+            break;
+        }
+        acd_rng r;
+        rng_for(&r, c->prm->seed, 1, row);
+        size_t j = row % n[1], k = row / n[1];
+        double y = c->lo[1] + ((double)j + acd_rng_uniform(&r)) * h[1];
+        double z = c->lo[2] + ((double)k + acd_rng_uniform(&r)) * h[2];
+        size_t niv = 0;
+        for (size_t hh = 0; hh < c->hs->nhulls; hh++) {
+            double a, b;
+            if (acd_hullset_x_interval(c->hs, hh, y, z, &a, &b)) iv[niv++] = (interval){a, b};
+        }
+        if (c->mesh->closed && acd_spatial_line_set(c->mesh, y, z, &line, NULL) != ACD_OK) {
+            failed = 1;
+            break;
+        }
+        for (size_t i = 0; i < n[0]; i++) {
+            double x = c->lo[0] + ((double)i + acd_rng_uniform(&r)) * h[0];
+            int in_m;
+            if (c->mesh->closed) {
+                int on = 0;
+                in_m = acd_spatial_line_winding(c->mesh, &line, x, &on) != 0 || on;
+            } else {
+                double p[3] = {x, y, z};
+                in_m = fabs(acd_spatial_gwn(c->mesh, p)) >= 0.5;
+            }
+            int in_u = 0;
+            for (size_t q = 0; q < niv && !in_u; q++) in_u = x >= iv[q].a && x <= iv[q].b;
+            cm += (size_t)in_m;
+            cu += (size_t)in_u;
+            cmu += (size_t)(in_m && in_u);
+        }
+    }
+    free(iv);
+    acd_spatial_line_free(&line);
+    if (failed == 2) return acd_fail(err, ACD_ERR_CANCELLED, "eval: cancelled while sampling volumes");
+    if (failed) return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory while sampling volumes");
+    counts[0] = cm;
+    counts[1] = cu;
+    counts[2] = cmu;
+    return ACD_OK;
+}
+
+/* n area-uniform points on a triangle set (systematic sampling along the cumulative area, then a
+ * uniform point in the chosen triangle); tri_of receives each point's triangle. */
+static acd_status sample_surface(const double *v, const uint32_t *t, size_t nt, size_t n, uint64_t seed,
+                                 uint64_t stream, double *pts, uint32_t *tri_of, double *total_area,
+                                 acd_error *err) {
+    double *cum = malloc((nt ? nt : 1) * sizeof(double));
+    if (!cum) return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu triangle areas", nt);
+    double acc = 0;
+    for (size_t i = 0; i < nt; i++) {
+        const double *a = v + 3 * (size_t)t[3 * i], *b = v + 3 * (size_t)t[3 * i + 1], *c = v + 3 * (size_t)t[3 * i + 2];
+        double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double x = e1[1] * e2[2] - e1[2] * e2[1], y = e1[2] * e2[0] - e1[0] * e2[2], z = e1[0] * e2[1] - e1[1] * e2[0];
+        acc += 0.5 * sqrt(x * x + y * y + z * z);
+        cum[i] = acc;
+    }
+    *total_area = acc;
+    acd_rng r0;
+    rng_for(&r0, seed, stream, 0);
+    double off = acd_rng_uniform(&r0);
+    size_t ti = 0;
+    for (size_t s = 0; s < n; s++) {
+        double u = ((double)s + off) / (double)n * acc;
+        while (ti + 1 < nt && cum[ti] <= u) ti++;
+        acd_rng r;
+        rng_for(&r, seed, stream, s + 1);
+        double r1 = sqrt(acd_rng_uniform(&r)), r2 = acd_rng_uniform(&r);
+        const double *a = v + 3 * (size_t)t[3 * ti], *b = v + 3 * (size_t)t[3 * ti + 1], *c = v + 3 * (size_t)t[3 * ti + 2];
+        for (int k = 0; k < 3; k++) pts[3 * s + k] = (1 - r1) * a[k] + r1 * (1 - r2) * b[k] + r1 * r2 * c[k];
+        tri_of[s] = (uint32_t)ti;
+    }
+    free(cum);
+    return ACD_OK;
+}
+
+typedef struct boundary_filter {
+    const acd_hullset *hs;
+} boundary_filter;
+
+static int accept_boundary(void *user, uint32_t t, const double q[3]) {
+    const acd_hullset *hs = ((boundary_filter *)user)->hs;
+    return acd_hullset_on_boundary(hs, hs->tri_hull[t], q, hs->tri_normal + 3 * (size_t)t);
+}
+
+/* Distance from p to the boundary of the union (see the file comment); *exact set to 0 when the
+ * value is an upper bound from the boundary samples. */
+static double dist_to_union_boundary(const eval_ctx *c, const acd_bvh *bsamples, const double p[3], int *exact) {
+    const acd_hullset *hs = c->hs;
+    acd_bvh_closest_result q0;
+    *exact = 1;
+    if (!acd_bvh_closest(&hs->bvh, p, INFINITY, &q0)) return INFINITY;
+    if (acd_hullset_find(hs, p, SIZE_MAX) == SIZE_MAX) return sqrt(q0.dist2);
+    if (accept_boundary(&(boundary_filter){hs}, q0.triangle, q0.point)) return sqrt(q0.dist2);
+    *exact = 0;
+    double best = INFINITY;
+    acd_bvh_closest_result q1;
+    boundary_filter f = {hs};
+    if (acd_bvh_closest_filtered(&hs->bvh, p, INFINITY, accept_boundary, &f, &q1)) best = q1.dist2;
+    if (acd_bvh_closest(bsamples, p, best, &q1) && q1.dist2 < best) best = q1.dist2;
+    return sqrt(best);
+}
+
+static acd_status surface_distances(const eval_ctx *c, const acd_mesh *mesh, acd_eval_report *rep, acd_error *err) {
+    const acd_hullset *hs = c->hs;
+    size_t n = c->prm->surface_samples;
+    acd_status st = ACD_OK;
+    double *hp = malloc((n ? n : 1) * 3 * sizeof(double));
+    uint32_t *ht = malloc((n ? n : 1) * sizeof(uint32_t));
+    double *mp = malloc((n ? n : 1) * 3 * sizeof(double));
+    uint32_t *mt = malloc((n ? n : 1) * sizeof(uint32_t));
+    uint32_t *btri = NULL;
+    acd_bvh bs;
+    memset(&bs, 0, sizeof bs);
+    if (!hp || !ht || !mp || !mt) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu surface samples", n);
+        goto done;
+    }
+    /* boundary of the union: hull-surface samples kept by the probe test (compacted in place) */
+    double harea = 0, marea = 0;
+    st = sample_surface(hs->vertices, hs->triangles, hs->ntriangles, n, c->prm->seed, 2, hp, ht, &harea, err);
+    if (st != ACD_OK) goto done;
+    size_t nb = 0;
+    for (size_t s = 0; s < n; s++) {
+        uint32_t t = ht[s];
+        if (!acd_hullset_on_boundary(hs, hs->tri_hull[t], hp + 3 * s, hs->tri_normal + 3 * (size_t)t)) continue;
+        memmove(hp + 3 * nb, hp + 3 * s, 3 * sizeof(double));
+        nb++;
+    }
+    rep->boundary_samples = nb;
+    btri = malloc((nb ? nb : 1) * 3 * sizeof(uint32_t));
+    if (!btri) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu boundary samples", nb);
+        goto done;
+    }
+    for (size_t s = 0; s < nb; s++) btri[3 * s] = btri[3 * s + 1] = btri[3 * s + 2] = (uint32_t)s;
+    st = acd_bvh_build(&bs, hp, nb, btri, nb, err);
+    if (st != ACD_OK) goto done;
+    double barea = n ? harea * (double)nb / (double)n : 0;
+    rep->boundary_spacing = nb ? sqrt(barea / (double)nb) / c->diag : 0;
+    if (progress(c->prm, 0.6, "boundary to mesh")) {
+        st = acd_fail(err, ACD_ERR_CANCELLED, "eval: cancelled");
+        goto done;
+    }
+
+    /* boundary -> mesh: mean over the samples, max over samples and boundary hull vertices */
+    double sum = 0, mx = 0;
+    for (size_t s = 0; s < nb; s++) {
+        double d = acd_spatial_distance(c->mesh, hp + 3 * s, NULL);
+        sum += d;
+        if (d > mx) mx = d;
+    }
+    for (size_t h = 0; h < hs->nhulls; h++) {
+        const acd_hullset_hull *o = &hs->hulls[h];
+        for (size_t v = o->first_vertex; v < o->first_vertex + o->nvertices; v++) {
+            const double *x = hs->vertices + 3 * v;
+            double dir[3] = {x[0] - o->centroid[0], x[1] - o->centroid[1], x[2] - o->centroid[2]};
+            double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+            if (!(len > 0)) continue;
+            for (int k = 0; k < 3; k++) dir[k] /= len;
+            if (!acd_hullset_on_boundary(hs, h, x, dir)) continue;
+            double d = acd_spatial_distance(c->mesh, x, NULL);
+            if (d > mx) mx = d;
+        }
+    }
+    rep->hulls_to_mesh_mean = nb ? sum / (double)nb / c->diag : 0;
+    rep->hulls_to_mesh_max = mx / c->diag;
+    if (progress(c->prm, 0.8, "mesh to boundary")) {
+        st = acd_fail(err, ACD_ERR_CANCELLED, "eval: cancelled");
+        goto done;
+    }
+
+    /* mesh -> boundary: mean over area-uniform samples, max over samples and mesh vertices */
+    st = sample_surface(mesh->vertices, mesh->triangles, mesh->ntriangles, n, c->prm->seed, 3, mp, mt, &marea, err);
+    if (st != ACD_OK) goto done;
+    sum = 0;
+    mx = 0;
+    size_t inexact = 0;
+    for (size_t s = 0; s < n; s++) {
+        int exact;
+        double d = dist_to_union_boundary(c, &bs, mp + 3 * s, &exact);
+        inexact += (size_t)!exact;
+        sum += d;
+        if (d > mx) mx = d;
+    }
+    for (size_t v = 0; v < mesh->nvertices; v++) {
+        int exact;
+        double d = dist_to_union_boundary(c, &bs, mesh->vertices + 3 * v, &exact);
+        inexact += (size_t)!exact;
+        if (d > mx) mx = d;
+    }
+    rep->mesh_to_hulls_mean = n ? sum / (double)n / c->diag : 0;
+    rep->mesh_to_hulls_max = mx / c->diag;
+    rep->inexact_distances = inexact;
+done:
+    acd_bvh_free(&bs);
+    free(btri);
+    free(hp);
+    free(ht);
+    free(mp);
+    free(mt);
+    return st;
+}
+
+static int used_vertex_ok(const acd_mesh *m, acd_error *err, acd_status *st) {
+    for (size_t t = 0; t < m->ntriangles; t++)
+        for (int k = 0; k < 3; k++)
+            if (m->triangles[3 * t + k] >= m->nvertices) {
+                *st = acd_fail(err, ACD_ERR_INVALID_INPUT, "eval: mesh triangle %zu refers to vertex %u of %zu", t,
+                               m->triangles[3 * t + k], m->nvertices);
+                return 0;
+            }
+    for (size_t v = 0; v < m->nvertices; v++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(m->vertices[3 * v + k])) {
+                *st = acd_fail(err, ACD_ERR_INVALID_INPUT, "eval: mesh vertex %zu has a non-finite coordinate", v);
+                return 0;
+            }
+    return 1;
+}
+
+acd_status acd_eval_hulls(const acd_mesh *mesh, const acd_hull *hulls, size_t nhulls, const acd_eval_params *params,
+                          acd_eval_report *out, acd_error *err) {
+    double t0 = now_seconds();
+    acd_eval_params prm = params ? *params : acd_eval_default_params();
+    if (prm.cookie != ACD_EVAL_PARAMS_COOKIE)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "eval: parameters not made by acd_eval_default_params");
+    if (!mesh || !out || (nhulls && !hulls)) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "eval: NULL argument");
+    if (prm.samples < 1 || prm.surface_samples < 1)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "eval: samples and surface samples must be >= 1");
+    memset(out, 0, sizeof *out);
+    if (mesh->ntriangles == 0) return acd_fail(err, ACD_ERR_DEGENERATE, "eval: the mesh has no triangles");
+    acd_status st = ACD_OK;
+    if (!used_vertex_ok(mesh, err, &st)) return st;
+
+    out->parts = nhulls;
+    out->seed = prm.seed;
+    for (size_t i = 0; i < nhulls; i++) {
+        out->hull_vertices += hulls[i].nvertices;
+        if (hulls[i].dim != 3) out->degenerate_parts++;
+        else out->hull_volume_sum += hulls[i].volume;
+    }
+    acd_spatial sp;
+    st = acd_spatial_build(&sp, mesh->vertices, mesh->nvertices, mesh->triangles, mesh->ntriangles, err);
+    if (st != ACD_OK) return st;
+    out->mesh_closed = sp.closed;
+    const acd_bvh_node *root = &sp.bvh.nodes[0];
+    double ctr[3], vol = 0;
+    for (int k = 0; k < 3; k++) ctr[k] = 0.5 * (root->lo[k] + root->hi[k]);
+    for (size_t t = 0; t < mesh->ntriangles; t++) {
+        double a[3], b[3], c[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = mesh->vertices[3 * (size_t)mesh->triangles[3 * t] + k] - ctr[k];
+            b[k] = mesh->vertices[3 * (size_t)mesh->triangles[3 * t + 1] + k] - ctr[k];
+            c[k] = mesh->vertices[3 * (size_t)mesh->triangles[3 * t + 2] + k] - ctr[k];
+        }
+        vol += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    out->mesh_volume = fabs(vol) / 6.0;
+    out->diagonal = sp.scale.extent;
+    acd_hullset hs;
+    st = acd_hullset_build(&hs, hulls, nhulls, out->diagonal, err);
+    if (st != ACD_OK) {
+        acd_spatial_free(&sp);
+        return st;
+    }
+    if (hs.nhulls == 0) {
+        st = acd_fail(err, ACD_ERR_DEGENERATE, "eval: none of the %zu parts has a solid (3D) hull", nhulls);
+        goto done;
+    }
+    eval_ctx c = {&prm, &sp, &hs, {0}, {0}, out->diagonal};
+    for (int k = 0; k < 3; k++) {
+        c.lo[k] = fmin(root->lo[k], hs.bvh.nodes[0].lo[k]);
+        c.hi[k] = fmax(root->hi[k], hs.bvh.nodes[0].hi[k]);
+        if (!(c.hi[k] > c.lo[k])) {
+            st = acd_fail(err, ACD_ERR_DEGENERATE, "eval: the mesh and hulls are flat along axis %d", k);
+            goto done;
+        }
+    }
+    size_t counts[3] = {0, 0, 0};
+    st = volume_counts(&c, &out->samples, counts, err);
+    if (st != ACD_OK) goto done;
+    if (counts[0] == 0) {
+        st = acd_fail(err, ACD_ERR_DEGENERATE, "eval: the mesh encloses no volume (no sample of %zu fell inside)",
+                      out->samples);
+        goto done;
+    }
+    double box = (c.hi[0] - c.lo[0]) * (c.hi[1] - c.lo[1]) * (c.hi[2] - c.lo[2]);
+    out->union_volume = box * (double)counts[1] / (double)out->samples;
+    out->iou = (double)counts[2] / (double)(counts[0] + counts[1] - counts[2]);
+    out->coverage = (double)counts[2] / (double)counts[0];
+    out->excess = (double)(counts[1] - counts[2]) / (double)counts[0];
+    out->surface_samples = prm.surface_samples;
+    st = surface_distances(&c, mesh, out, err);
+    if (st != ACD_OK) goto done;
+    out->concavity_max = fmax(out->mesh_to_hulls_max, out->hulls_to_mesh_max);
+    progress(&prm, 1.0, "done");
+done:
+    acd_hullset_free(&hs);
+    acd_spatial_free(&sp);
+    out->seconds = now_seconds() - t0;
+    return st;
+}
+
+acd_status acd_eval_parts(const acd_mesh *mesh, const acd_mesh_parts *parts, const acd_eval_params *params,
+                          acd_eval_report *out, acd_error *err) {
+    if (!parts || (parts->count && !parts->parts)) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "eval: NULL parts");
+    acd_hull *hulls = calloc(parts->count ? parts->count : 1, sizeof *hulls);
+    if (!hulls) return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu hulls", parts->count);
+    acd_status st = ACD_OK;
+    size_t i;
+    for (i = 0; i < parts->count; i++) {
+        const acd_mesh *pm = &parts->parts[i].mesh;
+        acd_error e2;
+        st = acd_hull_compute(pm->vertices, pm->nvertices, &hulls[i], &e2);
+        if (st != ACD_OK) {
+            st = acd_fail(err, st, "eval: hull of part %zu ('%s'): %s", i, parts->parts[i].name ? parts->parts[i].name : "",
+                          e2.message);
+            break;
+        }
+    }
+    if (st == ACD_OK) st = acd_eval_hulls(mesh, hulls, parts->count, params, out, err);
+    for (size_t j = 0; j < parts->count; j++) acd_hull_free(&hulls[j]);
+    free(hulls);
+    return st;
+}
+
+acd_status acd_eval_report_json(const acd_eval_report *r, char **json, acd_error *err) {
+    *json = NULL;
+    cJSON *o = cJSON_CreateObject(), *d = cJSON_CreateObject();
+    if (!o || !d) {
+        cJSON_Delete(o);
+        cJSON_Delete(d);
+        return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for the JSON report");
+    }
+    cJSON_AddNumberToObject(o, "parts", (double)r->parts);
+    cJSON_AddNumberToObject(o, "degenerate_parts", (double)r->degenerate_parts);
+    cJSON_AddNumberToObject(o, "hull_vertices", (double)r->hull_vertices);
+    cJSON_AddNumberToObject(o, "mesh_volume", r->mesh_volume);
+    cJSON_AddNumberToObject(o, "hull_volume_sum", r->hull_volume_sum);
+    cJSON_AddNumberToObject(o, "union_volume", r->union_volume);
+    cJSON_AddNumberToObject(o, "iou", r->iou);
+    cJSON_AddNumberToObject(o, "coverage", r->coverage);
+    cJSON_AddNumberToObject(o, "excess", r->excess);
+    cJSON_AddNumberToObject(d, "mesh_to_hulls_max", r->mesh_to_hulls_max);
+    cJSON_AddNumberToObject(d, "mesh_to_hulls_mean", r->mesh_to_hulls_mean);
+    cJSON_AddNumberToObject(d, "hulls_to_mesh_max", r->hulls_to_mesh_max);
+    cJSON_AddNumberToObject(d, "hulls_to_mesh_mean", r->hulls_to_mesh_mean);
+    cJSON_AddItemToObject(o, "distance", d);
+    cJSON_AddNumberToObject(o, "concavity_max", r->concavity_max);
+    cJSON_AddNumberToObject(o, "diagonal", r->diagonal);
+    cJSON_AddNumberToObject(o, "boundary_spacing", r->boundary_spacing);
+    cJSON_AddNumberToObject(o, "inexact_distances", (double)r->inexact_distances);
+    cJSON_AddBoolToObject(o, "mesh_closed", r->mesh_closed);
+    cJSON_AddNumberToObject(o, "samples", (double)r->samples);
+    cJSON_AddNumberToObject(o, "surface_samples", (double)r->surface_samples);
+    cJSON_AddNumberToObject(o, "boundary_samples", (double)r->boundary_samples);
+    cJSON_AddNumberToObject(o, "seed", (double)r->seed);
+    cJSON_AddNumberToObject(o, "seconds", r->seconds);
+    char *s = cJSON_Print(o);
+    cJSON_Delete(o);
+    if (!s) return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for the JSON report");
+    *json = s;
+    return ACD_OK;
+}
