@@ -1,0 +1,101 @@
+/* acd/acd3d.h: approximate convex decomposition of polyhedra, solid and surface
+ * (Lien, dissertation Ch. V; Lien & Amato, "Approximate convex decomposition of polyhedra";
+ * spec ../shared/spec/acd3d.md).
+ *
+ * Usage:
+ *   acd3d_params prm = acd3d_default_params();
+ *   prm.tau = 0.05;                       // relative to the minimum enclosing sphere's radius
+ *   acd3d_result res;
+ *   if (acd3d_decompose(&mesh, &prm, &res, &err) == ACD_OK) { ...; acd3d_result_free(&res); }
+ */
+#ifndef ACD_ACD3D_H
+#define ACD_ACD3D_H
+
+#include "acd/base.h"
+#include "acd/mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum acd3d_mode {
+    ACD3D_SOLID = 0, /* parts are closed solids: cut by planes, sections capped */
+    ACD3D_SURFACE    /* parts are surface patches: split along cut loops, never capped */
+} acd3d_mode;
+
+typedef enum acd3d_weight {
+    ACD3D_WEIGHT_RATIO = 0, /* W = omega / gamma (paper Eqn 4), default */
+    ACD3D_WEIGHT_PRODUCT    /* W = omega * gamma (dissertation Eqn 5.2) */
+} acd3d_weight;
+
+#define ACD3D_PARAMS_COOKIE 0x41434433u
+
+typedef struct acd3d_params {
+    uint32_t cookie;          /* set by acd3d_default_params */
+    double tau;               /* concavity tolerance (default 0.05) */
+    int tau_absolute;         /* 0: tau is relative to the minimum enclosing sphere's radius (default);
+                                 1: tau is in model units */
+    acd3d_mode mode;          /* default ACD3D_SOLID */
+    double eps_ratio;         /* bridge clustering threshold eps = eps_ratio * tau (default 0.5) */
+    double delta_ratio;       /* knot threshold delta = delta_ratio * tau (default 0.1) */
+    acd3d_weight weight;      /* cut weight (default ratio) */
+    size_t max_hulls;         /* 0: no limit; else merge cheapest adjacent parts down to this many */
+    size_t max_hull_vertices; /* 0: no limit; else simplify each hull to at most this many vertices */
+    int threads;              /* 0: as many as cores; results are identical for any count */
+    size_t max_depth;         /* recursion guard (default 64) */
+    acd_progress_fn progress; /* optional; may cancel */
+    void *progress_user;
+} acd3d_params;
+
+acd3d_params acd3d_default_params(void);
+
+/* Why a node of the tree is a leaf. */
+typedef enum acd3d_leaf_reason {
+    ACD3D_LEAF_NONE = 0,      /* not a leaf: it was split */
+    ACD3D_LEAF_TAU,           /* concavity <= tau */
+    ACD3D_LEAF_FLAT,          /* no volume (solid) or flat (surface): convex by definition */
+    ACD3D_LEAF_NO_CUT,        /* no cut could split it further (the concavity stays above tau) */
+    ACD3D_LEAF_DEPTH          /* max_depth reached */
+} acd3d_leaf_reason;
+
+typedef struct acd3d_node {
+    int parent;               /* -1 for the root */
+    int first_child;          /* -1 for a leaf; children are nodes first_child .. first_child+nchildren-1 */
+    int nchildren;
+    double concavity;         /* of this node's part (model units) */
+    double volume;            /* of the part (solid mode; 0 for surfaces) */
+    double cut_plane[4];      /* plane n.x + d = 0 used to split it (solid mode), zero for leaves */
+    acd3d_leaf_reason leaf_reason;
+    int part;                 /* index into parts for leaves, -1 otherwise */
+} acd3d_node;
+
+typedef struct acd3d_part {
+    acd_mesh mesh;            /* the part: closed (solid) or a surface patch */
+    acd_mesh hull;            /* its convex hull, outward triangles */
+    double concavity;         /* model units */
+    double volume;            /* solid: part volume; surface: 0 */
+    double hull_volume;
+    int node;
+} acd3d_part;
+
+typedef struct acd3d_result {
+    double tau;               /* in model units */
+    double scale;             /* minimum enclosing sphere radius of the input */
+    acd3d_part *parts;
+    size_t nparts;
+    acd3d_node *nodes;
+    size_t nnodes;
+    double max_concavity;     /* over the parts, model units */
+    double input_volume;
+    double seconds;
+} acd3d_result;
+
+/* Decomposes a closed (solid) or any (surface) triangle mesh. The input should have been
+ * validated/repaired (see mesh.h): solid mode refuses open or non-manifold input with a message. */
+acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err);
+void acd3d_result_free(acd3d_result *r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
