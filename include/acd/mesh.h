@@ -95,6 +95,60 @@ acd_status acd_mesh_read_obj_groups(const char *path, acd_mesh_parts *out, acd_e
 /* Writes parts as one OBJ ("o NAME" per part, %.17g coordinates); ".gz" compresses. */
 acd_status acd_mesh_write_obj_parts(const char *path, const acd_mesh_parts *parts, acd_error *err);
 
+/* ---------------------------------------------------------------------------------------
+ * Validation report (src/mesh/validate.c; definitions in docs/mesh.md) */
+
+/* One connected component: triangles joined through shared edges (non-manifold ones too). */
+typedef struct acd_mesh_component {
+    size_t faces, vertices, edges; /* vertices: distinct vertices used */
+    size_t boundary_edges, nonmanifold_edges;
+    int closed;     /* no boundary edge and no non-manifold edge */
+    int orientable; /* a consistent orientation of its faces exists */
+    int oriented;   /* its faces are consistently oriented as stored */
+    long genus;     /* closed and orientable: (2 - chi) / 2, with chi = fans - edges + faces
+                       (a vertex counts once per fan of faces around it); otherwise -1 */
+    double volume;  /* signed volume enclosed as stored (> 0: outward; meaningful when closed) */
+    double area;
+} acd_mesh_component;
+
+typedef struct acd_mesh_report {
+    size_t vertices, faces, edges;
+    size_t unused_vertices;      /* referenced by no face */
+    size_t boundary_edges;       /* edges with one face */
+    size_t nonmanifold_edges;    /* edges with three or more faces */
+    size_t nonmanifold_vertices; /* vertices whose faces form more than one fan */
+    size_t components;           /* edge-connected components (faces repeating an index excluded) */
+    size_t closed_components;
+    long genus;                  /* sum over the closed orientable components */
+    int closed;                  /* has faces, no boundary and no non-manifold edge */
+    int orientable;              /* every component orientable */
+    int oriented;                /* every manifold edge used in opposite directions by its two faces */
+    size_t orientation_conflicts;/* manifold edges used in the same direction by both faces */
+    size_t inward_components;    /* closed components with negative volume (inside out) */
+    size_t degenerate_faces;     /* a repeated vertex index or zero area (exact test) */
+    size_t duplicate_faces;      /* same vertex set as an earlier face (either orientation) */
+    double volume;               /* signed, sum over all faces (divergence theorem) */
+    double area;
+    double bbox_min[3], bbox_max[3];
+    int self_intersections_checked;
+    size_t self_intersections;   /* pairs of faces meeting other than at shared vertices/edges */
+    uint32_t first_intersection[2]; /* the first such pair (when self_intersections > 0) */
+    acd_mesh_component *component;  /* `components` entries, numbered by their first face; owned */
+} acd_mesh_report;
+
+/* Computes the report. check_self_intersections: run the exact triangle-pair test (with a
+ * bounding volume hierarchy; the most expensive part). Fails with ACD_ERR_INVALID_INPUT on an
+ * index out of range or a non-finite coordinate. Free with acd_mesh_report_free. */
+acd_status acd_mesh_validate(const acd_mesh *m, int check_self_intersections, acd_mesh_report *r, acd_error *err);
+void acd_mesh_report_free(acd_mesh_report *r);
+
+/* Counts the pairs of faces that intersect other than in the vertices or the edge they share
+ * (shared means equal coordinates, so unwelded meshes are judged correctly). Faces of zero area
+ * are skipped. Decisions are exact (acd_orient3d). pairs (may be NULL) receives the first
+ * max_pairs pairs (2 indices each, in a deterministic order). */
+acd_status acd_mesh_self_intersections(const acd_mesh *m, size_t *count, uint32_t *pairs, size_t max_pairs,
+                                       acd_error *err);
+
 #ifdef __cplusplus
 }
 #endif
