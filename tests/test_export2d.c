@@ -32,11 +32,11 @@ static void make(fixture *f) {
     memcpy(f->b, b, sizeof b);
     f->cut[0][0] = (acd_vec2){1, 0};
     f->cut[0][1] = (acd_vec2){1, 2};
-    f->comps[0] = (acd2d_component){f->a, 4, f->a, 4, 0.0, 1};
-    f->comps[1] = (acd2d_component){f->b, 4, f->b, 4, 0.0, 2};
-    f->nodes[0] = (acd2d_node){-1, {1, 2}, 0.25, {{1, 0}, {1, 2}}, 0, {0}};
-    f->nodes[1] = (acd2d_node){0, {-1, -1}, 0.0, {{0, 0}, {0, 0}}, 0, {0}};
-    f->nodes[2] = (acd2d_node){0, {-1, -1}, 0.0, {{0, 0}, {0, 0}}, 0, {0}};
+    f->comps[0] = (acd2d_component){.points = f->a, .npoints = 4, .hull = f->a, .nhull = 4, .node = 1};
+    f->comps[1] = (acd2d_component){.points = f->b, .npoints = 4, .hull = f->b, .nhull = 4, .node = 2};
+    f->nodes[0] = (acd2d_node){.parent = -1, .child = {1, 2}, .concavity = 0.25, .cut = {{1, 0}, {1, 2}}};
+    f->nodes[1] = (acd2d_node){.parent = 0, .child = {-1, -1}, .acceptable = 1};
+    f->nodes[2] = (acd2d_node){.parent = 0, .child = {-1, -1}, .acceptable = 1};
     f->res.tau = 0.5;
     f->res.measure = ACD2D_MEASURE_H2;
     f->res.input_vertices = 4;
