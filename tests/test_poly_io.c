@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "acd/polygon.h"
 
@@ -232,6 +233,68 @@ static void test_read_file_errors(void **state) {
     acd_polygon_set_free(&s);
 }
 
+static void assert_same_set(const acd_polygon_set *a, const acd_polygon_set *b) {
+    assert_int_equal(a->count, b->count);
+    for (size_t i = 0; i < a->count; i++) {
+        assert_int_equal(a->polygons[i].nrings, b->polygons[i].nrings);
+        assert_memory_equal(a->polygons[i].ring_start, b->polygons[i].ring_start,
+                            (a->polygons[i].nrings + 1) * sizeof(size_t));
+        assert_memory_equal(a->polygons[i].points, b->polygons[i].points,
+                            acd_polygon_num_points(&a->polygons[i]) * sizeof(acd_vec2));
+    }
+}
+
+/* Writing .poly (and GeoJSON) and reading back gives the same doubles, on every data file with
+ * holes and on the biggest one. */
+static void test_round_trip(void **state) {
+    (void)state;
+    static const char *const stems[] = {"hole3", "hole5", "torus1", "bird", "nazca_nazca_monkey_2"};
+    int found = 0;
+    for (size_t k = 0; k < sizeof stems / sizeof *stems; k++) {
+        acd_polygon_set s, t;
+        acd_error err;
+        int st = read_lien(&s, stems[k], &err);
+        if (st < 0) continue;
+        found++;
+        assert_int_equal(st, ACD_OK);
+        /* make coordinates that need all 17 digits */
+        s.polygons[0].points[0].x += 1.0 / 3.0;
+        char *text;
+        size_t len;
+        assert_int_equal(acd_polygon_set_to_poly_text(&s, &text, &len, &err), ACD_OK);
+        acd_polygon_fixes fx = {0};
+        assert_int_equal(acd_polygon_set_parse(&t, text, len, ACD_POLY_FORMAT_AUTO, "rt", &fx, &err), ACD_OK);
+        assert_int_equal(fx.repeated_dropped + fx.rings_reversed + fx.chains_ignored, 0);
+        assert_same_set(&s, &t);
+        acd_polygon_set_free(&t);
+        free(text);
+        assert_int_equal(acd_polygon_set_to_geojson_text(&s, 0, &text, &len, &err), ACD_OK);
+        assert_int_equal(acd_polygon_set_parse(&t, text, len, ACD_POLY_FORMAT_AUTO, "rt", NULL, &err), ACD_OK);
+        assert_same_set(&s, &t);
+        acd_polygon_set_free(&t);
+        free(text);
+        acd_polygon_set_free(&s);
+    }
+    if (!found) TU_SKIP("polygons-lien data not found");
+    /* several polygons with holes, through a file */
+    const char *text = "4\n4 out\n0 0 10 0 10 10 0 10\n1 2 3 4\n3 in\n2 2 2 3 3 2\n1 2 3\n"
+                       "3 out\n20 0 21 0 20 1\n1 2 3\n3 in\n20.1 0.1 20.1 0.2 20.2 0.1\n1 2 3\n";
+    acd_polygon_set s, t;
+    acd_error err;
+    assert_int_equal(acd_polygon_set_parse(&s, text, strlen(text), ACD_POLY_FORMAT_POLY, "x", NULL, &err), ACD_OK);
+    char path[] = "/tmp/acd_test_poly_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(acd_polygon_set_write_poly(&s, path, &err), ACD_OK);
+    assert_int_equal(acd_polygon_set_read_file(&t, path, ACD_POLY_FORMAT_AUTO, NULL, &err), ACD_OK);
+    assert_same_set(&s, &t);
+    remove(path);
+    acd_polygon_set_free(&s);
+    acd_polygon_set_free(&t);
+    assert_int_equal(acd_polygon_set_write_poly(&s, "/nonexistent/dir/x.poly", &err), ACD_ERR_IO);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_all_lien_files_parse),
@@ -242,6 +305,7 @@ int main(void) {
         cmocka_unit_test(test_extra_chains_ignored),
         cmocka_unit_test(test_bad_inputs),
         cmocka_unit_test(test_read_file_errors),
+        cmocka_unit_test(test_round_trip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

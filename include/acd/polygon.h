@@ -64,8 +64,11 @@ static inline size_t acd_polygon_num_points(const acd_polygon *p) {
 /* Signed area (outer minus holes once normalized). */
 double acd_polygon_area(const acd_polygon *p);
 
-/* Parses text (NUL-terminated or of length len) in the given format. `name` is used in
- * messages (a file name). Every polygon found is normalized; fixes are summed (may be NULL). */
+/* Parses text in the given format: at most len bytes, stopping early at a NUL byte (so a
+ * NUL-terminated string may be passed with len = SIZE_MAX). `name` is used in messages (a file
+ * name; NULL gives "<input>"). Every polygon found is normalized (not validated: call
+ * acd_polygon_validate on each); fixes are summed (may be NULL). Input with no polygon at all
+ * (only EMPTY or non-polygonal geometries) fails with ACD_ERR_DEGENERATE. */
 acd_status acd_polygon_set_parse(acd_polygon_set *out, const char *text, size_t len, acd_polygon_format fmt,
                                  const char *name, acd_polygon_fixes *fixes, acd_error *err);
 acd_status acd_polygon_set_read_file(acd_polygon_set *out, const char *path, acd_polygon_format fmt,
@@ -81,9 +84,21 @@ acd_status acd_polygon_normalize(acd_polygon *p, acd_polygon_fixes *fixes, acd_e
  * the ring ("chain") and vertex indices and coordinates. `index` names the polygon in messages. */
 acd_status acd_polygon_validate(const acd_polygon *p, size_t index, acd_error *err);
 
-/* Writers. */
+/* Writers. Coordinates are written with 17 significant digits, so reading the output back gives
+ * the same doubles. A path of "-" writes to standard output. */
+/* Lien's .poly: one "N out" chain per polygon followed by its "N in" holes, order line 1..N. */
 acd_status acd_polygon_set_write_poly(const acd_polygon_set *s, const char *path, acd_error *err);
+/* GeoJSON FeatureCollection: one Feature (properties {"index": i}) with a Polygon per polygon;
+ * rings closed (first position repeated), outer counterclockwise, holes clockwise (RFC 7946). */
 acd_status acd_polygon_set_write_geojson(const acd_polygon_set *s, const char *path, acd_error *err);
+
+/* The same as text in a malloc'd NUL-terminated buffer (*len its length without the NUL; len may
+ * be NULL). multipolygon != 0 gives one MultiPolygon geometry instead of a FeatureCollection. */
+acd_status acd_polygon_set_to_poly_text(const acd_polygon_set *s, char **text, size_t *len, acd_error *err);
+acd_status acd_polygon_set_to_geojson_text(const acd_polygon_set *s, int multipolygon, char **text, size_t *len,
+                                           acd_error *err);
+/* Writes len bytes of text to path ("-" = standard output). */
+acd_status acd_polygon_write_text_file(const char *path, const char *text, size_t len, acd_error *err);
 
 #ifdef __cplusplus
 }
