@@ -1,0 +1,35 @@
+/* geom3/edge_map: directed-edge lookup for triangle meshes (sorted keys, binary search).
+ * Maps the half-edge (a, b) of triangle t, corner i (edge from corner i to i+1) to 3t + i. */
+#ifndef ACD_GEOM3_EDGE_MAP_H
+#define ACD_GEOM3_EDGE_MAP_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "acd/base.h"
+
+typedef struct acd_edge_map {
+    uint64_t *key;   /* (a << 32) | b, sorted */
+    uint32_t *half;  /* 3t + i */
+    size_t n;
+} acd_edge_map;
+
+#define ACD_EDGE_NONE UINT32_MAX
+
+/* Builds the map of the triangles for which keep[t] is non-zero (keep NULL: all). Repeated
+ * half-edges are kept (acd_edge_map_count tells how many). */
+acd_status acd_edge_map_build(const uint32_t *triangles, size_t ntriangles, const uint8_t *keep, acd_edge_map *m,
+                              acd_error *err);
+void acd_edge_map_free(acd_edge_map *m);
+/* The half-edge a -> b (the first of them if repeated), or ACD_EDGE_NONE. */
+uint32_t acd_edge_map_find(const acd_edge_map *m, uint32_t a, uint32_t b);
+/* How many half-edges a -> b there are. */
+size_t acd_edge_map_count(const acd_edge_map *m, uint32_t a, uint32_t b);
+
+/* Checks that the triangles form a closed, consistently oriented 2-manifold-with-pinches: every
+ * half-edge (a, b) unique, its opposite (b, a) present, no triangle repeating a vertex. Fails with
+ * ACD_ERR_NON_MANIFOLD naming the triangle and the edge. */
+acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *triangles, size_t ntriangles,
+                                     acd_error *err);
+
+#endif

@@ -1,0 +1,743 @@
+/* geom3/plane_cut: closed mesh split by a plane into closed pieces with capped cross-sections.
+ *
+ * Solid ACD's cut (Lien D §V.B.3, P §4.3; capping as in spec acd3d.md §5.3 after Chazelle, D §II.B.2):
+ *   1. every vertex gets its exact side s in {-1, 0, +1}: acd_orient3d against the plane's points;
+ *   2. every edge with s = +1 at one end and -1 at the other gets one new vertex (interpolated with
+ *      the orient3d values, always from its lower-index end, so both triangles share it);
+ *   3. every triangle goes whole to the side of its non-zero vertices, or is split into a triangle
+ *      and a triangle or quad (fanned) on each side; a triangle lying in the plane goes to the side
+ *      opposite its outward normal (decided by exact orient2d in the plane's projection);
+ *   4. the boundary of the + side's faces consists of edges in the plane; it is traced into loops
+ *      (at a vertex with several outgoing edges, the first one clockwise from the incoming edge, which
+ *      keeps touching loops apart), loops are classified by signed area in the plane's 2D frame
+ *      (counterclockwise seen from +normal: outer; clockwise: hole), each hole goes to the smallest
+ *      outer loop containing it (exact point-in-polygon), and each region is triangulated by
+ *      geom2/triangulate (hole bridging + ear clipping); the triangles close the - side as they are
+ *      and the + side reversed, so the caps cancel exactly and volume is conserved;
+ *   5. pieces are the edge-connected components of each side. */
+#include "geom3/plane_cut.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/predicates.h"
+#include "geom2/triangulate.h"
+#include "geom3/edge_map.h"
+#include "geom3/spatial.h"
+
+#define NONE UINT32_MAX
+
+static void cross3(const double *a, const double *b, double *r) {
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+acd_status acd_cut_plane_from_points(const double a[3], const double b[3], const double c[3], acd_cut_plane *out,
+                                     acd_error *err) {
+    memset(out, 0, sizeof *out);
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(a[k]) || !isfinite(b[k]) || !isfinite(c[k]))
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "cut plane: a non-finite coordinate");
+    /* collinear iff all three coordinate projections are (exact) */
+    int collinear = 1;
+    for (int k = 0; k < 3 && collinear; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        double pa[2] = {a[i], a[j]}, pb[2] = {b[i], b[j]}, pc[2] = {c[i], c[j]};
+        if (acd_orient2d_sign(pa, pb, pc) != 0) collinear = 0;
+    }
+    if (collinear)
+        return acd_fail(err, ACD_ERR_DEGENERATE, "cut plane: the points (%g, %g, %g), (%g, %g, %g), (%g, %g, %g) are collinear",
+                        a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]);
+    memcpy(out->a, a, sizeof out->a);
+    memcpy(out->b, b, sizeof out->b);
+    memcpy(out->c, c, sizeof out->c);
+    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]}, n[3];
+    cross3(u, v, n);
+    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(l > 0) || !isfinite(l)) { /* underflow/overflow of the approximate normal: rescale */
+        double s = 0;
+        for (int k = 0; k < 3; k++) s = fmax(s, fmax(fabs(u[k]), fabs(v[k])));
+        for (int k = 0; k < 3; k++) u[k] /= s, v[k] /= s;
+        cross3(u, v, n);
+        l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
+    for (int k = 0; k < 3; k++) out->normal[k] = n[k] / l;
+    return ACD_OK;
+}
+
+acd_status acd_cut_plane_from_normal(const double point[3], const double normal[3], double size, acd_cut_plane *out,
+                                     acd_error *err) {
+    double l = sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+    if (!(l > 0) || !isfinite(l))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cut plane: normal (%g, %g, %g) has no direction", normal[0],
+                        normal[1], normal[2]);
+    if (!(size > 0) || !isfinite(size)) size = 1;
+    double n[3] = {normal[0] / l, normal[1] / l, normal[2] / l};
+    int small = 0; /* axis of the smallest normal component */
+    for (int k = 1; k < 3; k++)
+        if (fabs(n[k]) < fabs(n[small])) small = k;
+    double e[3] = {0, 0, 0}, u[3], w[3];
+    e[small] = 1;
+    cross3(n, e, u);
+    double ul = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (int k = 0; k < 3; k++) u[k] /= ul;
+    cross3(n, u, w); /* u x w = n |u|^2: the points' orientation gives the normal's side as + */
+    double a[3], b[3], c[3];
+    for (int k = 0; k < 3; k++) {
+        a[k] = point[k];
+        b[k] = point[k] + size * u[k];
+        c[k] = point[k] + size * w[k];
+    }
+    acd_status st = acd_cut_plane_from_points(a, b, c, out, err);
+    if (st == ACD_OK) memcpy(out->normal, n, sizeof n);
+    return st;
+}
+
+int acd_cut_plane_side(const acd_cut_plane *pl, const double v[3]) {
+    /* orient3d > 0 when v is below the plane of a, b, c (counterclockwise seen from above) */
+    return -acd_orient3d_sign(pl->a, pl->b, pl->c, v);
+}
+
+double acd_geom3_signed_volume(const acd_mesh *m) {
+    if (m->nvertices == 0) return 0;
+    double lo[3], hi[3], o[3];
+    for (size_t v = 0; v < m->nvertices; v++)
+        for (int k = 0; k < 3; k++) {
+            double x = m->vertices[3 * v + k];
+            if (v == 0 || x < lo[k]) lo[k] = x;
+            if (v == 0 || x > hi[k]) hi[k] = x;
+        }
+    for (int k = 0; k < 3; k++) o[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
+    double vol = 0;
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        const double *p[3];
+        for (int i = 0; i < 3; i++) p[i] = m->vertices + 3 * (size_t)m->triangles[3 * t + i];
+        double a[3], b[3], c[3], bc[3];
+        for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], c[k] = p[2][k] - o[k];
+        cross3(b, c, bc);
+        vol += a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
+    }
+    return vol / 6.0;
+}
+
+void acd_cut_result_free(acd_cut_result *r) {
+    if (!r) return;
+    for (size_t i = 0; i < r->npieces; i++) {
+        acd_mesh_free(&r->pieces[i].mesh);
+        free(r->pieces[i].is_cap);
+        free(r->pieces[i].source);
+    }
+    free(r->pieces);
+    memset(r, 0, sizeof *r);
+}
+
+/* ---------- working state ---------- */
+
+typedef struct cut_ctx {
+    const acd_cut_plane *pl;
+    double *V; /* vertex coordinates: input vertices, then crossing points */
+    uint32_t *src;
+    size_t nv, capv;
+    uint32_t *T; /* triangles */
+    int8_t *tside;
+    uint8_t *tcap;
+    size_t nt, capt;
+    int ax, swap; /* 2D frame: drop axis ax; swap the two others when the normal's ax component < 0 */
+    acd_error *err;
+} cut_ctx;
+
+static acd_status push_tri(cut_ctx *c, uint32_t a, uint32_t b, uint32_t d, int side, int cap) {
+    if (c->nt == c->capt) {
+        size_t nc = c->capt ? 2 * c->capt : 64;
+        uint32_t *T = realloc(c->T, nc * 3 * sizeof *T);
+        if (!T) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
+        c->T = T;
+        int8_t *s = realloc(c->tside, nc * sizeof *s);
+        if (!s) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
+        c->tside = s;
+        uint8_t *cp = realloc(c->tcap, nc * sizeof *cp);
+        if (!cp) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
+        c->tcap = cp;
+        c->capt = nc;
+    }
+    c->T[3 * c->nt] = a;
+    c->T[3 * c->nt + 1] = b;
+    c->T[3 * c->nt + 2] = d;
+    c->tside[c->nt] = (int8_t)side;
+    c->tcap[c->nt] = (uint8_t)cap;
+    c->nt++;
+    return ACD_OK;
+}
+
+static void proj2(const cut_ctx *c, uint32_t v, double out[2]) {
+    int i = (c->ax + 1) % 3, j = (c->ax + 2) % 3;
+    const double *p = c->V + 3 * (size_t)v;
+    out[0] = c->swap ? p[j] : p[i];
+    out[1] = c->swap ? p[i] : p[j];
+}
+
+/* Monotone pseudo-angle of a 2D direction in [0, 4). */
+static double pseudo_angle(double dx, double dy) {
+    double s = fabs(dx) + fabs(dy);
+    if (s == 0) return 0;
+    double p = dy / s;
+    if (dx < 0) return 2 - p;
+    if (dy < 0) return 4 + p;
+    return p;
+}
+
+/* Exact point-in-polygon by winding number (orient2d); 1 inside, 0 outside, -1 on the boundary. */
+static int point_in_loop(const double q[2], const double (*P)[2], size_t n) {
+    int wn = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double *a = P[i], *b = P[(i + 1) % n];
+        if (acd_point_on_segment(q, a, b)) return -1;
+        if (a[1] <= q[1]) {
+            if (b[1] > q[1] && acd_orient2d_sign(a, b, q) > 0) wn++;
+        } else if (b[1] <= q[1] && acd_orient2d_sign(a, b, q) < 0) {
+            wn--;
+        }
+    }
+    return wn != 0;
+}
+
+typedef struct loop_info {
+    size_t start, len; /* in the loop vertex list */
+    double area;       /* signed, 2D frame */
+    size_t outer;      /* for holes: the containing outer loop, NONE if none */
+} loop_info;
+
+/* Traces the + side boundary into loops, caps both sides. */
+static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
+    acd_error *err = c->err;
+    uint8_t *keep = malloc(c->nt ? c->nt : 1);
+    if (!keep) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the cut sides");
+    for (size_t t = 0; t < c->nt; t++) keep[t] = c->tside[t] > 0;
+    acd_edge_map pm;
+    acd_status st = acd_edge_map_build(c->T, c->nt, keep, &pm, err);
+    free(keep);
+    if (st != ACD_OK) return st;
+    /* boundary half-edges of the + side, sorted by (from, to) since pm is */
+    size_t nb = 0;
+    uint32_t *bfrom = malloc((pm.n ? pm.n : 1) * sizeof *bfrom), *bto = malloc((pm.n ? pm.n : 1) * sizeof *bto);
+    if (!bfrom || !bto) {
+        free(bfrom);
+        free(bto);
+        acd_edge_map_free(&pm);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the section boundary");
+    }
+    for (size_t i = 0; i < pm.n; i++) {
+        uint32_t a = (uint32_t)(pm.key[i] >> 32), b = (uint32_t)pm.key[i];
+        if (acd_edge_map_find(&pm, b, a) == ACD_EDGE_NONE) {
+            bfrom[nb] = a;
+            bto[nb] = b;
+            nb++;
+        }
+    }
+    acd_edge_map_free(&pm);
+    if (nb == 0) {
+        free(bfrom);
+        free(bto);
+        return ACD_OK;
+    }
+    uint8_t *used = calloc(nb, 1);
+    uint32_t *lv = malloc((nb + 1) * sizeof *lv); /* loop vertices, loops one after the other */
+    loop_info *loops = malloc(nb * sizeof *loops);
+    double(*P)[2] = malloc((nb + 1) * sizeof *P);
+    if (!used || !lv || !loops || !P) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu section edges", nb);
+        goto done;
+    }
+    size_t nloops = 0, nlv = 0;
+    for (size_t e0 = 0; e0 < nb; e0++) {
+        if (used[e0]) continue;
+        size_t e = e0, start = nlv;
+        for (;;) {
+            used[e] = 1;
+            lv[nlv++] = bfrom[e];
+            uint32_t u = bfrom[e], v = bto[e];
+            /* outgoing edges of v: a run in the sorted arrays (binary search) */
+            size_t lo = 0, hi = nb;
+            while (lo < hi) {
+                size_t mid = lo + (hi - lo) / 2;
+                if (bfrom[mid] < v)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            size_t best = NONE;
+            double bestang = 0, pu[2], pv[2];
+            proj2(c, u, pu);
+            proj2(c, v, pv);
+            double ref = pseudo_angle(pu[0] - pv[0], pu[1] - pv[1]);
+            for (size_t k = lo; k < nb && bfrom[k] == v; k++) {
+                if (used[k] && k != e0) continue;
+                double pw[2];
+                proj2(c, bto[k], pw);
+                double ang = ref - pseudo_angle(pw[0] - pv[0], pw[1] - pv[1]); /* clockwise from v->u */
+                while (ang <= 0) ang += 4;
+                while (ang > 4) ang -= 4;
+                if (best == NONE || ang < bestang) best = k, bestang = ang;
+            }
+            if (best == NONE) {
+                st = acd_fail(err, ACD_ERR_INTERNAL, "plane cut: section loop broken at vertex %u (no outgoing edge)", v);
+                goto done;
+            }
+            if (best == e0) break;
+            e = best;
+            if (nlv > nb) {
+                st = acd_fail(err, ACD_ERR_INTERNAL, "plane cut: section loop does not close");
+                goto done;
+            }
+        }
+        loops[nloops].start = start;
+        loops[nloops].len = nlv - start;
+        loops[nloops].outer = NONE;
+        double a2 = 0;
+        for (size_t i = 0; i < nlv - start; i++) {
+            double p[2], q[2];
+            proj2(c, lv[start + i], p);
+            proj2(c, lv[start + (i + 1) % (nlv - start)], q);
+            a2 += p[0] * q[1] - q[0] * p[1];
+        }
+        loops[nloops].area = 0.5 * a2;
+        nloops++;
+    }
+    res->nloops += nloops;
+    /* holes to their smallest containing outer loop */
+    for (size_t h = 0; h < nloops; h++) {
+        if (!(loops[h].area < 0)) continue;
+        size_t best = NONE;
+        for (size_t o = 0; o < nloops; o++) {
+            if (!(loops[o].area > 0)) continue;
+            if (best != NONE && loops[o].area >= loops[best].area) continue;
+            for (size_t i = 0; i < loops[o].len; i++) proj2(c, lv[loops[o].start + i], P[i]);
+            int inside = -1;
+            for (size_t i = 0; i < loops[h].len && inside < 0; i++) { /* a hole vertex not on the outer loop */
+                double q[2];
+                proj2(c, lv[loops[h].start + i], q);
+                inside = point_in_loop(q, (const double(*)[2])P, loops[o].len);
+            }
+            if (inside < 0) { /* every vertex on it: try an edge midpoint */
+                double q[2], r[2];
+                proj2(c, lv[loops[h].start], q);
+                proj2(c, lv[loops[h].start + 1], r);
+                double mid[2] = {0.5 * (q[0] + r[0]), 0.5 * (q[1] + r[1])};
+                inside = point_in_loop(mid, (const double(*)[2])P, loops[o].len) != 0;
+            }
+            if (inside) best = o;
+        }
+        loops[h].outer = best;
+    }
+    /* triangulate each region: an outer loop (or an orphan loop) with its holes */
+    for (size_t o = 0; o < nloops; o++) {
+        if (loops[o].area < 0 && loops[o].outer != NONE) continue; /* a hole: with its outer loop */
+        size_t nr = 1, npts = loops[o].len;
+        for (size_t h = 0; h < nloops; h++)
+            if (h != o && loops[h].outer == o) nr++, npts += loops[h].len;
+        acd_vec2 *pts = malloc(npts * sizeof *pts);
+        uint32_t *pid = malloc(npts * sizeof *pid);
+        size_t *rs = malloc((nr + 1) * sizeof *rs);
+        if (!pts || !pid || !rs) {
+            free(pts);
+            free(pid);
+            free(rs);
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for a section region of %zu points", npts);
+            goto done;
+        }
+        size_t k = 0, r = 0;
+        for (size_t h = NONE;;) { /* the outer ring first, then its holes in loop order */
+            size_t cur = h == NONE ? o : h;
+            if (h == NONE || (h != o && loops[h].outer == o)) {
+                rs[r++] = k;
+                for (size_t i = 0; i < loops[cur].len; i++) {
+                    double p[2];
+                    uint32_t v = lv[loops[cur].start + i];
+                    proj2(c, v, p);
+                    pts[k].x = p[0];
+                    pts[k].y = p[1];
+                    pid[k] = v;
+                    k++;
+                }
+            }
+            h = h == NONE ? 0 : h + 1;
+            if (h >= nloops) break;
+        }
+        rs[r] = k;
+        size_t *tris = NULL, ntris = 0, nforced = 0;
+        st = acd_triangulate_rings(pts, rs, r, ACD_TRI_BEST_EFFORT, &tris, &ntris, NULL, &nforced, err);
+        if (st != ACD_OK) {
+            free(pts);
+            free(pid);
+            free(rs);
+            goto done;
+        }
+        res->nforced += nforced;
+        res->nregions++;
+        int flip = loops[o].area < 0; /* an orphan clockwise loop: keep the loop's direction */
+        for (size_t t = 0; t < ntris && st == ACD_OK; t++) {
+            uint32_t a = pid[tris[3 * t]], b = pid[tris[3 * t + 1]], d = pid[tris[3 * t + 2]];
+            if (flip) {
+                uint32_t x = b;
+                b = d;
+                d = x;
+            }
+            const double *pa = c->V + 3 * (size_t)a, *pb = c->V + 3 * (size_t)b, *pd = c->V + 3 * (size_t)d;
+            double e1[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]}, e2[3] = {pd[0] - pa[0], pd[1] - pa[1], pd[2] - pa[2]};
+            double cr[3];
+            cross3(e1, e2, cr);
+            res->section_area += 0.5 * sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+            st = push_tri(c, a, b, d, -1, 1); /* - side: outward along +normal */
+            if (st == ACD_OK) st = push_tri(c, a, d, b, +1, 1);
+        }
+        free(tris);
+        free(pts);
+        free(pid);
+        free(rs);
+        if (st != ACD_OK) goto done;
+    }
+done:
+    free(used);
+    free(lv);
+    free(loops);
+    free(P);
+    free(bfrom);
+    free(bto);
+    return st;
+}
+
+/* Union-find. */
+static uint32_t uf_find(uint32_t *p, uint32_t x) {
+    while (p[x] != x) {
+        p[x] = p[p[x]];
+        x = p[x];
+    }
+    return x;
+}
+static void uf_union(uint32_t *p, uint32_t a, uint32_t b) {
+    a = uf_find(p, a);
+    b = uf_find(p, b);
+    if (a < b)
+        p[b] = a;
+    else if (b < a)
+        p[a] = b;
+}
+
+/* Shells of negative volume (cavities: inward-facing surfaces) join the smallest shell of positive
+ * volume on the same side that contains them (exact ray winding number of one of their vertices
+ * not on that shell's surface). */
+static acd_status group_cavities(cut_ctx *c, uint32_t *parent) {
+    acd_error *err = c->err;
+    size_t nt = c->nt;
+    double *vol = calloc(nt ? nt : 1, sizeof *vol);
+    if (!vol) return acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping cavities");
+    double lo[3], hi[3], o[3];
+    for (size_t v = 0; v < c->nv; v++)
+        for (int k = 0; k < 3; k++) {
+            double x = c->V[3 * v + k];
+            if (v == 0 || x < lo[k]) lo[k] = x;
+            if (v == 0 || x > hi[k]) hi[k] = x;
+        }
+    for (int k = 0; k < 3; k++) o[k] = c->nv ? lo[k] + 0.5 * (hi[k] - lo[k]) : 0;
+    size_t nneg = 0;
+    for (size_t t = 0; t < nt; t++) {
+        const double *p[3];
+        for (int i = 0; i < 3; i++) p[i] = c->V + 3 * (size_t)c->T[3 * t + i];
+        double a[3], b[3], d[3], bd[3];
+        for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], d[k] = p[2][k] - o[k];
+        cross3(b, d, bd);
+        vol[uf_find(parent, (uint32_t)t)] += (a[0] * bd[0] + a[1] * bd[1] + a[2] * bd[2]) / 6.0;
+    }
+    for (size_t t = 0; t < nt; t++)
+        if (parent[t] == t && vol[t] < 0) nneg++;
+    if (nneg == 0) {
+        free(vol);
+        return ACD_OK;
+    }
+    /* triangles grouped by component root */
+    uint32_t *order = malloc(nt * sizeof *order), *start = calloc(nt + 1, sizeof *start), *root = malloc(nt * sizeof *root);
+    acd_spatial *sp = calloc(nt, sizeof *sp);
+    uint8_t *built = calloc(nt, 1);
+    uint32_t *merge = malloc(nt * sizeof *merge);
+    acd_status st = ACD_OK;
+    if (!order || !start || !root || !sp || !built || !merge) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping cavities");
+        goto out;
+    }
+    for (size_t t = 0; t < nt; t++) {
+        root[t] = uf_find(parent, (uint32_t)t);
+        start[root[t] + 1]++;
+        merge[t] = NONE;
+    }
+    for (size_t t = 0; t < nt; t++) start[t + 1] += start[t];
+    {
+        uint32_t *fill = calloc(nt, sizeof *fill);
+        if (!fill) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping cavities");
+            goto out;
+        }
+        for (size_t t = 0; t < nt; t++) order[start[root[t]] + fill[root[t]]++] = (uint32_t)t;
+        free(fill);
+    }
+    uint32_t *tris = malloc(3 * nt * sizeof *tris); /* triangles copied in root order */
+    if (!tris) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping cavities");
+        goto out;
+    }
+    for (size_t i = 0; i < nt; i++) memcpy(tris + 3 * i, c->T + 3 * (size_t)order[i], 3 * sizeof *tris);
+    for (size_t n = 0; n < nt && st == ACD_OK; n++) {
+        if (parent[n] != n || !(vol[n] < 0)) continue;
+        size_t best = NONE;
+        for (size_t p = 0; p < nt && st == ACD_OK; p++) {
+            if (parent[p] != p || !(vol[p] > 0) || c->tside[p] != c->tside[n]) continue;
+            if (best != NONE && vol[p] >= vol[best]) continue;
+            if (!built[p]) {
+                st = acd_spatial_build(&sp[p], c->V, c->nv, tris + 3 * (size_t)start[p], start[p + 1] - start[p], err);
+                if (st != ACD_OK) break;
+                built[p] = 1;
+            }
+            int inside = 0;
+            for (size_t i = start[n]; i < start[n + 1]; i++) {
+                int on = 0;
+                const double *q = c->V + 3 * (size_t)tris[3 * i];
+                int w = acd_spatial_ray_winding(&sp[p], q, &on);
+                if (on) continue;
+                inside = w != 0;
+                break;
+            }
+            if (inside) best = p;
+        }
+        merge[n] = (uint32_t)best;
+    }
+    free(tris);
+    for (size_t n = 0; n < nt; n++)
+        if (merge[n] != NONE) uf_union(parent, (uint32_t)n, merge[n]);
+out:
+    if (sp)
+        for (size_t p = 0; p < nt; p++)
+            if (built && built[p]) acd_spatial_free(&sp[p]);
+    free(sp);
+    free(built);
+    free(merge);
+    free(order);
+    free(start);
+    free(root);
+    free(vol);
+    return st;
+}
+
+static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
+    acd_error *err = c->err;
+    uint32_t *parent = malloc((c->nt ? c->nt : 1) * sizeof *parent);
+    uint8_t *keep = malloc(c->nt ? c->nt : 1);
+    if (!parent || !keep) {
+        free(parent);
+        free(keep);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the cut pieces");
+    }
+    for (size_t t = 0; t < c->nt; t++) parent[t] = (uint32_t)t;
+    acd_status st = ACD_OK;
+    for (int side = 1; side >= -1 && st == ACD_OK; side -= 2) {
+        for (size_t t = 0; t < c->nt; t++) keep[t] = c->tside[t] == side;
+        acd_edge_map m;
+        st = acd_edge_map_build(c->T, c->nt, keep, &m, err);
+        if (st != ACD_OK) break;
+        for (size_t i = 0; i < m.n; i++) {
+            uint32_t a = (uint32_t)(m.key[i] >> 32), b = (uint32_t)m.key[i];
+            uint32_t h = acd_edge_map_find(&m, b, a);
+            if (h != ACD_EDGE_NONE) uf_union(parent, m.half[i] / 3, h / 3);
+        }
+        acd_edge_map_free(&m);
+    }
+    free(keep);
+    if (st == ACD_OK) st = group_cavities(c, parent);
+    if (st != ACD_OK) {
+        free(parent);
+        return st;
+    }
+    /* pieces: roots in order, + side first */
+    uint32_t *pidx = malloc((c->nt ? c->nt : 1) * sizeof *pidx);
+    uint32_t *vmap = malloc((c->nv ? c->nv : 1) * sizeof *vmap);
+    if (!pidx || !vmap) {
+        free(parent);
+        free(pidx);
+        free(vmap);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the cut pieces");
+    }
+    size_t np = 0;
+    for (int side = 1; side >= -1; side -= 2)
+        for (size_t t = 0; t < c->nt; t++)
+            if (c->tside[t] == side && uf_find(parent, (uint32_t)t) == t) pidx[t] = (uint32_t)np++;
+    res->pieces = calloc(np ? np : 1, sizeof *res->pieces);
+    if (!res->pieces) {
+        free(parent);
+        free(pidx);
+        free(vmap);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu cut pieces", np);
+    }
+    res->npieces = np;
+    size_t *ntri = calloc(np ? np : 1, sizeof *ntri);
+    if (!ntri) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu cut pieces", np);
+    for (size_t t = 0; t < c->nt && st == ACD_OK; t++) ntri[pidx[uf_find(parent, (uint32_t)t)]]++;
+    for (size_t p = 0; p < np && st == ACD_OK; p++) {
+        acd_cut_piece *pc = &res->pieces[p];
+        pc->mesh.triangles = malloc(ntri[p] * 3 * sizeof *pc->mesh.triangles);
+        pc->is_cap = malloc(ntri[p] ? ntri[p] : 1);
+        if (!pc->mesh.triangles || !pc->is_cap) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for a cut piece");
+    }
+    /* fill triangles with piece-local vertex ids in order of first use */
+    for (size_t v = 0; v < c->nv; v++) vmap[v] = NONE;
+    for (size_t p = 0; p < np && st == ACD_OK; p++) {
+        acd_cut_piece *pc = &res->pieces[p];
+        size_t nv = 0, k = 0;
+        for (size_t t = 0; t < c->nt; t++) {
+            if (pidx[uf_find(parent, (uint32_t)t)] != p) continue;
+            pc->side = c->tside[t];
+            for (int i = 0; i < 3; i++) {
+                uint32_t v = c->T[3 * t + i];
+                if (vmap[v] == NONE) vmap[v] = (uint32_t)nv++;
+                pc->mesh.triangles[3 * k + i] = vmap[v];
+            }
+            pc->is_cap[k] = c->tcap[t];
+            k++;
+        }
+        pc->mesh.ntriangles = k;
+        pc->mesh.nvertices = nv;
+        pc->mesh.vertices = malloc((nv ? nv : 1) * 3 * sizeof(double));
+        pc->source = malloc((nv ? nv : 1) * sizeof *pc->source);
+        if (!pc->mesh.vertices || !pc->source) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for a cut piece of %zu vertices", nv);
+            break;
+        }
+        for (size_t v = 0; v < c->nv; v++) {
+            if (vmap[v] == NONE) continue;
+            memcpy(pc->mesh.vertices + 3 * (size_t)vmap[v], c->V + 3 * v, 3 * sizeof(double));
+            pc->source[vmap[v]] = c->src[v];
+            vmap[v] = NONE;
+        }
+    }
+    free(ntri);
+    free(parent);
+    free(pidx);
+    free(vmap);
+    return st;
+}
+
+acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_result *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    if (!m || !pl) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "plane cut: NULL mesh or plane");
+    if (m->nvertices >= UINT32_MAX / 2 || m->ntriangles >= UINT32_MAX / 8)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "plane cut: mesh too large (%zu vertices, %zu triangles)",
+                        m->nvertices, m->ntriangles);
+    for (size_t v = 0; v < m->nvertices; v++)
+        for (int k = 0; k < 3; k++)
+            if (!isfinite(m->vertices[3 * v + k]))
+                return acd_fail(err, ACD_ERR_INVALID_INPUT, "plane cut: vertex %zu has a non-finite coordinate", v);
+    for (size_t t = 0; t < 3 * m->ntriangles; t++)
+        if (m->triangles[t] >= m->nvertices)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "plane cut: triangle %zu uses vertex %u of %zu", t / 3,
+                            m->triangles[t], m->nvertices);
+    acd_edge_map em;
+    acd_status st = acd_edge_map_build(m->triangles, m->ntriangles, NULL, &em, err);
+    if (st != ACD_OK) return st;
+    st = acd_edge_map_check_closed(&em, m->triangles, m->ntriangles, err);
+    if (st != ACD_OK) {
+        acd_edge_map_free(&em);
+        return st;
+    }
+    cut_ctx c;
+    memset(&c, 0, sizeof c);
+    c.pl = pl;
+    c.err = err;
+    c.ax = 0;
+    for (int k = 1; k < 3; k++)
+        if (fabs(pl->normal[k]) > fabs(pl->normal[c.ax])) c.ax = k;
+    c.swap = pl->normal[c.ax] < 0;
+    size_t nt = m->ntriangles, nv = m->nvertices;
+    c.capv = nv + 3 * nt / 2 + 1;
+    c.V = malloc(c.capv * 3 * sizeof *c.V);
+    c.src = malloc(c.capv * sizeof *c.src);
+    int8_t *s = malloc((nv ? nv : 1) * sizeof *s);
+    double *f = malloc((nv ? nv : 1) * sizeof *f);
+    uint32_t *xv = malloc((nt ? nt : 1) * 3 * sizeof *xv); /* crossing vertex of each half-edge */
+    if (!c.V || !c.src || !s || !f || !xv) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory cutting a mesh of %zu triangles", nt);
+        goto fail;
+    }
+    memcpy(c.V, m->vertices, nv * 3 * sizeof *c.V);
+    for (size_t v = 0; v < nv; v++) {
+        c.src[v] = (uint32_t)v;
+        f[v] = -acd_orient3d(pl->a, pl->b, pl->c, m->vertices + 3 * v); /* > 0 on the + side */
+        s[v] = (int8_t)((f[v] > 0) - (f[v] < 0));
+    }
+    c.nv = nv;
+    for (size_t h = 0; h < 3 * nt; h++) xv[h] = NONE;
+    for (size_t t = 0; t < nt && st == ACD_OK; t++) {
+        const uint32_t *q = m->triangles + 3 * t;
+        int hasp = 0, hasn = 0;
+        for (int i = 0; i < 3; i++) hasp |= s[q[i]] > 0, hasn |= s[q[i]] < 0;
+        if (hasp && !hasn) {
+            st = push_tri(&c, q[0], q[1], q[2], +1, 0);
+            continue;
+        }
+        if (hasn && !hasp) {
+            st = push_tri(&c, q[0], q[1], q[2], -1, 0);
+            continue;
+        }
+        if (!hasp && !hasn) { /* in the plane: material lies opposite the outward normal */
+            double p0[2], p1[2], p2[2];
+            proj2(&c, q[0], p0);
+            proj2(&c, q[1], p1);
+            proj2(&c, q[2], p2);
+            int o = acd_orient2d_sign(p0, p1, p2);
+            st = push_tri(&c, q[0], q[1], q[2], o > 0 ? -1 : +1, 0);
+            continue;
+        }
+        /* split: walk the edges, building the + and - polygons */
+        uint32_t Pp[4], Pn[4];
+        int np_ = 0, nn_ = 0;
+        for (int i = 0; i < 3; i++) {
+            uint32_t a = q[i], b = q[(i + 1) % 3];
+            if (s[a] >= 0) Pp[np_++] = a;
+            if (s[a] <= 0) Pn[nn_++] = a;
+            if (s[a] * s[b] < 0) {
+                size_t h = 3 * t + (size_t)i;
+                if (xv[h] == NONE) {
+                    uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
+                    double fl = f[lo], fh = f[hi], tt = fl / (fl - fh);
+                    if (tt < 0) tt = 0;
+                    if (tt > 1) tt = 1;
+                    const double *pa = m->vertices + 3 * (size_t)lo, *pb = m->vertices + 3 * (size_t)hi;
+                    uint32_t nvx = (uint32_t)c.nv++;
+                    for (int k = 0; k < 3; k++) c.V[3 * (size_t)nvx + k] = pa[k] + tt * (pb[k] - pa[k]);
+                    c.src[nvx] = ACD_CUT_NEW_VERTEX;
+                    xv[h] = nvx;
+                    uint32_t tw = acd_edge_map_find(&em, b, a);
+                    if (tw != ACD_EDGE_NONE) xv[tw] = nvx;
+                }
+                Pp[np_++] = xv[h];
+                Pn[nn_++] = xv[h];
+            }
+        }
+        for (int k = 1; k + 1 < np_ && st == ACD_OK; k++) st = push_tri(&c, Pp[0], Pp[k], Pp[k + 1], +1, 0);
+        for (int k = 1; k + 1 < nn_ && st == ACD_OK; k++) st = push_tri(&c, Pn[0], Pn[k], Pn[k + 1], -1, 0);
+    }
+    if (st == ACD_OK) st = cap_sections(&c, out);
+    if (st == ACD_OK) st = make_pieces(&c, out);
+fail:
+    acd_edge_map_free(&em);
+    free(c.V);
+    free(c.src);
+    free(c.T);
+    free(c.tside);
+    free(c.tcap);
+    free(s);
+    free(f);
+    free(xv);
+    if (st != ACD_OK) acd_cut_result_free(out);
+    return st;
+}
