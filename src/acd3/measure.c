@@ -1,0 +1,247 @@
+/* acd3/measure: bridges, pockets and SL concavity of a triangle mesh; see measure.h. */
+#include "acd3/measure.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+typedef struct vote {
+    uint32_t face, patch; /* face: the region once the regions are known */
+    double w;
+} vote;
+
+static int cmp_vote(const void *a, const void *b) {
+    const vote *x = a, *y = b;
+    if (x->face != y->face) return x->face < y->face ? -1 : 1;
+    if (x->patch != y->patch) return x->patch < y->patch ? -1 : 1;
+    return (x->w > y->w) - (x->w < y->w);
+}
+
+acd_status acd3_edge_faces(const acd_mesh *m, const acd_edge_graph *g, uint32_t **face_of, acd_error *err) {
+    uint32_t *fo = malloc((2 * g->nedges + 1) * sizeof *fo);
+    if (!fo) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu edges", g->nedges);
+    for (size_t i = 0; i < 2 * g->nedges; i++) fo[i] = UINT32_MAX;
+    for (size_t f = 0; f < m->ntriangles; f++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t u = m->triangles[3 * f + k], v = m->triangles[3 * f + (k + 1) % 3];
+            uint32_t e = acd_edge_graph_find(g, u, v);
+            if (e == ACD_NO_VERTEX) continue;
+            size_t slot = 2 * (size_t)e + (u > v);
+            if (fo[slot] == UINT32_MAX) fo[slot] = (uint32_t)f;
+        }
+    *face_of = fo;
+    return ACD_OK;
+}
+
+void acd3_measure_free(acd3_measure *ms) {
+    if (!ms) return;
+    free(ms->vconc);
+    acd_hull_free(&ms->hull);
+    acd3_patches_free(&ms->patches);
+    free(ms->face_region);
+    free(ms->region_patch);
+    free(ms->edge_barrier);
+    memset(ms, 0, sizeof *ms);
+}
+
+/* Regions: faces connected across non-barrier edges. Returns the count. */
+static size_t flood_regions(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of,
+                            const uint8_t *barrier, uint32_t *face_region, uint32_t *queue) {
+    size_t nf = m->ntriangles, nr = 0;
+    for (size_t f = 0; f < nf; f++) face_region[f] = UINT32_MAX;
+    for (size_t s = 0; s < nf; s++) {
+        if (face_region[s] != UINT32_MAX) continue;
+        size_t qh = 0, qt = 0;
+        queue[qt++] = (uint32_t)s;
+        face_region[s] = (uint32_t)nr;
+        while (qh < qt) {
+            uint32_t f = queue[qh++];
+            for (int k = 0; k < 3; k++) {
+                uint32_t u = m->triangles[3 * f + k], v = m->triangles[3 * f + (k + 1) % 3];
+                uint32_t e = acd_edge_graph_find(g, u, v);
+                if (e == ACD_NO_VERTEX || barrier[e]) continue;
+                for (int side = 0; side < 2; side++) {
+                    uint32_t h = face_of[2 * (size_t)e + side];
+                    if (h != UINT32_MAX && face_region[h] == UINT32_MAX) {
+                        face_region[h] = (uint32_t)nr;
+                        queue[qt++] = h;
+                    }
+                }
+            }
+        }
+        nr++;
+    }
+    (void)g;
+    return nr;
+}
+
+acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, double eps, double tol,
+                                acd3_measure *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    out->witness = UINT32_MAX;
+    size_t nv = m->nvertices, nf = m->ntriangles;
+    acd_status st;
+    uint32_t *face_of = NULL, *queue = NULL, *path = NULL;
+    out->vconc = calloc(nv ? nv : 1, sizeof *out->vconc);
+    out->face_region = malloc((nf ? nf : 1) * sizeof *out->face_region);
+    out->edge_barrier = calloc(g->nedges ? g->nedges : 1, 1);
+    if (!out->vconc || !out->face_region || !out->edge_barrier) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory measuring a mesh of %zu vertices", nv);
+        goto fail;
+    }
+    st = acd_hull_compute(m->vertices, nv, &out->hull, err);
+    if (st != ACD_OK) goto fail;
+    if (out->hull.dim < 3) { /* flat: convex by definition (a planar patch or a degenerate solid) */
+        for (size_t f = 0; f < nf; f++) out->face_region[f] = 0;
+        out->nregions = nf ? 1 : 0;
+        return ACD_OK;
+    }
+    st = acd3_patches_build(&out->hull, eps, tol, &out->patches, err);
+    if (st != ACD_OK) goto fail;
+    st = acd3_edge_faces(m, g, &face_of, err);
+    if (st != ACD_OK) goto fail;
+
+    /* project the patch-boundary hull edges; collect votes (face, patch, weight) */
+    const acd_hull *h = &out->hull;
+    const uint32_t *fp = out->patches.facet_patch;
+    size_t nvote = 0, capvote = 0;
+    vote *vl = NULL;
+    for (size_t t = 0; t < h->ntriangles; t++)
+        for (int i = 0; i < 3; i++) {
+            uint32_t nb = h->neighbors[3 * t + i];
+            if (nb == ACD_HULL_NO_NEIGHBOR || fp[nb] == fp[t] || nb < t) continue;
+            uint32_t a = h->source[h->triangles[3 * t + i]], b = h->source[h->triangles[3 * t + (i + 1) % 3]];
+            size_t len = 0;
+            free(path);
+            path = NULL;
+            acd_error perr;
+            if (acd_shortest_path(g, a, b, NULL, &path, &len, NULL, &perr) != ACD_OK) continue; /* other component */
+            out->nprojected++;
+            for (size_t k = 0; k + 1 < len; k++) {
+                uint32_t u = path[k], v = path[k + 1];
+                uint32_t e = acd_edge_graph_find(g, u, v);
+                if (e == ACD_NO_VERTEX) continue;
+                out->edge_barrier[e] = 1;
+                /* the face holding half-edge u->v lies left of the path: the left patch fp[t] */
+                uint32_t left = face_of[2 * (size_t)e + (u > v)], right = face_of[2 * (size_t)e + (v > u)];
+                double w = g->length[e];
+                if (nvote + 2 > capvote) {
+                    capvote = capvote ? 2 * capvote : 1024;
+                    vote *nvl = realloc(vl, capvote * sizeof *nvl);
+                    if (!nvl) {
+                        free(vl);
+                        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory projecting hull edges");
+                        goto fail;
+                    }
+                    vl = nvl;
+                }
+                if (left != UINT32_MAX) vl[nvote++] = (vote){left, fp[t], w};
+                if (right != UINT32_MAX) vl[nvote++] = (vote){right, fp[nb], w};
+            }
+        }
+
+    queue = malloc((nf ? nf : 1) * sizeof *queue);
+    if (!queue) {
+        free(vl);
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory labelling pockets");
+        goto fail;
+    }
+    out->nregions = flood_regions(m, g, face_of, out->edge_barrier, out->face_region, queue);
+    size_t np = out->patches.npatches, nr = out->nregions;
+    out->region_patch = malloc((nr ? nr : 1) * sizeof *out->region_patch);
+    if (!out->region_patch) {
+        free(vl);
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory labelling pockets");
+        goto fail;
+    }
+    for (size_t r = 0; r < nr; r++) out->region_patch[r] = UINT32_MAX;
+    {
+        /* best patch per region: sort votes by (region, patch, weight) -- a total order, so the
+         * sums below are bitwise reproducible -- and sum the runs */
+        for (size_t i = 0; i < nvote; i++) vl[i].face = out->face_region[vl[i].face];
+        qsort(vl, nvote, sizeof *vl, cmp_vote);
+        double *best = malloc((nr ? nr : 1) * sizeof *best);
+        if (!best) {
+            free(vl);
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory labelling pockets");
+            goto fail;
+        }
+        for (size_t r = 0; r < nr; r++) best[r] = -1;
+        for (size_t i = 0; i < nvote;) {
+            size_t j = i;
+            double s = 0;
+            while (j < nvote && vl[j].face == vl[i].face && vl[j].patch == vl[i].patch) s += vl[j++].w;
+            uint32_t r = vl[i].face;
+            if (s > best[r]) {
+                best[r] = s;
+                out->region_patch[r] = vl[i].patch;
+            }
+            i = j;
+        }
+        free(best);
+    }
+    free(vl);
+    /* regions without a projected path around them (open surfaces): the patch whose plane
+     * they lie least deep below; one pass over those faces per patch */
+    {
+        size_t nunvoted = 0;
+        for (size_t r = 0; r < nr; r++) nunvoted += out->region_patch[r] == UINT32_MAX;
+        if (nunvoted) {
+            double *bestd = malloc(nr * sizeof *bestd), *worst = malloc(nr * sizeof *worst);
+            if (!bestd || !worst) {
+                free(bestd);
+            free(worst);
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory labelling pockets");
+                goto fail;
+            }
+            /* voted regions are marked -INFINITY and left alone */
+            for (size_t r = 0; r < nr; r++) bestd[r] = out->region_patch[r] == UINT32_MAX ? INFINITY : -INFINITY;
+            for (size_t p = 0; p < np; p++) {
+                for (size_t r = 0; r < nr; r++) worst[r] = 0;
+                for (size_t f = 0; f < nf; f++) {
+                    uint32_t r = out->face_region[f];
+                    if (bestd[r] == -INFINITY) continue;
+                    for (int k = 0; k < 3; k++) {
+                        double d = acd3_patch_depth(&out->patches, p, m->vertices + 3 * (size_t)m->triangles[3 * f + k]);
+                        if (d > worst[r]) worst[r] = d;
+                    }
+                }
+                for (size_t r = 0; r < nr; r++)
+                    if (bestd[r] != -INFINITY && worst[r] < bestd[r]) {
+                        bestd[r] = worst[r];
+                        out->region_patch[r] = (uint32_t)p;
+                    }
+            }
+            free(bestd);
+            free(worst);
+        }
+    }
+    /* concavity: depth below the patch plane of each incident face's region, the largest */
+    for (size_t f = 0; f < nf; f++) {
+        uint32_t p = out->region_patch[out->face_region[f]];
+        if (p == UINT32_MAX) continue;
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = m->triangles[3 * f + k];
+            double d = acd3_patch_depth(&out->patches, p, m->vertices + 3 * (size_t)v);
+            if (d > out->vconc[v]) out->vconc[v] = d;
+        }
+    }
+    out->concavity = 0;
+    for (size_t v = 0; v < nv; v++)
+        if (out->vconc[v] > out->concavity) {
+            out->concavity = out->vconc[v];
+            out->witness = (uint32_t)v;
+        }
+    free(face_of);
+    free(queue);
+    free(path);
+    return ACD_OK;
+fail:
+    free(face_of);
+    free(queue);
+    free(path);
+    acd3_measure_free(out);
+    return st;
+}

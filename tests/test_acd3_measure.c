@@ -1,0 +1,141 @@
+/* Tests of acd3/patches and acd3/measure: bridge patches and SL concavity of closed meshes with
+ * known answers. */
+#include "testutil.h"
+
+#include <math.h>
+
+#include "acd3/measure.h"
+#include "acd3/patches.h"
+#include "shapes.h"
+
+static double sphere_r(double th, double ph, void *u) { (void)th, (void)ph, (void)u; return 1.0; }
+
+/* a waist: r = 1 - k sin^2(theta): lateral radius rho(s) = s - k s^3 (s = sin theta) */
+static double waist_r(double th, double ph, void *u) {
+    (void)ph;
+    double k = *(double *)u, s = sin(th);
+    return 1.0 - k * s * s;
+}
+
+static void measure(const acd_mesh *m, double eps, acd3_measure *ms) {
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(m->vertices, m->nvertices, m->triangles, m->ntriangles, &g, &err), ACD_OK);
+    assert_int_equal(acd3_measure_compute(m, &g, eps, 1e-9, ms, &err), ACD_OK);
+    acd_edge_graph_free(&g);
+}
+
+static void test_patches_of_a_cube_are_its_faces(void **state) {
+    (void)state;
+    unsigned char occ[27];
+    for (int i = 0; i < 27; i++) occ[i] = 1; /* a 3x3x3 block: flat faces with interior vertices */
+    acd_mesh m;
+    assert_true(mg_voxels(&m, occ, 3, 3, 3));
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(m.vertices, m.nvertices, &h, &err), ACD_OK);
+    acd3_patches p;
+    assert_int_equal(acd3_patches_build(&h, 0.0, 1e-9, &p, &err), ACD_OK);
+    assert_int_equal(p.npatches, 6); /* coplanar triangles merge at eps = 0 */
+    acd3_patches_free(&p);
+    /* a large eps may merge faces, but every facet vertex stays within eps of its patch plane */
+    assert_int_equal(acd3_patches_build(&h, 0.5, 1e-9, &p, &err), ACD_OK);
+    for (size_t t = 0; t < h.ntriangles; t++)
+        for (int k = 0; k < 3; k++)
+            assert_true(acd3_patch_depth(&p, p.facet_patch[t], h.vertices + 3 * h.triangles[3 * t + k]) <= 0.5 + 1e-9);
+    acd3_patches_free(&p);
+    acd_hull_free(&h);
+    acd_mesh_free(&m);
+}
+
+static void test_patches_of_a_sphere_respect_eps(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 24, sphere_r, NULL));
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(m.vertices, m.nvertices, &h, &err), ACD_OK);
+    double eps_list[] = {0.0, 0.01, 0.05, 0.2};
+    size_t prev = SIZE_MAX;
+    for (int e = 0; e < 4; e++) {
+        acd3_patches p;
+        assert_int_equal(acd3_patches_build(&h, eps_list[e], 1e-9, &p, &err), ACD_OK);
+        for (size_t t = 0; t < h.ntriangles; t++)
+            for (int k = 0; k < 3; k++)
+                assert_true(acd3_patch_depth(&p, p.facet_patch[t], h.vertices + 3 * h.triangles[3 * t + k]) <=
+                            eps_list[e] + 1e-9);
+        /* tangent planes: no hull vertex above any patch plane */
+        for (size_t i = 0; i < p.npatches; i++)
+            for (size_t v = 0; v < h.nvertices; v++) assert_true(acd3_patch_depth(&p, i, h.vertices + 3 * v) >= -1e-12);
+        assert_true(p.npatches <= prev); /* a larger eps never needs more patches here */
+        prev = p.npatches;
+        if (e == 3) assert_true(p.npatches < h.ntriangles / 10);
+        acd3_patches_free(&p);
+    }
+    acd_hull_free(&h);
+    acd_mesh_free(&m);
+}
+
+static void test_convex_mesh_has_zero_concavity(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 32, 16, sphere_r, NULL));
+    acd3_measure ms;
+    measure(&m, 0.05, &ms);
+    assert_true(ms.concavity <= 0.05 + 1e-9); /* within eps: patch planes overestimate by < eps */
+    acd3_measure_free(&ms);
+    measure(&m, 0.0, &ms);
+    assert_true(ms.concavity < 1e-9);
+    acd3_measure_free(&ms);
+    acd_mesh_free(&m);
+}
+
+static void test_waist_depth(void **state) {
+    (void)state;
+    double k = 0.7;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 64, 64, waist_r, &k));
+    /* analytic: the hull bridges the waist between the two bulges at rho_max = s - k s^3,
+     * s = 1/sqrt(3k); the equator is at rho = 1 - k: depth = rho_max - (1 - k) */
+    double s = 1.0 / sqrt(3 * k), depth = (s - k * s * s * s) - (1 - k);
+    acd3_measure ms;
+    measure(&m, 0.0, &ms);
+    assert_true(fabs(ms.concavity - depth) < 0.02);
+    const double *w = m.vertices + 3 * (size_t)ms.witness;
+    assert_true(fabs(w[2]) < 0.1); /* the witness is on the waist */
+    acd3_measure_free(&ms);
+    /* with bridge patches (eps = 0.02) the measure overestimates by less than about eps */
+    measure(&m, 0.02, &ms);
+    assert_true(ms.concavity >= depth - 0.02 && ms.concavity <= depth + 0.03);
+    acd3_measure_free(&ms);
+    acd_mesh_free(&m);
+}
+
+static void test_l_shape_notch(void **state) {
+    (void)state;
+    /* an L of voxels 4 x 4 x 1 minus a 2 x 2 corner: the reflex edge is at depth sqrt(2) from the
+     * bridge (the hull face cutting the corner) */
+    unsigned char occ[16];
+    for (int y = 0; y < 4; y++)
+        for (int x = 0; x < 4; x++) occ[y * 4 + x] = !(x >= 2 && y >= 2);
+    acd_mesh m;
+    assert_true(mg_voxels(&m, occ, 4, 4, 1));
+    acd3_measure ms;
+    measure(&m, 0.0, &ms);
+    assert_true(fabs(ms.concavity - sqrt(2.0)) < 1e-9);
+    const double *w = m.vertices + 3 * (size_t)ms.witness;
+    assert_true(w[0] == 2.0 && w[1] == 2.0);
+    acd3_measure_free(&ms);
+    acd_mesh_free(&m);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_patches_of_a_cube_are_its_faces),
+        cmocka_unit_test(test_patches_of_a_sphere_respect_eps),
+        cmocka_unit_test(test_convex_mesh_has_zero_concavity),
+        cmocka_unit_test(test_waist_depth),
+        cmocka_unit_test(test_l_shape_notch),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
