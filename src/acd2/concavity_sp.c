@@ -149,8 +149,8 @@ static int fpush(fstate *f, size_t A, size_t B, const size_t *seq1, size_t n1, c
     }
     fitem *it = &f->st[f->nst++];
     it->A = A; it->B = B; it->off = f->top; it->len = n1 + n2; it->apex = apex;
-    memmove(f->buf + f->top, seq1, n1 * sizeof *seq1);
-    memmove(f->buf + f->top + n1, seq2, n2 * sizeof *seq2);
+    if (n1) memmove(f->buf + f->top, seq1, n1 * sizeof *seq1);
+    if (n2) memmove(f->buf + f->top + n1, seq2, n2 * sizeof *seq2);
     f->top += n1 + n2;
     return 0;
 }
