@@ -329,7 +329,10 @@ typedef struct known {
 static void test_known_meshes(void **state) {
     (void)state;
     static const known ks[] = {
-        {"elephant.off", 3, 1, 0}, {"eight.off", 2, 1, 0}, {"cheese.off", 133, 1, 0}, {"mushroom.off", 0, 0, 64},
+        {"elephant.off", 3, 1, 0},       {"eight.off", 2, 1, 0},        {"cheese.off", 133, 1, 0},
+        {"mushroom.off", 0, 0, 64},      {"3torus.off", 3, 1, 0},       {"double-torus-example.off", 2, 1, 0},
+        {"torus_quad.off", 1, 1, 0},     {"armadillo.off", 0, 1, 0},    {"cube.off", 0, 1, 0},
+        {"open_cube.off", 0, 0, 4},
     };
     int found = 0;
     for (size_t i = 0; i < sizeof ks / sizeof ks[0]; i++) {
