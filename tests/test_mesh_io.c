@@ -366,6 +366,10 @@ static void test_malformed(void **state) {
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4: vertex index 0"},
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4:"},
         {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4: face with 2"},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf\nf 1 2 3\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4: face with 0"},
+        {"v 1 2 3.1+e2\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:1: vertex needs 3 numbers (coordinate 3"},
+        {"OFF\n3 1\n0 0 0\n0 1 0\n1 0 0\n0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:6: face 0 has 0 vertices"},
+        {"OFF\n3 1\n0 0 0\n0 1 0\n1 0 0\n999999 0 1 2\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "more than the file"},
         {"v 0 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:1: vertex needs 3"},
         {"v 0 0 nan\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:1: vertex coordinate 3 is not finite"},
         {"v 0 0 1e999\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "not finite"},
@@ -426,6 +430,44 @@ static void test_malformed(void **state) {
         assert_null(m.vertices);
         assert_int_equal(m.ntriangles, 0);
     }
+}
+
+static void test_text_encodings(void **state) {
+    (void)state;
+    /* UTF-16 (both byte orders, with BOM) and UTF-8 with BOM are read */
+    const char *text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    size_t n = strlen(text);
+    for (int be = 0; be < 2; be++) {
+        unsigned char *u = malloc(2 * n + 2);
+        assert_non_null(u);
+        u[0] = be ? 0xfe : 0xff;
+        u[1] = be ? 0xff : 0xfe;
+        for (size_t i = 0; i < n; i++) {
+            u[2 + 2 * i + (size_t)!be] = 0;
+            u[2 + 2 * i + (size_t)be] = (unsigned char)text[i];
+        }
+        acd_mesh m;
+        acd_error err;
+        acd_status s = acd_mesh_read_memory(u, 2 * n + 2, ACD_MESH_FORMAT_AUTO, "u16", &m, &err);
+        if (s != ACD_OK) fail_msg("%s", err.message);
+        assert_int_equal(m.ntriangles, 1);
+        acd_mesh_free(&m);
+        free(u);
+    }
+    char b8[64] = "\xef\xbb\xbf";
+    strcat(b8, text);
+    acd_mesh m;
+    acd_error err;
+    assert_int_equal(acd_mesh_read_memory(b8, strlen(b8), ACD_MESH_FORMAT_AUTO, "u8", &m, &err), ACD_OK);
+    assert_int_equal(m.ntriangles, 1);
+    acd_mesh_free(&m);
+    /* PLY header lines without a keyword (old Blender) are ignored */
+    const char *ply = "ply\nformat ascii 1.0\nCreated by Blender3D 247\nelement vertex 3\nproperty float x\n"
+                      "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    assert_int_equal(acd_mesh_read_memory(ply, strlen(ply), ACD_MESH_FORMAT_AUTO, "p", &m, &err), ACD_OK);
+    assert_int_equal(m.ntriangles, 1);
+    acd_mesh_free(&m);
 }
 
 static void test_gzip_errors(void **state) {
@@ -514,6 +556,7 @@ int main(void) {
         cmocka_unit_test(test_off_features),
         cmocka_unit_test(test_stl_ascii_and_weld),
         cmocka_unit_test(test_malformed),
+        cmocka_unit_test(test_text_encodings),
         cmocka_unit_test(test_gzip_errors),
         cmocka_unit_test(test_write_checks),
         cmocka_unit_test(test_number_parsing_exact),

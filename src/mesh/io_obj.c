@@ -69,7 +69,7 @@ acd_status acd_obj_read(const char *buf, size_t len, const char *name, acd_mesh_
             acd_text_next_line(&t);
             continue;
         }
-        if (c == 'f' && is_blank(p[1])) {
+        if (c == 'f' && (is_blank(p[1]) || p[1] == '\n' || p[1] == '\0')) {
             p += 1;
             b->npoly = 0;
             for (;;) {

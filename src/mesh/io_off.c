@@ -99,9 +99,12 @@ acd_status acd_off_read(const char *buf, size_t len, const char *name, acd_mesh_
         if (!q || (*q && !is_space(*q) && *q != '#'))
             return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face %lld: expected its number of vertices, found '%.12s'", name,
                             t.line, (long long)f, t.p);
-        if (n < 3 || n > nv)
-            return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face %lld has %lld vertices (3 to %lld allowed)", name, t.line,
-                            (long long)f, (long long)n, (long long)nv);
+        if (n < 3)
+            return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face %lld has %lld vertices (at least 3 needed)", name, t.line,
+                            (long long)f, (long long)n);
+        if (n > (int64_t)(len - (size_t)(t.p - buf)))
+            return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face %lld claims %lld vertices, more than the file can hold",
+                            name, t.line, (long long)f, (long long)n);
         t.p = q;
         b->npoly = 0;
         for (int64_t k = 0; k < n; k++) {

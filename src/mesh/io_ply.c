@@ -3,7 +3,7 @@
  * The header's elements are read in order. "vertex" needs properties x, y, z (any numeric type;
  * other properties skipped); "face" needs a list property vertex_indices (or vertex_index, or
  * else its first list), fanned into triangles; every other element is skipped by its declared
- * layout. Byte order is handled byte by byte, independent of the host. Writes binary
+ * layout. Header lines with an unknown keyword are ignored like comments. Byte order is handled byte by byte, independent of the host. Writes binary
  * little-endian (double coordinates, uint32 indices: exact) or ASCII with %.17g. */
 #include "mesh/io_formats.h"
 
@@ -212,10 +212,9 @@ static acd_status parse_header(acd_text *t, int *format, ply_elem *elems, int *n
             n = word(t, &w);
             if (n == 0) return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: property without a name", t->name, t->line);
             snprintf(p->name, sizeof p->name, "%.*s", (int)(n > 31 ? 31 : n), w);
-        } else {
-            return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: unknown header keyword '%.*s'", t->name, t->line,
-                            (int)(n > 30 ? 30 : n), w);
         }
+        /* any other line: ignored like a comment (old Blender exporters wrote "Created by ..."
+           without the comment keyword) */
         acd_text_next_line(t);
     }
     if (*format < 0) return acd_fail(err, ACD_ERR_PARSE, "%s: header has no format line", t->name);

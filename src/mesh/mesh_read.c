@@ -109,6 +109,25 @@ static acd_status gunzip(const unsigned char *in, size_t n, const char *name, ch
     return ACD_OK;
 }
 
+/* UTF-16 text (with a byte-order mark) to 8-bit: ASCII kept, anything else becomes '?'. Some
+ * Windows tools write OBJ that way. */
+static acd_status from_utf16(char **buf, size_t *len, const char *name, acd_error *err) {
+    const unsigned char *u = (const unsigned char *)*buf;
+    int be = u[0] == 0xfe;
+    size_t n = (*len - 2) / 2;
+    char *out = malloc(n + 1);
+    if (!out) return acd_fail(err, ACD_ERR_NOMEM, "%s: out of memory converting UTF-16", name);
+    for (size_t i = 0; i < n; i++) {
+        unsigned c = be ? (unsigned)u[2 + 2 * i] << 8 | u[3 + 2 * i] : (unsigned)u[3 + 2 * i] << 8 | u[2 + 2 * i];
+        out[i] = c < 0x80 && c != 0 ? (char)c : '?';
+    }
+    out[n] = '\0';
+    free(*buf);
+    *buf = out;
+    *len = n;
+    return ACD_OK;
+}
+
 static acd_mesh_format detect(const char *buf, size_t len, acd_mesh_format hint) {
     if (acd_ply_sniff(buf, len)) return ACD_MESH_FORMAT_PLY;
     if (acd_off_sniff(buf, len)) return ACD_MESH_FORMAT_OFF;
@@ -157,7 +176,23 @@ static acd_status parse_memory(const void *data, size_t size, acd_mesh_format hi
         buf[size] = '\0';
         len = size;
     }
-    s = parse(buf, len, hint, name, b, used, err);
+    if (len >= 2 && (((unsigned char)buf[0] == 0xfe && (unsigned char)buf[1] == 0xff) ||
+                     ((unsigned char)buf[0] == 0xff && (unsigned char)buf[1] == 0xfe))) {
+        if ((s = from_utf16(&buf, &len, name, err)) != ACD_OK) {
+            free(buf);
+            return s;
+        }
+    }
+    if (len == 0) {
+        free(buf);
+        return acd_fail(err, ACD_ERR_PARSE, "%s: empty file", name);
+    }
+    const char *text = buf;
+    if (len >= 3 && !memcmp(buf, "\xef\xbb\xbf", 3)) { /* UTF-8 byte-order mark */
+        text += 3;
+        len -= 3;
+    }
+    s = parse(text, len, hint, name, b, used, err);
     free(buf);
     return s;
 }
