@@ -100,14 +100,14 @@ acd_status acd_hullset_build(acd_hullset *hs, const acd_hull *hulls, size_t nhul
         hs->nvertices += h->nvertices;
         hs->nhulls++;
     }
-    acd_status st = acd_bvh_build(&hs->bvh, hs->vertices, hs->nvertices, hs->triangles, hs->ntriangles, err);
+    acd_status st = acd_spatial_build(&hs->sp, hs->vertices, hs->nvertices, hs->triangles, hs->ntriangles, err);
     if (st != ACD_OK) acd_hullset_free(hs);
     return st;
 }
 
 void acd_hullset_free(acd_hullset *hs) {
     if (!hs) return;
-    acd_bvh_free(&hs->bvh);
+    acd_spatial_free(&hs->sp);
     free(hs->hulls);
     free(hs->planes);
     free(hs->vertices);
@@ -127,15 +127,39 @@ int acd_hullset_in_hull(const acd_hullset *hs, size_t h, const double p[3]) {
     return 1;
 }
 
-size_t acd_hullset_find(const acd_hullset *hs, const double p[3], size_t skip) {
-    for (size_t h = 0; h < hs->nhulls; h++)
-        if (h != skip && acd_hullset_in_hull(hs, h, p)) return h;
-    return SIZE_MAX;
+typedef struct count_ctx {
+    const acd_hullset *hs;
+    const double *p;
+    size_t skip;
+    int winding, on;
+} count_ctx;
+
+static int count_visit(void *user, uint32_t t) {
+    count_ctx *c = user;
+    if (c->hs->tri_hull[t] == c->skip) return 0;
+    int on = 0;
+    c->winding += acd_spatial_ray_crossing(&c->hs->sp, t, c->p, &on);
+    c->on |= on;
+    return 0;
+}
+
+int acd_hullset_contains(const acd_hullset *hs, const double p[3], size_t skip) {
+    size_t h;
+    for (h = 0; h < hs->nhulls; h++) {
+        const acd_hullset_hull *o = &hs->hulls[h];
+        if (h != skip && p[0] >= o->lo[0] && p[0] <= o->hi[0] && p[1] >= o->lo[1] && p[1] <= o->hi[1] &&
+            p[2] >= o->lo[2] && p[2] <= o->hi[2])
+            break;
+    }
+    if (h == hs->nhulls) return 0; /* in no other hull's box */
+    count_ctx c = {hs, p, skip, 0, 0};
+    acd_bvh_query_axis_line(&hs->sp.bvh, p, 0, 1, count_visit, &c);
+    return c.winding > 0 || c.on;
 }
 
 int acd_hullset_on_boundary(const acd_hullset *hs, size_t h, const double q[3], const double dir[3]) {
     double x[3] = {q[0] + hs->probe * dir[0], q[1] + hs->probe * dir[1], q[2] + hs->probe * dir[2]};
-    return acd_hullset_find(hs, x, h) == SIZE_MAX;
+    return !acd_hullset_contains(hs, x, h);
 }
 
 int acd_hullset_x_interval(const acd_hullset *hs, size_t h, double y, double z, double *t0, double *t1) {
@@ -191,10 +215,6 @@ typedef struct eval_ctx {
     double diag;
 } eval_ctx;
 
-typedef struct interval {
-    double a, b;
-} interval;
-
 /* Monte Carlo counts over the box: samples in M, in U, in both. */
 static acd_status volume_counts(const eval_ctx *c, size_t *nsamples, size_t counts[3], acd_error *err) {
     double ext[3], vol = 1;
@@ -213,48 +233,47 @@ static acd_status volume_counts(const eval_ctx *c, size_t *nsamples, size_t coun
     *nsamples = n[0] * rows;
     size_t cm = 0, cu = 0, cmu = 0;
     int failed = 0;
-    interval *iv = malloc((c->hs->nhulls ? c->hs->nhulls : 1) * sizeof *iv);
-    acd_spatial_line line = {0};
-    if (!iv) return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for line intervals");
-    for (size_t row = 0; row < rows && !failed; row++) {
-        if (row % 1024 == 0 && progress(c->prm, 0.5 * (double)row / (double)rows, "volume")) {
-            failed = 2;
-            break;
-        }
-        acd_rng r;
-        rng_for(&r, c->prm->seed, 1, row);
-        size_t j = row % n[1], k = row / n[1];
-        double y = c->lo[1] + ((double)j + acd_rng_uniform(&r)) * h[1];
-        double z = c->lo[2] + ((double)k + acd_rng_uniform(&r)) * h[2];
-        size_t niv = 0;
-        for (size_t hh = 0; hh < c->hs->nhulls; hh++) {
-            double a, b;
-            if (acd_hullset_x_interval(c->hs, hh, y, z, &a, &b)) iv[niv++] = (interval){a, b};
-        }
-        if (c->mesh->closed && acd_spatial_line_set(c->mesh, y, z, &line, NULL) != ACD_OK) {
-            failed = 1;
-            break;
-        }
-        for (size_t i = 0; i < n[0]; i++) {
-            double x = c->lo[0] + ((double)i + acd_rng_uniform(&r)) * h[0];
-            int in_m;
-            if (c->mesh->closed) {
-                int on = 0;
-                in_m = acd_spatial_line_winding(c->mesh, &line, x, &on) != 0 || on;
-            } else {
-                double p[3] = {x, y, z};
-                in_m = fabs(acd_spatial_gwn(c->mesh, p)) >= 0.5;
+    if (progress(c->prm, 0.1, "volume")) return acd_fail(err, ACD_ERR_CANCELLED, "eval: cancelled");
+#ifdef _OPENMP
+#pragma omp parallel reduction(+ : cm, cu, cmu) reduction(| : failed)
+#endif
+    {
+        acd_spatial_line line = {0}, hline = {0};
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 16)
+#endif
+        for (long lrow = 0; lrow < (long)rows; lrow++) {
+            size_t row = (size_t)lrow;
+            if (failed) continue;
+            acd_rng r;
+            rng_for(&r, c->prm->seed, 1, row);
+            size_t j = row % n[1], k = row / n[1];
+            double y = c->lo[1] + ((double)j + acd_rng_uniform(&r)) * h[1];
+            double z = c->lo[2] + ((double)k + acd_rng_uniform(&r)) * h[2];
+            if (acd_spatial_line_set(&c->hs->sp, y, z, &hline, NULL) != ACD_OK ||
+                (c->mesh->closed && acd_spatial_line_set(c->mesh, y, z, &line, NULL) != ACD_OK)) {
+                failed = 1;
+                continue;
             }
-            int in_u = 0;
-            for (size_t q = 0; q < niv && !in_u; q++) in_u = x >= iv[q].a && x <= iv[q].b;
-            cm += (size_t)in_m;
-            cu += (size_t)in_u;
-            cmu += (size_t)(in_m && in_u);
+            for (size_t i = 0; i < n[0]; i++) {
+                double x = c->lo[0] + ((double)i + acd_rng_uniform(&r)) * h[0];
+                int in_m, on = 0;
+                if (c->mesh->closed) {
+                    in_m = line.n ? (acd_spatial_line_winding(c->mesh, &line, x, &on) != 0 || on) : 0;
+                } else {
+                    double p[3] = {x, y, z};
+                    in_m = fabs(acd_spatial_gwn(c->mesh, p)) >= 0.5;
+                }
+                on = 0;
+                int in_u = hline.n ? (acd_spatial_line_winding(&c->hs->sp, &hline, x, &on) > 0 || on) : 0;
+                cm += (size_t)in_m;
+                cu += (size_t)in_u;
+                cmu += (size_t)(in_m && in_u);
+            }
         }
+        acd_spatial_line_free(&line);
+        acd_spatial_line_free(&hline);
     }
-    free(iv);
-    acd_spatial_line_free(&line);
-    if (failed == 2) return acd_fail(err, ACD_ERR_CANCELLED, "eval: cancelled while sampling volumes");
     if (failed) return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory while sampling volumes");
     counts[0] = cm;
     counts[1] = cu;
@@ -305,59 +324,114 @@ static int accept_boundary(void *user, uint32_t t, const double q[3]) {
     return acd_hullset_on_boundary(hs, hs->tri_hull[t], q, hs->tri_normal + 3 * (size_t)t);
 }
 
-/* Distance from p to the boundary of the union (see the file comment); *exact set to 0 when the
- * value is an upper bound from the boundary samples. */
-static double dist_to_union_boundary(const eval_ctx *c, const acd_bvh *bsamples, const double p[3], int *exact) {
-    const acd_hullset *hs = c->hs;
+/* Closest point on a tree with a warm start: `hint` (>= the true distance, or INFINITY) prunes the
+ * search; the result does not depend on it (the minimum over the triangles is the same). */
+static double closest_hinted(const acd_bvh *b, const double p[3], double hint, acd_bvh_closest_result *q) {
+    if (isfinite(hint)) {
+        double h = hint * (1 + 1e-9) + DBL_MIN;
+        if (acd_bvh_closest(b, p, h * h, q)) return sqrt(q->dist2);
+    }
+    if (!acd_bvh_closest(b, p, INFINITY, q)) return INFINITY;
+    return sqrt(q->dist2);
+}
+
+static double dist3(const double a[3], const double b[3]) {
+    double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+    return sqrt(x * x + y * y + z * z);
+}
+
+/* Distance from p to the boundary of the union (see the file comment). Returns the exact value,
+ * or, with *exact = 0, the upper bound from the boundary test filter (the boundary samples are
+ * consulted afterwards). hint: an upper bound of the distance to the hull surfaces or INFINITY. */
+static double dist_to_union_boundary(const acd_hullset *hs, const double p[3], double hint, int *exact,
+                                     double *surface_dist) {
     acd_bvh_closest_result q0;
     *exact = 1;
-    if (!acd_bvh_closest(&hs->bvh, p, INFINITY, &q0)) return INFINITY;
-    if (acd_hullset_find(hs, p, SIZE_MAX) == SIZE_MAX) return sqrt(q0.dist2);
-    if (accept_boundary(&(boundary_filter){hs}, q0.triangle, q0.point)) return sqrt(q0.dist2);
+    double d0 = closest_hinted(&hs->sp.bvh, p, hint, &q0);
+    *surface_dist = d0;
+    if (!isfinite(d0)) return INFINITY;
+    /* the nearest hull-surface point is on the boundary: nothing on the boundary is nearer */
+    if (accept_boundary(&(boundary_filter){hs}, q0.triangle, q0.point)) return d0;
+    /* p outside every hull: its distance to the union is attained on the boundary */
+    if (!acd_hullset_contains(hs, p, SIZE_MAX)) return d0;
     *exact = 0;
-    double best = INFINITY;
     acd_bvh_closest_result q1;
     boundary_filter f = {hs};
-    if (acd_bvh_closest_filtered(&hs->bvh, p, INFINITY, accept_boundary, &f, &q1)) best = q1.dist2;
-    if (acd_bvh_closest(bsamples, p, best, &q1) && q1.dist2 < best) best = q1.dist2;
-    return sqrt(best);
+    if (acd_bvh_closest_filtered(&hs->sp.bvh, p, INFINITY, accept_boundary, &f, &q1)) return sqrt(q1.dist2);
+    return INFINITY;
+}
+
+#define EVAL_CHUNK 512 /* samples per unit of parallel work (fixed: results do not depend on threads) */
+
+/* Distances of points pts[0..n) to the mesh surface into d[], warm-started along each chunk. */
+static void dist_to_mesh(const acd_spatial *mesh, const double *pts, size_t n, double *d) {
+    long nchunks = (long)((n + EVAL_CHUNK - 1) / EVAL_CHUNK);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+    for (long ch = 0; ch < nchunks; ch++) {
+        size_t s0 = (size_t)ch * EVAL_CHUNK, s1 = s0 + EVAL_CHUNK < n ? s0 + EVAL_CHUNK : n;
+        double prev = INFINITY;
+        for (size_t s = s0; s < s1; s++) {
+            acd_bvh_closest_result q;
+            double hint = s > s0 ? prev + dist3(pts + 3 * s, pts + 3 * (s - 1)) : INFINITY;
+            d[s] = prev = closest_hinted(&mesh->bvh, pts + 3 * s, hint, &q);
+        }
+    }
+}
+
+/* Distances of points to the boundary of the union into d[]; exact[] (0/1) per point. */
+static void dist_to_boundary(const acd_hullset *hs, const double *pts, size_t n, double *d, unsigned char *exact) {
+    long nchunks = (long)((n + EVAL_CHUNK - 1) / EVAL_CHUNK);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+    for (long ch = 0; ch < nchunks; ch++) {
+        size_t s0 = (size_t)ch * EVAL_CHUNK, s1 = s0 + EVAL_CHUNK < n ? s0 + EVAL_CHUNK : n;
+        double prev = INFINITY;
+        for (size_t s = s0; s < s1; s++) {
+            double hint = s > s0 ? prev + dist3(pts + 3 * s, pts + 3 * (s - 1)) : INFINITY;
+            int ex;
+            d[s] = dist_to_union_boundary(hs, pts + 3 * s, hint, &ex, &prev);
+            exact[s] = (unsigned char)ex;
+        }
+    }
 }
 
 static acd_status surface_distances(const eval_ctx *c, const acd_mesh *mesh, acd_eval_report *rep, acd_error *err) {
     const acd_hullset *hs = c->hs;
-    size_t n = c->prm->surface_samples;
+    size_t n = c->prm->surface_samples, nv = mesh->nvertices, nm = n + nv;
     acd_status st = ACD_OK;
     double *hp = malloc((n ? n : 1) * 3 * sizeof(double));
-    uint32_t *ht = malloc((n ? n : 1) * sizeof(uint32_t));
-    double *mp = malloc((n ? n : 1) * 3 * sizeof(double));
-    uint32_t *mt = malloc((n ? n : 1) * sizeof(uint32_t));
+    uint32_t *ht = malloc((nm ? nm : 1) * sizeof(uint32_t));
+    double *mp = malloc((nm ? nm : 1) * 3 * sizeof(double));
+    double *dist = malloc((nm ? nm : 1) * sizeof(double));
+    unsigned char *flag = malloc(nm ? nm : 1);
     uint32_t *btri = NULL;
     acd_bvh bs;
     memset(&bs, 0, sizeof bs);
-    if (!hp || !ht || !mp || !mt) {
+    if (!hp || !ht || !mp || !dist || !flag) {
         st = acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu surface samples", n);
         goto done;
     }
-    /* boundary of the union: hull-surface samples kept by the probe test (compacted in place) */
+    /* boundary of the union: hull-surface samples kept by the probe test */
     double harea = 0, marea = 0;
     st = sample_surface(hs->vertices, hs->triangles, hs->ntriangles, n, c->prm->seed, 2, hp, ht, &harea, err);
     if (st != ACD_OK) goto done;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static)
+#endif
+    for (long s = 0; s < (long)n; s++) {
+        uint32_t t = ht[s];
+        flag[s] = (unsigned char)acd_hullset_on_boundary(hs, hs->tri_hull[t], hp + 3 * s, hs->tri_normal + 3 * (size_t)t);
+    }
     size_t nb = 0;
     for (size_t s = 0; s < n; s++) {
-        uint32_t t = ht[s];
-        if (!acd_hullset_on_boundary(hs, hs->tri_hull[t], hp + 3 * s, hs->tri_normal + 3 * (size_t)t)) continue;
+        if (!flag[s]) continue;
         memmove(hp + 3 * nb, hp + 3 * s, 3 * sizeof(double));
         nb++;
     }
     rep->boundary_samples = nb;
-    btri = malloc((nb ? nb : 1) * 3 * sizeof(uint32_t));
-    if (!btri) {
-        st = acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu boundary samples", nb);
-        goto done;
-    }
-    for (size_t s = 0; s < nb; s++) btri[3 * s] = btri[3 * s + 1] = btri[3 * s + 2] = (uint32_t)s;
-    st = acd_bvh_build(&bs, hp, nb, btri, nb, err);
-    if (st != ACD_OK) goto done;
     double barea = n ? harea * (double)nb / (double)n : 0;
     rep->boundary_spacing = nb ? sqrt(barea / (double)nb) / c->diag : 0;
     if (progress(c->prm, 0.6, "boundary to mesh")) {
@@ -366,11 +440,11 @@ static acd_status surface_distances(const eval_ctx *c, const acd_mesh *mesh, acd
     }
 
     /* boundary -> mesh: mean over the samples, max over samples and boundary hull vertices */
+    dist_to_mesh(c->mesh, hp, nb, dist);
     double sum = 0, mx = 0;
     for (size_t s = 0; s < nb; s++) {
-        double d = acd_spatial_distance(c->mesh, hp + 3 * s, NULL);
-        sum += d;
-        if (d > mx) mx = d;
+        sum += dist[s];
+        if (dist[s] > mx) mx = dist[s];
     }
     for (size_t h = 0; h < hs->nhulls; h++) {
         const acd_hullset_hull *o = &hs->hulls[h];
@@ -393,23 +467,35 @@ static acd_status surface_distances(const eval_ctx *c, const acd_mesh *mesh, acd
     }
 
     /* mesh -> boundary: mean over area-uniform samples, max over samples and mesh vertices */
-    st = sample_surface(mesh->vertices, mesh->triangles, mesh->ntriangles, n, c->prm->seed, 3, mp, mt, &marea, err);
+    st = sample_surface(mesh->vertices, mesh->triangles, mesh->ntriangles, n, c->prm->seed, 3, mp, ht, &marea, err);
     if (st != ACD_OK) goto done;
+    memcpy(mp + 3 * n, mesh->vertices, 3 * nv * sizeof(double));
+    dist_to_boundary(hs, mp, nm, dist, flag);
+    size_t inexact = 0;
+    for (size_t s = 0; s < nm; s++) inexact += (size_t)!flag[s];
+    if (inexact && nb) {
+        /* the few points whose nearest boundary point was not found exactly: also the nearest
+         * boundary sample (both are points of the boundary, so the smaller is the better bound) */
+        btri = malloc(nb * 3 * sizeof(uint32_t));
+        if (!btri) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu boundary samples", nb);
+            goto done;
+        }
+        for (size_t s = 0; s < nb; s++) btri[3 * s] = btri[3 * s + 1] = btri[3 * s + 2] = (uint32_t)s;
+        st = acd_bvh_build(&bs, hp, nb, btri, nb, err);
+        if (st != ACD_OK) goto done;
+        for (size_t s = 0; s < nm; s++) {
+            if (flag[s]) continue;
+            acd_bvh_closest_result q;
+            double lim = isfinite(dist[s]) ? dist[s] * dist[s] : INFINITY;
+            if (acd_bvh_closest(&bs, mp + 3 * s, lim, &q) && sqrt(q.dist2) < dist[s]) dist[s] = sqrt(q.dist2);
+        }
+    }
     sum = 0;
     mx = 0;
-    size_t inexact = 0;
-    for (size_t s = 0; s < n; s++) {
-        int exact;
-        double d = dist_to_union_boundary(c, &bs, mp + 3 * s, &exact);
-        inexact += (size_t)!exact;
-        sum += d;
-        if (d > mx) mx = d;
-    }
-    for (size_t v = 0; v < mesh->nvertices; v++) {
-        int exact;
-        double d = dist_to_union_boundary(c, &bs, mesh->vertices + 3 * v, &exact);
-        inexact += (size_t)!exact;
-        if (d > mx) mx = d;
+    for (size_t s = 0; s < nm; s++) {
+        if (s < n) sum += dist[s];
+        if (dist[s] > mx) mx = dist[s];
     }
     rep->mesh_to_hulls_mean = n ? sum / (double)n / c->diag : 0;
     rep->mesh_to_hulls_max = mx / c->diag;
@@ -420,7 +506,8 @@ done:
     free(hp);
     free(ht);
     free(mp);
-    free(mt);
+    free(dist);
+    free(flag);
     return st;
 }
 
@@ -492,8 +579,8 @@ acd_status acd_eval_hulls(const acd_mesh *mesh, const acd_hull *hulls, size_t nh
     }
     eval_ctx c = {&prm, &sp, &hs, {0}, {0}, out->diagonal};
     for (int k = 0; k < 3; k++) {
-        c.lo[k] = fmin(root->lo[k], hs.bvh.nodes[0].lo[k]);
-        c.hi[k] = fmax(root->hi[k], hs.bvh.nodes[0].hi[k]);
+        c.lo[k] = fmin(root->lo[k], hs.sp.bvh.nodes[0].lo[k]);
+        c.hi[k] = fmax(root->hi[k], hs.sp.bvh.nodes[0].hi[k]);
         if (!(c.hi[k] > c.lo[k])) {
             st = acd_fail(err, ACD_ERR_DEGENERATE, "eval: the mesh and hulls are flat along axis %d", k);
             goto done;

@@ -9,6 +9,7 @@
 
 #include "acd/hull.h"
 #include "geom3/bvh.h"
+#include "geom3/spatial.h"
 
 /* A point pushed this far (relative to the model's diagonal) out of a hull's facet and found in
  * another hull is not on the boundary of the union: hulls closer than this count as touching. */
@@ -32,7 +33,8 @@ typedef struct acd_hullset {
     uint32_t *tri_hull;      /* hull of each triangle */
     double *tri_normal;      /* 3 per triangle: the outward unit normal of its facet */
     double probe;            /* ACD_EVAL_PROBE_REL times the reference diagonal */
-    acd_bvh bvh;             /* over the triangles */
+    acd_spatial sp;          /* over the triangles (a closed mesh: its winding number at a point is
+                                the number of hulls holding it, decided exactly) */
 } acd_hullset;
 
 /* Builds the set from the dim-3 hulls among `hulls` (others are skipped). `diagonal` is the
@@ -43,8 +45,9 @@ void acd_hullset_free(acd_hullset *hs);
 
 /* 1 when p lies in hull h (closed: every plane value <= 0). */
 int acd_hullset_in_hull(const acd_hullset *hs, size_t h, const double p[3]);
-/* Index of a hull other than `skip` (pass SIZE_MAX for none) that holds p, or SIZE_MAX. */
-size_t acd_hullset_find(const acd_hullset *hs, const double p[3], size_t skip);
+/* 1 when a hull other than `skip` (SIZE_MAX for none) holds p (closed hulls; exact ray crossings
+ * over the hulls' triangles, see geom3/spatial.h). */
+int acd_hullset_contains(const acd_hullset *hs, const double p[3], size_t skip);
 /* 1 when the point q on the surface of hull h, with outward direction dir (unit), is on the
  * boundary of the union: q + probe * dir lies in no other hull. */
 int acd_hullset_on_boundary(const acd_hullset *hs, size_t h, const double q[3], const double dir[3]);

@@ -17,13 +17,16 @@
 
 static const double *vtx(const acd_bvh *b, uint32_t i) { return b->vertices + 3 * (size_t)i; }
 
+static inline double min2(double a, double b) { return a < b ? a : b; }
+static inline double max2(double a, double b) { return a > b ? a : b; }
+
 static void tri_box(const acd_bvh *b, uint32_t t, double lo[3], double hi[3]) {
     const uint32_t *tr = b->triangles + 3 * (size_t)t;
     for (int k = 0; k < 3; k++) {
         double x = b->vertices[3 * (size_t)tr[0] + k], y = b->vertices[3 * (size_t)tr[1] + k],
                z = b->vertices[3 * (size_t)tr[2] + k];
-        lo[k] = fmin(x, fmin(y, z));
-        hi[k] = fmax(x, fmax(y, z));
+        lo[k] = min2(x, min2(y, z));
+        hi[k] = max2(x, max2(y, z));
     }
 }
 
@@ -46,6 +49,8 @@ static void box_grow(double lo[3], double hi[3], const double l2[3], const doubl
         if (h2[k] > hi[k]) hi[k] = h2[k];
     }
 }
+
+static double *tbox_sorted(const acd_bvh *b, size_t i) { return b->boxes + 6 * i; }
 
 typedef struct build_item {
     uint32_t node;
@@ -141,10 +146,11 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
     size_t maxnodes = 2 * ntriangles;
     bvh->nodes = malloc(maxnodes * sizeof *bvh->nodes);
     bvh->order = malloc(ntriangles * sizeof *bvh->order);
+    bvh->boxes = malloc(ntriangles * 6 * sizeof(double));
     double *tbox = malloc(ntriangles * 6 * sizeof(double));
     double *cent = malloc(ntriangles * 3 * sizeof(double));
     build_item *stack = malloc(maxnodes * sizeof *stack);
-    if (!bvh->nodes || !bvh->order || !tbox || !cent || !stack) {
+    if (!bvh->nodes || !bvh->order || !bvh->boxes || !tbox || !cent || !stack) {
         free(tbox);
         free(cent);
         free(stack);
@@ -256,6 +262,8 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
         stack[sp++] = (build_item){left, it.start, mid, it.depth + 1};
     }
     bvh->nnodes = nnodes;
+    /* triangle boxes in leaf order, for the queries */
+    for (size_t i = 0; i < ntriangles; i++) memcpy(tbox_sorted(bvh, i), tbox + 6 * (size_t)bvh->order[i], 6 * sizeof(double));
     free(tbox);
     free(cent);
     free(stack);
@@ -266,6 +274,7 @@ void acd_bvh_free(acd_bvh *bvh) {
     if (!bvh) return;
     free(bvh->nodes);
     free(bvh->order);
+    free(bvh->boxes);
     memset(bvh, 0, sizeof *bvh);
 }
 
@@ -511,9 +520,8 @@ int acd_bvh_query_box(const acd_bvh *bvh, const double lo[3], const double hi[3]
         if (n->count) {
             for (uint32_t i = 0; i < n->count; i++) {
                 uint32_t t = bvh->order[n->first + i];
-                double tl[3], th[3];
-                tri_box(bvh, t, tl, th);
-                if (box_meets(tl, th, lo, hi) && fn(user, t)) return 1;
+                const double *tb = tbox_sorted(bvh, n->first + i);
+                if (box_meets(tb, tb + 3, lo, hi) && fn(user, t)) return 1;
             }
             continue;
         }
@@ -524,15 +532,10 @@ int acd_bvh_query_box(const acd_bvh *bvh, const double lo[3], const double hi[3]
     return 0;
 }
 
-static int line_meets(const double lo[3], const double hi[3], const double p[3], int axis, int forward) {
-    for (int k = 0; k < 3; k++) {
-        if (k == axis) {
-            if (forward && hi[k] < p[k]) return 0;
-        } else if (p[k] < lo[k] || p[k] > hi[k]) {
-            return 0;
-        }
-    }
-    return 1;
+static inline int line_meets(const double lo[3], const double hi[3], const double p[3], int axis, int forward) {
+    int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
+    if (p[a1] < lo[a1] || p[a1] > hi[a1] || p[a2] < lo[a2] || p[a2] > hi[a2]) return 0;
+    return !forward || hi[axis] >= p[axis];
 }
 
 int acd_bvh_query_axis_line(const acd_bvh *bvh, const double p[3], int axis, int forward, acd_bvh_tri_fn fn,
@@ -547,9 +550,8 @@ int acd_bvh_query_axis_line(const acd_bvh *bvh, const double p[3], int axis, int
         if (n->count) {
             for (uint32_t i = 0; i < n->count; i++) {
                 uint32_t t = bvh->order[n->first + i];
-                double tl[3], th[3];
-                tri_box(bvh, t, tl, th);
-                if (line_meets(tl, th, p, axis, forward) && fn(user, t)) return 1;
+                const double *tb = tbox_sorted(bvh, n->first + i);
+                if (line_meets(tb, tb + 3, p, axis, forward) && fn(user, t)) return 1;
             }
             continue;
         }

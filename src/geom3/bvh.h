@@ -38,6 +38,7 @@ typedef struct acd_bvh {
                                   their parent (so a reverse sweep visits children first) */
     size_t nnodes;             /* 0 when the mesh has no triangles */
     uint32_t *order;           /* ntriangles: triangle indices, leaf by leaf */
+    double *boxes;             /* 6 * ntriangles: box (lo, hi) of triangle order[i] at 6 * i */
 } acd_bvh;
 
 /* Builds the tree. Fails with ACD_ERR_INVALID_INPUT (naming the triangle) on an index out of

@@ -218,6 +218,17 @@ static int crossing_ahead(const acd_bvh *b, uint32_t t, int s, const double p[3]
     return s * o > 0 ? s : 0;
 }
 
+int acd_spatial_ray_crossing(const acd_spatial *sp, uint32_t t, const double p[3], int *on_surface) {
+    int s = line_cross_sign(&sp->bvh, t, p[1], p[2]);
+    return s ? crossing_ahead(&sp->bvh, t, s, p, on_surface) : 0;
+}
+
+int acd_spatial_line_crossing(const acd_spatial *sp, const acd_spatial_line *line, size_t i, double x,
+                              int *on_surface) {
+    double p[3] = {x, line->y, line->z};
+    return crossing_ahead(&sp->bvh, line->triangles[i], line->signs[i], p, on_surface);
+}
+
 typedef struct ray_ctx {
     const acd_bvh *b;
     const double *p;

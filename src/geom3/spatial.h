@@ -53,6 +53,11 @@ double acd_spatial_distance(const acd_spatial *sp, const double p[3], acd_bvh_cl
  * edges and vertices). *on_surface (may be NULL) is set when p was found on a crossed triangle. */
 int acd_spatial_ray_winding(const acd_spatial *sp, const double p[3], int *on_surface);
 
+/* Contribution of triangle t to acd_spatial_ray_winding(p): +1 or -1 when the ray from p towards
+ * +x crosses it (exactly, with the same symbolic perturbation), else 0; *on_surface set when p
+ * lies on it. For callers that count crossings per group of triangles (eval3d: per hull). */
+int acd_spatial_ray_crossing(const acd_spatial *sp, uint32_t t, const double p[3], int *on_surface);
+
 /* Generalized winding number, hierarchical approximation (any mesh). */
 double acd_spatial_gwn(const acd_spatial *sp, const double p[3]);
 
@@ -80,6 +85,9 @@ acd_status acd_spatial_line_set(const acd_spatial *sp, double y, double z, acd_s
 /* Exact winding number at (x, line->y, line->z) from the line's crossings (closed meshes);
  * *on_surface as for acd_spatial_ray_winding. */
 int acd_spatial_line_winding(const acd_spatial *sp, const acd_spatial_line *line, double x, int *on_surface);
+/* Contribution of the line's crossing i to the winding number at x (see acd_spatial_ray_crossing). */
+int acd_spatial_line_crossing(const acd_spatial *sp, const acd_spatial_line *line, size_t i, double x,
+                              int *on_surface);
 void acd_spatial_line_free(acd_spatial_line *line);
 
 #endif
