@@ -60,21 +60,65 @@ static int in_tri(acd_vec2 a, acd_vec2 b, acd_vec2 c, acd_vec2 q) {
     return acd2_orient_sign(a, b, q) >= 0 && acd2_orient_sign(b, c, q) >= 0 && acd2_orient_sign(c, a, q) >= 0;
 }
 
-/* ear clipping of q[0..m) (counterclockwise); writes m-2 triangles; returns 0 or -1 */
+/* ear clipping of q[0..m) (counterclockwise); writes m-2 triangles; returns 0, -1 (no ear:
+ * degenerate) or -2 (out of memory).
+ * Only reflex vertices can lie in an ear (a convex vertex never becomes reflex while ears are
+ * cut); they are bucketed in a uniform grid over the bounding box, so an ear test looks at the
+ * reflex vertices in the cells its bounding box overlaps, then decides exactly. */
 static int triangulate(acd2_sp_work *w, size_t m) {
     const acd_vec2 *q = w->q;
     size_t *pv = w->prev, *nx = w->next;
-    for (size_t i = 0; i < m; i++) { pv[i] = (i + m - 1) % m; nx[i] = (i + 1) % m; }
+    int *rf = w->tstack; /* reflex flag */
+    double x0 = q[0].x, x1 = q[0].x, y0 = q[0].y, y1 = q[0].y;
+    for (size_t i = 0; i < m; i++) {
+        pv[i] = (i + m - 1) % m;
+        nx[i] = (i + 1) % m;
+        x0 = fmin(x0, q[i].x); x1 = fmax(x1, q[i].x);
+        y0 = fmin(y0, q[i].y); y1 = fmax(y1, q[i].y);
+    }
+    size_t nref = 0;
+    for (size_t i = 0; i < m; i++) {
+        rf[i] = acd2_orient_sign(q[pv[i]], q[i], q[nx[i]]) <= 0;
+        nref += (size_t)rf[i];
+    }
+    size_t G = 1;
+    while (G * G * 2 < nref && G < 1024) G++;
+    double sx = x1 > x0 ? (double)G / (x1 - x0) : 0, sy = y1 > y0 ? (double)G / (y1 - y0) : 0;
+    size_t *cs = calloc(G * G + 1, sizeof *cs), *items = malloc((nref ? nref : 1) * sizeof *items);
+    if (!cs || !items) { free(cs); free(items); return -2; }
+#define CELLX(x) ((size_t)fmin((double)(G - 1), fmax(0.0, ((x) - x0) * sx)))
+#define CELLY(y) ((size_t)fmin((double)(G - 1), fmax(0.0, ((y) - y0) * sy)))
+    for (size_t i = 0; i < m; i++)
+        if (rf[i]) cs[CELLY(q[i].y) * G + CELLX(q[i].x) + 1]++;
+    for (size_t c = 0; c < G * G; c++) cs[c + 1] += cs[c];
+    {
+        size_t *fill = malloc((G * G + 1) * sizeof *fill);
+        if (!fill) { free(cs); free(items); return -2; }
+        memcpy(fill, cs, (G * G + 1) * sizeof *fill);
+        for (size_t i = 0; i < m; i++)
+            if (rf[i]) items[fill[CELLY(q[i].y) * G + CELLX(q[i].x)]++] = i;
+        free(fill);
+    }
     size_t left = m, nt = 0, i = 0, guard = 0;
+    int rc = 0;
     while (left > 3) {
         size_t a = pv[i], c = nx[i];
-        int ear = acd2_orient_sign(q[a], q[i], q[c]) > 0;
+        int ear = !rf[i];
         if (ear) {
-            for (size_t j = nx[c]; j != a; j = nx[j]) {
-                if (acd2_same(q[j], q[a]) || acd2_same(q[j], q[i]) || acd2_same(q[j], q[c])) continue;
-                if (acd2_orient_sign(q[pv[j]], q[j], q[nx[j]]) > 0) continue; /* only reflex can block */
-                if (in_tri(q[a], q[i], q[c], q[j])) { ear = 0; break; }
-            }
+            acd_vec2 A = q[a], B = q[i], C = q[c];
+            double bx0 = fmin(A.x, fmin(B.x, C.x)), bx1 = fmax(A.x, fmax(B.x, C.x));
+            double by0 = fmin(A.y, fmin(B.y, C.y)), by1 = fmax(A.y, fmax(B.y, C.y));
+            size_t cx0 = CELLX(bx0), cx1 = CELLX(bx1), cy0 = CELLY(by0), cy1 = CELLY(by1);
+            for (size_t gy = cy0; gy <= cy1 && ear; gy++)
+                for (size_t gx = cx0; gx <= cx1 && ear; gx++)
+                    for (size_t t = cs[gy * G + gx]; t < cs[gy * G + gx + 1]; t++) {
+                        size_t j = items[t];
+                        if (!rf[j]) continue;
+                        acd_vec2 P = q[j];
+                        if (P.x < bx0 || P.x > bx1 || P.y < by0 || P.y > by1) continue;
+                        if (j == a || j == c || acd2_same(P, A) || acd2_same(P, B) || acd2_same(P, C)) continue;
+                        if (in_tri(A, B, C, P)) { ear = 0; break; }
+                    }
         }
         if (ear) {
             w->tri[3 * nt] = a; w->tri[3 * nt + 1] = i; w->tri[3 * nt + 2] = c;
@@ -82,13 +126,21 @@ static int triangulate(acd2_sp_work *w, size_t m) {
             nx[a] = c;
             pv[c] = a;
             left--;
+            rf[i] = 0;
+            if (rf[a] && acd2_orient_sign(q[pv[a]], q[a], q[nx[a]]) > 0) rf[a] = 0;
+            if (rf[c] && acd2_orient_sign(q[pv[c]], q[c], q[nx[c]]) > 0) rf[c] = 0;
             i = a;
             guard = 0;
         } else {
             i = c;
-            if (++guard > 2 * left) return -1;
+            if (++guard > 2 * left) { rc = -1; break; }
         }
     }
+#undef CELLX
+#undef CELLY
+    free(cs);
+    free(items);
+    if (rc) return rc;
     size_t a = pv[i], c = nx[i];
     w->tri[3 * nt] = a; w->tri[3 * nt + 1] = i; w->tri[3 * nt + 2] = c;
     return 0;
@@ -243,7 +295,9 @@ acd_status acd2_sp_pocket(const acd_vec2 *p, size_t n, size_t a, size_t b, doubl
     if (reserve(w, m + 1)) return ACD_ERR_NOMEM;
     /* Q[i] = chain[k - i]: Q[0] = beta+, Q[k] = beta- */
     for (size_t i = 0; i <= k; i++) w->q[i] = p[(a + k - i) % n];
-    if (triangulate(w, m)) {
+    int tr = triangulate(w, m);
+    if (tr == -2) return ACD_ERR_NOMEM;
+    if (tr) {
         acd2_sl_pocket(p, n, a, b, conc);
         return ACD_OK;
     }

@@ -80,6 +80,7 @@ typedef struct ctx {
     double eps_c;
     acd2_work work;
     double *conc;
+    int64_t *be;
     size_t conc_cap;
     unsigned char *mark;
     int64_t mark_cap;
@@ -150,6 +151,9 @@ static int ensure_buffers(ctx *c, size_t n) {
         double *q = realloc(c->conc, nc * sizeof *q);
         if (!q) return -1;
         c->conc = q;
+        int64_t *b = realloc(c->be, nc * sizeof *b);
+        if (!b) return -1;
+        c->be = b;
         c->conc_cap = nc;
     }
     if (c->next_id + 4 > c->mark_cap) {
@@ -192,6 +196,7 @@ static acd_status add_component(ctx *c, const acd2_ring *r, double conc, int nod
 static void free_ctx(ctx *c) {
     acd2_work_free(&c->work);
     free(c->conc);
+    free(c->be);
     free(c->mark);
     for (size_t i = 0; i < c->nstack; i++) acd2_ring_free(&c->stack[i].ring);
     free(c->stack);
@@ -341,7 +346,7 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
             for (size_t i = 0; i < n0; i++) ids[i] = (int64_t)i;
             size_t w;
             double delta;
-            st = acd2_measure_ring(op, ids, n0, &c.mo, &c.work, c.conc, &w, &delta);
+            st = acd2_measure_ring(op, ids, n0, &c.mo, &c.work, c.conc, &w, &delta, NULL, NULL, NULL);
             free(ids);
             if (st != ACD_OK) { st = acd_fail(err, st, "acd2d: measuring the outer boundary failed (%s)", acd_status_string(st)); goto fail; }
             st = acd2_holes_init(&hs, &P, c.conc, c.co.far, err);
@@ -388,7 +393,12 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
             start_node = cur;
         } else {
             if (acd2_ring_reserve(&start, n0)) { st = acd_fail(err, ACD_ERR_NOMEM, "out of memory"); goto fail; }
-            for (size_t i = 0; i < n0; i++) { start.p[i] = P.points[i]; start.id[i] = (int64_t)i; }
+            for (size_t i = 0; i < n0; i++) {
+                start.p[i] = P.points[i];
+                start.id[i] = (int64_t)i;
+                start.c[i] = 0;
+                start.be[i] = -1;
+            }
             start.n = n0;
         }
     }
@@ -417,14 +427,21 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
         if (ensure_buffers(&c, r->n + 8)) { acd2_ring_free(r); st = acd_fail(err, ACD_ERR_NOMEM, "out of memory"); goto fail; }
         size_t wit;
         double val;
-        st = acd2_measure_ring(r->p, r->id, r->n, &c.mo, &c.work, c.conc, &wit, &val);
+        size_t pi, pj;
+        int pinched = acd2_ring_find_repeat(r, &pi, &pj, c.mark, c.mark_cap);
+        /* the cache is valid for rings with unique ids; be[] is rewritten in place after reading */
+        st = acd2_measure_ring(r->p, r->id, r->n, &c.mo, &c.work, c.conc, &wit, &val, pinched ? NULL : r->be, r->c,
+                               c.be);
         if (st != ACD_OK) {
             acd2_ring_free(r);
             st = acd_fail(err, st, "acd2d: measuring a component of %zu vertices failed (%s)", r->n, acd_status_string(st));
             goto fail;
         }
-        size_t pi, pj;
-        int pinched = acd2_ring_find_repeat(r, &pi, &pj, c.mark, c.mark_cap);
+        memcpy(r->c, c.conc, r->n * sizeof *r->c);
+        if (pinched)
+            for (size_t k = 0; k < r->n; k++) r->be[k] = -1;
+        else
+            memcpy(r->be, c.be, r->n * sizeof *r->be);
         acd2d_node *nd = &c.nodes[node];
         nd->concavity = val;
         nd->acceptable = !pinched;
@@ -542,7 +559,7 @@ double acd2d_concavity_params(const acd_vec2 *pts, size_t n, const acd2d_params 
         for (size_t i = 0; i < n; i++) ids[i] = (int64_t)i;
         acd2_measure_opts o = {params->measure, params->tau, params->notch_tolerance};
         size_t wit;
-        if (acd2_measure_ring(pts, ids, n, &o, &w, conc, &wit, &val) != ACD_OK) val = -1;
+        if (acd2_measure_ring(pts, ids, n, &o, &w, conc, &wit, &val, NULL, NULL, NULL) != ACD_OK) val = -1;
         else if (witness) *witness = wit;
     }
     acd2_work_free(&w);

@@ -52,7 +52,12 @@ void acd2_pa_extremes(const acd_vec2 *p, size_t n, size_t *lo, size_t *hi) {
 static int ring_from(acd2_ring *r, const acd_vec2 *p, size_t n, int64_t id0) {
     memset(r, 0, sizeof *r);
     if (acd2_ring_reserve(r, n)) return -1;
-    for (size_t i = 0; i < n; i++) { r->p[i] = p[i]; r->id[i] = id0 + (int64_t)i; }
+    for (size_t i = 0; i < n; i++) {
+        r->p[i] = p[i];
+        r->id[i] = id0 + (int64_t)i;
+        r->c[i] = 0;
+        r->be[i] = -1;
+    }
     r->n = n;
     return 0;
 }

@@ -70,10 +70,13 @@ static double pocket_max(const double *conc, size_t n, size_t a, size_t b) {
 }
 
 acd_status acd2_measure_ring(const acd_vec2 *p, const int64_t *ids, size_t n, const acd2_measure_opts *o,
-                             acd2_work *w, double *conc, size_t *witness, double *value) {
+                             acd2_work *w, double *conc, size_t *witness, double *value, const int64_t *cache_be,
+                             const double *cache_c, int64_t *out_be) {
     *witness = SIZE_MAX;
     *value = 0;
     for (size_t k = 0; k < n; k++) conc[k] = 0;
+    if (out_be)
+        for (size_t k = 0; k < n; k++) out_be[k] = -1;
     if (n < 3) return ACD_OK;
     if (acd2_work_reserve(w, n)) return ACD_ERR_NOMEM;
     size_t nh = acd2_ring_hull(p, n, w);
@@ -81,6 +84,11 @@ acd_status acd2_measure_ring(const acd_vec2 *p, const int64_t *ids, size_t n, co
     for (size_t h = 0; h < nh; h++) {
         size_t a = w->hull[h], b = w->hull[(h + 1) % nh];
         if (acd2_next(a, n) == b) continue;
+        if (out_be) out_be[a] = ids[b];
+        if (cache_be && cache_c && a < b && cache_be[a] == ids[b]) {
+            for (size_t k = a + 1; k < b; k++) conc[k] = cache_c[k];
+            continue;
+        }
         acd_status st = ACD_OK;
         switch (o->measure) {
         case ACD2D_MEASURE_SL: acd2_sl_pocket(p, n, a, b, conc); break;

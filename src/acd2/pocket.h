@@ -30,8 +30,14 @@ size_t acd2_ring_hull(const acd_vec2 *p, size_t n, acd2_work *w);
 
 /* Measures every vertex of the ring: conc[k] (0 on the hull). *witness receives the notch of
  * largest concavity (ties: smallest id; SIZE_MAX when no vertex is a notch) and *value its
- * concavity (0 when there is none). */
+ * concavity (0 when there is none).
+ * Cache (spec §3.0 [EXT] caching, optional): cache_be/cache_c (may be NULL) are the bridge ends
+ * and concavities of an earlier measurement of a ring this one was cut from, position by
+ * position (ids unique); a bridge (a, b) with a < b whose start carried cache_be[a] == ids[b]
+ * has the same pocket chain, and its values are reused. out_be (may be NULL) receives this
+ * measurement's bridge ends. */
 acd_status acd2_measure_ring(const acd_vec2 *p, const int64_t *ids, size_t n, const acd2_measure_opts *o,
-                             acd2_work *w, double *conc, size_t *witness, double *value);
+                             acd2_work *w, double *conc, size_t *witness, double *value, const int64_t *cache_be,
+                             const double *cache_c, int64_t *out_be);
 
 #endif

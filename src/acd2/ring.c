@@ -14,6 +14,12 @@ int acd2_ring_reserve(acd2_ring *r, size_t cap) {
     int64_t *id = realloc(r->id, nc * sizeof *id);
     if (!id) return -1;
     r->id = id;
+    double *c = realloc(r->c, nc * sizeof *c);
+    if (!c) return -1;
+    r->c = c;
+    int64_t *be = realloc(r->be, nc * sizeof *be);
+    if (!be) return -1;
+    r->be = be;
     r->cap = nc;
     return 0;
 }
@@ -22,6 +28,8 @@ int acd2_ring_push(acd2_ring *r, acd_vec2 p, int64_t id) {
     if (r->n == r->cap && acd2_ring_reserve(r, r->n + 1)) return -1;
     r->p[r->n] = p;
     r->id[r->n] = id;
+    r->c[r->n] = 0;
+    r->be[r->n] = -1;
     r->n++;
     return 0;
 }
@@ -29,6 +37,8 @@ int acd2_ring_push(acd2_ring *r, acd_vec2 p, int64_t id) {
 void acd2_ring_free(acd2_ring *r) {
     free(r->p);
     free(r->id);
+    free(r->c);
+    free(r->be);
     memset(r, 0, sizeof *r);
 }
 
@@ -38,6 +48,8 @@ int acd2_ring_append_range(acd2_ring *dst, const acd2_ring *src, size_t from, si
     for (size_t c = 0; c < count; c++) {
         dst->p[dst->n] = src->p[k];
         dst->id[dst->n] = src->id[k];
+        dst->c[dst->n] = src->c ? src->c[k] : 0;
+        dst->be[dst->n] = src->be ? src->be[k] : -1;
         dst->n++;
         k = acd2_next(k, src->n);
     }
@@ -64,6 +76,8 @@ void acd2_ring_clean(acd2_ring *r) {
             if (k > 0 && acd2_same(r->p[i], r->p[k - 1])) { changed = 1; continue; }
             r->p[k] = r->p[i];
             r->id[k] = r->id[i];
+            r->c[k] = r->c[i];
+            r->be[k] = r->be[i];
             k++;
         }
         while (k > 1 && acd2_same(r->p[k - 1], r->p[0])) { k--; changed = 1; }
@@ -77,9 +91,13 @@ void acd2_ring_clean(acd2_ring *r) {
                 /* delete positions i and c (c may have wrapped to 0) */
                 memmove(r->p + hi, r->p + hi + 1, (r->n - hi - 1) * sizeof *r->p);
                 memmove(r->id + hi, r->id + hi + 1, (r->n - hi - 1) * sizeof *r->id);
+                memmove(r->c + hi, r->c + hi + 1, (r->n - hi - 1) * sizeof *r->c);
+                memmove(r->be + hi, r->be + hi + 1, (r->n - hi - 1) * sizeof *r->be);
                 r->n--;
                 memmove(r->p + lo, r->p + lo + 1, (r->n - lo - 1) * sizeof *r->p);
                 memmove(r->id + lo, r->id + lo + 1, (r->n - lo - 1) * sizeof *r->id);
+                memmove(r->c + lo, r->c + lo + 1, (r->n - lo - 1) * sizeof *r->c);
+                memmove(r->be + lo, r->be + lo + 1, (r->n - lo - 1) * sizeof *r->be);
                 r->n--;
                 changed = 1;
                 break;

@@ -17,6 +17,8 @@
 typedef struct acd2_ring {
     acd_vec2 *p;
     int64_t *id;
+    double *c;    /* last measured concavity (a cache carried into the pieces of a cut) */
+    int64_t *be;  /* at a bridge start: the id of the bridge's end, else -1 (same cache) */
     size_t n, cap;
 } acd2_ring;
 
