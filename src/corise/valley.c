@@ -1,0 +1,232 @@
+/* corise/valley: bridges (hull edges), valleys (shortest vertex paths) and valley concavity,
+ * CoRiSe §3 Step 1, §4 and Eq. 1 (Liu, Xi, Lien, CAD 2016); spec corise.md §2.2-2.3. */
+#include "corise/valley.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/hull.h"
+#include "acd/polygon.h"
+#include "acd2/concavity_sp.h"
+#include "core/error.h"
+#include "core/predicates.h"
+
+/* The projected polygon p[0..m) (chain, closed by the lid p[m-1] -> p[0]) is simple: no two
+ * non-adjacent edges meet, adjacent edges meet only at their shared vertex. O(m^2), exact. */
+static int polygon_is_simple(const acd_vec2 *p, size_t m) {
+    for (size_t i = 0; i < m; i++) {
+        double a0[2] = {p[i].x, p[i].y}, a1[2] = {p[(i + 1) % m].x, p[(i + 1) % m].y};
+        for (size_t j = i + 1; j < m; j++) {
+            double b0[2] = {p[j].x, p[j].y}, b1[2] = {p[(j + 1) % m].x, p[(j + 1) % m].y};
+            int adjacent = j == i + 1 || (i == 0 && j == m - 1);
+            acd_seg_relation r = acd_segments_relation(a0, a1, b0, b1);
+            if (adjacent ? r == ACD_SEG_OVERLAP || r == ACD_SEG_PROPER : r != ACD_SEG_DISJOINT) return 0;
+        }
+    }
+    return 1;
+}
+
+acd_status acd_corise_chain_concavity(const double *vertices, const uint32_t *chain, size_t m, double *conc,
+                                      double *max, size_t *argmax, acd_corise_conc_kind *kind, acd_error *err) {
+    if (!vertices || (!chain && m)) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL chain");
+    if (max) *max = 0;
+    if (argmax) *argmax = 0;
+    if (kind) *kind = ACD_CORISE_CONC_TRIVIAL;
+    if (m < 3) {
+        if (conc)
+            for (size_t t = 0; t < m; t++) conc[t] = 0;
+        return ACD_OK;
+    }
+    acd_vec2 *p = malloc(m * sizeof *p);
+    double *c = conc ? conc : malloc(m * sizeof *c);
+    if (!p || !c) {
+        free(p);
+        if (!conc) free(c);
+        return acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for a valley of %zu vertices", m);
+    }
+    const double *a = vertices + 3 * (size_t)chain[0], *b = vertices + 3 * (size_t)chain[m - 1];
+    double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double L = sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]);
+    double u[3] = {0, 0, 0};
+    if (L > 0)
+        for (int k = 0; k < 3; k++) u[k] = ab[k] / L;
+    int monotone = 1;
+    for (size_t t = 0; t < m; t++) {
+        const double *q = vertices + 3 * (size_t)chain[t];
+        double d[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+        double x = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+        double s = x < 0 ? 0 : x > L ? L : x;
+        double e[3] = {d[0] - s * u[0], d[1] - s * u[1], d[2] - s * u[2]};
+        double y = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        if (t == 0) x = 0, y = 0;
+        if (t == m - 1) x = L, y = 0;
+        p[t].x = x;
+        p[t].y = y;
+        c[t] = y;
+        if (t > 0 && x < p[t - 1].x) monotone = 0;
+    }
+    acd_corise_conc_kind how = ACD_CORISE_CONC_MONOTONE;
+    if (!monotone) {
+        how = ACD_CORISE_CONC_FALLBACK;
+        if (L > 0 && polygon_is_simple(p, m)) {
+            acd2_sp_work w;
+            memset(&w, 0, sizeof w);
+            acd_status st = acd2_sp_pocket(p, m, 0, m - 1, c, &w);
+            acd2_sp_work_free(&w);
+            if (st != ACD_OK) {
+                free(p);
+                if (!conc) free(c);
+                return acd_fail(err, st, "corise: shortest paths in the concavity polygon of a %zu-vertex valley", m);
+            }
+            c[0] = c[m - 1] = 0;
+            how = ACD_CORISE_CONC_SP;
+        }
+    }
+    double best = 0;
+    size_t arg = 0;
+    for (size_t t = 0; t < m; t++)
+        if (c[t] > best) best = c[t], arg = t;
+    if (max) *max = best;
+    if (argmax) *argmax = arg;
+    if (kind) *kind = how;
+    free(p);
+    if (!conc) free(c);
+    return ACD_OK;
+}
+
+/* ---- bridges and valleys ------------------------------------------------------------------ */
+
+typedef struct vpair {
+    uint32_t a, b;
+} vpair;
+
+static int cmp_vpair(const void *x, const void *y) {
+    const vpair *p = x, *q = y;
+    if (p->a != q->a) return p->a < q->a ? -1 : 1;
+    return (p->b > q->b) - (p->b < q->b);
+}
+
+static int cmp_u32(const void *x, const void *y) {
+    uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+    return (a > b) - (a < b);
+}
+
+void acd_corise_bridges_free(acd_corise_bridges *b) {
+    if (!b) return;
+    free(b->bridge);
+    free(b->hull_vertex);
+    free(b->path);
+    memset(b, 0, sizeof *b);
+}
+
+acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g, acd_corise_bridges *out,
+                                      acd_error *err) {
+    if (!m || !g || !out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
+    memset(out, 0, sizeof *out);
+    out->hull_dim = -1;
+    if (g->nvertices != m->nvertices)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: edge graph has %zu vertices, mesh %zu", g->nvertices,
+                        m->nvertices);
+    acd_status st = ACD_OK;
+    uint8_t *used = calloc(m->nvertices ? m->nvertices : 1, 1);
+    uint32_t *ids = malloc((m->nvertices ? m->nvertices : 1) * sizeof *ids);
+    double *pts = malloc((m->nvertices ? m->nvertices : 1) * 3 * sizeof *pts);
+    vpair *pairs = NULL;
+    acd_hull h;
+    memset(&h, 0, sizeof h);
+    if (!used || !ids || !pts) goto nomem;
+    for (size_t t = 0; t < 3 * m->ntriangles; t++) {
+        if (m->triangles[t] >= m->nvertices) {
+            st = acd_fail(err, ACD_ERR_INVALID_INPUT, "corise: triangle %zu uses vertex %u, but the mesh has %zu", t / 3,
+                          m->triangles[t], m->nvertices);
+            goto done;
+        }
+        used[m->triangles[t]] = 1;
+    }
+    size_t np = 0;
+    for (size_t v = 0; v < m->nvertices; v++)
+        if (used[v]) {
+            ids[np] = (uint32_t)v;
+            memcpy(pts + 3 * np, m->vertices + 3 * v, 3 * sizeof(double));
+            np++;
+        }
+    if ((st = acd_hull_compute(pts, np, &h, err)) != ACD_OK) goto done;
+    out->hull_dim = h.dim;
+    if (h.dim < 2 || h.ntriangles == 0) goto done;
+    out->hull_vertex = malloc(h.nvertices * sizeof *out->hull_vertex);
+    if (!out->hull_vertex) goto nomem;
+    for (size_t i = 0; i < h.nvertices; i++) out->hull_vertex[i] = ids[h.source[i]];
+    out->nhull = h.nvertices;
+    qsort(out->hull_vertex, out->nhull, sizeof *out->hull_vertex, cmp_u32);
+    pairs = malloc(3 * h.ntriangles * sizeof *pairs);
+    if (!pairs) goto nomem;
+    size_t ne = 0;
+    for (size_t t = 0; t < h.ntriangles; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t x = ids[h.source[h.triangles[3 * t + k]]], y = ids[h.source[h.triangles[3 * t + (k + 1) % 3]]];
+            if (x == y) continue;
+            pairs[ne++] = (vpair){x < y ? x : y, x < y ? y : x};
+        }
+    qsort(pairs, ne, sizeof *pairs, cmp_vpair);
+    size_t nb = 0;
+    for (size_t i = 0; i < ne; i++)
+        if (i == 0 || cmp_vpair(&pairs[i], &pairs[i - 1]) != 0) pairs[nb++] = pairs[i];
+    out->bridge = calloc(nb ? nb : 1, sizeof *out->bridge);
+    if (!out->bridge) goto nomem;
+    size_t cap_path = 0;
+    for (size_t i = 0; i < nb; i++) {
+        acd_corise_bridge *br = &out->bridge[i];
+        br->a = pairs[i].a;
+        br->b = pairs[i].b;
+        br->first = out->npath;
+        uint32_t *path = NULL;
+        size_t len = 0;
+        double length = 0;
+        acd_error e2;
+        acd_status s2 = acd_shortest_path(g, br->a, br->b, NULL, &path, &len, &length, &e2);
+        if (s2 == ACD_ERR_DEGENERATE) {
+            free(path);
+            br->length = INFINITY;
+            out->unreachable++;
+            continue;
+        }
+        if (s2 != ACD_OK) {
+            free(path);
+            st = acd_fail(err, s2, "corise: valley of bridge (%u, %u): %s", br->a, br->b, e2.message);
+            goto done;
+        }
+        if (out->npath + len > cap_path) {
+            size_t nc = cap_path ? 2 * cap_path : 1024;
+            while (nc < out->npath + len) nc *= 2;
+            uint32_t *np2 = realloc(out->path, nc * sizeof *np2);
+            if (!np2) {
+                free(path);
+                goto nomem;
+            }
+            out->path = np2;
+            cap_path = nc;
+        }
+        memcpy(out->path + out->npath, path, len * sizeof *path);
+        free(path);
+        br->count = len;
+        br->length = length;
+        out->npath += len;
+        st = acd_corise_chain_concavity(m->vertices, out->path + br->first, len, NULL, &br->concavity, &br->deepest,
+                                        &br->kind, err);
+        if (st != ACD_OK) goto done;
+        if (br->kind == ACD_CORISE_CONC_FALLBACK) out->fallbacks++;
+    }
+    out->nbridges = nb;
+    goto done;
+nomem:
+    st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory computing bridges of a %zu-vertex mesh", m->nvertices);
+done:
+    free(used);
+    free(ids);
+    free(pts);
+    free(pairs);
+    acd_hull_free(&h);
+    if (st != ACD_OK) acd_corise_bridges_free(out);
+    return st;
+}

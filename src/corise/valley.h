@@ -1,0 +1,69 @@
+/* corise/valley: bridges, valleys and valley concavity of CoRiSe (G. Liu, Z. Xi, J.-M. Lien,
+ * "Nearly convex segmentation of polyhedra through convex ridge separation", CAD 2016, §3 Step 1,
+ * §4, Eq. 1; spec corise.md §1.2-1.5, §2.2-2.3).
+ *
+ * A bridge is an edge (a, b) of the convex hull of the mesh's vertices; its valley is the
+ * shortest vertex path from a to b along the mesh edges (Dijkstra, Euclidean edge lengths,
+ * deterministic ties: spec A2). The concavity of a valley vertex p is measured in 2D after the
+ * projection of Eq. 1, p' = ((p - a).u, d(p, [a, b])) with u = (b - a)/|b - a| (spec A4: ab
+ * normalised), as the shortest-path distance from p' to the projected bridge [0, |ab|] x {0}
+ * inside the polygon formed by the projected valley and the bridge:
+ *   - x-monotone projected valley (the usual case): C(p) = y, the vertical drop (exact);
+ *   - otherwise, if that polygon is simple: the exact shortest path inside it (the funnel
+ *     algorithm of acd2/concavity_sp, the same SP-concavity as the 2D ACD);
+ *   - otherwise (self-intersecting projection, spec A5): C(p) = y, counted in `fallbacks`.
+ * C(valley) = max over its vertices; deep iff C > tau (spec A9). */
+#ifndef ACD_CORISE_VALLEY_H
+#define ACD_CORISE_VALLEY_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "acd/base.h"
+#include "acd/mesh.h"
+#include "geom3/dijkstra.h"
+
+/* How a chain's concavity was obtained. */
+typedef enum acd_corise_conc_kind {
+    ACD_CORISE_CONC_TRIVIAL = 0, /* fewer than 3 vertices: all 0 */
+    ACD_CORISE_CONC_MONOTONE,    /* x-monotone: vertical drop */
+    ACD_CORISE_CONC_SP,          /* simple non-monotone polygon: shortest path inside it */
+    ACD_CORISE_CONC_FALLBACK     /* self-intersecting projection: vertical drop (spec A5) */
+} acd_corise_conc_kind;
+
+/* Concavity of the chain vertices[chain[0..m)] against its own bridge (chain[0], chain[m-1]),
+ * the construction used for valleys and for the sub-valleys of §4.2. conc (m values, may be NULL)
+ * receives C per vertex (0 at both ends); *max (may be NULL) the maximum and *argmax (may be
+ * NULL) its first index; *kind (may be NULL) how it was computed. Coincident end points give 0
+ * and the distance to the point. */
+acd_status acd_corise_chain_concavity(const double *vertices, const uint32_t *chain, size_t m, double *conc,
+                                      double *max, size_t *argmax, acd_corise_conc_kind *kind, acd_error *err);
+
+typedef struct acd_corise_bridge {
+    uint32_t a, b;        /* mesh vertex ids of the hull edge, a < b */
+    size_t first, count;  /* valley vertices: path[first .. first + count) of the set, a first */
+    double length;        /* valley length (sum of its edge lengths); INFINITY when unreachable */
+    double concavity;     /* C(valley); 0 when unreachable */
+    size_t deepest;       /* index in the valley of the first vertex of maximal concavity */
+    acd_corise_conc_kind kind;
+} acd_corise_bridge;
+
+typedef struct acd_corise_bridges {
+    acd_corise_bridge *bridge; /* sorted by (a, b) */
+    size_t nbridges;
+    uint32_t *hull_vertex;     /* mesh ids of the hull's vertices, increasing */
+    size_t nhull;
+    uint32_t *path;            /* all valleys, one after the other */
+    size_t npath;
+    size_t unreachable;        /* bridges whose ends are not connected on the mesh (spec A13) */
+    size_t fallbacks;          /* valleys measured with the fallback */
+    int hull_dim;              /* affine dimension of the vertex set (3 for a solid) */
+} acd_corise_bridges;
+
+/* Bridges and valleys of the vertices of m used by its triangles, on the edge graph g of m
+ * (acd_edge_graph_from_mesh). A vertex set of affine dimension < 2 gives no bridge. */
+acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g, acd_corise_bridges *out,
+                                      acd_error *err);
+void acd_corise_bridges_free(acd_corise_bridges *b);
+
+#endif
