@@ -36,6 +36,14 @@ static void cross3(const double *a, const double *b, double *r) {
     r[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* Euclidean norm without overflow or underflow of the squares (tiny and huge models). */
+static double norm3_safe(const double *v) {
+    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+    if (!(m > 0) || !isfinite(m)) return m;
+    double a = v[0] / m, b = v[1] / m, c = v[2] / m;
+    return m * sqrt(a * a + b * b + c * c);
+}
+
 acd_status acd_cut_plane_from_points(const double a[3], const double b[3], const double c[3], acd_cut_plane *out,
                                      acd_error *err) {
     memset(out, 0, sizeof *out);
@@ -55,16 +63,15 @@ acd_status acd_cut_plane_from_points(const double a[3], const double b[3], const
     memcpy(out->a, a, sizeof out->a);
     memcpy(out->b, b, sizeof out->b);
     memcpy(out->c, c, sizeof out->c);
-    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]}, n[3];
-    cross3(u, v, n);
-    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(l > 0) || !isfinite(l)) { /* underflow/overflow of the approximate normal: rescale */
-        double s = 0;
-        for (int k = 0; k < 3; k++) s = fmax(s, fmax(fabs(u[k]), fabs(v[k])));
-        for (int k = 0; k < 3; k++) u[k] /= s, v[k] /= s;
-        cross3(u, v, n);
-        l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    /* the normal's components are the projections' orientations: exact signs, adaptive magnitudes,
+     * so even a plane through nearly collinear points gets a usable normal */
+    double n[3];
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        double pa[2] = {a[i], a[j]}, pb[2] = {b[i], b[j]}, pc[2] = {c[i], c[j]};
+        n[k] = acd_orient2d(pa, pb, pc);
     }
+    double l = norm3_safe(n);
     for (int k = 0; k < 3; k++) out->normal[k] = n[k] / l;
     return ACD_OK;
 }
@@ -92,9 +99,7 @@ acd_status acd_cut_plane_from_normal(const double point[3], const double normal[
         b[k] = point[k] + size * u[k];
         c[k] = point[k] + size * w[k];
     }
-    acd_status st = acd_cut_plane_from_points(a, b, c, out, err);
-    if (st == ACD_OK) memcpy(out->normal, n, sizeof n);
-    return st;
+    return acd_cut_plane_from_points(a, b, c, out, err);
 }
 
 int acd_cut_plane_side(const acd_cut_plane *pl, const double v[3]) {
@@ -390,7 +395,7 @@ static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
             double e1[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]}, e2[3] = {pd[0] - pa[0], pd[1] - pa[1], pd[2] - pa[2]};
             double cr[3];
             cross3(e1, e2, cr);
-            res->section_area += 0.5 * sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+            res->section_area += 0.5 * norm3_safe(cr);
             st = push_tri(c, a, b, d, -1, 1); /* - side: outward along +normal */
             if (st == ACD_OK) st = push_tri(c, a, d, b, +1, 1);
         }
