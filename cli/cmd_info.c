@@ -11,6 +11,7 @@
 static void usage(FILE *f) {
     fprintf(f,
             "usage: acd info MESH [--json] [--no-self-intersections] [--components]\n"
+            "                     [--repair OUT [--weld-tolerance T] [--fill-holes N]]\n"
             "\n"
             "Reads MESH (OBJ, OFF, PLY or STL, optionally gzip-compressed; format from the content) and\n"
             "reports its vertices, faces, edges, boundary and non-manifold edges and vertices, connected\n"
@@ -19,12 +20,32 @@ static void usage(FILE *f) {
             "\n"
             "  --json                    print the report as one JSON object\n"
             "  --no-self-intersections   skip the self-intersection test (the slowest part)\n"
-            "  --components              also list every connected component\n");
+            "  --components              also list every connected component\n"
+            "  --repair OUT              repair the mesh (weld, drop degenerate and duplicate faces, orient\n"
+            "                            consistently, closed parts outward), write it to OUT (format from\n"
+            "                            the extension, .gz compresses) and report on the repaired mesh\n"
+            "  --weld-tolerance T        with --repair: weld vertices within T times the bounding-box\n"
+            "                            diagonal (default 0: equal coordinates only)\n"
+            "  --fill-holes N            with --repair: fill boundary loops of at most N edges (default 0)\n");
 }
 
-static cJSON *report_json(const char *path, const acd_mesh_report *r, int list_components) {
+static cJSON *report_json(const char *path, const acd_mesh_report *r, int list_components,
+                          const acd_repair_stats *st) {
     cJSON *o = cJSON_CreateObject();
     if (!o) return NULL;
+    if (st) {
+        cJSON *rp = cJSON_AddObjectToObject(o, "repair");
+        if (rp) {
+            cJSON_AddNumberToObject(rp, "vertices_merged", (double)st->vertices_merged);
+            cJSON_AddNumberToObject(rp, "degenerate_dropped", (double)st->degenerate_dropped);
+            cJSON_AddNumberToObject(rp, "duplicates_dropped", (double)st->duplicates_dropped);
+            cJSON_AddNumberToObject(rp, "faces_flipped", (double)st->faces_flipped);
+            cJSON_AddNumberToObject(rp, "nonorientable_parts", (double)st->nonorientable_parts);
+            cJSON_AddNumberToObject(rp, "holes_filled", (double)st->holes_filled);
+            cJSON_AddNumberToObject(rp, "hole_faces_added", (double)st->hole_faces_added);
+            cJSON_AddNumberToObject(rp, "unused_vertices_dropped", (double)st->unused_vertices_dropped);
+        }
+    }
     cJSON_AddStringToObject(o, "file", path);
     cJSON_AddNumberToObject(o, "vertices", (double)r->vertices);
     cJSON_AddNumberToObject(o, "faces", (double)r->faces);
@@ -80,7 +101,14 @@ static cJSON *report_json(const char *path, const acd_mesh_report *r, int list_c
     return o;
 }
 
-static void print_text(const char *path, const acd_mesh_report *r, int list_components) {
+static void print_text(const char *path, const acd_mesh_report *r, int list_components,
+                       const acd_repair_stats *st) {
+    if (st)
+        printf("repair                %zu vertices merged, %zu degenerate and %zu duplicate faces dropped, %zu faces "
+               "flipped, %zu holes filled (%zu faces), %zu unused vertices dropped%s\n",
+               st->vertices_merged, st->degenerate_dropped, st->duplicates_dropped, st->faces_flipped, st->holes_filled,
+               st->hole_faces_added, st->unused_vertices_dropped,
+               st->nonorientable_parts ? " (some parts are not orientable)" : "");
     printf("file                  %s\n", path);
     printf("vertices              %zu (%zu unused)\n", r->vertices, r->unused_vertices);
     printf("faces                 %zu\n", r->faces);
@@ -117,8 +145,9 @@ static void print_text(const char *path, const acd_mesh_report *r, int list_comp
 }
 
 int acd_cmd_info(int argc, char **argv) {
-    const char *path = NULL;
+    const char *path = NULL, *repair_out = NULL;
     int json = 0, selfx = 1, comps = 0;
+    acd_repair_options ro = acd_repair_default_options();
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage(stdout);
@@ -129,6 +158,23 @@ int acd_cmd_info(int argc, char **argv) {
             selfx = 0;
         } else if (!strcmp(argv[i], "--components")) {
             comps = 1;
+        } else if (!strcmp(argv[i], "--repair") || !strcmp(argv[i], "--weld-tolerance") ||
+                   !strcmp(argv[i], "--fill-holes")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "acd info: option %s needs a value\n", argv[i]);
+                return ACD_EXIT_USAGE;
+            }
+            const char *opt = argv[i++];
+            if (!strcmp(opt, "--repair")) repair_out = argv[i];
+            else if (!strcmp(opt, "--weld-tolerance")) {
+                if (!acd_cli_parse_double("info", opt, argv[i], &ro.weld_tolerance)) return ACD_EXIT_USAGE;
+                if (ro.weld_tolerance < 0) {
+                    fprintf(stderr, "acd info: --weld-tolerance must be >= 0\n");
+                    return ACD_EXIT_USAGE;
+                }
+            } else if (!acd_cli_parse_size("info", opt, argv[i], &ro.fill_holes_max_edges)) {
+                return ACD_EXIT_USAGE;
+            }
         } else if (argv[i][0] == '-' && argv[i][1]) {
             fprintf(stderr, "acd info: unknown option '%s'\n", argv[i]);
             usage(stderr);
@@ -147,13 +193,20 @@ int acd_cmd_info(int argc, char **argv) {
     acd_error err;
     acd_mesh m;
     if (acd_mesh_read(path, &m, &err) != ACD_OK) return acd_cli_report("info", &err);
+    acd_repair_stats st;
+    if (repair_out) {
+        if (acd_mesh_repair(&m, &ro, &st, &err) != ACD_OK || acd_mesh_write(repair_out, &m, ACD_MESH_FORMAT_AUTO, &err) != ACD_OK) {
+            acd_mesh_free(&m);
+            return acd_cli_report("info", &err);
+        }
+    }
     acd_mesh_report r;
     acd_status s = acd_mesh_validate(&m, selfx, &r, &err);
     acd_mesh_free(&m);
     if (s != ACD_OK) return acd_cli_report("info", &err);
     int rc = ACD_EXIT_OK;
     if (json) {
-        cJSON *o = report_json(path, &r, comps);
+        cJSON *o = report_json(path, &r, comps, repair_out ? &st : NULL);
         char *text = o ? cJSON_Print(o) : NULL;
         if (text) printf("%s\n", text);
         else {
@@ -163,7 +216,7 @@ int acd_cmd_info(int argc, char **argv) {
         free(text);
         cJSON_Delete(o);
     } else {
-        print_text(path, &r, comps);
+        print_text(path, &r, comps, repair_out ? &st : NULL);
     }
     acd_mesh_report_free(&r);
     return rc;

@@ -149,6 +149,45 @@ void acd_mesh_report_free(acd_mesh_report *r);
 acd_status acd_mesh_self_intersections(const acd_mesh *m, size_t *count, uint32_t *pairs, size_t max_pairs,
                                        acd_error *err);
 
+/* ---------------------------------------------------------------------------------------
+ * Repair (src/mesh/weld.c, src/mesh/repair.c) */
+
+/* Merges vertices: tol_rel == 0 merges exactly equal coordinates; tol_rel > 0 merges vertices
+ * within tol_rel * (bounding-box diagonal) in every coordinate, chained transitively, each cluster
+ * keeping its first vertex's position. Triangles are remapped; the vertices left are numbered in
+ * order of first occurrence. *merged (may be NULL) gets the number of vertices removed. */
+acd_status acd_mesh_weld(acd_mesh *m, double tol_rel, size_t *merged, acd_error *err);
+
+typedef struct acd_repair_options {
+    int weld;                    /* merge vertices first (default 1) */
+    double weld_tolerance;       /* relative to the bounding-box diagonal; 0: exact (default 0) */
+    int drop_degenerate;         /* drop faces with a repeated vertex or zero area (default 1) */
+    int drop_duplicates;         /* drop faces with the vertex set of an earlier face (default 1) */
+    int orient;                  /* orient consistently, closed parts outward (default 1) */
+    size_t fill_holes_max_edges; /* fill boundary loops of at most this many edges (default 0: none) */
+    int drop_unused_vertices;    /* remove vertices no face uses (default 1) */
+} acd_repair_options;
+
+acd_repair_options acd_repair_default_options(void);
+
+typedef struct acd_repair_stats {
+    size_t vertices_merged;
+    size_t degenerate_dropped;
+    size_t duplicates_dropped;
+    size_t faces_flipped;          /* faces whose orientation was reversed */
+    size_t nonorientable_parts;    /* parts oriented as far as possible (a spanning tree) */
+    size_t holes_filled;
+    size_t hole_faces_added;
+    size_t unused_vertices_dropped;
+} acd_repair_stats;
+
+/* Repairs m in place, in this order: weld, drop degenerate faces, drop duplicate faces, orient,
+ * fill small holes (fans from the loop's first vertex), orient again (closed parts outward),
+ * drop unused vertices. Orientation: within each part connected through manifold edges, faces
+ * are flipped to agree with the part's first face; a closed part with negative volume is then
+ * reversed, an open part keeps the orientation of the majority of its faces. stats may be NULL. */
+acd_status acd_mesh_repair(acd_mesh *m, const acd_repair_options *opt, acd_repair_stats *stats, acd_error *err);
+
 #ifdef __cplusplus
 }
 #endif

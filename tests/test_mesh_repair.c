@@ -1,0 +1,212 @@
+/* Tests of mesh repair: a cube given as a badly oriented soup with defects comes out as the
+ * closed outward unit cube; holes are filled; tolerance welding; non-orientable input survives. */
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/mesh.h"
+#include "core/rng.h"
+
+static const double cube_v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                    {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+static const uint32_t cube_t[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                       {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+
+/* The cube as a soup (3 vertices per face) with noise of size `noise` on the copies. */
+static void cube_soup(acd_mesh *m, double noise, uint64_t seed) {
+    acd_rng r;
+    acd_rng_seed(&r, seed);
+    m->nvertices = 36;
+    m->ntriangles = 12;
+    m->vertices = malloc(36 * 3 * sizeof(double));
+    m->triangles = malloc(12 * 3 * sizeof(uint32_t));
+    assert_non_null(m->vertices);
+    assert_non_null(m->triangles);
+    for (int t = 0; t < 12; t++)
+        for (int k = 0; k < 3; k++) {
+            for (int d = 0; d < 3; d++)
+                m->vertices[9 * t + 3 * k + d] = cube_v[cube_t[t][k]][d] + noise * (acd_rng_uniform(&r) - 0.5);
+            m->triangles[3 * t + k] = (uint32_t)(3 * t + k);
+        }
+}
+
+static void report(const acd_mesh *m, acd_mesh_report *r) {
+    acd_error err;
+    if (acd_mesh_validate(m, 1, r, &err) != ACD_OK) fail_msg("%s", err.message);
+}
+
+static void push_face(acd_mesh *m, uint32_t a, uint32_t b, uint32_t c) {
+    m->triangles = realloc(m->triangles, (m->ntriangles + 1) * 3 * sizeof(uint32_t));
+    assert_non_null(m->triangles);
+    m->triangles[3 * m->ntriangles] = a;
+    m->triangles[3 * m->ntriangles + 1] = b;
+    m->triangles[3 * m->ntriangles + 2] = c;
+    m->ntriangles++;
+}
+
+static void test_soup_to_closed_cube(void **state) {
+    (void)state;
+    acd_mesh m;
+    cube_soup(&m, 0, 1);
+    /* flip some faces, add a duplicate (reversed), a zero-area face and a face repeating a vertex */
+    for (int t = 0; t < 12; t += 3) {
+        uint32_t x = m.triangles[3 * t + 1];
+        m.triangles[3 * t + 1] = m.triangles[3 * t + 2];
+        m.triangles[3 * t + 2] = x;
+    }
+    push_face(&m, m.triangles[5], m.triangles[4], m.triangles[3]);
+    push_face(&m, 0, 0, 1);
+    push_face(&m, 0, 1, 1);
+    acd_mesh_report r;
+    report(&m, &r);
+    assert_int_equal(r.vertices, 36);
+    assert_false(r.closed);
+    acd_mesh_report_free(&r);
+
+    acd_repair_options o = acd_repair_default_options();
+    acd_repair_stats st;
+    acd_error err;
+    assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+    assert_int_equal(st.vertices_merged, 28);
+    assert_int_equal(st.degenerate_dropped, 2);
+    assert_int_equal(st.duplicates_dropped, 1);
+    assert_true(st.faces_flipped > 0);
+    report(&m, &r);
+    assert_int_equal(r.vertices, 8);
+    assert_int_equal(r.faces, 12);
+    assert_true(r.closed && r.oriented);
+    assert_int_equal(r.genus, 0);
+    assert_true(fabs(r.volume - 1) < 1e-15);
+    assert_int_equal(r.degenerate_faces, 0);
+    assert_int_equal(r.duplicate_faces, 0);
+    assert_int_equal(r.self_intersections, 0);
+    acd_mesh_report_free(&r);
+    acd_mesh_free(&m);
+}
+
+static void test_inside_out_is_reversed(void **state) {
+    (void)state;
+    acd_mesh m;
+    cube_soup(&m, 0, 2);
+    for (int t = 0; t < 12; t++) {
+        uint32_t x = m.triangles[3 * t + 1];
+        m.triangles[3 * t + 1] = m.triangles[3 * t + 2];
+        m.triangles[3 * t + 2] = x;
+    }
+    acd_repair_options o = acd_repair_default_options();
+    acd_repair_stats st;
+    acd_error err;
+    assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+    assert_int_equal(st.faces_flipped, 12);
+    acd_mesh_report r;
+    report(&m, &r);
+    assert_true(r.volume > 0.999999 && r.oriented);
+    acd_mesh_report_free(&r);
+    acd_mesh_free(&m);
+}
+
+static void test_fill_holes(void **state) {
+    (void)state;
+    acd_mesh m;
+    cube_soup(&m, 0, 3);
+    /* remove the top (faces 2, 3) and one side (faces 4, 5) */
+    memmove(m.triangles + 6, m.triangles + 18, 6 * 3 * sizeof(uint32_t));
+    memmove(m.triangles + 24, m.triangles + 30, 2 * 3 * sizeof(uint32_t));
+    m.ntriangles = 8;
+    acd_mesh copy;
+    acd_error err;
+    assert_int_equal(acd_mesh_copy(&copy, &m, &err), ACD_OK);
+    acd_repair_options o = acd_repair_default_options();
+    acd_repair_stats st;
+    /* the hole has 6 edges: a limit of 5 leaves it open */
+    o.fill_holes_max_edges = 5;
+    assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+    assert_int_equal(st.holes_filled, 0);
+    acd_mesh_report r;
+    report(&m, &r);
+    assert_int_equal(r.boundary_edges, 6);
+    acd_mesh_report_free(&r);
+    o.fill_holes_max_edges = 6;
+    assert_int_equal(acd_mesh_repair(&copy, &o, &st, &err), ACD_OK);
+    assert_int_equal(st.holes_filled, 1);
+    assert_int_equal(st.hole_faces_added, 4);
+    report(&copy, &r);
+    assert_true(r.closed && r.oriented);
+    assert_int_equal(r.faces, 12);
+    /* a fan over a non-planar loop: the volume is not 1, but positive (outward) */
+    assert_true(r.volume > 0);
+    acd_mesh_report_free(&r);
+    acd_mesh_free(&m);
+    acd_mesh_free(&copy);
+}
+
+static void test_tolerance_weld(void **state) {
+    (void)state;
+    acd_mesh m;
+    cube_soup(&m, 1e-9, 4);
+    acd_error err;
+    size_t merged;
+    acd_mesh c;
+    assert_int_equal(acd_mesh_copy(&c, &m, &err), ACD_OK);
+    assert_int_equal(acd_mesh_weld(&c, 0, &merged, &err), ACD_OK);
+    assert_int_equal(merged, 0); /* exact: noisy copies all differ */
+    acd_mesh_free(&c);
+    assert_int_equal(acd_mesh_weld(&m, 1e-8, &merged, &err), ACD_OK);
+    assert_int_equal(merged, 28);
+    assert_int_equal(m.nvertices, 8);
+    acd_mesh_report r;
+    report(&m, &r);
+    assert_true(r.closed);
+    acd_mesh_report_free(&r);
+    assert_int_equal(acd_mesh_weld(&m, -1, &merged, &err), ACD_ERR_INVALID_ARGUMENT);
+    acd_mesh_free(&m);
+}
+
+static void test_nonorientable_survives(void **state) {
+    (void)state;
+    /* Moebius strip */
+    int n = 12;
+    acd_mesh m = {malloc((size_t)(2 * n) * 3 * sizeof(double)), (size_t)(2 * n),
+                  malloc((size_t)(2 * n) * 3 * sizeof(uint32_t)), (size_t)(2 * n)};
+    assert_non_null(m.vertices);
+    assert_non_null(m.triangles);
+    for (int i = 0; i < n; i++) {
+        double u = 6.283185307179586 * i / n;
+        for (int s = 0; s < 2; s++) {
+            double w = s ? 0.3 : -0.3;
+            m.vertices[3 * (2 * i + s)] = (1 + w * cos(u / 2)) * cos(u);
+            m.vertices[3 * (2 * i + s) + 1] = (1 + w * cos(u / 2)) * sin(u);
+            m.vertices[3 * (2 * i + s) + 2] = w * sin(u / 2);
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        uint32_t a = (uint32_t)(2 * i), c = a + 1, a2 = (uint32_t)(2 * ((i + 1) % n)), c2 = a2 + 1;
+        if (i == n - 1) {
+            uint32_t x = a2;
+            a2 = c2;
+            c2 = x;
+        }
+        uint32_t t[6] = {a, a2, c2, a, c2, c};
+        memcpy(m.triangles + 6 * i, t, sizeof t);
+    }
+    acd_repair_options o = acd_repair_default_options();
+    o.fill_holes_max_edges = 100;
+    acd_repair_stats st;
+    acd_error err;
+    assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+    assert_int_equal(st.nonorientable_parts, 1);
+    acd_mesh_free(&m);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_soup_to_closed_cube),
+        cmocka_unit_test(test_inside_out_is_reversed),
+        cmocka_unit_test(test_fill_holes),
+        cmocka_unit_test(test_tolerance_weld),
+        cmocka_unit_test(test_nonorientable_survives),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
