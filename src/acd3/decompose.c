@@ -1,0 +1,330 @@
+/* acd3/decompose: Algorithm 1 for polyhedra, solid mode (dissertation Ch. III and §V.B;
+ * paper §3-§4; spec acd3d.md §2, §7.1).
+ *
+ *   queue <- [P]
+ *   while queue: C <- pop; measure C (acd3/measure); if concavity(C) <= tau: C is a leaf;
+ *                else split C by the first candidate plane (acd3/resolve) that gives two or more
+ *                solids (acd_plane_cut caps every section), and queue the pieces.
+ *
+ * The tree of all parts is kept (node 0 is the input). Nodes are processed in creation order, so
+ * the result does not depend on anything but the input and the parameters. The recursion always
+ * terminates: a part no candidate can split, or one at max_depth, becomes a leaf with its reason. */
+#include "acd/acd3d.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "acd/hull.h"
+#include "acd3/measure.h"
+#include "acd3/resolve.h"
+#include "core/error.h"
+#include "core/tolerance.h"
+#include "geom3/dijkstra.h"
+#include "geom3/edge_map.h"
+#include "geom3/plane_cut.h"
+#include "geom3/sphere.h"
+
+/* A piece whose volume is below this fraction of its parent's is a sliver: the cut that made it
+ * is rejected. */
+#define ACD3_MIN_PIECE_FRACTION 1e-6
+/* Safety net on the number of nodes of the tree. */
+#define ACD3_MAX_NODES 20000
+
+acd3d_params acd3d_default_params(void) {
+    acd3d_params p;
+    memset(&p, 0, sizeof p);
+    p.cookie = ACD3D_PARAMS_COOKIE;
+    p.tau = 0.05;
+    p.mode = ACD3D_SOLID;
+    p.eps_ratio = 0.5;
+    p.delta_ratio = 0.1;
+    p.weight = ACD3D_WEIGHT_RATIO;
+    p.max_depth = 48;
+    return p;
+}
+
+typedef struct work_node {
+    acd3d_node node;
+    acd_mesh mesh;
+    size_t depth;
+} work_node;
+
+typedef struct tree {
+    work_node *a;
+    size_t n, cap;
+} tree;
+
+static int tree_push(tree *t, int parent, acd_mesh *mesh, size_t depth) {
+    if (t->n == t->cap) {
+        size_t nc = t->cap ? 2 * t->cap : 16;
+        work_node *na = realloc(t->a, nc * sizeof *na);
+        if (!na) return 0;
+        t->a = na;
+        t->cap = nc;
+    }
+    work_node *w = &t->a[t->n++];
+    memset(w, 0, sizeof *w);
+    w->node.parent = parent;
+    w->node.first_child = -1;
+    w->node.part = -1;
+    w->mesh = *mesh;
+    w->depth = depth;
+    w->node.volume = acd_geom3_signed_volume(mesh);
+    return 1;
+}
+
+static acd_status hull_mesh(const acd_mesh *m, acd_mesh *out, double *volume, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    acd_hull h;
+    acd_status st = acd_hull_compute(m->vertices, m->nvertices, &h, err);
+    if (st != ACD_OK) return st;
+    *volume = h.volume;
+    out->vertices = h.vertices;
+    out->nvertices = h.nvertices;
+    out->triangles = h.triangles;
+    out->ntriangles = h.ntriangles;
+    h.vertices = NULL;
+    h.triangles = NULL;
+    acd_hull_free(&h);
+    return ACD_OK;
+}
+
+static acd_status check_input(const acd_mesh *m, acd_error *err) {
+    if (m->nvertices == 0 || m->ntriangles == 0)
+        return acd_fail(err, ACD_ERR_DEGENERATE, "the mesh is empty (%zu vertices, %zu triangles)", m->nvertices,
+                        m->ntriangles);
+    for (size_t i = 0; i < 3 * m->nvertices; i++)
+        if (!isfinite(m->vertices[i]))
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "vertex %zu has a non-finite coordinate", i / 3);
+    for (size_t i = 0; i < 3 * m->ntriangles; i++)
+        if (m->triangles[i] >= m->nvertices)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "triangle %zu refers to vertex %u of %zu", i / 3,
+                            m->triangles[i], m->nvertices);
+    return ACD_OK;
+}
+
+/* How many splitting candidates are compared (each costs a measure of its pieces). */
+#define ACD3_COMPARED_CANDIDATES 4
+
+/* Largest concavity over the pieces of a cut; < 0 on failure. */
+static double pieces_concavity(const acd_cut_result *cut, double eps, double tol) {
+    double worst = 0;
+    for (size_t k = 0; k < cut->npieces; k++) {
+        const acd_mesh *pm = &cut->pieces[k].mesh;
+        acd_edge_graph pg;
+        acd3_measure pms;
+        if (acd_edge_graph_from_mesh(pm->vertices, pm->nvertices, pm->triangles, pm->ntriangles, &pg, NULL) != ACD_OK)
+            return -1;
+        acd_status st = acd3_measure_compute(pm, &pg, eps, tol, &pms, NULL);
+        acd_edge_graph_free(&pg);
+        if (st != ACD_OK) return -1;
+        if (pms.concavity > worst) worst = pms.concavity;
+        acd3_measure_free(&pms);
+    }
+    return worst;
+}
+
+/* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
+ * piece concavity (up to tol), then the fewest pieces, then the candidates' order. On success the
+ * pieces are in *cut (caller frees) and *used is the plane. Returns 1 if split, 0 if no candidate
+ * splits, -1 when out of memory. */
+static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
+                     double tol, acd_cut_result *cut, acd3_plane_candidate *used, acd_error *err) {
+    acd3_plane_candidate cand[ACD3_MAX_CANDIDATES];
+    int nc = acd3_cut_candidates(m, g, ms, cand);
+    double vol = acd_geom3_signed_volume(m);
+    int found = 0, compared = 0;
+    double best_c = INFINITY;
+    size_t best_n = 0;
+    for (int i = 0; i < nc && compared < ACD3_COMPARED_CANDIDATES; i++) {
+        acd_cut_plane pl;
+        if (acd_cut_plane_from_normal(cand[i].point, cand[i].normal, extent, &pl, NULL) != ACD_OK) continue;
+        acd_cut_result trial;
+        acd_error cerr;
+        if (acd_plane_cut(m, &pl, &trial, &cerr) != ACD_OK) {
+            if (cerr.status == ACD_ERR_NOMEM) {
+                if (found) acd_cut_result_free(cut);
+                *err = cerr;
+                return -1;
+            }
+            continue;
+        }
+        int ok = trial.npieces >= 2;
+        for (size_t k = 0; ok && k < trial.npieces; k++)
+            if (acd_geom3_signed_volume(&trial.pieces[k].mesh) < ACD3_MIN_PIECE_FRACTION * vol) ok = 0;
+        if (!ok) {
+            acd_cut_result_free(&trial);
+            continue;
+        }
+        compared++;
+        double c = pieces_concavity(&trial, eps, tol);
+        if (c < 0) c = INFINITY;
+        int better = !found || c < best_c - tol || (c <= best_c + tol && trial.npieces < best_n);
+        if (better) {
+            if (found) acd_cut_result_free(cut);
+            *cut = trial;
+            *used = cand[i];
+            best_c = c;
+            best_n = trial.npieces;
+            found = 1;
+        } else {
+            acd_cut_result_free(&trial);
+        }
+    }
+    return found;
+}
+
+acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    if (!params || params->cookie != ACD3D_PARAMS_COOKIE)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd3d_params not initialised by acd3d_default_params");
+    if (!(params->tau >= 0) || !isfinite(params->tau))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "tau must be a finite number >= 0");
+    if (params->mode != ACD3D_SOLID)
+        return acd_fail(err, ACD_ERR_UNSUPPORTED, "surface mode is not implemented yet");
+    acd_status st = check_input(mesh, err);
+    if (st != ACD_OK) return st;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+
+    /* solid mode: the input must be closed and consistently oriented */
+    acd_edge_map em;
+    st = acd_edge_map_build(mesh->triangles, mesh->ntriangles, NULL, &em, err);
+    if (st != ACD_OK) return st;
+    acd_error cerr;
+    st = acd_edge_map_check_closed(&em, mesh->triangles, mesh->ntriangles, &cerr);
+    acd_edge_map_free(&em);
+    if (st != ACD_OK)
+        return acd_fail(err, st, "solid mode needs a closed, consistently oriented mesh: %.400s", cerr.message);
+    double vol = acd_geom3_signed_volume(mesh);
+    if (!(vol > 0))
+        return acd_fail(err, ACD_ERR_DEGENERATE,
+                        "the mesh encloses no positive volume (%g): it is flat or oriented inward", vol);
+
+    acd_sphere sph;
+    st = acd_min_sphere(mesh->vertices, mesh->nvertices, &sph, err);
+    if (st != ACD_OK) return st;
+    acd_scale sc = acd_scale_of_points(mesh->vertices, mesh->nvertices, 3);
+    out->scale = sph.radius;
+    out->tau = params->tau_absolute ? params->tau : params->tau * sph.radius;
+    out->input_volume = vol;
+    double tau = out->tau, eps = params->eps_ratio * tau;
+
+    tree t = {0};
+    acd_mesh root;
+    st = acd_mesh_copy(&root, mesh, err);
+    if (st != ACD_OK) return st;
+    if (!tree_push(&t, -1, &root, 0)) {
+        acd_mesh_free(&root);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    size_t nleaves = 0;
+    for (size_t i = 0; i < t.n; i++) {
+        if (params->progress && params->progress(params->progress_user, -1.0, "3d: measuring and cutting")) {
+            st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled after %zu parts", nleaves);
+            goto fail;
+        }
+        acd_mesh *m = &t.a[i].mesh;
+        acd_edge_graph g;
+        st = acd_edge_graph_from_mesh(m->vertices, m->nvertices, m->triangles, m->ntriangles, &g, err);
+        if (st != ACD_OK) goto fail;
+        acd3_measure ms;
+        st = acd3_measure_compute(m, &g, eps, sc.dist, &ms, err);
+        if (st != ACD_OK) {
+            acd_edge_graph_free(&g);
+            goto fail;
+        }
+        t.a[i].node.concavity = ms.concavity;
+        acd3d_leaf_reason reason = ACD3D_LEAF_NONE;
+        if (ms.hull.dim < 3) reason = ACD3D_LEAF_FLAT;
+        else if (ms.concavity <= tau + sc.dist) reason = ACD3D_LEAF_TAU; /* tau = 0: up to rounding */
+        else if (t.a[i].depth >= params->max_depth) reason = ACD3D_LEAF_DEPTH;
+        else if (t.n >= ACD3_MAX_NODES) reason = ACD3D_LEAF_DEPTH;
+        acd_cut_result cut;
+        acd3_plane_candidate used;
+        int split = 0;
+        if (reason == ACD3D_LEAF_NONE) {
+            split = try_split(m, &g, &ms, sc.extent, eps, sc.dist, &cut, &used, err);
+            if (split < 0) {
+                st = ACD_ERR_NOMEM;
+                acd3_measure_free(&ms);
+                acd_edge_graph_free(&g);
+                goto fail;
+            }
+            if (!split) reason = ACD3D_LEAF_NO_CUT;
+        }
+        acd3_measure_free(&ms);
+        acd_edge_graph_free(&g);
+        if (!split) {
+            t.a[i].node.leaf_reason = reason;
+            nleaves++;
+            continue;
+        }
+        /* plane n.x + d = 0 */
+        double *cp = t.a[i].node.cut_plane;
+        memcpy(cp, used.normal, sizeof(double[3]));
+        cp[3] = -(used.normal[0] * used.point[0] + used.normal[1] * used.point[1] + used.normal[2] * used.point[2]);
+        t.a[i].node.first_child = (int)t.n;
+        t.a[i].node.nchildren = (int)cut.npieces;
+        size_t depth = t.a[i].depth + 1;
+        for (size_t k = 0; k < cut.npieces; k++) {
+            acd_mesh piece = cut.pieces[k].mesh;
+            memset(&cut.pieces[k].mesh, 0, sizeof piece);
+            if (!tree_push(&t, (int)i, &piece, depth)) {
+                acd_mesh_free(&piece);
+                acd_cut_result_free(&cut);
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+                goto fail;
+            }
+        }
+        acd_cut_result_free(&cut);
+        /* the interior node's mesh is no longer needed */
+        acd_mesh_free(&t.a[i].mesh);
+    }
+
+    /* results: nodes, parts (leaves in node order) with hulls */
+    out->nodes = calloc(t.n, sizeof *out->nodes);
+    out->parts = calloc(nleaves ? nleaves : 1, sizeof *out->parts);
+    if (!out->nodes || !out->parts) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+        goto fail;
+    }
+    out->nnodes = t.n;
+    for (size_t i = 0; i < t.n; i++) {
+        out->nodes[i] = t.a[i].node;
+        if (t.a[i].node.first_child >= 0) continue;
+        acd3d_part *p = &out->parts[out->nparts];
+        p->mesh = t.a[i].mesh;
+        memset(&t.a[i].mesh, 0, sizeof t.a[i].mesh);
+        p->concavity = t.a[i].node.concavity;
+        p->volume = t.a[i].node.volume;
+        p->node = (int)i;
+        out->nodes[i].part = (int)out->nparts;
+        out->nparts++;
+        st = hull_mesh(&p->mesh, &p->hull, &p->hull_volume, err);
+        if (st != ACD_OK) goto fail;
+        if (p->concavity > out->max_concavity) out->max_concavity = p->concavity;
+    }
+    free(t.a);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    out->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    return ACD_OK;
+fail:
+    for (size_t i = 0; i < t.n; i++) acd_mesh_free(&t.a[i].mesh);
+    free(t.a);
+    acd3d_result_free(out);
+    return st;
+}
+
+void acd3d_result_free(acd3d_result *r) {
+    if (!r) return;
+    for (size_t i = 0; i < r->nparts; i++) {
+        acd_mesh_free(&r->parts[i].mesh);
+        acd_mesh_free(&r->parts[i].hull);
+    }
+    free(r->parts);
+    free(r->nodes);
+    memset(r, 0, sizeof *r);
+}

@@ -1,0 +1,132 @@
+/* acd3/resolve: candidate cut planes for a measured solid; see resolve.h. */
+#include "acd3/resolve.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom3/pca.h"
+
+/* Fraction of the witness's concavity above which a vertex belongs to the valley. */
+#define VALLEY_FRACTION 0.5
+/* The valley is two-dimensional (a ring, not a line) when its second PCA variance exceeds this
+ * multiple of the third. */
+#define VALLEY_PLANARITY 4.0
+
+static void normalize(double v[3]) {
+    double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0) v[0] /= l, v[1] /= l, v[2] /= l;
+}
+
+static void face_normal(const acd_mesh *m, uint32_t f, double n[3]) {
+    const double *a = m->vertices + 3 * (size_t)m->triangles[3 * f], *b = m->vertices + 3 * (size_t)m->triangles[3 * f + 1],
+                 *c = m->vertices + 3 * (size_t)m->triangles[3 * f + 2];
+    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    normalize(n);
+}
+
+static int valley_plane(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, acd3_plane_candidate *c) {
+    uint32_t x = ms->witness;
+    double thr = VALLEY_FRACTION * ms->vconc[x];
+    size_t nv = m->nvertices;
+    uint32_t *queue = malloc(nv * sizeof *queue);
+    uint8_t *seen = calloc(nv, 1);
+    double *pts = malloc(3 * nv * sizeof *pts), *w = malloc(nv * sizeof *w);
+    int ok = 0;
+    if (!queue || !seen || !pts || !w) goto done;
+    size_t qh = 0, qt = 0;
+    queue[qt++] = x;
+    seen[x] = 1;
+    while (qh < qt) {
+        uint32_t v = queue[qh++];
+        for (size_t k = g->row[v]; k < g->row[v + 1]; k++) {
+            uint32_t u = g->adj[k];
+            if (!seen[u] && ms->vconc[u] >= thr) {
+                seen[u] = 1;
+                queue[qt++] = u;
+            }
+        }
+    }
+    for (size_t i = 0; i < qt; i++) {
+        memcpy(pts + 3 * i, m->vertices + 3 * (size_t)queue[i], sizeof(double[3]));
+        w[i] = ms->vconc[queue[i]];
+    }
+    if (qt >= 3) {
+        acd_pca pca;
+        if (acd_pca_points(pts, qt, w, &pca, NULL) == ACD_OK && pca.values[1] > VALLEY_PLANARITY * pca.values[2] &&
+            pca.values[1] > 0) {
+            memcpy(c->point, m->vertices + 3 * (size_t)x, sizeof(double[3]));
+            memcpy(c->normal, pca.axes[2], sizeof(double[3]));
+            c->kind = "valley";
+            ok = 1;
+        }
+    }
+done:
+    free(queue), free(seen), free(pts), free(w);
+    return ok;
+}
+
+/* The most reflex edge at the witness, bisected: normal = n1 + n2 (outward face normals). */
+static int notch_plane(const acd_mesh *m, const acd3_measure *ms, acd3_plane_candidate *c) {
+    /* c[0]: bisector, c[1], c[2]: the planes of the two faces */
+    uint32_t x = ms->witness;
+    double best = 0;
+    int ok = 0;
+    /* faces around x: for each face with corner x, its edge (x, next) and the opposite face */
+    for (size_t f = 0; f < m->ntriangles; f++)
+        for (int k = 0; k < 3; k++) {
+            if (m->triangles[3 * f + k] != x) continue;
+            uint32_t y = m->triangles[3 * f + (k + 1) % 3];
+            /* the face holding y -> x */
+            for (size_t h = 0; h < m->ntriangles; h++) {
+                if (h == f) continue;
+                const uint32_t *t = m->triangles + 3 * h;
+                int has = (t[0] == y && t[1] == x) || (t[1] == y && t[2] == x) || (t[2] == y && t[0] == x);
+                if (!has) continue;
+                double n1[3], n2[3];
+                face_normal(m, (uint32_t)f, n1);
+                face_normal(m, (uint32_t)h, n2);
+                /* reflex when the opposite face's far vertex is above face f's plane */
+                uint32_t far = t[0] != x && t[0] != y ? t[0] : t[1] != x && t[1] != y ? t[1] : t[2];
+                const double *p = m->vertices + 3 * (size_t)far, *q = m->vertices + 3 * (size_t)x;
+                double above = n1[0] * (p[0] - q[0]) + n1[1] * (p[1] - q[1]) + n1[2] * (p[2] - q[2]);
+                if (above <= 0) continue;
+                double turn = 1.0 - (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]); /* 0 flat .. 2 folded */
+                if (turn > best) {
+                    double n[3] = {n1[0] + n2[0], n1[1] + n2[1], n1[2] + n2[2]};
+                    if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+                    normalize(n);
+                    best = turn;
+                    for (int j = 0; j < 3; j++) memcpy(c[j].point, q, sizeof(double[3]));
+                    memcpy(c[0].normal, n, sizeof(double[3]));
+                    memcpy(c[1].normal, n1, sizeof(double[3]));
+                    memcpy(c[2].normal, n2, sizeof(double[3]));
+                    c[0].kind = "notch";
+                    c[1].kind = c[2].kind = "face";
+                    ok = 3;
+                }
+                break;
+            }
+        }
+    return ok;
+}
+
+int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
+                        acd3_plane_candidate *out) {
+    if (ms->witness == UINT32_MAX) return 0;
+    int n = 0;
+    if (valley_plane(m, g, ms, &out[n])) n++;
+    n += notch_plane(m, ms, &out[n]);
+    acd_pca pca;
+    if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) == ACD_OK)
+        for (int a = 0; a < 3 && n < ACD3_MAX_CANDIDATES; a++) {
+            memcpy(out[n].point, m->vertices + 3 * (size_t)ms->witness, sizeof(double[3]));
+            memcpy(out[n].normal, pca.axes[a], sizeof(double[3]));
+            out[n].kind = "axis";
+            n++;
+        }
+    return n;
+}

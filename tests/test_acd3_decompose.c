@@ -1,0 +1,169 @@
+/* Tests of the 3D ACD driver (acd3/decompose, solid mode): partitions conserve volume, parts are
+ * closed, every part meets tau under the measure (remeasured independently of the driver's
+ * bookkeeping), known shapes give known part counts, output is deterministic, bad input refused. */
+// ctest: TIMEOUT 600
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/acd3d.h"
+#include "acd3/measure.h"
+#include "geom3/dijkstra.h"
+#include "geom3/edge_map.h"
+#include "shapes.h"
+
+static double sphere_r(double th, double ph, void *u) { (void)th, (void)ph, (void)u; return 1.0; }
+static double waist_r(double th, double ph, void *u) {
+    (void)ph;
+    double k = *(double *)u, s = sin(th);
+    return 1.0 - k * s * s;
+}
+
+static double remeasure(const acd_mesh *m, double eps) {
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(m->vertices, m->nvertices, m->triangles, m->ntriangles, &g, &err), ACD_OK);
+    acd3_measure ms;
+    assert_int_equal(acd3_measure_compute(m, &g, eps, 1e-9, &ms, &err), ACD_OK);
+    double c = ms.concavity;
+    acd3_measure_free(&ms);
+    acd_edge_graph_free(&g);
+    return c;
+}
+
+/* The properties every solid decomposition must have. */
+static void check_solid(const acd_mesh *in, const acd3d_result *r, const acd3d_params *p) {
+    double vin = mg_volume(in), sum = 0;
+    assert_true(r->nparts >= 1);
+    for (size_t i = 0; i < r->nparts; i++) {
+        const acd_mesh *m = &r->parts[i].mesh;
+        acd_edge_map em;
+        acd_error err;
+        assert_int_equal(acd_edge_map_build(m->triangles, m->ntriangles, NULL, &em, &err), ACD_OK);
+        assert_int_equal(acd_edge_map_check_closed(&em, m->triangles, m->ntriangles, &err), ACD_OK);
+        acd_edge_map_free(&em);
+        double v = mg_volume(m);
+        assert_true(v > 0);
+        sum += v;
+        /* the hull encloses the part: hull volume >= part volume */
+        assert_true(r->parts[i].hull_volume >= v * (1 - 1e-9));
+        const acd3d_node *nd = &r->nodes[r->parts[i].node];
+        double c = remeasure(m, p->eps_ratio * r->tau);
+        assert_true(fabs(c - r->parts[i].concavity) <= 1e-12 * (1 + c));
+        if (nd->leaf_reason == ACD3D_LEAF_TAU) assert_true(c <= r->tau + 1e-9);
+        else assert_true(nd->leaf_reason == ACD3D_LEAF_FLAT || nd->leaf_reason == ACD3D_LEAF_NO_CUT ||
+                         nd->leaf_reason == ACD3D_LEAF_DEPTH);
+    }
+    assert_true(fabs(sum - vin) <= 1e-9 * vin);
+}
+
+static void test_convex_stays_whole(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 24, 12, sphere_r, NULL));
+    acd3d_params p = acd3d_default_params();
+    acd3d_result r;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.nparts, 1);
+    assert_int_equal(r.nnodes, 1);
+    check_solid(&m, &r, &p);
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+}
+
+static void test_l_shape_two_convex_parts(void **state) {
+    (void)state;
+    unsigned char occ[16];
+    for (int y = 0; y < 4; y++)
+        for (int x = 0; x < 4; x++) occ[y * 4 + x] = !(x >= 2 && y >= 2);
+    acd_mesh m;
+    assert_true(mg_voxels(&m, occ, 4, 4, 1));
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.0;
+    p.tau_absolute = 1;
+    acd3d_result r;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.nparts, 2);
+    check_solid(&m, &r, &p);
+    for (size_t i = 0; i < r.nparts; i++) assert_true(r.parts[i].concavity <= 1e-9);
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+}
+
+static void test_waist_splits_and_is_deterministic(void **state) {
+    (void)state;
+    double k = 0.7;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 48, waist_r, &k));
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.05;
+    acd3d_result r, r2;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_true(r.nparts >= 2);
+    check_solid(&m, &r, &p);
+    assert_int_equal(acd3d_decompose(&m, &p, &r2, &err), ACD_OK);
+    assert_int_equal(r.nparts, r2.nparts);
+    for (size_t i = 0; i < r.nparts; i++) {
+        assert_int_equal(r.parts[i].mesh.nvertices, r2.parts[i].mesh.nvertices);
+        assert_memory_equal(r.parts[i].mesh.vertices, r2.parts[i].mesh.vertices,
+                            3 * r.parts[i].mesh.nvertices * sizeof(double));
+    }
+    acd3d_result_free(&r);
+    acd3d_result_free(&r2);
+    acd_mesh_free(&m);
+}
+
+static void test_torus_finishes(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_torus(&m, 32, 16, 1.0, 0.35));
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.1;
+    acd3d_result r;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_true(r.nparts >= 3); /* a ring needs at least three convex-ish pieces */
+    check_solid(&m, &r, &p);
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+}
+
+static void test_bad_input(void **state) {
+    (void)state;
+    acd3d_params p = acd3d_default_params();
+    acd3d_result r;
+    acd_error err;
+    acd_mesh empty = {0};
+    assert_int_equal(acd3d_decompose(&empty, &p, &r, &err), ACD_ERR_DEGENERATE);
+    /* an open mesh (one face missing) in solid mode: refused, naming the edge */
+    acd_mesh m;
+    assert_true(mg_radial(&m, 12, 6, sphere_r, NULL));
+    m.ntriangles--;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_NON_MANIFOLD);
+    assert_non_null(strstr(err.message, "closed"));
+    m.ntriangles++;
+    m.vertices[4] = NAN;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+    assert_non_null(strstr(err.message, "vertex 1"));
+    m.vertices[4] = 0;
+    acd3d_params bad = p;
+    bad.cookie = 0;
+    assert_int_equal(acd3d_decompose(&m, &bad, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    acd_mesh_free(&m);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_convex_stays_whole),
+        cmocka_unit_test(test_l_shape_two_convex_parts),
+        cmocka_unit_test(test_waist_splits_and_is_deterministic),
+        cmocka_unit_test(test_torus_finishes),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
