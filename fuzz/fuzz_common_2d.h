@@ -1,7 +1,7 @@
 /* fuzz/fuzz_common_2d.h: the shared body of the 2D reader fuzz targets.
  *
- * Parses the input in one format; on success every polygon is validated with the fast test and,
- * when small, with brute force (they must agree), and the set must survive a .poly and a
+ * Parses the input in one format; on success every polygon is validated with the sweep and,
+ * when small, with the subdivision and brute force (all must agree), and the set must survive a .poly and a
  * GeoJSON round trip unchanged. Any disagreement aborts (a crash for libFuzzer). */
 #ifndef ACD_FUZZ_COMMON_2D_H
 #define ACD_FUZZ_COMMON_2D_H
@@ -35,7 +35,8 @@ static void fuzz_2d_one(const uint8_t *data, size_t size, acd_polygon_format fmt
         acd_status a = acd_polygon_validate(&s.polygons[i], i, &err);
         if (acd_polygon_num_points(&s.polygons[i]) <= 400) {
             acd_status b = acd_polygon_validate_with(&s.polygons[i], i, ACD_VALIDATE_BRUTE, NULL);
-            if (a != b) abort();
+            acd_status d = acd_polygon_validate_with(&s.polygons[i], i, ACD_VALIDATE_SUBDIV, NULL);
+            if (a != b || d != b) abort();
         }
         if (a != ACD_OK) all_valid = 0;
     }

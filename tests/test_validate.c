@@ -39,8 +39,10 @@ static void expect_invalid(const double *xy, const size_t *sizes, size_t nrings,
     if (normalize) assert_int_equal(acd_polygon_normalize(&p, NULL, &err), ACD_OK);
     acd_status st = acd_polygon_validate(&p, 7, &err);
     acd_status sb = acd_polygon_validate_with(&p, 7, ACD_VALIDATE_BRUTE, NULL);
+    acd_status sd = acd_polygon_validate_with(&p, 7, ACD_VALIDATE_SUBDIV, NULL);
     if (st != want) fail_msg("status %d, wanted %d: %s", (int)st, (int)want, err.message);
     assert_int_equal(sb, want);
+    assert_int_equal(sd, want);
     if (!strstr(err.message, "polygon 7") || !strstr(err.message, n1) || !strstr(err.message, n2))
         fail_msg("message '%s' lacks '%s' / '%s'", err.message, n1, n2);
     acd_polygon_free(&p);
@@ -78,7 +80,14 @@ static void test_invalid_cases(void **state) {
     { /* folding back (spike): adjacent edges overlap */
         const double xy[] = {0, 0, 4, 0, 4, 4, 4, 6, 4, 5, 0, 4};
         const size_t sz[] = {6};
-        expect_invalid(xy, sz, 1, 0, ACD_ERR_INVALID_INPUT, "folds back", "vertex 3 (4, 6)");
+        expect_invalid(xy, sz, 1, 0, ACD_ERR_INVALID_INPUT, "self-intersects", "chain 0");
+        /* the pair test itself names the fold */
+        acd_polygon p;
+        acd_error err;
+        make(&p, xy, sz, 1);
+        assert_int_equal(acd_polygon_validate_with(&p, 7, ACD_VALIDATE_BRUTE, &err), ACD_ERR_INVALID_INPUT);
+        assert_non_null(strstr(err.message, "folds back on itself at vertex 3 (4, 6)"));
+        acd_polygon_free(&p);
     }
     { /* the same vertex twice (figure eight touching at a point) */
         const double xy[] = {0, 0, 2, 1, 4, 0, 4, 2, 2, 1, 0, 2};
@@ -171,9 +180,44 @@ static void random_polygon(acd_rng *rng, acd_polygon *p, int grid) {
             pts[k].y = y;
         }
     }
+    /* exact degeneracies: a vertex moved onto another vertex or onto the midpoint of an edge
+     * (midpoints of grid points are exact) */
+    if (k > 3 && acd_rng_below(rng, 3) == 0) {
+        size_t a = (size_t)acd_rng_below(rng, k), b = (size_t)acd_rng_below(rng, k - 1);
+        if (acd_rng_below(rng, 2)) pts[a] = pts[b];
+        else {
+            pts[a].x = 0.5 * (pts[b].x + pts[b + 1].x);
+            pts[a].y = 0.5 * (pts[b].y + pts[b + 1].y);
+        }
+    }
     acd_error err;
     assert_int_equal(acd_polygon_from_rings(p, rings, sizes, nh + 1, &err), ACD_OK);
     assert_int_equal(acd_polygon_normalize(p, NULL, &err), ACD_OK);
+    /* straight vertices: split every edge of some rings at its (exact) midpoint */
+    if (grid && acd_rng_below(rng, 2) == 0) {
+        acd_polygon q;
+        const acd_vec2 *r2[8];
+        size_t s2[8];
+        acd_vec2 *buf = malloc(2 * acd_polygon_num_points(p) * sizeof *buf);
+        assert_non_null(buf);
+        size_t m = 0;
+        for (size_t r = 0; r < p->nrings; r++) {
+            const acd_vec2 *v = acd_polygon_ring(p, r);
+            size_t n = acd_polygon_ring_size(p, r);
+            r2[r] = buf + m;
+            for (size_t i = 0; i < n; i++) {
+                buf[m++] = v[i];
+                buf[m].x = 0.5 * (v[i].x + v[(i + 1) % n].x);
+                buf[m].y = 0.5 * (v[i].y + v[(i + 1) % n].y);
+                m++;
+            }
+            s2[r] = 2 * n;
+        }
+        assert_int_equal(acd_polygon_from_rings(&q, r2, s2, p->nrings, &err), ACD_OK);
+        free(buf);
+        acd_polygon_free(p);
+        *p = q;
+    }
 }
 
 static void test_fast_matches_brute(void **state) {
@@ -181,19 +225,26 @@ static void test_fast_matches_brute(void **state) {
     acd_rng rng;
     acd_rng_seed(&rng, 12345);
     size_t nvalid = 0, ninvalid = 0;
-    for (int it = 0; it < 3000; it++) {
+#ifdef NDEBUG
+    const int iterations = 20000;
+#else
+    const int iterations = 5000; /* sanitizer builds are slower */
+#endif
+    for (int it = 0; it < iterations; it++) {
         acd_polygon p;
         random_polygon(&rng, &p, it % 2);
-        acd_error e1, e2;
+        acd_error e1, e2, e3;
         acd_status a = acd_polygon_validate_with(&p, 0, ACD_VALIDATE_FAST, &e1);
         acd_status b = acd_polygon_validate_with(&p, 0, ACD_VALIDATE_BRUTE, &e2);
-        if (a != b) fail_msg("iteration %d: fast %d (%s) vs brute %d (%s)", it, (int)a, e1.message, (int)b, e2.message);
+        acd_status d = acd_polygon_validate_with(&p, 0, ACD_VALIDATE_SUBDIV, &e3);
+        if (a != b) fail_msg("iteration %d: sweep %d (%s) vs brute %d (%s)", it, (int)a, e1.message, (int)b, e2.message);
+        if (d != b) fail_msg("iteration %d: subdiv %d (%s) vs brute %d (%s)", it, (int)d, e3.message, (int)b, e2.message);
         if (a == ACD_OK) nvalid++;
         else ninvalid++;
         acd_polygon_free(&p);
     }
     print_message("[  INFO    ] %zu valid, %zu invalid random polygons\n", nvalid, ninvalid);
-    assert_true(nvalid > 100 && ninvalid > 100);
+    assert_true(nvalid > 200 && ninvalid > 200);
 }
 
 /* A 100k-vertex star-shaped polygon with a few thousand holes validates quickly; one moved

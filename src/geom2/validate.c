@@ -6,11 +6,11 @@
  * rings may not meet at all; every hole lies inside dP0 and outside every other hole (an
  * island inside a hole is a separate polygon). All decisions use the exact predicates.
  *
- * The pairwise edge test runs on an adaptive binary subdivision of the bounding box: a box
- * holding more than a few edges is split at its middle along the axis that separates the edges
- * best, each edge going (conservatively) to every half it may touch; boxes that cannot be split
- * further are checked pair by pair. Two edges that meet share at least one leaf, so the test is
- * exact; on valid input it costs about O(n log n). */
+ * Which pairs of edges get the exact pair test: by default a Shamos-Hoffman sweep line
+ * (geom2/seg_sweep, O(n log n)); alternatively an adaptive binary subdivision of the bounding box
+ * (a box holding more than a few edges is split at its middle along the axis that separates the
+ * edges best, each edge going conservatively to every half it may touch; two edges that meet share
+ * a leaf, where pairs are tested), or all pairs. All three give the same answer. */
 #include "geom2/validate.h"
 
 #include <float.h>
@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "core/predicates.h"
+#include "geom2/seg_sweep.h"
 
 /* min/max without the NaN rules of fmin/fmax (coordinates are finite here), so they inline */
 static inline double dmin(double a, double b) {
@@ -198,6 +199,10 @@ static acd_status check_pair(const vctx *c, size_t e, size_t f) {
     acd_seg_relation rel = acd_segments_relation(a0, a1, b0, b1);
     if (rel == ACD_SEG_DISJOINT) return ACD_OK;
     return report_pair(c, e, f, rel);
+}
+
+static acd_status sweep_pair(void *ctx, size_t e, size_t f) {
+    return check_pair((const vctx *)ctx, e, f);
 }
 
 static acd_status brute_pairs(const vctx *c, const size_t *ids, size_t m) {
@@ -502,7 +507,9 @@ acd_status acd_polygon_validate_with(const acd_polygon *p, size_t index, acd_val
     }
     double extent = hypot(box[2] - box[0], box[3] - box[1]);
     c.margin = 1e-9 * extent + 256.0 * DBL_EPSILON * maxabs + DBL_MIN;
-    st = method == ACD_VALIDATE_BRUTE ? brute_pairs(&c, ids, c.n) : subdivide(&c, box, ids, c.n, 0);
+    if (method == ACD_VALIDATE_BRUTE) st = brute_pairs(&c, ids, c.n);
+    else if (method == ACD_VALIDATE_SUBDIV) st = subdivide(&c, box, ids, c.n, 0);
+    else st = acd_sweep_edges(p->points, c.next, c.n, sweep_pair, &c, err);
     if (st != ACD_OK) goto done;
 
     for (size_t r = 0; r < p->nrings; r++) {

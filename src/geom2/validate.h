@@ -2,14 +2,15 @@
  *
  * The public functions are acd_polygon_normalize and acd_polygon_validate (acd/polygon.h).
  * Here: the same validation with the intersection test selectable, so that tests can cross-check
- * the fast (adaptive subdivision) test against the O(n^2) brute force. */
+ * the sweep line and the adaptive subdivision against the O(n^2) brute force. */
 #ifndef ACD_GEOM2_VALIDATE_H
 #define ACD_GEOM2_VALIDATE_H
 
 #include "acd/polygon.h"
 
 typedef enum acd_validate_method {
-    ACD_VALIDATE_FAST = 0, /* adaptive box subdivision, about O(n log n) on valid input */
+    ACD_VALIDATE_FAST = 0, /* the default: sweep line, O(n log n) */
+    ACD_VALIDATE_SUBDIV,   /* adaptive box subdivision: about O(n log n) on natural input */
     ACD_VALIDATE_BRUTE     /* every pair of edges, O(n^2): for tests */
 } acd_validate_method;
 
