@@ -179,3 +179,60 @@ static inline int p2_read_poly(const char *path, acd_polygon *out, int cap) {
 }
 
 #endif
+
+#ifdef ACD_EXACT2D_H
+/* Independent partition check of an exact decomposition: every piece made of input vertices,
+ * counterclockwise and convex (exact), areas adding up to the region's (1e-9 relative), and the
+ * centroid of every piece (sampled for big results) strictly inside the region and inside no other
+ * piece (exact). Returns 1 when all hold, printing the first failure otherwise. */
+static inline int p2_check_partition(const acd_polygon *p, const acd_exact2d_result *r) {
+    size_t n = acd_polygon_num_points(p);
+    double area = p2_region_area(p->points, p->ring_start, p->nrings), sum = 0;
+    for (size_t i = 0; i < r->npieces; i++) {
+        const acd_exact2d_piece *pc = &r->pieces[i];
+        if (pc->npoints < 3) return printf("piece %zu: %zu vertices\n", i, pc->npoints), 0;
+        double a = 0;
+        int pos = 0;
+        for (size_t k = 0; k < pc->npoints; k++) {
+            if (pc->index[k] >= n || p->points[pc->index[k]].x != pc->points[k].x ||
+                p->points[pc->index[k]].y != pc->points[k].y)
+                return printf("piece %zu vertex %zu is not an input vertex\n", i, k), 0;
+            const acd_vec2 *u = &pc->points[k], *w = &pc->points[(k + 1) % pc->npoints],
+                           *x = &pc->points[(k + 2) % pc->npoints];
+            int o = acd_orient2d_sign(V2(u), V2(w), V2(x));
+            if (o < 0) return printf("piece %zu reflex at %zu\n", i, (k + 1) % pc->npoints), 0;
+            pos |= o > 0;
+            a += u->x * w->y - w->x * u->y;
+        }
+        if (!pos) return printf("piece %zu degenerate\n", i), 0;
+        sum += a / 2;
+    }
+    if (fabs(sum - area) > 1e-9 * fabs(area)) return printf("areas %.17g vs %.17g\n", sum, area), 0;
+    size_t stride = r->npieces / 400 + 1;
+    for (size_t i = 0; i < r->npieces; i += stride) {
+        const acd_exact2d_piece *pc = &r->pieces[i];
+        /* a point strictly inside the convex piece i: the mean of its vertices */
+        double q[2] = {0, 0};
+        for (size_t k = 0; k < pc->npoints; k++) {
+            q[0] += pc->points[k].x / (double)pc->npoints;
+            q[1] += pc->points[k].y / (double)pc->npoints;
+        }
+        /* slivers: the rounded mean may miss the piece; only test points strictly inside it */
+        int inside_own = 1;
+        for (size_t k = 0; k < pc->npoints && inside_own; k++)
+            if (acd_orient2d_sign(V2(&pc->points[k]), V2(&pc->points[(k + 1) % pc->npoints]), q) <= 0) inside_own = 0;
+        if (!inside_own) continue;
+        if (!p2_point_inside(p->points, p->ring_start, p->nrings, q))
+            return printf("piece %zu centroid (%g, %g) outside the polygon\n", i, q[0], q[1]), 0;
+        for (size_t o = 0; o < r->npieces; o++) {
+            if (o == i) continue;
+            const acd_exact2d_piece *pb = &r->pieces[o];
+            int in = 1;
+            for (size_t k = 0; k < pb->npoints && in; k++)
+                if (acd_orient2d_sign(V2(&pb->points[k]), V2(&pb->points[(k + 1) % pb->npoints]), q) <= 0) in = 0;
+            if (in) return printf("piece %zu centroid inside piece %zu\n", i, o), 0;
+        }
+    }
+    return 1;
+}
+#endif

@@ -514,6 +514,10 @@ done:
     return st;
 }
 
+int acd_ring_is_ccw(const acd_vec2 *pts, size_t n) {
+    return n < 3 ? 1 : ring_is_ccw(pts, 0, n);
+}
+
 acd_status acd_triangulate_polygon(const acd_polygon *p, size_t **tris, size_t *ntris, size_t *ndegenerate,
                                    acd_error *err) {
     if (ndegenerate) *ndegenerate = 0;

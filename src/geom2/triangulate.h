@@ -39,4 +39,9 @@ acd_status acd_triangulate_rings(const acd_vec2 *points, const size_t *ring_star
 acd_status acd_triangulate_polygon(const acd_polygon *p, size_t **tris, size_t *ntris, size_t *ndegenerate,
                                    acd_error *err);
 
+/* 1 if the closed ring pts[0..n-1] (simple, >= 3 points) is counterclockwise: decided exactly by
+ * orient2d at its lowest-leftmost vertex (falls back to the sign of the area when that vertex's
+ * neighbours are collinear with it). */
+int acd_ring_is_ccw(const acd_vec2 *pts, size_t n);
+
 #endif
