@@ -60,14 +60,28 @@ static void set_edge_hit(const acd2_ring *rings, size_t ring, size_t k, acd_vec2
     }
 }
 
+/* bounding box of a segment; a cheap exact rejection before any predicate */
+typedef struct box { double x0, x1, y0, y1; } box;
+static box seg_box(acd_vec2 a, acd_vec2 b) {
+    box r = {fmin(a.x, b.x), fmax(a.x, b.x), fmin(a.y, b.y), fmax(a.y, b.y)};
+    return r;
+}
+static int out_pt(const box *b, acd_vec2 p) { return p.x < b->x0 || p.x > b->x1 || p.y < b->y0 || p.y > b->y1; }
+static int out_seg(const box *b, acd_vec2 p, acd_vec2 q) {
+    return (p.x < b->x0 && q.x < b->x0) || (p.x > b->x1 && q.x > b->x1) || (p.y < b->y0 && q.y < b->y0) ||
+           (p.y > b->y1 && q.y > b->y1);
+}
+
 static int find_first(const acd2_ring *rings, size_t nrings, size_t rr, size_t r, acd_vec2 x, acd2_hit *hit) {
     acd_vec2 R = rings[rr].p[r];
     double best_t = INFINITY;
     int found = 0;
+    box bb = seg_box(R, x);
     for (size_t g = 0; g < nrings; g++) {
         const acd2_ring *ring = &rings[g];
         size_t n = ring->n;
         for (size_t v = 0; v < n; v++) {
+            if (out_pt(&bb, ring->p[v])) continue;
             if ((g == rr && v == r) || acd2_same(ring->p[v], R)) continue;
             if (acd2_orient_sign(R, x, ring->p[v]) != 0) continue;
             if (!acd2_between(R, x, ring->p[v], 1)) continue;
@@ -98,6 +112,7 @@ static int find_first(const acd2_ring *rings, size_t nrings, size_t rr, size_t r
             size_t k2 = acd2_next(k, n);
             if (g == rr && (k == r || k2 == r)) continue;
             acd_vec2 a = ring->p[k], b = ring->p[k2];
+            if (out_seg(&bb, a, b)) continue;
             int sa = acd2_orient_sign(R, x, a), sb = acd2_orient_sign(R, x, b);
             if (!((sa > 0 && sb < 0) || (sa < 0 && sb > 0))) continue;
             if (acd2_orient_sign(a, b, R) <= 0 || acd2_orient_sign(a, b, x) >= 0) continue;
@@ -123,11 +138,13 @@ static int verify(const acd2_ring *rings, size_t nrings, size_t rr, size_t r, co
                   size_t *blk) {
     acd_vec2 R = rings[rr].p[r], Z = hit->z;
     const double Rd[2] = {R.x, R.y}, Zd[2] = {Z.x, Z.y};
+    box bb = seg_box(R, Z);
     for (size_t g = 0; g < nrings; g++) {
         const acd2_ring *ring = &rings[g];
         size_t n = ring->n;
         for (size_t v = 0; v < n; v++) {
             acd_vec2 q = ring->p[v];
+            if (out_pt(&bb, q)) continue;
             if (acd2_same(q, R) || acd2_same(q, Z)) continue;
             if (acd2_orient_sign(R, Z, q) == 0 && acd2_between(R, Z, q, 0)) {
                 *bg = g; *bv = 1; *blk = v;
@@ -141,6 +158,7 @@ static int verify(const acd2_ring *rings, size_t nrings, size_t rr, size_t r, co
                 if (!hit->is_vertex && k == hit->j) continue;
                 if (hit->is_vertex && (k == hit->j || k2 == hit->j)) continue;
             }
+            if (out_seg(&bb, ring->p[k], ring->p[k2])) continue;
             const double A[2] = {ring->p[k].x, ring->p[k].y}, B[2] = {ring->p[k2].x, ring->p[k2].y};
             if (acd_segments_relation(Rd, Zd, A, B) == ACD_SEG_PROPER) {
                 *bg = g; *bv = 0; *blk = k;
@@ -214,11 +232,12 @@ int acd2_choose_cut(const acd2_ring *ring, const double *conc, size_t r, const a
         for (size_t v = 0; v < n; v++) {
             if (v == r) continue;
             acd_vec2 q = ring->p[v];
-            if (!acd2_in_resolving_cone(u, R, w, q)) continue;
             double d = hypot(q.x - R.x, q.y - R.y);
             if (!(d > 0)) continue;
             cand c = {v, (1.0 + o->sc * conc[v]) / (o->sd * d), d, ring->id[v]};
-            if (best.v == SIZE_MAX || cand_better(&c, &best)) best = c;
+            if (best.v != SIZE_MAX && !cand_better(&c, &best)) continue; /* score first: cheap */
+            if (!acd2_in_resolving_cone(u, R, w, q)) continue;
+            best = c;
         }
         if (best.v == SIZE_MAX) return shoot_bisector(ring, r, o, hit);
         return acd2_shoot(ring, r, ring->p[best.v], hit);
