@@ -24,7 +24,8 @@ static const char *const small_models[] = {
 
 static void test_small_models(void **state) {
     (void)state;
-    p2d_stats st = {0, 0, 0, 0};
+    p2d_stats st = {0};
+    st.survey = getenv("ACD_P2D_SURVEY") != NULL;
     size_t found = 0;
     for (size_t i = 0; i < sizeof small_models / sizeof small_models[0]; i++) {
         char rel[256];
@@ -34,6 +35,8 @@ static void test_small_models(void **state) {
     print_message("    %zu files, %zu runs checked (%zu components), %zu runs unsupported by acd2d, %zu refused\n", found,
                   st.runs, st.components, st.unsupported, st.refused);
     if (!found) TU_SKIP("no shared polygon data");
+    print_message("    %zu known-defect failures, %zu failures\n", st.known, st.failed);
+    assert_int_equal(st.failed, 0);
     assert_true(st.runs > 0);
     assert_int_equal(st.refused, 0);
 }
@@ -52,7 +55,8 @@ static void star(acd_rng *rng, acd_vec2 *out, size_t n, double cx, double cy, do
 static void test_random_stars(void **state) {
     (void)state;
     static const size_t sizes[] = {8, 16, 40, 120};
-    p2d_stats st = {0, 0, 0, 0};
+    p2d_stats st = {0};
+    st.survey = getenv("ACD_P2D_SURVEY") != NULL;
     acd_rng rng;
     acd_rng_seed(&rng, 20061201);
     for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++)
@@ -81,10 +85,12 @@ static void test_random_stars(void **state) {
             }
     print_message("    %zu runs checked (%zu components), %zu runs unsupported by acd2d, %zu refused\n", st.runs,
                   st.components, st.unsupported, st.refused);
+    print_message("    %zu known-defect failures, %zu failures\n", st.known, st.failed);
+    assert_int_equal(st.failed, 0);
     assert_true(st.runs > 0);
     /* Known acd2d defect at the time of writing: "no hole could be connected to the outer
-     * boundary" on "star n=120 holes=1 #1" (9 taus x SL, H2). Lower this bound when fixed. */
-    assert_true(st.refused <= 18);
+     * boundary" on "star n=120 holes=1 #1" (9 taus x 4 measures). Lower this bound when fixed. */
+    assert_true(st.refused <= 36);
 }
 
 int main(void) {
