@@ -95,6 +95,166 @@ acd_status acd_corise_chain_concavity(const double *vertices, const uint32_t *ch
     return ACD_OK;
 }
 
+/* ---- valley search ------------------------------------------------------------------------ */
+
+/* Dijkstra from a to b on the edge graph with edge cost
+ *     |uv| * (1 + ACD_CORISE_VALLEY_TIEBREAK * (dev(u) + dev(v)) / (2 |ab|)),
+ * dev = distance to the bridge segment: among paths of (almost) equal length the one closest to
+ * the bridge wins. Without it, the many equal-length staircases of a regular grid tie and the
+ * id tie-break picks an extreme one, which reads as false concavity (docs/corise.md). The
+ * workspace is reused across bridges; stamps avoid clearing it. */
+typedef struct vs_item {
+    double cost;
+    uint32_t v;
+} vs_item;
+
+typedef struct valley_search {
+    size_t nv;
+    double *cost;
+    uint32_t *pred;
+    uint32_t *stamp; /* cost/pred valid when stamp == run */
+    uint8_t *done;   /* settled in run `stamp` when done == 1 */
+    uint32_t run;
+    vs_item *heap;
+    size_t nheap, cap;
+    uint32_t *path;
+    size_t cap_path;
+} valley_search;
+
+static void vs_free(valley_search *s) {
+    free(s->cost);
+    free(s->pred);
+    free(s->stamp);
+    free(s->done);
+    free(s->heap);
+    free(s->path);
+    memset(s, 0, sizeof *s);
+}
+
+static int vs_init(valley_search *s, size_t nv) {
+    memset(s, 0, sizeof *s);
+    s->nv = nv;
+    size_t n = nv ? nv : 1;
+    s->cost = malloc(n * sizeof *s->cost);
+    s->pred = malloc(n * sizeof *s->pred);
+    s->stamp = calloc(n, sizeof *s->stamp);
+    s->done = calloc(n, 1);
+    return s->cost && s->pred && s->stamp && s->done;
+}
+
+static int vs_less(vs_item x, vs_item y) { return x.cost < y.cost || (x.cost == y.cost && x.v < y.v); }
+
+static int vs_push(valley_search *s, double cost, uint32_t v) {
+    if (s->nheap == s->cap) {
+        size_t nc = s->cap ? 2 * s->cap : 256;
+        vs_item *h = realloc(s->heap, nc * sizeof *h);
+        if (!h) return 0;
+        s->heap = h;
+        s->cap = nc;
+    }
+    size_t i = s->nheap++;
+    vs_item it = {cost, v};
+    while (i > 0) {
+        size_t p = (i - 1) / 2;
+        if (!vs_less(it, s->heap[p])) break;
+        s->heap[i] = s->heap[p];
+        i = p;
+    }
+    s->heap[i] = it;
+    return 1;
+}
+
+static vs_item vs_pop(valley_search *s) {
+    vs_item top = s->heap[0], last = s->heap[--s->nheap];
+    size_t i = 0, n = s->nheap;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= n) break;
+        if (c + 1 < n && vs_less(s->heap[c + 1], s->heap[c])) c++;
+        if (!vs_less(s->heap[c], last)) break;
+        s->heap[i] = s->heap[c];
+        i = c;
+    }
+    if (n) s->heap[i] = last;
+    return top;
+}
+
+static double seg_dist(const double *p, const double *a, const double *u, double L) {
+    double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    double x = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    double t = x < 0 ? 0 : x > L ? L : x;
+    double e[3] = {d[0] - t * u[0], d[1] - t * u[1], d[2] - t * u[2]};
+    return sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+}
+
+/* Valley from a to b into s->path (*len vertices, a first) and its Euclidean *length.
+ * Returns 1 when found, 0 when b is unreachable, -1 when out of memory. */
+static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V, uint32_t a, uint32_t b, size_t *len,
+                     double *length) {
+    if (++s->run == 0) { /* stamp wrap-around: clear */
+        memset(s->stamp, 0, s->nv * sizeof *s->stamp);
+        s->run = 1;
+    }
+    uint32_t run = s->run;
+    const double *pa = V + 3 * (size_t)a, *pb = V + 3 * (size_t)b;
+    double u[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
+    double L = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (int k = 0; k < 3; k++) u[k] = L > 0 ? u[k] / L : 0;
+    double kappa = L > 0 ? ACD_CORISE_VALLEY_TIEBREAK / (2 * L) : 0;
+    s->nheap = 0;
+    s->stamp[a] = run;
+    s->done[a] = 0;
+    s->cost[a] = 0;
+    s->pred[a] = ACD_NO_VERTEX;
+    if (!vs_push(s, 0, a)) return -1;
+    int found = 0;
+    while (s->nheap) {
+        vs_item it = vs_pop(s);
+        uint32_t x = it.v;
+        if (s->done[x] || it.cost > s->cost[x]) continue;
+        s->done[x] = 1;
+        if (x == b) {
+            found = 1;
+            break;
+        }
+        double dx = seg_dist(V + 3 * (size_t)x, pa, u, L);
+        for (size_t k = g->row[x]; k < g->row[x + 1]; k++) {
+            uint32_t y = g->adj[k];
+            if (s->stamp[y] == run && s->done[y]) continue;
+            double dy = seg_dist(V + 3 * (size_t)y, pa, u, L);
+            double c = it.cost + g->length[g->adj_edge[k]] * (1 + kappa * (dx + dy));
+            if (s->stamp[y] != run || c < s->cost[y]) {
+                s->stamp[y] = run;
+                s->done[y] = 0;
+                s->cost[y] = c;
+                s->pred[y] = x;
+                if (!vs_push(s, c, y)) return -1;
+            }
+        }
+    }
+    if (!found) return 0;
+    size_t n = 0;
+    for (uint32_t x = b; x != ACD_NO_VERTEX; x = s->pred[x]) n++;
+    if (n > s->cap_path) {
+        uint32_t *p = realloc(s->path, n * sizeof *p);
+        if (!p) return -1;
+        s->path = p;
+        s->cap_path = n;
+    }
+    size_t i = n;
+    double sum = 0;
+    for (uint32_t x = b; x != ACD_NO_VERTEX; x = s->pred[x]) {
+        s->path[--i] = x;
+        if (s->pred[x] != ACD_NO_VERTEX) {
+            const double *p = V + 3 * (size_t)x, *q = V + 3 * (size_t)s->pred[x];
+            sum += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+        }
+    }
+    *len = n;
+    *length = sum;
+    return 1;
+}
+
 /* ---- bridges and valleys ------------------------------------------------------------------ */
 
 typedef struct vpair {
@@ -135,6 +295,8 @@ acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g
     vpair *pairs = NULL;
     acd_hull h;
     memset(&h, 0, sizeof h);
+    valley_search vs;
+    memset(&vs, 0, sizeof vs);
     if (!used || !ids || !pts) goto nomem;
     for (size_t t = 0; t < 3 * m->ntriangles; t++) {
         if (m->triangles[t] >= m->nvertices) {
@@ -175,40 +337,30 @@ acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g
     out->bridge = calloc(nb ? nb : 1, sizeof *out->bridge);
     if (!out->bridge) goto nomem;
     size_t cap_path = 0;
+    if (!vs_init(&vs, m->nvertices)) goto nomem;
     for (size_t i = 0; i < nb; i++) {
         acd_corise_bridge *br = &out->bridge[i];
         br->a = pairs[i].a;
         br->b = pairs[i].b;
         br->first = out->npath;
-        uint32_t *path = NULL;
         size_t len = 0;
         double length = 0;
-        acd_error e2;
-        acd_status s2 = acd_shortest_path(g, br->a, br->b, NULL, &path, &len, &length, &e2);
-        if (s2 == ACD_ERR_DEGENERATE) {
-            free(path);
+        int r = vs_valley(&vs, g, m->vertices, br->a, br->b, &len, &length);
+        if (r < 0) goto nomem;
+        if (r == 0) {
             br->length = INFINITY;
             out->unreachable++;
             continue;
-        }
-        if (s2 != ACD_OK) {
-            free(path);
-            st = acd_fail(err, s2, "corise: valley of bridge (%u, %u): %s", br->a, br->b, e2.message);
-            goto done;
         }
         if (out->npath + len > cap_path) {
             size_t nc = cap_path ? 2 * cap_path : 1024;
             while (nc < out->npath + len) nc *= 2;
             uint32_t *np2 = realloc(out->path, nc * sizeof *np2);
-            if (!np2) {
-                free(path);
-                goto nomem;
-            }
+            if (!np2) goto nomem;
             out->path = np2;
             cap_path = nc;
         }
-        memcpy(out->path + out->npath, path, len * sizeof *path);
-        free(path);
+        memcpy(out->path + out->npath, vs.path, len * sizeof *vs.path);
         br->count = len;
         br->length = length;
         out->npath += len;
@@ -227,6 +379,7 @@ done:
     free(pts);
     free(pairs);
     acd_hull_free(&h);
+    vs_free(&vs);
     if (st != ACD_OK) acd_corise_bridges_free(out);
     return st;
 }

@@ -4,7 +4,8 @@
  *
  * A bridge is an edge (a, b) of the convex hull of the mesh's vertices; its valley is the
  * shortest vertex path from a to b along the mesh edges (Dijkstra, Euclidean edge lengths,
- * deterministic ties: spec A2). The concavity of a valley vertex p is measured in 2D after the
+ * spec A2), where paths of (almost) equal length are told apart by their closeness to the
+ * bridge (ACD_CORISE_VALLEY_TIEBREAK), then by vertex ids. The concavity of a valley vertex p is measured in 2D after the
  * projection of Eq. 1, p' = ((p - a).u, d(p, [a, b])) with u = (b - a)/|b - a| (spec A4: ab
  * normalised), as the shortest-path distance from p' to the projected bridge [0, |ab|] x {0}
  * inside the polygon formed by the projected valley and the bridge:
@@ -22,6 +23,11 @@
 #include "acd/base.h"
 #include "acd/mesh.h"
 #include "geom3/dijkstra.h"
+
+/* Relative weight of the tie-break: an edge uv costs |uv| (1 + k (dev(u) + dev(v)) / (2 |ab|)),
+ * dev = distance to the bridge segment. Small enough to change the path only between paths
+ * whose lengths differ by less than about k times their length. */
+#define ACD_CORISE_VALLEY_TIEBREAK 1e-6
 
 /* How a chain's concavity was obtained. */
 typedef enum acd_corise_conc_kind {
