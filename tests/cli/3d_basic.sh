@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# acd 3d: outputs, --verify, JSON, and bad input exit codes.
+set -u
+ACD=$1; SRC=$2
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+# an L-shaped prism (closed, outward) written as OBJ
+cat > "$T/l.obj" <<'OBJ'
+v 0 0 0
+v 4 0 0
+v 4 2 0
+v 2 2 0
+v 2 4 0
+v 0 4 0
+v 0 0 1
+v 4 0 1
+v 4 2 1
+v 2 2 1
+v 2 4 1
+v 0 4 1
+f 1 3 2
+f 1 4 3
+f 1 6 4
+f 4 6 5
+f 7 8 9
+f 7 9 10
+f 7 10 12
+f 10 11 12
+f 1 2 8
+f 1 8 7
+f 2 3 9
+f 2 9 8
+f 3 4 10
+f 3 10 9
+f 4 5 11
+f 4 11 10
+f 5 6 12
+f 5 12 11
+f 6 1 7
+f 6 7 12
+OBJ
+"$ACD" 3d "$T/l.obj" -t 0 --tau-abs -o "$T/h.obj" --parts "$T/p.obj" --json "$T/r.json" --verify > "$T/out.txt" || fail "3d exit $?"
+grep -q "^2 parts" "$T/out.txt" || fail "L prism should give 2 parts: $(cat "$T/out.txt")"
+[ "$(grep -c '^o hull_' "$T/h.obj")" = 2 ] || fail "hull groups"
+[ "$(grep -c '^o part_' "$T/p.obj")" = 2 ] || fail "part groups"
+python3 - "$T/r.json" <<'PY' || fail "json"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["stats"]["parts"] == 2 and len(d["parts"]) == 2
+assert abs(sum(p["volume"] for p in d["parts"]) - d["input_volume"]) <= 1e-9 * d["input_volume"]
+assert d["tree"][0]["parent"] == -1 and len(d["tree"][0]["children"]) == 2
+PY
+# bad input: an open mesh in solid mode -> exit 2 with a message naming the problem
+head -n 31 "$T/l.obj" > "$T/open.obj"
+"$ACD" 3d "$T/open.obj" 2> "$T/err.txt"; rc=$?
+[ $rc = 2 ] || fail "open mesh exit $rc"
+grep -q "closed" "$T/err.txt" || fail "open mesh message: $(cat "$T/err.txt")"
+# missing file -> 4, bad option -> 1, garbage -> 2
+"$ACD" 3d "$T/nope.obj" 2>/dev/null; [ $? = 4 ] || fail "missing file"
+"$ACD" 3d "$T/l.obj" -t abc 2>/dev/null; [ $? = 1 ] || fail "bad tau"
+printf 'v 0 0 0\nf 1 2 3\n' > "$T/bad.obj"
+"$ACD" 3d "$T/bad.obj" 2>/dev/null; [ $? = 2 ] || fail "bad indices"
+echo ok
