@@ -1,9 +1,10 @@
 /* acd/polygon.h: polygons with holes; reading (.poly, GeoJSON, WKT), validation, writing.
  *
  * A polygon is one outer ring followed by zero or more hole rings, stored as one point array
- * with ring offsets. After acd_polygon_normalize (done by every reader and by
- * acd_polygon_validate with fix=1) the outer ring is counterclockwise, holes clockwise,
- * consecutive repeated vertices are dropped and no ring repeats its first point at its end. */
+ * with ring offsets. After acd_polygon_normalize (done by every reader) the outer ring is
+ * counterclockwise, holes clockwise, consecutive repeated vertices are dropped and no ring
+ * repeats its first point at its end. An island inside a hole is a separate polygon of the set.
+ * Formats, messages and decisions: docs/formats-2d.md. */
 #ifndef ACD_POLYGON_H
 #define ACD_POLYGON_H
 
@@ -67,15 +68,17 @@ double acd_polygon_area(const acd_polygon *p);
 /* Parses text in the given format: at most len bytes, stopping early at a NUL byte (so a
  * NUL-terminated string may be passed with len = SIZE_MAX). `name` is used in messages (a file
  * name; NULL gives "<input>"). Every polygon found is normalized (not validated: call
- * acd_polygon_validate on each); fixes are summed (may be NULL). Input with no polygon at all
+ * acd_polygon_validate on each); fixes are added to *fixes (zero it first; may be NULL). Input with no polygon at all
  * (only EMPTY or non-polygonal geometries) fails with ACD_ERR_DEGENERATE. */
 acd_status acd_polygon_set_parse(acd_polygon_set *out, const char *text, size_t len, acd_polygon_format fmt,
                                  const char *name, acd_polygon_fixes *fixes, acd_error *err);
 acd_status acd_polygon_set_read_file(acd_polygon_set *out, const char *path, acd_polygon_format fmt,
                                      acd_polygon_fixes *fixes, acd_error *err);
 
-/* Normalizes in place: drops consecutive repeated vertices, makes the outer ring CCW and
- * holes CW. */
+/* Normalizes in place: drops consecutive repeated vertices and closing repeats of the first
+ * vertex, makes the outer ring CCW and holes CW (exact orientation test). Idempotent. Changes are
+ * added to *fixes (may be NULL). Rings that are too small or degenerate are left for
+ * acd_polygon_validate to report. */
 acd_status acd_polygon_normalize(acd_polygon *p, acd_polygon_fixes *fixes, acd_error *err);
 
 /* Checks that p is a valid polygon with holes: every ring has >= 3 distinct vertices, all
