@@ -65,13 +65,19 @@ acd_status acd_cut_plane_from_points(const double a[3], const double b[3], const
     memcpy(out->c, c, sizeof out->c);
     /* the normal's components are the projections' orientations: exact signs, adaptive magnitudes,
      * so even a plane through nearly collinear points gets a usable normal */
-    double n[3];
+    double n[3], mx = 0;
+    for (int k = 0; k < 3; k++) mx = fmax(mx, fmax(fabs(a[k]), fmax(fabs(b[k]), fabs(c[k]))));
+    int e = 0; /* huge or tiny points: orientations of copies scaled by a power of two (exact) */
+    if (mx > 1e90 || mx < 1e-90) frexp(mx, &e);
     for (int k = 0; k < 3; k++) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
-        double pa[2] = {a[i], a[j]}, pb[2] = {b[i], b[j]}, pc[2] = {c[i], c[j]};
+        double pa[2] = {ldexp(a[i], -e), ldexp(a[j], -e)}, pb[2] = {ldexp(b[i], -e), ldexp(b[j], -e)};
+        double pc[2] = {ldexp(c[i], -e), ldexp(c[j], -e)};
         n[k] = acd_orient2d(pa, pb, pc);
     }
     double l = norm3_safe(n);
+    if (!(l > 0) || !isfinite(l))
+        return acd_fail(err, ACD_ERR_DEGENERATE, "cut plane: the points' scales differ too much for a normal");
     for (int k = 0; k < 3; k++) out->normal[k] = n[k] / l;
     return ACD_OK;
 }
@@ -103,8 +109,20 @@ acd_status acd_cut_plane_from_normal(const double point[3], const double normal[
 }
 
 int acd_cut_plane_side(const acd_cut_plane *pl, const double v[3]) {
+    double mx = 0;
+    for (int k = 0; k < 3; k++) mx = fmax(mx, fmax(fmax(fabs(pl->a[k]), fabs(v[k])), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
+    int e = 0; /* as in acd_plane_cut: huge or tiny coordinates scaled by a power of two first */
+    if (mx > 1e90 || mx < 1e-90) frexp(mx, &e);
+    if (e == 0) return -acd_orient3d_sign(pl->a, pl->b, pl->c, v);
+    double a[3], b[3], c[3], w[3];
+    for (int k = 0; k < 3; k++) {
+        a[k] = ldexp(pl->a[k], -e);
+        b[k] = ldexp(pl->b[k], -e);
+        c[k] = ldexp(pl->c[k], -e);
+        w[k] = ldexp(v[k], -e);
+    }
     /* orient3d > 0 when v is below the plane of a, b, c (counterclockwise seen from above) */
-    return -acd_orient3d_sign(pl->a, pl->b, pl->c, v);
+    return -acd_orient3d_sign(a, b, c, w);
 }
 
 double acd_geom3_signed_volume(const acd_mesh *m) {
@@ -152,6 +170,8 @@ typedef struct cut_ctx {
     uint8_t *tcap;
     size_t nt, capt;
     int ax, swap; /* 2D frame: drop axis ax; swap the two others when the normal's ax component < 0 */
+    int scale_exp;          /* working coordinates are the input's times 2^scale_exp (exact) */
+    const double *orig;     /* the input vertices */
     acd_error *err;
 } cut_ctx;
 
@@ -215,6 +235,32 @@ typedef struct loop_info {
     double area;       /* signed, 2D frame */
     size_t outer;      /* for holes: the containing outer loop, NONE if none */
 } loop_info;
+
+static int cmp_u64(const void *x, const void *y) {
+    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return (a > b) - (a < b);
+}
+
+/* +1 if every ring edge (k, k+1) of the region (local point indices, rings in rs) is an edge of
+ * the triangles in that direction, -1 if every one is there reversed, 0 otherwise. */
+static int region_direction(const size_t *tris, size_t ntris, const size_t *rs, size_t nr) {
+    uint64_t *keys = malloc((ntris ? ntris : 1) * 3 * sizeof *keys);
+    if (!keys) return 0;
+    for (size_t t = 0; t < ntris; t++)
+        for (int i = 0; i < 3; i++)
+            keys[3 * t + i] = ((uint64_t)tris[3 * t + i] << 32) | (uint64_t)tris[3 * t + (i + 1) % 3];
+    qsort(keys, 3 * ntris, sizeof *keys, cmp_u64);
+    int fwd = 1, rev = 1;
+    for (size_t q = 0; q < nr; q++)
+        for (size_t k = rs[q]; k < rs[q + 1]; k++) {
+            uint64_t a = k, b = k + 1 < rs[q + 1] ? k + 1 : rs[q];
+            uint64_t kf = (a << 32) | b, kr = (b << 32) | a;
+            if (!bsearch(&kf, keys, 3 * ntris, sizeof *keys, cmp_u64)) fwd = 0;
+            if (!bsearch(&kr, keys, 3 * ntris, sizeof *keys, cmp_u64)) rev = 0;
+        }
+    free(keys);
+    return fwd ? 1 : (rev ? -1 : 0);
+}
 
 /* Traces the + side boundary into loops, caps both sides. */
 static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
@@ -383,7 +429,33 @@ static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
         }
         res->nforced += nforced;
         res->nregions++;
-        int flip = loops[o].area < 0; /* an orphan clockwise loop: keep the loop's direction */
+        /* the - cap must run along every loop edge in the loop's direction (so it pairs with the
+         * - faces); if rounding made the rings self-touching so that no consistent triangulation came
+         * out, fan each ring: combinatorially closed with the exact signed area, but overlapping */
+        int dir = region_direction(tris, ntris, rs, r);
+        if (dir == 0) {
+            free(tris);
+            ntris = 0;
+            for (size_t q = 0; q < r; q++) ntris += rs[q + 1] - rs[q] - 2;
+            tris = malloc((ntris ? ntris : 1) * 3 * sizeof *tris);
+            if (!tris) {
+                free(pts);
+                free(pid);
+                free(rs);
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for a section fan");
+                goto done;
+            }
+            size_t w = 0;
+            for (size_t q = 0; q < r; q++)
+                for (size_t i = rs[q] + 1; i + 1 < rs[q + 1]; i++, w++) {
+                    tris[3 * w] = rs[q];
+                    tris[3 * w + 1] = i;
+                    tris[3 * w + 2] = i + 1;
+                }
+            res->nforced++;
+            dir = 1;
+        }
+        int flip = dir < 0;
         for (size_t t = 0; t < ntris && st == ACD_OK; t++) {
             uint32_t a = pid[tris[3 * t]], b = pid[tris[3 * t + 1]], d = pid[tris[3 * t + 2]];
             if (flip) {
@@ -620,7 +692,11 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         }
         for (size_t v = 0; v < c->nv; v++) {
             if (vmap[v] == NONE) continue;
-            memcpy(pc->mesh.vertices + 3 * (size_t)vmap[v], c->V + 3 * v, 3 * sizeof(double));
+            double *dst = pc->mesh.vertices + 3 * (size_t)vmap[v];
+            if (c->src[v] != ACD_CUT_NEW_VERTEX)
+                memcpy(dst, c->orig + 3 * (size_t)c->src[v], 3 * sizeof(double));
+            else
+                for (int k = 0; k < 3; k++) dst[k] = ldexp(c->V[3 * v + k], -c->scale_exp);
             pc->source[vmap[v]] = c->src[v];
             vmap[v] = NONE;
         }
@@ -654,9 +730,37 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
         acd_edge_map_free(&em);
         return st;
     }
+    /* huge or tiny models: work on the input scaled by a power of two (exact, unless it flushes
+     * coordinates below 2^-1074 of the largest one) so that the largest coordinate is about 1: the
+     * predicates' products then neither overflow nor underflow */
+    double maxabs = 0;
+    for (size_t i = 0; i < 3 * m->nvertices; i++) maxabs = fmax(maxabs, fabs(m->vertices[i]));
+    for (int k = 0; k < 3; k++) maxabs = fmax(maxabs, fmax(fabs(pl->a[k]), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
+    int e2 = 0; /* only outside [1e-90, 1e90]: scaling down could flush subnormal coordinates */
+    if (maxabs > 0 && (maxabs > 1e90 || maxabs < 1e-90)) frexp(maxabs, &e2);
+    acd_cut_plane spl = *pl;
+    for (int k = 0; k < 3; k++) {
+        spl.a[k] = ldexp(pl->a[k], -e2);
+        spl.b[k] = ldexp(pl->b[k], -e2);
+        spl.c[k] = ldexp(pl->c[k], -e2);
+    }
+    if (e2 != 0) {
+        acd_cut_plane chk;
+        if (acd_cut_plane_from_points(spl.a, spl.b, spl.c, &chk, NULL) != ACD_OK) {
+            double plmax = 0;
+            for (int k = 0; k < 3; k++) plmax = fmax(plmax, fmax(fabs(pl->a[k]), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
+            acd_edge_map_free(&em);
+            return acd_fail(err, ACD_ERR_DEGENERATE,
+                            "plane cut: the plane's points (up to %g) vanish next to the mesh's coordinates (up to %g)",
+                            plmax, maxabs);
+        }
+    }
+    pl = &spl;
     cut_ctx c;
     memset(&c, 0, sizeof c);
     c.pl = pl;
+    c.scale_exp = -e2;
+    c.orig = m->vertices;
     c.err = err;
     c.ax = 0;
     for (int k = 1; k < 3; k++)
@@ -673,10 +777,10 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory cutting a mesh of %zu triangles", nt);
         goto fail;
     }
-    memcpy(c.V, m->vertices, nv * 3 * sizeof *c.V);
+    for (size_t i = 0; i < 3 * nv; i++) c.V[i] = ldexp(m->vertices[i], -e2);
     for (size_t v = 0; v < nv; v++) {
         c.src[v] = (uint32_t)v;
-        f[v] = -acd_orient3d(pl->a, pl->b, pl->c, m->vertices + 3 * v); /* > 0 on the + side */
+        f[v] = -acd_orient3d(pl->a, pl->b, pl->c, c.V + 3 * v); /* > 0 on the + side */
         s[v] = (int8_t)((f[v] > 0) - (f[v] < 0));
     }
     c.nv = nv;
@@ -714,9 +818,9 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
                 if (xv[h] == NONE) {
                     uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
                     double fl = f[lo], fh = f[hi], tt = fl / (fl - fh);
-                    if (tt < 0) tt = 0;
+                    if (!(tt >= 0)) tt = 0; /* also NaN */
                     if (tt > 1) tt = 1;
-                    const double *pa = m->vertices + 3 * (size_t)lo, *pb = m->vertices + 3 * (size_t)hi;
+                    const double *pa = c.V + 3 * (size_t)lo, *pb = c.V + 3 * (size_t)hi;
                     uint32_t nvx = (uint32_t)c.nv++;
                     for (int k = 0; k < 3; k++) c.V[3 * (size_t)nvx + k] = pa[k] + tt * (pb[k] - pa[k]);
                     c.src[nvx] = ACD_CUT_NEW_VERTEX;
@@ -733,6 +837,7 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
     }
     if (st == ACD_OK) st = cap_sections(&c, out);
     if (st == ACD_OK) st = make_pieces(&c, out);
+    out->section_area = ldexp(out->section_area, 2 * e2);
 fail:
     acd_edge_map_free(&em);
     free(c.V);

@@ -1,0 +1,112 @@
+/* fuzz/fuzz_hull: libFuzzer target for the 3D hull and the plane cut. The input is read as points on
+ * a small integer grid (3 x int8 per point, so duplicates, collinear and coplanar sets are frequent)
+ * or, after a leading 'D' byte, as raw doubles. The hull's invariants are checked (vertices are input
+ * points, closed manifold with consistent neighbours, every point inside every facet plane within
+ * tolerance); a solid hull is then cut by the plane through three of the points and every piece must
+ * be closed with the volumes adding up. Any violation aborts. */
+#include <math.h>
+#include <stdio.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/hull.h"
+#include "geom3/edge_map.h"
+#include "geom3/plane_cut.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+static void check_hull(const acd_hull *h, const double *p, size_t n) {
+    if (h->dim < 3) return;
+    double lo[3], hi[3];
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            if (i == 0 || p[3 * i + k] < lo[k]) lo[k] = p[3 * i + k];
+            if (i == 0 || p[3 * i + k] > hi[k]) hi[k] = p[3 * i + k];
+        }
+    double ext = 0;
+    for (int k = 0; k < 3; k++) ext = fmax(ext, hi[k] - lo[k]);
+    double tol = 1e-9 * ext;
+    if (h->ntriangles != 2 * h->nvertices - 4) abort();
+    for (size_t v = 0; v < h->nvertices; v++)
+        if (h->source[v] >= n || memcmp(h->vertices + 3 * v, p + 3 * h->source[v], 3 * sizeof(double))) abort();
+    for (size_t t = 0; t < h->ntriangles; t++) {
+        for (int e = 0; e < 3; e++) {
+            uint32_t u = h->neighbors[3 * t + e];
+            if (u >= h->ntriangles) abort();
+            int found = 0;
+            for (int f = 0; f < 3; f++)
+                if (h->triangles[3 * u + f] == h->triangles[3 * t + (e + 1) % 3] &&
+                    h->triangles[3 * u + (f + 1) % 3] == h->triangles[3 * t + e] && h->neighbors[3 * u + f] == t)
+                    found = 1;
+            if (!found) abort();
+        }
+        const double *pl = h->planes + 4 * t;
+        for (size_t i = 0; i < n; i++)
+            if (pl[0] * p[3 * i] + pl[1] * p[3 * i + 1] + pl[2] * p[3 * i + 2] + pl[3] > tol) abort();
+    }
+    if (!(h->volume >= 0)) abort(); /* may underflow to 0 for tiny coordinates (documented) */
+}
+
+static void check_cut(const acd_hull *h, const double *p, size_t n) {
+    if (h->dim < 3 || n < 3) return;
+    acd_mesh m = {h->vertices, h->nvertices, h->triangles, h->ntriangles};
+    acd_cut_plane pl;
+    if (acd_cut_plane_from_points(p, p + 3 * (n / 2), p + 3 * (n - 1), &pl, NULL) != ACD_OK) return;
+    acd_cut_result r;
+    acd_error err;
+    acd_status st = acd_plane_cut(&m, &pl, &r, &err);
+    if (st == ACD_ERR_DEGENERATE) return; /* plane points far below the hull's scale */
+    if (st != ACD_OK) { /* a hull is always closed */
+        fprintf(stderr, "plane cut failed: %s\n", err.message);
+        abort();
+    }
+    double vs = 0;
+    for (size_t i = 0; i < r.npieces; i++) {
+        acd_edge_map em;
+        const acd_mesh *pm = &r.pieces[i].mesh;
+        if (acd_edge_map_build(pm->triangles, pm->ntriangles, NULL, &em, NULL) != ACD_OK) abort();
+        if (acd_edge_map_check_closed(&em, pm->triangles, pm->ntriangles, &err) != ACD_OK) {
+            fprintf(stderr, "piece %zu of %zu: %s\n", i, r.npieces, err.message);
+            abort();
+        }
+        acd_edge_map_free(&em);
+        vs += acd_geom3_signed_volume(pm);
+    }
+    double v0 = acd_geom3_signed_volume(&m);
+    /* volumes are cubes of lengths: checked only where they neither underflow nor overflow */
+    if (fabs(v0) > 1e-250 && fabs(v0) < 1e250 && fabs(vs - v0) > 1e-9 * fabs(v0)) {
+        fprintf(stderr, "volumes %.17g vs %.17g\n", vs, v0);
+        abort();
+    }
+    if (r.npieces > 2) abort(); /* a convex solid has at most one piece per side */
+    acd_cut_result_free(&r);
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    size_t n;
+    double *p;
+    if (size > 0 && data[0] == 'D') {
+        n = (size - 1) / 24;
+        p = malloc((n ? n : 1) * 3 * sizeof *p);
+        if (!p) return 0;
+        if (n) memcpy(p, data + 1, n * 24);
+    } else {
+        n = size / 3;
+        p = malloc((n ? n : 1) * 3 * sizeof *p);
+        if (!p) return 0;
+        for (size_t i = 0; i < 3 * n; i++) p[i] = (double)(int8_t)data[i];
+    }
+    acd_hull h;
+    acd_error err;
+    acd_status s = acd_hull_compute(p, n, &h, &err);
+    if (s == ACD_OK) {
+        check_hull(&h, p, n);
+        check_cut(&h, p, n);
+    } else if (!err.message[0]) {
+        abort(); /* every failure must say why */
+    }
+    acd_hull_free(&h);
+    free(p);
+    return 0;
+}
