@@ -2,7 +2,9 @@
 # Fetches real test meshes into data/meshes/ (git-ignored), idempotently:
 #  - Debian's libcgal-demo (CGAL's data/meshes: armadillo, bunny00, elephant, eight, cheese, turbine,
 #    camel, homer, mushroom, ...; CC0 1.0 per Debian's copyright file of cgal), with `apt-get download`;
-#  - npm's `bunny` (the Stanford bunny, public domain), with `npm pack`, converted to OBJ.
+#  - npm's `bunny` (the Stanford bunny, public domain), with `npm pack`, converted to OBJ;
+#  - Debian's assimp-testmodels (BSD-3-clause): its OBJ, OFF, PLY, STL and invalid/ models, into
+#    data/meshes/assimp/, as real-world and malformed-file cases for the readers.
 # Source and licence of every mesh: docs/data.md (and data/meshes/SOURCES.txt, written here).
 # Usage: scripts/fetch-data.sh [--force]
 set -euo pipefail
@@ -66,5 +68,31 @@ else
   grep -v "^bunny.obj" "$DEST/SOURCES.txt" 2>/dev/null > "$TMP/old" || true
   { cat "$TMP/old"; echo "bunny.obj	npm bunny $version (index.js converted by scripts/npm-bunny-to-obj.py)	public domain"; } > "$DEST/SOURCES.txt"
   echo "fetch-data: wrote $DEST/bunny.obj from npm bunny $version"
+fi
+AS="$DEST/assimp"
+if [ -f "$AS/.version" ] && [ $FORCE = 0 ]; then
+  echo "fetch-data: assimp test models already present ($(cat "$AS/.version"))"
+else
+  echo "fetch-data: downloading assimp-testmodels with apt-get"
+  if (cd "$TMP" && apt-get download assimp-testmodels >/dev/null 2>&1); then
+    deb=$(ls "$TMP"/assimp-testmodels_*.deb)
+    version=$(dpkg-deb -f "$deb" Version)
+    dpkg-deb -x "$deb" "$TMP/as"
+    models="$TMP/as/usr/share/assimp/models"
+    rm -rf "$AS"
+    for sub in OBJ OFF PLY STL invalid; do
+      mkdir -p "$AS/$sub"
+      find "$models/$sub" -maxdepth 1 -type f \( -iname '*.obj' -o -iname '*.off' -o -iname '*.ply' -o -iname '*.stl' \) \
+        -exec cp {} "$AS/$sub/" \;
+    done
+    echo "assimp-testmodels $version" > "$AS/.version"
+    grep -v "^assimp/" "$DEST/SOURCES.txt" 2>/dev/null > "$TMP/old" || true
+    { cat "$TMP/old"
+      (cd "$DEST" && find assimp -type f ! -name .version | sort | while read -r f; do
+        echo "$f	Debian assimp-testmodels $version (usr/share/assimp/models/${f#assimp/})	BSD-3-clause"; done); } > "$DEST/SOURCES.txt"
+    echo "fetch-data: extracted $(find "$AS" -type f ! -name .version | wc -l) assimp test models ($version) into $AS"
+  else
+    echo "fetch-data: apt-get download assimp-testmodels failed: skipping them (tests that need them skip)"
+  fi
 fi
 echo "fetch-data: $DEST holds $(ls "$DEST" | grep -cE '\.(off|obj|ply|stl)$') meshes; sources in $DEST/SOURCES.txt"
