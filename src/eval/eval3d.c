@@ -198,6 +198,10 @@ static double now_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* Acceptance factor of the generalized winding number for open meshes: only its sign against 1/2
+ * is used, so a coarser far field than spatial.h's default does (docs/eval.md). */
+#define EVAL_GWN_BETA 2.0
+
 /* Independent generator for (stream, index): results do not depend on the order of the work. */
 static void rng_for(acd_rng *r, uint64_t seed, uint64_t stream, uint64_t index) {
     acd_rng_seed(r, seed ^ (0x9E3779B97F4A7C15ull * (index + 1)) ^ (0xD1B54A32D192ED03ull * (stream + 1)));
@@ -262,7 +266,7 @@ static acd_status volume_counts(const eval_ctx *c, size_t *nsamples, size_t coun
                     in_m = line.n ? (acd_spatial_line_winding(c->mesh, &line, x, &on) != 0 || on) : 0;
                 } else {
                     double p[3] = {x, y, z};
-                    in_m = fabs(acd_spatial_gwn(c->mesh, p)) >= 0.5;
+                    in_m = fabs(acd_spatial_gwn_beta(c->mesh, p, EVAL_GWN_BETA)) >= 0.5;
                 }
                 on = 0;
                 int in_u = hline.n ? (acd_spatial_line_winding(&c->hs->sp, &hline, x, &on) > 0 || on) : 0;

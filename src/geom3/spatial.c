@@ -267,7 +267,12 @@ static double tri_solid_angle(const double *p0, const double *p1, const double *
 }
 
 double acd_spatial_gwn(const acd_spatial *sp, const double q[3]) {
+    return acd_spatial_gwn_beta(sp, q, ACD_SPATIAL_GWN_BETA);
+}
+
+double acd_spatial_gwn_beta(const acd_spatial *sp, const double q[3], double beta) {
     const acd_bvh *b = &sp->bvh;
+    if (!(beta > 1)) beta = ACD_SPATIAL_GWN_BETA;
     if (b->nnodes == 0) return 0;
     uint32_t stack[GWN_STACK];
     int top = 0;
@@ -279,7 +284,7 @@ double acd_spatial_gwn(const acd_spatial *sp, const double q[3]) {
         const double *m = sp->moments + GWN_M * (size_t)i;
         double d[3] = {m[3] - q[0], m[4] - q[1], m[5] - q[2]};
         double dist2 = dot3(d, d);
-        double far = ACD_SPATIAL_GWN_BETA * m[6];
+        double far = beta * m[6];
         if (dist2 > far * far && dist2 > 0) {
             /* f(x) = (x - q) / |x - q|^3 expanded at the centroid: f.N + J : T, with
              * J_ij = delta_ij / |d|^3 - 3 d_i d_j / |d|^5 */

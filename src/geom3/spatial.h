@@ -58,8 +58,12 @@ int acd_spatial_ray_winding(const acd_spatial *sp, const double p[3], int *on_su
  * lies on it. For callers that count crossings per group of triangles (eval3d: per hull). */
 int acd_spatial_ray_crossing(const acd_spatial *sp, uint32_t t, const double p[3], int *on_surface);
 
-/* Generalized winding number, hierarchical approximation (any mesh). */
+/* Generalized winding number, hierarchical approximation (any mesh), beta = ACD_SPATIAL_GWN_BETA
+ * (error below 1e-2 on the test meshes). */
 double acd_spatial_gwn(const acd_spatial *sp, const double p[3]);
+/* The same with another acceptance factor (> 1): smaller is faster and coarser; 2 still decides
+ * inside/outside (|w| >= 1/2) away from the surface; near it the exact near field rules. */
+double acd_spatial_gwn_beta(const acd_spatial *sp, const double p[3], double beta);
 
 /* Winding number by the method chosen for the mesh (ray for closed, generalized for open). */
 double acd_spatial_winding_number(const acd_spatial *sp, const double p[3]);
