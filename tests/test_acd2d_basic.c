@@ -179,6 +179,36 @@ static void test_hierarchy_readout(void **state) {
     acd_polygon_free(&p);
 }
 
+/* every node's polygon (stored or rebuilt) has the area of its subtree's components */
+static void test_node_polygons(void **state) {
+    (void)state;
+    acd_polygon p = random_star(5, 120, 1.0, 4.0);
+    acd2d_params prm = acd2d_default_params();
+    acd2d_result res;
+    acd_error err;
+    assert_int_equal(acd2d_decompose(&p, &prm, &res, &err), ACD_OK);
+    double *leaf_area = calloc(res.nnodes, sizeof *leaf_area);
+    for (size_t i = 0; i < res.ncomponents; i++) {
+        int v = res.components[i].node;
+        double a = ck_ring_area(res.components[i].points, res.components[i].npoints);
+        while (v >= 0) { leaf_area[v] += a; v = res.nodes[v].parent; }
+    }
+    size_t empty = 0;
+    for (size_t v = 0; v < res.nnodes; v++) {
+        acd_polygon q;
+        empty += res.nodes[v].polygon.nrings == 0;
+        assert_int_equal(acd2d_node_polygon(&res, (int)v, &q, &err), ACD_OK);
+        double a = acd_polygon_area(&q);
+        assert_true(fabs(a - leaf_area[v]) <= 1e-9 * leaf_area[0]);
+        if (v == 0) assert_true(q.ring_start[1] == p.ring_start[1] && !memcmp(q.points, p.points, p.ring_start[1] * sizeof *q.points));
+        acd_polygon_free(&q);
+    }
+    assert_true(empty > 0); /* inner nodes are rebuilt, not stored */
+    free(leaf_area);
+    acd2d_result_free(&res);
+    acd_polygon_free(&p);
+}
+
 static int cancel_after(void *user, double f, const char *stage) {
     (void)f;
     (void)stage;
@@ -233,7 +263,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_l_shape_concavity),  cmocka_unit_test(test_l_shape_decompose),
         cmocka_unit_test(test_random_stars),       cmocka_unit_test(test_square_with_holes),
-        cmocka_unit_test(test_hierarchy_readout),  cmocka_unit_test(test_cancel_and_args),
+        cmocka_unit_test(test_hierarchy_readout),  cmocka_unit_test(test_node_polygons),  cmocka_unit_test(test_cancel_and_args),
         cmocka_unit_test(test_normalize_and_determinism),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

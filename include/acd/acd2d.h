@@ -50,7 +50,11 @@ const char *acd2d_measure_name(acd2d_measure m);            /* "sl", "sp", "h1",
 int acd2d_measure_parse(const char *name, acd2d_measure *out); /* 1 on success */
 
 /* One node of the decomposition tree (Fig. 9b). Node 0 is the input polygon. A node with
- * children was cut (or had a hole merged, then it has one child) by `cut`. */
+ * children was cut (or had a hole merged, then it has one child) by `cut`. Node ids are in
+ * preorder. To keep memory linear in the output, `polygon` is stored for the root, the hole-merge
+ * steps, the components (leaves) and the few nodes that cannot be rebuilt from their children;
+ * it is empty (nrings == 0) for the other inner nodes: get any node's polygon with
+ * acd2d_node_polygon. */
 typedef struct acd2d_node {
     int parent;              /* -1 for the root */
     int child[2];            /* -1 where absent */
@@ -60,6 +64,8 @@ typedef struct acd2d_node {
     acd_polygon polygon;     /* this node's polygon (holes still present until merged) */
     int acceptable;          /* 1 if the polygon is simple, without holes or hole-merging slits: only
                                 such nodes can be components (acd2d_result_at_tau) */
+    size_t ring_offset;      /* split nodes: position of cut[0] in this node's ring (for the rebuild) */
+    int cut_new_point;       /* split nodes: cut[1] is a new point inside an edge */
 } acd2d_node;
 
 typedef struct acd2d_component {
@@ -94,6 +100,10 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *params, 
 acd_status acd2d_result_at_tau(const acd2d_result *result, double tau2, acd2d_result *out, acd_error *err);
 
 void acd2d_result_free(acd2d_result *r);
+
+/* The polygon of tree node `node` (a copy, freed with acd_polygon_free), stored or rebuilt from
+ * the node's descendants (iteratively, O(size of the subtree's rings)). */
+acd_status acd2d_node_polygon(const acd2d_result *result, int node, acd_polygon *out, acd_error *err);
 
 /* Concavity of a simple counterclockwise polygon (no holes) under a measure, as the
  * decomposition measures it: the largest concavity of a notch (cross((v-u),(w-v)) < -1e-5, the

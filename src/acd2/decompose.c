@@ -419,11 +419,8 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
             c.nodes[it.parent].child[it.which] = node;
         }
         acd2_ring *r = &it.ring;
-        if (c.nodes[node].polygon.nrings == 0 && ring_to_polygon(r, &c.nodes[node].polygon)) {
-            acd2_ring_free(r);
-            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-            goto fail;
-        }
+        /* a node's polygon is stored only when it cannot be rebuilt from its children (root,
+         * hole merges, components, pinch splits, pieces changed by cleaning); see tree.c */
         if (ensure_buffers(&c, r->n + 8)) { acd2_ring_free(r); st = acd_fail(err, ACD_ERR_NOMEM, "out of memory"); goto fail; }
         size_t wit;
         double val;
@@ -466,6 +463,11 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
                 acd2_ring_clean(&a);
                 acd2_ring_clean(&b);
                 nd->cut[0] = nd->cut[1] = r->p[pi];
+                if (nd->polygon.nrings == 0 && ring_to_polygon(r, &nd->polygon)) {
+                    acd2_ring_free(&a); acd2_ring_free(&b); acd2_ring_free(r);
+                    st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+                    goto fail;
+                }
                 acd2_ring_free(r);
                 if (push(&c, &b, -1, node, 1) || push(&c, &a, -1, node, 0)) {
                     acd2_ring_free(&a); acd2_ring_free(&b);
@@ -476,6 +478,11 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
             }
             nd->concavity = val + farv;
         } else if (wit == SIZE_MAX || val <= c.mo.tau + c.eps_c) {
+            if (nd->polygon.nrings == 0 && ring_to_polygon(r, &nd->polygon)) {
+                acd2_ring_free(r);
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+                goto fail;
+            }
             st = add_component(&c, r, val, node, err);
             acd2_ring_free(r);
             if (st != ACD_OK) goto fail;
@@ -512,6 +519,17 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
         }
         nd->cut[0] = r->p[wit];
         nd->cut[1] = hit.z;
+        nd->ring_offset = wit;
+        nd->cut_new_point = !hit.is_vertex;
+        {
+            size_t n = r->n, ea = (hit.j + n - wit) % n + 1 + (size_t)!hit.is_vertex;
+            size_t eb = hit.is_vertex ? (wit + n - hit.j) % n + 1 : (wit + n - acd2_next(hit.j, n)) % n + 2;
+            if ((a.n != ea || b.n != eb) && nd->polygon.nrings == 0 && ring_to_polygon(r, &nd->polygon)) {
+                acd2_ring_free(&a); acd2_ring_free(&b); acd2_ring_free(r);
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+                goto fail;
+            }
+        }
         acd_vec2 seg[2] = {r->p[wit], hit.z};
         acd2_ring_free(r);
         if (acd2_cuts_push(&cl, seg) || push(&c, &b, -1, node, 1) || push(&c, &a, -1, node, 0)) {

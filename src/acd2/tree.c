@@ -42,15 +42,103 @@ void acd2d_result_free(acd2d_result *r) {
     memset(r, 0, sizeof *r);
 }
 
-static acd_status add_comp(acd2d_result *out, size_t *cap, const acd2d_node *nd, int node, acd_error *err) {
+typedef struct pts {
+    acd_vec2 *p;
+    size_t n;
+} pts;
+
+/* Rebuilds the ring of node v from its descendants, iteratively (post-order with an explicit
+ * stack). A split node's ring R, with the cut from R[off] to a vertex R[j] or to a new point z in
+ * edge (j, j+1), has children A = R[off..j] (+ z) and B = (z +) R[j(+1)..off]; so R rotated to
+ * start at off is A without its last point followed by B without its last (and without z). */
+static acd_status rebuild(const acd2d_result *res, int v, pts *outp, acd_error *err) {
+    size_t nn = res->nnodes;
+    pts *built = calloc(nn, sizeof *built);
+    int *stack = malloc((nn + 1) * sizeof *stack);
+    acd_status st = ACD_OK;
+    if (!built || !stack) {
+        free(built);
+        free(stack);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory rebuilding node %d", v);
+    }
+    size_t ns = 0;
+    stack[ns++] = v;
+    while (ns > 0 && st == ACD_OK) {
+        int u = stack[ns - 1];
+        const acd2d_node *nd = &res->nodes[u];
+        if (nd->polygon.nrings > 0) {
+            size_t n = acd_polygon_ring_size(&nd->polygon, 0);
+            built[u].p = malloc(n * sizeof *built[u].p);
+            if (!built[u].p) { st = acd_fail(err, ACD_ERR_NOMEM, "out of memory"); break; }
+            memcpy(built[u].p, nd->polygon.points, n * sizeof *built[u].p);
+            built[u].n = n;
+            ns--;
+            continue;
+        }
+        int a = nd->child[0], b = nd->child[1];
+        if (a < 0 || b < 0) { st = acd_fail(err, ACD_ERR_INTERNAL, "tree node %d has no polygon and no children", u); break; }
+        if (!built[a].p || !built[b].p) {
+            if (!built[b].p) stack[ns++] = b;
+            if (!built[a].p) stack[ns++] = a;
+            continue;
+        }
+        size_t s = (size_t)(nd->cut_new_point != 0), na = built[a].n, nb = built[b].n;
+        if (na < 2 || nb < 2 + s) { st = acd_fail(err, ACD_ERR_INTERNAL, "tree node %d: children too small", u); break; }
+        size_t n = (na - 1) + (nb - 1 - s);
+        acd_vec2 *R = malloc((n ? n : 1) * sizeof *R);
+        if (!R) { st = acd_fail(err, ACD_ERR_NOMEM, "out of memory"); break; }
+        size_t off = nd->ring_offset % (n ? n : 1);
+        for (size_t k = 0; k < na - 1; k++) R[(k + off) % n] = built[a].p[k];
+        for (size_t k = 0; k < nb - 1 - s; k++) R[(na - 1 + k + off) % n] = built[b].p[s + k];
+        free(built[a].p);
+        free(built[b].p);
+        built[a].p = built[b].p = NULL;
+        built[u].p = R;
+        built[u].n = n;
+        ns--;
+    }
+    if (st == ACD_OK) {
+        *outp = built[v];
+        built[v].p = NULL;
+    }
+    for (size_t i = 0; i < nn; i++) free(built[i].p);
+    free(built);
+    free(stack);
+    return st;
+}
+
+acd_status acd2d_node_polygon(const acd2d_result *res, int node, acd_polygon *out, acd_error *err) {
+    if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd2d_node_polygon: out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!res || node < 0 || (size_t)node >= res->nnodes)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd2d_node_polygon: no node %d", node);
+    if (res->nodes[node].polygon.nrings > 0) {
+        if (acd_polygon_copy(out, &res->nodes[node].polygon) != ACD_OK) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+        return ACD_OK;
+    }
+    pts r = {0};
+    acd_status st = rebuild(res, node, &r, err);
+    if (st != ACD_OK) return st;
+    const acd_vec2 *rings[1] = {r.p};
+    size_t sizes[1] = {r.n};
+    st = acd_polygon_from_rings(out, rings, sizes, 1, err);
+    free(r.p);
+    return st;
+}
+
+static acd_status add_comp(acd2d_result *out, size_t *cap, const acd2d_result *res, int node, acd_error *err) {
+    const acd2d_node *nd = &res->nodes[node];
+    acd_polygon tmp;
+    acd_status st0 = acd2d_node_polygon(res, node, &tmp, err);
+    if (st0 != ACD_OK) return st0;
     if (out->ncomponents == *cap) {
         size_t nc = *cap ? 2 * *cap : 16;
         acd2d_component *q = realloc(out->components, nc * sizeof *q);
-        if (!q) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+        if (!q) { acd_polygon_free(&tmp); return acd_fail(err, ACD_ERR_NOMEM, "out of memory"); }
         out->components = q;
         *cap = nc;
     }
-    size_t n = acd_polygon_ring_size(&nd->polygon, 0);
+    size_t n = acd_polygon_ring_size(&tmp, 0);
     acd2d_component *c = &out->components[out->ncomponents];
     memset(c, 0, sizeof *c);
     c->points = malloc(n * sizeof *c->points);
@@ -58,9 +146,11 @@ static acd_status add_comp(acd2d_result *out, size_t *cap, const acd2d_node *nd,
     size_t *idx = malloc((n + 1) * sizeof *idx), *scr = malloc((n + 1) * sizeof *scr);
     if (!c->points || !c->hull || !idx || !scr) {
         free(c->points); free(c->hull); free(idx); free(scr);
+        acd_polygon_free(&tmp);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
     }
-    memcpy(c->points, nd->polygon.points, n * sizeof *c->points);
+    memcpy(c->points, tmp.points, n * sizeof *c->points);
+    acd_polygon_free(&tmp);
     c->npoints = n;
     size_t nh = acd_hull2d_indices(c->points, n, idx, scr);
     for (size_t i = 0; i < nh; i++) c->hull[i] = c->points[idx[i]];
@@ -101,7 +191,7 @@ acd_status acd2d_result_at_tau(const acd2d_result *res, double tau2, acd2d_resul
         const acd2d_node *nd = &res->nodes[v];
         int leaf = nd->child[0] < 0 && nd->child[1] < 0;
         if (leaf || (nd->acceptable && nd->concavity <= tau2 + eps)) {
-            st = add_comp(out, &comp_cap, nd, v, err);
+            st = add_comp(out, &comp_cap, res, v, err);
             continue;
         }
         int zero = nd->cut[0].x == nd->cut[1].x && nd->cut[0].y == nd->cut[1].y;
