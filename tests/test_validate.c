@@ -99,6 +99,11 @@ static void test_invalid_cases(void **state) {
         const size_t sz[] = {4, 4};
         expect_invalid(xy, sz, 2, 0, ACD_ERR_INVALID_INPUT, "hole chain 1 lies outside", "(12, 2)");
     }
+    { /* a "hole" enclosing the outer boundary */
+        const double xy[] = {0, 0, 10, 0, 10, 10, 0, 10, -5, -5, -5, 20, 20, 20, 20, -5};
+        const size_t sz[] = {4, 4};
+        expect_invalid(xy, sz, 2, 0, ACD_ERR_INVALID_INPUT, "hole chain 1 lies outside the outer boundary", "");
+    }
     { /* hole touching the outer boundary at a vertex */
         const double xy[] = {0, 0, 10, 0, 10, 10, 0, 10, 0, 5, 2, 6, 2, 4};
         const size_t sz[] = {4, 3};
@@ -224,7 +229,7 @@ static void test_fast_matches_brute(void **state) {
     (void)state;
     acd_rng rng;
     acd_rng_seed(&rng, 12345);
-    size_t nvalid = 0, ninvalid = 0;
+    size_t nvalid = 0, ninvalid = 0, nnested = 0, noutside = 0;
 #ifdef NDEBUG
     const int iterations = 20000;
 #else
@@ -241,10 +246,69 @@ static void test_fast_matches_brute(void **state) {
         if (d != b) fail_msg("iteration %d: subdiv %d (%s) vs brute %d (%s)", it, (int)d, e3.message, (int)b, e2.message);
         if (a == ACD_OK) nvalid++;
         else ninvalid++;
+        if (a != ACD_OK && strstr(e1.message, "inside hole")) nnested++;
+        if (a != ACD_OK && strstr(e1.message, "outside the outer")) noutside++;
         acd_polygon_free(&p);
     }
-    print_message("[  INFO    ] %zu valid, %zu invalid random polygons\n", nvalid, ninvalid);
-    assert_true(nvalid > 200 && ninvalid > 200);
+    print_message("[  INFO    ] %zu valid, %zu invalid random polygons (%zu nested holes, %zu holes outside)\n",
+                  nvalid, ninvalid, nnested, noutside);
+    assert_true(nvalid > 200 && ninvalid > 200 && noutside > 5);
+}
+
+/* Nesting: regular-polygon holes of random sizes and centres, often inside each other or
+ * outside the outer ring without touching; the sweep's nesting must agree with the
+ * point-in-ring tests of the other methods. */
+static void test_random_nesting(void **state) {
+    (void)state;
+    acd_rng rng;
+    acd_rng_seed(&rng, 99);
+    size_t nvalid = 0, nnested = 0, noutside = 0;
+    for (int it = 0; it < 4000; it++) {
+        acd_vec2 pts[256];
+        const acd_vec2 *rings[12];
+        size_t sizes[12], k = 0;
+        size_t nh = 1 + (size_t)acd_rng_below(&rng, 5);
+        double prev_c[2] = {0, 0}, prev_r = 0;
+        for (size_t r = 0; r <= nh; r++) {
+            size_t m = r == 0 ? 24 : 3 + (size_t)acd_rng_below(&rng, 6);
+            double cx = r ? (acd_rng_uniform(&rng) - 0.5) * 240 : 0, cy = r ? (acd_rng_uniform(&rng) - 0.5) * 240 : 0;
+            double rad = r ? 1 + 40 * acd_rng_uniform(&rng) : 100, a0 = acd_rng_uniform(&rng);
+            if (r >= 2 && acd_rng_below(&rng, 2) == 0) { /* inside the previous hole */
+                cx = prev_c[0] + 0.05 * prev_r * (acd_rng_uniform(&rng) - 0.5);
+                cy = prev_c[1] + 0.05 * prev_r * (acd_rng_uniform(&rng) - 0.5);
+                rad = prev_r * (0.1 + 0.3 * acd_rng_uniform(&rng));
+            }
+            prev_c[0] = cx;
+            prev_c[1] = cy;
+            prev_r = rad;
+            rings[r] = pts + k;
+            sizes[r] = m;
+            for (size_t i = 0; i < m; i++, k++) {
+                double a = 2 * TV_PI * ((double)i + a0) / (double)m * (r ? -1 : 1);
+                pts[k].x = cx + rad * cos(a);
+                pts[k].y = cy + rad * sin(a);
+            }
+        }
+        acd_polygon p;
+        acd_error e1, e2, e3;
+        assert_int_equal(acd_polygon_from_rings(&p, rings, sizes, nh + 1, &e1), ACD_OK);
+        acd_status a = acd_polygon_validate_with(&p, 0, ACD_VALIDATE_FAST, &e1);
+        acd_status b = acd_polygon_validate_with(&p, 0, ACD_VALIDATE_BRUTE, &e2);
+        acd_status d = acd_polygon_validate_with(&p, 0, ACD_VALIDATE_SUBDIV, &e3);
+        if (a != b || d != b)
+            fail_msg("iteration %d: sweep %d (%s), brute %d (%s), subdiv %d", it, (int)a, e1.message, (int)b,
+                     e2.message, (int)d);
+        /* (with several problems the methods may name different ones first) */
+        if (a != ACD_OK) {
+            nnested += strstr(e1.message, "inside hole") != NULL;
+            noutside += strstr(e1.message, "outside the outer") != NULL;
+        } else {
+            nvalid++;
+        }
+        acd_polygon_free(&p);
+    }
+    print_message("[  INFO    ] nesting: %zu valid, %zu nested holes, %zu holes outside\n", nvalid, nnested, noutside);
+    assert_true(nvalid > 50 && nnested > 50 && noutside > 50);
 }
 
 /* A 100k-vertex star-shaped polygon with a few thousand holes validates quickly; one moved
@@ -329,7 +393,7 @@ static void test_normalize(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_valid_square_with_hole), cmocka_unit_test(test_invalid_cases),
-        cmocka_unit_test(test_fast_matches_brute),     cmocka_unit_test(test_large_polygon_fast),
+        cmocka_unit_test(test_fast_matches_brute),     cmocka_unit_test(test_random_nesting),     cmocka_unit_test(test_large_polygon_fast),
         cmocka_unit_test(test_normalize),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -168,8 +168,28 @@ static acd_status erase(sweep *w, size_t t) {
     return ACD_OK;
 }
 
+/* The highest status edge strictly below point v (v must not lie on a status edge; if it does,
+ * the insertion at v reports the conflict, so any answer will do). */
+static size_t edge_below(const sweep *w, acd_vec2 v) {
+    double p[2] = {v.x, v.y};
+    size_t x = w->root, best = NIL;
+    while (x != NIL) {
+        double tl[2], tr[2];
+        left_right(w, x, tl, tr);
+        int o = acd_orient2d_sign(tl, tr, p);
+        if (o == 0) break;
+        if (o > 0) {
+            best = x;
+            x = w->rc[x];
+        } else {
+            x = w->lc[x];
+        }
+    }
+    return best;
+}
+
 acd_status acd_sweep_edges(const acd_vec2 *pts, const size_t *next, size_t n, acd_sweep_pair_fn conflict,
-                           void *ctx, acd_error *err) {
+                           void *ctx, const unsigned char *want_below, size_t *below, acd_error *err) {
     if (n == 0) return ACD_OK;
     sweep w = {pts, next, NULL, NULL, NULL, NULL, NIL, conflict, ctx, err};
     size_t *prev = malloc(n * sizeof *prev);
@@ -206,6 +226,7 @@ acd_status acd_sweep_edges(const acd_vec2 *pts, const size_t *next, size_t n, ac
         int out_ends = lex_less(pts[next[out]], pv); /* edge out = v->next ends at v */
         if (in_ends) st = erase(&w, in);
         if (st == ACD_OK && out_ends) st = erase(&w, out);
+        if (st == ACD_OK && below && want_below && want_below[v]) below[v] = edge_below(&w, pv);
         if (st == ACD_OK && !in_ends) st = insert(&w, in);
         if (st == ACD_OK && !out_ends) st = insert(&w, out);
     }

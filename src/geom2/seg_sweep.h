@@ -14,8 +14,12 @@
 
 typedef acd_status (*acd_sweep_pair_fn)(void *ctx, size_t e, size_t f);
 
-/* Requirements: finite coordinates, no zero-length edge (pts[i] != pts[next[i]]). */
+/* Requirements: finite coordinates, no zero-length edge (pts[i] != pts[next[i]]).
+ * Optionally (want_below and below both non-NULL): for every vertex v with want_below[v] != 0,
+ * below[v] is set to the edge directly below v when the sweep reaches v (the highest edge crossing
+ * the vertical line through v under v), or SIZE_MAX if there is none. Meaningful when the sweep
+ * returns ACD_OK. */
 acd_status acd_sweep_edges(const acd_vec2 *pts, const size_t *next, size_t n, acd_sweep_pair_fn conflict,
-                           void *ctx, acd_error *err);
+                           void *ctx, const unsigned char *want_below, size_t *below, acd_error *err);
 
 #endif

@@ -433,6 +433,88 @@ static acd_status check_nesting(const vctx *c) {
     return st;
 }
 
+static size_t lexmin_vertex(const acd_polygon *p, size_t r) {
+    size_t s = p->ring_start[r], e = p->ring_start[r + 1], m = s;
+    for (size_t i = s + 1; i < e; i++)
+        if (p->points[i].x < p->points[m].x || (p->points[i].x == p->points[m].x && p->points[i].y < p->points[m].y))
+            m = i;
+    return m;
+}
+
+typedef struct ring_order {
+    double x, y;
+    size_t ring;
+} ring_order;
+
+static int cmp_ring_order(const void *a, const void *b) {
+    const ring_order *p = a, *q = b;
+    if (p->x != q->x) return p->x < q->x ? -1 : 1;
+    if (p->y != q->y) return p->y < q->y ? -1 : 1;
+    return p->ring < q->ring ? -1 : p->ring > q->ring;
+}
+
+/* Nesting of disjoint, correctly oriented rings from the sweep's "edge below" of each ring's
+ * lexicographically smallest vertex v: if that edge e belongs to ring r, v is inside r iff the
+ * side of e facing up is r's inner side (left of e for the counterclockwise outer ring, right
+ * for clockwise holes; up is left of a rightward edge). Otherwise v is at r's level: its parent
+ * is r's parent. Rings are taken in the order of their smallest vertices, so r's parent is known
+ * first. Valid: the outer ring has no parent and every hole has the outer ring as its parent. */
+static acd_status nesting_from_sweep(const vctx *c, const size_t *below) {
+    const acd_polygon *p = c->p;
+    size_t nr = p->nrings;
+    ring_order *ord = malloc(nr * sizeof *ord);
+    size_t *parent = malloc(nr * sizeof *parent);
+    if (!ord || !parent) {
+        free(ord);
+        free(parent);
+        return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory validating polygon %zu", c->index);
+    }
+    for (size_t r = 0; r < nr; r++) {
+        acd_vec2 v = p->points[lexmin_vertex(p, r)];
+        ord[r].x = v.x;
+        ord[r].y = v.y;
+        ord[r].ring = r;
+    }
+    qsort(ord, nr, sizeof *ord, cmp_ring_order);
+    acd_status st = ACD_OK;
+    for (size_t k = 0; k < nr; k++) {
+        size_t h = ord[k].ring, e = below[lexmin_vertex(p, h)];
+        if (e == SIZE_MAX) {
+            parent[h] = SIZE_MAX;
+        } else {
+            size_t r = c->ring[e];
+            acd_vec2 a = p->points[e], b = p->points[c->next[e]];
+            int rightward = a.x < b.x || (a.x == b.x && a.y < b.y);
+            int inside = r == 0 ? rightward : !rightward;
+            parent[h] = inside ? r : parent[r];
+        }
+    }
+    for (size_t h = 0; h < nr && st == ACD_OK; h++) {
+        size_t v = lexmin_vertex(p, h);
+        acd_vec2 q = p->points[v];
+        if (h == 0 && parent[0] != SIZE_MAX) {
+            acd_vec2 q0 = acd_polygon_ring(p, parent[0])[0];
+            st = acd_fail(c->err, ACD_ERR_INVALID_INPUT,
+                          "polygon %zu: hole chain %zu lies outside the outer boundary (chain 0): the outer boundary "
+                          "is inside it (its vertex 0 is (%.17g, %.17g))",
+                          c->index, parent[0], q0.x, q0.y);
+        } else if (h > 0 && parent[h] == SIZE_MAX) {
+            st = acd_fail(c->err, ACD_ERR_INVALID_INPUT,
+                          "polygon %zu: hole chain %zu lies outside the outer boundary (chain 0): its vertex %zu "
+                          "(%.17g, %.17g) is outside",
+                          c->index, h, local(c, v), q.x, q.y);
+        } else if (h > 0 && parent[h] != 0) {
+            st = acd_fail(c->err, ACD_ERR_INVALID_INPUT,
+                          "polygon %zu: hole chain %zu lies inside hole chain %zu (its vertex %zu (%.17g, %.17g) is "
+                          "inside); an island in a hole must be a separate polygon",
+                          c->index, h, parent[h], local(c, v), q.x, q.y);
+        }
+    }
+    free(ord);
+    free(parent);
+    return st;
+}
+
 /* Per-ring checks that need no pairs: size, finiteness, repeats, zero area. */
 static acd_status check_rings(const acd_polygon *p, size_t index, acd_error *err) {
     for (size_t r = 0; r < p->nrings; r++) {
@@ -477,6 +559,8 @@ acd_status acd_polygon_validate_with(const acd_polygon *p, size_t index, acd_val
     if (st != ACD_OK) return st;
 
     vctx c;
+    unsigned char *want = NULL;
+    size_t *below = NULL;
     memset(&c, 0, sizeof c);
     c.p = p;
     c.index = index;
@@ -509,7 +593,17 @@ acd_status acd_polygon_validate_with(const acd_polygon *p, size_t index, acd_val
     c.margin = 1e-9 * extent + 256.0 * DBL_EPSILON * maxabs + DBL_MIN;
     if (method == ACD_VALIDATE_BRUTE) st = brute_pairs(&c, ids, c.n);
     else if (method == ACD_VALIDATE_SUBDIV) st = subdivide(&c, box, ids, c.n, 0);
-    else st = acd_sweep_edges(p->points, c.next, c.n, sweep_pair, &c, err);
+    else {
+        /* also ask for the edge below each ring's lexicographically smallest vertex (nesting) */
+        want = calloc(c.n, 1);
+        below = malloc(c.n * sizeof *below);
+        if (!want || !below) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory validating polygon %zu (%zu vertices)", index, c.n);
+            goto done;
+        }
+        for (size_t r = 0; r < p->nrings; r++) want[lexmin_vertex(p, r)] = 1;
+        st = acd_sweep_edges(p->points, c.next, c.n, sweep_pair, &c, want, below, err);
+    }
     if (st != ACD_OK) goto done;
 
     for (size_t r = 0; r < p->nrings; r++) {
@@ -523,11 +617,13 @@ acd_status acd_polygon_validate_with(const acd_polygon *p, size_t index, acd_val
             goto done;
         }
     }
-    st = check_nesting(&c);
+    st = below ? nesting_from_sweep(&c, below) : check_nesting(&c);
 done:
     free(c.ring);
     free(c.next);
     free(ids);
+    free(want);
+    free(below);
     return st;
 }
 
