@@ -231,19 +231,21 @@ static int composite_options(mcd *m, size_t i, size_t k) {
     return 1;
 }
 
-/* Type A option for (i, k) through j; returns 0 on out of memory. */
-static int option_a(mcd *m, size_t i, size_t j, size_t k) {
-    long wjk = 0;
-    if (j < m->bwd[k]) {
-        mcd_entry *e = entry_of(m, j, k);
-        if (!e || e->w < 0) return 1;
-        wjk = e->w;
+/* The staircase pair of entry e to merge in type A at (i, j, k): the largest s with
+ * orient(t, j, k) >= 0 (a prefix of the staircase, t grows with s) and orient(k, i, s) >= 0 (a suffix).
+ * Binary search for the prefix end, checked; a linear scan if the check fails. NONE if none. */
+static size_t merge_a(const mcd *m, const mcd_entry *e, size_t i, size_t j, size_t k) {
+    size_t lo = e->first, hi = e->first + e->count;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (acd_orient2d_sign(W(m, m->pool[mid].t), W(m, j), W(m, k)) >= 0) lo = mid + 1;
+        else hi = mid;
     }
-    mcd_pair pr = {j, j, j, NONE, 'A'};
-    if (j <= m->fwd[i]) return push_opt(m, wjk + 1, pr);
-    mcd_entry *e = entry_of(m, i, j);
-    if (!e || e->w < 0) return 1;
-    size_t best = NONE;
+    if (lo > e->first) {
+        const mcd_pair *c = &m->pool[lo - 1];
+        if (acd_orient2d_sign(W(m, k), W(m, i), W(m, c->s)) >= 0) return lo - 1;
+    }
+    size_t best = NONE; /* not monotone (collinear pairs): exact scan */
     for (size_t q = e->first; q < e->first + e->count; q++) {
         const mcd_pair *c = &m->pool[q];
         if (best != NONE && c->s <= m->pool[best].s) continue;
@@ -251,25 +253,21 @@ static int option_a(mcd *m, size_t i, size_t j, size_t k) {
             acd_orient2d_sign(W(m, k), W(m, i), W(m, c->s)) >= 0)
             best = q;
     }
-    if (best != NONE) {
-        pr.s = m->pool[best].s;
-        pr.child = best;
-        return push_opt(m, wjk + e->w, pr);
-    }
-    return push_opt(m, wjk + e->w + 1, pr);
+    return best;
 }
 
-static int option_b(mcd *m, size_t i, size_t j, size_t k) {
-    long wij = 0;
-    if (j > m->fwd[i]) {
-        mcd_entry *e = entry_of(m, i, j);
-        if (!e || e->w < 0) return 1;
-        wij = e->w;
+/* Type B: the smallest t with orient(i, j, s) >= 0 (a suffix) and orient(t, k, i) >= 0 (a prefix). */
+static size_t merge_b(const mcd *m, const mcd_entry *e, size_t i, size_t j, size_t k) {
+    size_t lo = e->first, hi = e->first + e->count;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (acd_orient2d_sign(W(m, i), W(m, j), W(m, m->pool[mid].s)) >= 0) hi = mid;
+        else lo = mid + 1;
     }
-    mcd_pair pr = {j, j, j, NONE, 'B'};
-    if (j >= m->bwd[k]) return push_opt(m, wij + 1, pr);
-    mcd_entry *e = entry_of(m, j, k);
-    if (!e || e->w < 0) return 1;
+    if (lo < e->first + e->count) {
+        const mcd_pair *c = &m->pool[lo];
+        if (acd_orient2d_sign(W(m, c->t), W(m, k), W(m, i)) >= 0) return lo;
+    }
     size_t best = NONE;
     for (size_t q = e->first; q < e->first + e->count; q++) {
         const mcd_pair *c = &m->pool[q];
@@ -278,6 +276,43 @@ static int option_b(mcd *m, size_t i, size_t j, size_t k) {
             acd_orient2d_sign(W(m, c->t), W(m, k), W(m, i)) >= 0)
             best = q;
     }
+    return best;
+}
+
+/* Type A option for (i, k) through j; eij / ejk are the table entries when the caller knows them
+ * (NULL: looked up). Returns 0 on out of memory. */
+static int option_a(mcd *m, size_t i, size_t j, size_t k, const mcd_entry *eij, const mcd_entry *ejk) {
+    long wjk = 0;
+    if (j < m->bwd[k]) {
+        const mcd_entry *e = ejk ? ejk : entry_of(m, j, k);
+        if (!e || e->w < 0) return 1;
+        wjk = e->w;
+    }
+    mcd_pair pr = {j, j, j, NONE, 'A'};
+    if (j <= m->fwd[i]) return push_opt(m, wjk + 1, pr);
+    const mcd_entry *e = eij ? eij : entry_of(m, i, j);
+    if (!e || e->w < 0) return 1;
+    size_t best = merge_a(m, e, i, j, k);
+    if (best != NONE) {
+        pr.s = m->pool[best].s;
+        pr.child = best;
+        return push_opt(m, wjk + e->w, pr);
+    }
+    return push_opt(m, wjk + e->w + 1, pr);
+}
+
+static int option_b(mcd *m, size_t i, size_t j, size_t k, const mcd_entry *eij, const mcd_entry *ejk) {
+    long wij = 0;
+    if (j > m->fwd[i]) {
+        const mcd_entry *e = eij ? eij : entry_of(m, i, j);
+        if (!e || e->w < 0) return 1;
+        wij = e->w;
+    }
+    mcd_pair pr = {j, j, j, NONE, 'B'};
+    if (j >= m->bwd[k]) return push_opt(m, wij + 1, pr);
+    const mcd_entry *e = ejk ? ejk : entry_of(m, j, k);
+    if (!e || e->w < 0) return 1;
+    size_t best = merge_b(m, e, i, j, k);
     if (best != NONE) {
         pr.t = m->pool[best].t;
         pr.child = best;
@@ -320,32 +355,46 @@ static int compute(mcd *m, size_t i, size_t k, mcd_entry *out) {
     if (m->reflex[i]) {
         /* j on the straight chain from i ((i, j) boundary) or on the one into k ((j, k) boundary) */
         for (size_t j = i + 1; j <= fi; j++)
-            if ((j >= m->bwd[k] || reflex_diag(m, j, k)) && !option_a(m, i, j, k)) return 0;
+            if ((j >= m->bwd[k] || reflex_diag(m, j, k)) && !option_a(m, i, j, k, NULL, NULL)) return 0;
         for (size_t j = bk > fi + 1 ? bk : fi + 1; j < k; j++)
-            if (bit(m, i, j) && !option_a(m, i, j, k)) return 0;
+            if (bit(m, i, j) && !option_a(m, i, j, k, NULL, NULL)) return 0;
         list_range(m, m->row[i], fi, bk, &va, &a0, &a1);
         list_range(m, m->reflex[k] ? m->row[k] : NONE, fi, bk, &vb, &b0, &b1);
         if (a1 - a0 <= b1 - b0) {
+            /* va = vis(i): the entry (i, j) is at the same position */
             for (size_t q = a0; q < a1; q++)
-                if (reflex_diag(m, va[q], k) && !option_a(m, i, va[q], k)) return 0;
+                if (reflex_diag(m, va[q], k) && !option_a(m, i, va[q], k, &m->ent[q], NULL)) return 0;
         } else {
-            for (size_t q = b0; q < b1; q++)
-                if (bit(m, i, vb[q]) && reflex_diag(m, vb[q], k) && !option_a(m, i, vb[q], k)) return 0;
+            /* vb = vis(k) (k reflex; the entry (j, k) is there when j is convex) or the notches */
+            int vk = m->reflex[k] != 0;
+            for (size_t q = b0; q < b1; q++) {
+                size_t j = vb[q];
+                if (bit(m, i, j) && reflex_diag(m, j, k) &&
+                    !option_a(m, i, j, k, NULL, vk && !m->reflex[j] ? &m->ent[q] : NULL))
+                    return 0;
+            }
         }
     }
     if (m->reflex[k]) {
         for (size_t j = bk; j < k; j++)
-            if ((j <= m->fwd[i] || reflex_diag(m, i, j)) && !option_b(m, i, j, k)) return 0;
+            if ((j <= m->fwd[i] || reflex_diag(m, i, j)) && !option_b(m, i, j, k, NULL, NULL)) return 0;
         for (size_t j = i + 1; j <= fi && j < bk; j++)
-            if (bit(m, k, j) && !option_b(m, i, j, k)) return 0;
+            if (bit(m, k, j) && !option_b(m, i, j, k, NULL, NULL)) return 0;
         list_range(m, m->row[k], fi, bk, &va, &a0, &a1);
         list_range(m, m->reflex[i] ? m->row[i] : NONE, fi, bk, &vb, &b0, &b1);
         if (a1 - a0 <= b1 - b0) {
-            for (size_t q = a0; q < a1; q++)
-                if (reflex_diag(m, i, va[q]) && !option_b(m, i, va[q], k)) return 0;
+            /* va = vis(k): the entry (j, k) is there when j is convex */
+            for (size_t q = a0; q < a1; q++) {
+                size_t j = va[q];
+                if (reflex_diag(m, i, j) && !option_b(m, i, j, k, NULL, m->reflex[j] ? NULL : &m->ent[q])) return 0;
+            }
         } else {
-            for (size_t q = b0; q < b1; q++)
-                if (bit(m, k, vb[q]) && reflex_diag(m, i, vb[q]) && !option_b(m, i, vb[q], k)) return 0;
+            int vi = m->reflex[i] != 0;
+            for (size_t q = b0; q < b1; q++) {
+                size_t j = vb[q];
+                if (bit(m, k, j) && reflex_diag(m, i, j) && !option_b(m, i, j, k, vi ? &m->ent[q] : NULL, NULL))
+                    return 0;
+            }
         }
     }
     if (m->ncomp && !composite_options(m, i, k)) return 0;
