@@ -76,6 +76,8 @@ typedef struct mcd {
     size_t words;
     size_t *vstart, *vlist; /* visibility lists per row, sorted */
     mcd_entry *ent;
+    uint64_t *hkey; /* (i, k) -> entry index, open addressing; key i * n + k + 1, 0 = empty */
+    size_t *hval, hmask;
     mcd_entry root;
     mcd_pair *pool;
     size_t npool, cpool;
@@ -120,13 +122,40 @@ static size_t lower(const size_t *v, size_t lo, size_t hi, size_t x) {
     return lo;
 }
 
+static size_t hslot(const mcd *m, uint64_t key) {
+    return (size_t)((key * 0x9E3779B97F4A7C15ull) >> 17) & m->hmask;
+}
+
+/* The table entry of the reflex diagonal (i, k), i < k; NULL if it is not one. */
 static mcd_entry *entry_of(mcd *m, size_t i, size_t k) {
-    size_t owner = m->reflex[i] ? i : k, other = owner == i ? k : i;
-    if (!m->reflex[owner]) return NULL;
-    size_t r = m->row[owner], lo = m->vstart[r], hi = m->vstart[r + 1];
-    size_t pos = lower(m->vlist, lo, hi, other);
-    if (pos == hi || m->vlist[pos] != other) return NULL;
-    return &m->ent[pos];
+    uint64_t key = (uint64_t)i * m->n + k + 1;
+    for (size_t h = hslot(m, key);; h = (h + 1) & m->hmask) {
+        if (m->hkey[h] == key) return &m->ent[m->hval[h]];
+        if (m->hkey[h] == 0) return NULL;
+    }
+}
+
+/* Fills the entry hash from the visibility rows (owner of (i, k): i if reflex, else k). */
+static int build_entry_hash(mcd *m) {
+    size_t nv = m->vstart[m->nrows], cap = 16;
+    while (cap < 2 * nv + 2) cap *= 2;
+    m->hkey = calloc(cap, sizeof *m->hkey);
+    m->hval = malloc(cap * sizeof *m->hval);
+    if (!m->hkey || !m->hval) return 0;
+    m->hmask = cap - 1;
+    for (size_t r = 0; r < m->nrows; r++) {
+        size_t a = m->rl[r];
+        for (size_t q = m->vstart[r]; q < m->vstart[r + 1]; q++) {
+            size_t b = m->vlist[q], i = a < b ? a : b, k = a < b ? b : a;
+            if ((m->reflex[i] ? i : k) != a) continue;
+            uint64_t key = (uint64_t)i * m->n + k + 1;
+            size_t h = hslot(m, key);
+            while (m->hkey[h]) h = (h + 1) & m->hmask;
+            m->hkey[h] = key;
+            m->hval[h] = q;
+        }
+    }
+    return 1;
 }
 
 static int push_opt(mcd *m, long cost, mcd_pair pr) {
@@ -841,6 +870,8 @@ static void mcd_free(mcd *m) {
     free(m->vstart);
     free(m->vlist);
     free(m->ent);
+    free(m->hkey);
+    free(m->hval);
     free(m->pool);
     free(m->opt);
     free(m->tstart);
@@ -953,7 +984,7 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
     size_t nv = m.vstart[m.nrows];
     m.ent = malloc((nv ? nv : 1) * sizeof *m.ent);
     dl = malloc((nv ? nv : 1) * sizeof *dl);
-    if (!m.ent || !dl) {
+    if (!m.ent || !dl || !build_entry_hash(&m)) {
         st = acd_fail(err, ACD_ERR_NOMEM, "MCD: out of memory for %zu diagonals", nv);
         goto done;
     }
