@@ -4,7 +4,8 @@
  * usage: bench_exact2d [--mcd-max N] [--reps R] [DATA_DIR]
  *   --mcd-max N  skip MCD above N vertices (default 3000; the star series grows as n * visible^2)
  *   --reps R     repetitions for inputs under 2000 vertices (median reported; default 3)
- * Prints a Markdown table (docs/results/exact2d.md). */
+ * Times are process CPU time (the benchmark machine is shared). Prints a Markdown table
+ * (docs/results/exact2d.md). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,7 +17,7 @@
 
 static double now(void) {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts); /* CPU time: the machine is shared */
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 

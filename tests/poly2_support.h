@@ -1,6 +1,6 @@
-/* Shared helpers of the exact2d / triangulation tests: random polygons with holes, a small reader
- * of Lien's .poly files (test-local until the library reader is used everywhere), exact
- * point-in-polygon. Header-only, static functions. */
+/* Shared helpers of the exact2d / triangulation tests: random polygons with holes, reading
+ * Lien's .poly files through the library reader, exact point-in-polygon, and (when
+ * acd/exact2d.h is included first) an independent partition check. Header-only, static functions. */
 #ifndef ACD_TESTS_POLY2_SUPPORT_H
 #define ACD_TESTS_POLY2_SUPPORT_H
 
@@ -102,83 +102,21 @@ static inline int p2_point_inside(const acd_vec2 *pts, const size_t *rs, size_t 
     return in;
 }
 
-/* Minimal reader of Lien's .poly (see shared/data/polygons-lien/POLY_FORMAT.txt): every "out"
- * chain starts a polygon, every "in" chain adds a hole to the last one. Returns the number of
- * polygons read into out[] (at most cap), or -1 on a parse error. */
+/* Reads a polygon file with the library reader (acd_polygon_set_read_file) into out[] (at most
+ * cap polygons, copied). Returns the number of polygons, or -1 on an error (printed). */
 static inline int p2_read_poly(const char *path, acd_polygon *out, int cap) {
-    FILE *f = fopen(path, "r");
-    if (!f) return -1;
-    char line[4096];
-    int nchains = -1, npoly = 0, bad = 0;
-    acd_vec2 **rings = NULL;
-    size_t *sizes = NULL, nr = 0;
-    int chain = 0;
-    while (!bad && (nchains < 0 || chain < nchains)) {
-        /* next non-empty, non-comment line */
-        int got = 0;
-        while (fgets(line, sizeof line, f)) {
-            char *h = strchr(line, '#');
-            if (h) *h = 0;
-            if (strspn(line, " \t\r\n") != strlen(line)) {
-                got = 1;
-                break;
-            }
-        }
-        if (!got) break;
-        if (nchains < 0) {
-            nchains = atoi(line);
-            continue;
-        }
-        size_t m;
-        char kind[16];
-        if (sscanf(line, "%zu %15s", &m, kind) != 2 || m < 3 || m > 10000000) {
-            bad = 1;
-            break;
-        }
-        int is_out = strcmp(kind, "out") == 0;
-        acd_vec2 *raw = malloc(m * sizeof *raw), *ord = malloc(m * sizeof *ord);
-        for (size_t i = 0; i < m && !bad; i++)
-            if (fscanf(f, "%lf %lf", &raw[i].x, &raw[i].y) != 2) bad = 1;
-        for (size_t i = 0; i < m && !bad; i++) {
-            long idx;
-            if (fscanf(f, "%ld", &idx) != 1 || idx < 1 || (size_t)idx > m) bad = 1;
-            else ord[i] = raw[idx - 1];
-        }
-        free(raw);
-        if (bad) {
-            free(ord);
-            break;
-        }
-        if (is_out && nr) {
-            if (npoly < cap &&
-                acd_polygon_from_rings(&out[npoly], (const acd_vec2 *const *)rings, sizes, nr, NULL) == ACD_OK)
-                npoly++;
-            for (size_t r = 0; r < nr; r++) free(rings[r]);
-            nr = 0;
-        }
-        rings = realloc(rings, (nr + 1) * sizeof *rings);
-        sizes = realloc(sizes, (nr + 1) * sizeof *sizes);
-        rings[nr] = ord;
-        sizes[nr] = m;
-        nr++;
-        chain++;
-        if (chain == nchains) break;
-    }
-    if (!bad && nr && npoly < cap &&
-        acd_polygon_from_rings(&out[npoly], (const acd_vec2 *const *)rings, sizes, nr, NULL) == ACD_OK)
-        npoly++;
-    for (size_t r = 0; r < nr; r++) free(rings[r]);
-    free(rings);
-    free(sizes);
-    fclose(f);
-    if (bad) {
-        for (int i = 0; i < npoly; i++) acd_polygon_free(&out[i]);
+    acd_polygon_set set;
+    acd_error err;
+    if (acd_polygon_set_read_file(&set, path, ACD_POLY_FORMAT_AUTO, NULL, &err) != ACD_OK) {
+        printf("%s: %s\n", path, err.message);
         return -1;
     }
-    return npoly;
+    int np = 0;
+    for (size_t i = 0; i < set.count && np < cap; i++)
+        if (acd_polygon_copy(&out[np], &set.polygons[i]) == ACD_OK) np++;
+    acd_polygon_set_free(&set);
+    return np;
 }
-
-#endif
 
 #ifdef ACD_EXACT2D_H
 /* Independent partition check of an exact decomposition: every piece made of input vertices,
@@ -236,3 +174,5 @@ static inline int p2_check_partition(const acd_polygon *p, const acd_exact2d_res
     return 1;
 }
 #endif
+
+#endif /* ACD_TESTS_POLY2_SUPPORT_H */

@@ -36,6 +36,12 @@
  *      (i, k) (or the reflex list when the far end is convex). The pair scans are exact.
  *   4. Reconstruction from the root's first pair: each piece's vertices are collected along the
  *      merges; every non-merged subproblem is a diagonal and a new piece.
+ *   Collinear vertices (the paper assumes general position; docs/exact2d.md): straight boundary
+ *   chains act as edges (fwd/bwd); "composite" piece sides made of collinear hops (edges and
+ *   reflex diagonals, found through an exact angular order of each vertex's connections) have
+ *   their hops decomposed separately (pair types C, D); a 180-degree piece vertex k (or i) makes
+ *   the chord (i, j) pass through it, and such "weak" chords get entries of their own in a hash
+ *   map, computed on first use (pair types F, G).
  * Time O(sum over reflex diagonals of their candidate counts times staircase lengths), at most
  * O(n r^2) candidates as in the paper; memory O(r n) bits plus the staircases. */
 #include "acd2/exact_mcd.h"
@@ -350,8 +356,7 @@ static int option_b(mcd *m, size_t i, size_t j, size_t k, const mcd_entry *eij, 
     return push_opt(m, wij + e->w + 1, pr);
 }
 
-/* The candidate j in (i+1, k-1) come from list x[xlo..xhi) (all satisfy one side); the other
- * side is checked by `ok`. */
+/* Options of equal cost sorted by s, then t (staircase order). */
 static int cmp_pair_s(const void *a, const void *b) {
     const mcd_opt *x = a, *y = b;
     if (x->pr.s != y->pr.s) return x->pr.s < y->pr.s ? -1 : 1;
