@@ -45,10 +45,39 @@ acd3d_params acd3d_default_params(void) {
     return p;
 }
 
+/* A part measured while its parent's cut was chosen keeps that measure until it is processed. */
+typedef struct measured {
+    acd_edge_graph g;
+    acd3_measure ms;
+    int valid;
+} measured;
+
+static void measured_free(measured *x) {
+    if (x->valid) {
+        acd3_measure_free(&x->ms);
+        acd_edge_graph_free(&x->g);
+    }
+    x->valid = 0;
+}
+
+static acd_status measure_mesh(const acd_mesh *m, double eps, double tol, measured *out, acd_error *err) {
+    out->valid = 0;
+    acd_status st = acd_edge_graph_from_mesh(m->vertices, m->nvertices, m->triangles, m->ntriangles, &out->g, err);
+    if (st != ACD_OK) return st;
+    st = acd3_measure_compute(m, &out->g, eps, tol, &out->ms, err);
+    if (st != ACD_OK) {
+        acd_edge_graph_free(&out->g);
+        return st;
+    }
+    out->valid = 1;
+    return ACD_OK;
+}
+
 typedef struct work_node {
     acd3d_node node;
     acd_mesh mesh;
     size_t depth;
+    measured cache;
 } work_node;
 
 typedef struct tree {
@@ -106,72 +135,95 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
 }
 
 /* How many splitting candidates are compared (each costs a measure of its pieces). */
-#define ACD3_COMPARED_CANDIDATES 4
+#define ACD3_COMPARED_CANDIDATES 6
 
-/* Largest concavity over the pieces of a cut; < 0 on failure. */
-static double pieces_concavity(const acd_cut_result *cut, double eps, double tol) {
-    double worst = 0;
-    for (size_t k = 0; k < cut->npieces; k++) {
-        const acd_mesh *pm = &cut->pieces[k].mesh;
-        acd_edge_graph pg;
-        acd3_measure pms;
-        if (acd_edge_graph_from_mesh(pm->vertices, pm->nvertices, pm->triangles, pm->ntriangles, &pg, NULL) != ACD_OK)
-            return -1;
-        acd_status st = acd3_measure_compute(pm, &pg, eps, tol, &pms, NULL);
-        acd_edge_graph_free(&pg);
-        if (st != ACD_OK) return -1;
-        if (pms.concavity > worst) worst = pms.concavity;
-        acd3_measure_free(&pms);
-    }
-    return worst;
+typedef struct split_choice {
+    acd_cut_result cut;
+    measured *pieces; /* cut.npieces measures */
+    acd3_plane_candidate plane;
+    double concavity; /* the largest over the pieces */
+} split_choice;
+
+static void choice_free(split_choice *c) {
+    if (c->pieces)
+        for (size_t k = 0; k < c->cut.npieces; k++) measured_free(&c->pieces[k]);
+    free(c->pieces);
+    acd_cut_result_free(&c->cut);
+    memset(c, 0, sizeof *c);
 }
 
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
- * piece concavity (up to tol), then the fewest pieces, then the candidates' order. On success the
- * pieces are in *cut (caller frees) and *used is the plane. Returns 1 if split, 0 if no candidate
- * splits, -1 when out of memory. */
+ * piece concavity (up to tol), then the fewest pieces, then the candidates' order. A cut whose
+ * pieces all meet tau, or that at least halves the concavity, is taken at once. The pieces'
+ * measures are kept for when they are processed. Returns 1 if split, 0 if no candidate splits,
+ * or -(status) on failure. */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
-                     double tol, acd_cut_result *cut, acd3_plane_candidate *used, acd_error *err) {
+                     double tau, double tol, split_choice *best, acd_error *err) {
     acd3_plane_candidate cand[ACD3_MAX_CANDIDATES];
     int nc = acd3_cut_candidates(m, g, ms, cand);
     double vol = acd_geom3_signed_volume(m);
     int found = 0, compared = 0;
-    double best_c = INFINITY;
-    size_t best_n = 0;
+    memset(best, 0, sizeof *best);
     for (int i = 0; i < nc && compared < ACD3_COMPARED_CANDIDATES; i++) {
         acd_cut_plane pl;
         if (acd_cut_plane_from_normal(cand[i].point, cand[i].normal, extent, &pl, NULL) != ACD_OK) continue;
-        acd_cut_result trial;
+        split_choice trial;
+        memset(&trial, 0, sizeof trial);
         acd_error cerr;
-        if (acd_plane_cut(m, &pl, &trial, &cerr) != ACD_OK) {
+        if (acd_plane_cut(m, &pl, &trial.cut, &cerr) != ACD_OK) {
             if (cerr.status == ACD_ERR_NOMEM) {
-                if (found) acd_cut_result_free(cut);
+                if (found) choice_free(best);
                 *err = cerr;
-                return -1;
+                return -(int)ACD_ERR_NOMEM;
             }
             continue;
         }
-        int ok = trial.npieces >= 2;
-        for (size_t k = 0; ok && k < trial.npieces; k++)
-            if (acd_geom3_signed_volume(&trial.pieces[k].mesh) < ACD3_MIN_PIECE_FRACTION * vol) ok = 0;
+        int ok = trial.cut.npieces >= 2;
+        for (size_t k = 0; ok && k < trial.cut.npieces; k++) {
+            const acd_mesh *pm = &trial.cut.pieces[k].mesh;
+            if (acd_geom3_signed_volume(pm) < ACD3_MIN_PIECE_FRACTION * vol) ok = 0;
+            /* every piece must be a closed, consistently oriented surface; a cut that rounding
+             * left otherwise is not used */
+            acd_edge_map em;
+            if (ok && acd_edge_map_build(pm->triangles, pm->ntriangles, NULL, &em, NULL) == ACD_OK) {
+                if (acd_edge_map_check_closed(&em, pm->triangles, pm->ntriangles, NULL) != ACD_OK) ok = 0;
+                acd_edge_map_free(&em);
+            } else {
+                ok = 0;
+            }
+        }
         if (!ok) {
-            acd_cut_result_free(&trial);
+            choice_free(&trial);
             continue;
         }
         compared++;
-        double c = pieces_concavity(&trial, eps, tol);
-        if (c < 0) c = INFINITY;
-        int better = !found || c < best_c - tol || (c <= best_c + tol && trial.npieces < best_n);
+        trial.plane = cand[i];
+        trial.pieces = calloc(trial.cut.npieces, sizeof *trial.pieces);
+        if (!trial.pieces) {
+            choice_free(&trial);
+            if (found) choice_free(best);
+            acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            return -(int)ACD_ERR_NOMEM;
+        }
+        for (size_t k = 0; k < trial.cut.npieces; k++) {
+            acd_status st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, &trial.pieces[k], err);
+            if (st != ACD_OK) {
+                choice_free(&trial);
+                if (found) choice_free(best);
+                return -(int)st;
+            }
+            if (trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
+        }
+        int better = !found || trial.concavity < best->concavity - tol ||
+                     (trial.concavity <= best->concavity + tol && trial.cut.npieces < best->cut.npieces);
         if (better) {
-            if (found) acd_cut_result_free(cut);
-            *cut = trial;
-            *used = cand[i];
-            best_c = c;
-            best_n = trial.npieces;
+            if (found) choice_free(best);
+            *best = trial;
             found = 1;
         } else {
-            acd_cut_result_free(&trial);
+            choice_free(&trial);
         }
+        if (best->concavity <= tau + tol || best->concavity <= 0.5 * ms->concavity) break;
     }
     return found;
 }
@@ -227,41 +279,38 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
             goto fail;
         }
         acd_mesh *m = &t.a[i].mesh;
-        acd_edge_graph g;
-        st = acd_edge_graph_from_mesh(m->vertices, m->nvertices, m->triangles, m->ntriangles, &g, err);
-        if (st != ACD_OK) goto fail;
-        acd3_measure ms;
-        st = acd3_measure_compute(m, &g, eps, sc.dist, &ms, err);
-        if (st != ACD_OK) {
-            acd_edge_graph_free(&g);
-            goto fail;
+        measured cur = t.a[i].cache;
+        t.a[i].cache.valid = 0;
+        if (!cur.valid) {
+            st = measure_mesh(m, eps, sc.dist, &cur, err);
+            if (st != ACD_OK) goto fail;
         }
-        t.a[i].node.concavity = ms.concavity;
+        t.a[i].node.concavity = cur.ms.concavity;
         acd3d_leaf_reason reason = ACD3D_LEAF_NONE;
-        if (ms.hull.dim < 3) reason = ACD3D_LEAF_FLAT;
-        else if (ms.concavity <= tau + sc.dist) reason = ACD3D_LEAF_TAU; /* tau = 0: up to rounding */
+        if (cur.ms.hull.dim < 3) reason = ACD3D_LEAF_FLAT;
+        else if (cur.ms.concavity <= tau + sc.dist) reason = ACD3D_LEAF_TAU; /* tau = 0: up to rounding */
         else if (t.a[i].depth >= params->max_depth) reason = ACD3D_LEAF_DEPTH;
         else if (t.n >= ACD3_MAX_NODES) reason = ACD3D_LEAF_DEPTH;
-        acd_cut_result cut;
-        acd3_plane_candidate used;
+        split_choice choice;
+        memset(&choice, 0, sizeof choice);
         int split = 0;
         if (reason == ACD3D_LEAF_NONE) {
-            split = try_split(m, &g, &ms, sc.extent, eps, sc.dist, &cut, &used, err);
+            split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, &choice, err);
             if (split < 0) {
-                st = ACD_ERR_NOMEM;
-                acd3_measure_free(&ms);
-                acd_edge_graph_free(&g);
+                st = (acd_status)(-split);
+                measured_free(&cur);
                 goto fail;
             }
             if (!split) reason = ACD3D_LEAF_NO_CUT;
         }
-        acd3_measure_free(&ms);
-        acd_edge_graph_free(&g);
+        measured_free(&cur);
         if (!split) {
             t.a[i].node.leaf_reason = reason;
             nleaves++;
             continue;
         }
+        acd_cut_result cut = choice.cut;
+        acd3_plane_candidate used = choice.plane;
         /* plane n.x + d = 0 */
         double *cp = t.a[i].node.cut_plane;
         memcpy(cp, used.normal, sizeof(double[3]));
@@ -274,12 +323,14 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
             memset(&cut.pieces[k].mesh, 0, sizeof piece);
             if (!tree_push(&t, (int)i, &piece, depth)) {
                 acd_mesh_free(&piece);
-                acd_cut_result_free(&cut);
+                choice_free(&choice);
                 st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
                 goto fail;
             }
+            t.a[t.n - 1].cache = choice.pieces[k];
+            choice.pieces[k].valid = 0;
         }
-        acd_cut_result_free(&cut);
+        choice_free(&choice);
         /* the interior node's mesh is no longer needed */
         acd_mesh_free(&t.a[i].mesh);
     }
@@ -312,7 +363,10 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     out->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     return ACD_OK;
 fail:
-    for (size_t i = 0; i < t.n; i++) acd_mesh_free(&t.a[i].mesh);
+    for (size_t i = 0; i < t.n; i++) {
+        acd_mesh_free(&t.a[i].mesh);
+        measured_free(&t.a[i].cache);
+    }
     free(t.a);
     acd3d_result_free(out);
     return st;

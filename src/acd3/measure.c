@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd3/project.h"
 #include "core/error.h"
 
 typedef struct vote {
@@ -83,7 +84,9 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     out->witness = UINT32_MAX;
     size_t nv = m->nvertices, nf = m->ntriangles;
     acd_status st;
-    uint32_t *face_of = NULL, *queue = NULL, *path = NULL;
+    uint32_t *face_of = NULL, *queue = NULL;
+    acd3_pathfinder pf;
+    memset(&pf, 0, sizeof pf);
     out->vconc = calloc(nv ? nv : 1, sizeof *out->vconc);
     out->face_region = malloc((nf ? nf : 1) * sizeof *out->face_region);
     out->edge_barrier = calloc(g->nedges ? g->nedges : 1, 1);
@@ -102,6 +105,10 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     if (st != ACD_OK) goto fail;
     st = acd3_edge_faces(m, g, &face_of, err);
     if (st != ACD_OK) goto fail;
+    if (!acd3_pathfinder_init(&pf, g, m->vertices)) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory projecting hull edges");
+        goto fail;
+    }
 
     /* project the patch-boundary hull edges; collect votes (face, patch, weight) */
     const acd_hull *h = &out->hull;
@@ -113,11 +120,15 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
             uint32_t nb = h->neighbors[3 * t + i];
             if (nb == ACD_HULL_NO_NEIGHBOR || fp[nb] == fp[t] || nb < t) continue;
             uint32_t a = h->source[h->triangles[3 * t + i]], b = h->source[h->triangles[3 * t + (i + 1) % 3]];
-            size_t len = 0;
-            free(path);
-            path = NULL;
-            acd_error perr;
-            if (acd_shortest_path(g, a, b, NULL, &path, &len, NULL, &perr) != ACD_OK) continue; /* other component */
+            int found = acd3_shortest_path(&pf, a, b);
+            if (found < 0) {
+                free(vl);
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory projecting hull edges");
+                goto fail;
+            }
+            if (!found) continue; /* a and b on different connected components */
+            const uint32_t *path = pf.path;
+            size_t len = pf.path_len;
             out->nprojected++;
             for (size_t k = 0; k + 1 < len; k++) {
                 uint32_t u = path[k], v = path[k + 1];
@@ -236,12 +247,12 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
         }
     free(face_of);
     free(queue);
-    free(path);
+    acd3_pathfinder_free(&pf);
     return ACD_OK;
 fail:
     free(face_of);
     free(queue);
-    free(path);
+    acd3_pathfinder_free(&pf);
     acd3_measure_free(out);
     return st;
 }

@@ -7,7 +7,11 @@
 
 #include "core/error.h"
 
-enum { LLOYD_MAX_ITERATIONS = 20 };
+/* Lloyd iterations: the first clustering runs up to 20 (spec §3.3); after a patch split only the
+ * neighbourhood changes, and a few iterations settle it. After SPLIT_ROUNDS_MAX split rounds the
+ * step-1 grouping (which meets the eps bound by construction: every facet within eps of its
+ * seed facet's plane, a plane tangent to the hull) is used instead, bounding the time. */
+enum { LLOYD_MAX_ITERATIONS = 20, LLOYD_SPLIT_ITERATIONS = 4, SPLIT_ROUNDS_MAX = 12 };
 
 typedef struct facet_info {
     double n[3];
@@ -39,14 +43,50 @@ static double facet_depth(const acd_hull *h, size_t f, const double N[3], double
     return worst;
 }
 
-static double support(const acd_hull *h, const double N[3]) {
-    double best = -INFINITY;
-    for (size_t i = 0; i < h->nvertices; i++) {
-        const double *x = h->vertices + 3 * i;
-        double s = N[0] * x[0] + N[1] * x[1] + N[2] * x[2];
-        if (s > best) best = s;
+/* Hull vertex adjacency (compressed rows), for support queries by hill climbing. */
+typedef struct vadj {
+    size_t *row;
+    uint32_t *adj;
+} vadj;
+
+static int vadj_build(const acd_hull *h, vadj *va) {
+    size_t nv = h->nvertices, nf = h->ntriangles;
+    va->row = calloc(nv + 1, sizeof *va->row);
+    va->adj = malloc((3 * nf + 1) * sizeof *va->adj);
+    if (!va->row || !va->adj) return 0;
+    /* each directed edge (t[i] -> t[i+1]) once: on a closed hull that lists every neighbour once */
+    for (size_t f = 0; f < nf; f++)
+        for (int k = 0; k < 3; k++) va->row[h->triangles[3 * f + k] + 1]++;
+    for (size_t v = 0; v < nv; v++) va->row[v + 1] += va->row[v];
+    size_t *fill = malloc((nv + 1) * sizeof *fill);
+    if (!fill) return 0;
+    memcpy(fill, va->row, (nv + 1) * sizeof *fill);
+    for (size_t f = 0; f < nf; f++)
+        for (int k = 0; k < 3; k++) va->adj[fill[h->triangles[3 * f + k]]++] = h->triangles[3 * f + (k + 1) % 3];
+    free(fill);
+    return 1;
+}
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* max over hull vertices of N.v: a linear function's local maximum on a convex polytope's vertex
+ * graph is global, so climb from `start`. */
+static double support(const acd_hull *h, const vadj *va, uint32_t start, const double N[3]) {
+    uint32_t v = start;
+    double best = dot3(N, h->vertices + 3 * (size_t)v);
+    for (;;) {
+        uint32_t next = v;
+        for (size_t k = va->row[v]; k < va->row[v + 1]; k++) {
+            uint32_t u = va->adj[k];
+            double s = dot3(N, h->vertices + 3 * (size_t)u);
+            if (s > best) {
+                best = s;
+                next = u;
+            }
+        }
+        if (next == v) return best;
+        v = next;
     }
-    return best;
 }
 
 /* ---- a binary min-heap of (error, facet, proxy), ties broken by facet then proxy ---- */
@@ -194,8 +234,11 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
     uint32_t *seeds = malloc(nf * sizeof *seeds), *queue = malloc(nf * sizeof *queue);
     double *N = malloc(3 * nf * sizeof *N);
     heap hp = {0};
+    vadj va = {0};
+    uint32_t *label1 = NULL, *seeds1 = NULL; /* the step-1 grouping, kept as the fallback */
+    double *N1 = NULL;
     acd_status st = ACD_OK;
-    if (!fi || !order || !tmp || !label || !prev || !seeds || !queue || !N) {
+    if (!vadj_build(h, &va) || !fi || !order || !tmp || !label || !prev || !seeds || !queue || !N) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping %zu hull facets", nf);
         goto done;
     }
@@ -231,8 +274,28 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
     }
 
     /* Step 2: Lloyd iterations, then split patches that break the eps bound, until none does. */
-    for (;;) {
-        for (int it = 0; it < LLOYD_MAX_ITERATIONS; it++) {
+    /* keep the step-1 grouping as the fallback */
+    size_t k1 = k;
+    label1 = malloc(nf * sizeof *label1);
+    seeds1 = malloc(k * sizeof *seeds1);
+    N1 = malloc(3 * k * sizeof *N1);
+    if (!label1 || !seeds1 || !N1) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory in bridge clustering");
+        goto done;
+    }
+    memcpy(label1, label, nf * sizeof *label);
+    memcpy(seeds1, seeds, k * sizeof *seeds);
+    memcpy(N1, N, 3 * k * sizeof *N);
+    for (int round = 0;; round++) {
+        if (round == SPLIT_ROUNDS_MAX) {
+            k = k1;
+            memcpy(label, label1, nf * sizeof *label);
+            memcpy(seeds, seeds1, k * sizeof *seeds);
+            memcpy(N, N1, 3 * k * sizeof *N);
+            break;
+        }
+        int iters = round == 0 ? LLOYD_MAX_ITERATIONS : LLOYD_SPLIT_ITERATIONS;
+        for (int it = 0; it < iters; it++) {
             memcpy(prev, label, nf * sizeof *label);
             if (!flood(h, fi, N, seeds, k, label, &hp)) {
                 st = acd_fail(err, ACD_ERR_NOMEM, "out of memory in bridge clustering");
@@ -254,7 +317,7 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
         for (size_t i = 0; i < k0; i++) {
             worst[i] = 0;
             worst_f[i] = UINT32_MAX;
-            hv[i] = support(h, N + 3 * i);
+            hv[i] = support(h, &va, h->triangles[3 * (size_t)seeds[i]], N + 3 * i);
         }
         /* A patch that breaks the bound gets a new proxy at its deepest facet other than its seed
          * (a patch of one facet never breaks it: its own tangent plane has depth 0). */
@@ -298,11 +361,13 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
     }
     for (size_t i = 0; i < k; i++) {
         memcpy(out->planes + 4 * i, N + 3 * i, sizeof(double[3]));
-        out->planes[4 * i + 3] = support(h, N + 3 * i);
+        out->planes[4 * i + 3] = support(h, &va, h->triangles[3 * (size_t)seeds[i]], N + 3 * i);
         out->seed[i] = seeds[i];
     }
 done:
     free(fi), free(order), free(tmp), free(label), free(prev), free(seeds), free(queue), free(N), free(hp.a);
+    free(va.row), free(va.adj);
+    free(label1), free(seeds1), free(N1);
     return st;
 }
 

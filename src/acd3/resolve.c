@@ -121,12 +121,28 @@ int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
     if (valley_plane(m, g, ms, &out[n])) n++;
     n += notch_plane(m, ms, &out[n]);
     acd_pca pca;
-    if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) == ACD_OK)
+    if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return n;
+    /* planes through the witness and the centroid containing a principal axis: across a ring
+     * (a handle, a torus) or a bent limb, where the valley is not a loop around a neck */
+    const double *x = m->vertices + 3 * (size_t)ms->witness;
+    double dx[3] = {x[0] - pca.centroid[0], x[1] - pca.centroid[1], x[2] - pca.centroid[2]};
+    for (int a = 2; a >= 0 && n < ACD3_MAX_CANDIDATES; a--) {
+        const double *ax = pca.axes[a];
+        double nrm[3] = {ax[1] * dx[2] - ax[2] * dx[1], ax[2] * dx[0] - ax[0] * dx[2], ax[0] * dx[1] - ax[1] * dx[0]};
+        double l = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        if (!(l > 1e-6 * sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]))) continue; /* witness on the axis */
+        memcpy(out[n].point, x, sizeof(double[3]));
+        for (int k = 0; k < 3; k++) out[n].normal[k] = nrm[k] / l;
+        out[n].kind = "centroid";
+        n++;
+    }
+    {
         for (int a = 0; a < 3 && n < ACD3_MAX_CANDIDATES; a++) {
             memcpy(out[n].point, m->vertices + 3 * (size_t)ms->witness, sizeof(double[3]));
             memcpy(out[n].normal, pca.axes[a], sizeof(double[3]));
             out[n].kind = "axis";
             n++;
         }
+    }
     return n;
 }

@@ -10,7 +10,9 @@
  * 2. The notch planes (the resolver without feature grouping, spec §5.4): through the most reflex
  *    edge at the witness, bisecting its dihedral angle, and the two planes extending the faces
  *    that meet there.
- * 3. Planes through the witness perpendicular to the part's principal axes (the fallback that
+ * 3. Planes through the witness and the part's centroid containing a principal axis (across a
+ *    ring or a bent limb, where the concave valley is not a loop around a neck).
+ * 4. Planes through the witness perpendicular to the part's principal axes (the fallback that
  *    guarantees progress whenever the witness is not an extreme point of the part). */
 #ifndef ACD_ACD3_RESOLVE_H
 #define ACD_ACD3_RESOLVE_H
@@ -19,12 +21,12 @@
 #include "acd3/measure.h"
 #include "geom3/dijkstra.h"
 
-enum { ACD3_MAX_CANDIDATES = 8 };
+enum { ACD3_MAX_CANDIDATES = 10 };
 
 typedef struct acd3_plane_candidate {
     double point[3];
     double normal[3]; /* unit */
-    const char *kind; /* "valley", "notch", "face", "axis" */
+    const char *kind; /* "valley", "notch", "face", "centroid", "axis" */
 } acd3_plane_candidate;
 
 /* Fills up to ACD3_MAX_CANDIDATES candidate planes for the measured part; returns their count

@@ -1,0 +1,137 @@
+/* acd3/project: A* shortest paths with reusable work arrays; see project.h. */
+#include "acd3/project.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct acd3_heap_item {
+    double f;
+    uint32_t v;
+} heap_item;
+
+static int less(const heap_item *a, const heap_item *b) { return a->f < b->f || (a->f == b->f && a->v < b->v); }
+
+static int push(acd3_pathfinder *pf, double f, uint32_t v) {
+    if (pf->hn == pf->hcap) {
+        size_t nc = pf->hcap ? 2 * pf->hcap : 256;
+        heap_item *nh = realloc(pf->heap, nc * sizeof *nh);
+        if (!nh) return 0;
+        pf->heap = nh;
+        pf->hcap = nc;
+    }
+    size_t i = pf->hn++;
+    pf->heap[i] = (heap_item){f, v};
+    while (i) {
+        size_t p = (i - 1) / 2;
+        if (!less(&pf->heap[i], &pf->heap[p])) break;
+        heap_item t = pf->heap[i];
+        pf->heap[i] = pf->heap[p];
+        pf->heap[p] = t;
+        i = p;
+    }
+    return 1;
+}
+
+static heap_item pop(acd3_pathfinder *pf) {
+    heap_item top = pf->heap[0];
+    pf->heap[0] = pf->heap[--pf->hn];
+    size_t i = 0;
+    for (;;) {
+        size_t l = 2 * i + 1, r = l + 1, m = i;
+        if (l < pf->hn && less(&pf->heap[l], &pf->heap[m])) m = l;
+        if (r < pf->hn && less(&pf->heap[r], &pf->heap[m])) m = r;
+        if (m == i) break;
+        heap_item t = pf->heap[i];
+        pf->heap[i] = pf->heap[m];
+        pf->heap[m] = t;
+        i = m;
+    }
+    return top;
+}
+
+int acd3_pathfinder_init(acd3_pathfinder *pf, const acd_edge_graph *g, const double *coords) {
+    memset(pf, 0, sizeof *pf);
+    size_t n = g->nvertices ? g->nvertices : 1;
+    pf->g = g;
+    pf->coords = coords;
+    pf->dist = malloc(n * sizeof *pf->dist);
+    pf->pred = malloc(n * sizeof *pf->pred);
+    pf->stamp = calloc(n, sizeof *pf->stamp);
+    pf->closed = calloc(n, 1);
+    if (!pf->dist || !pf->pred || !pf->stamp || !pf->closed) {
+        acd3_pathfinder_free(pf);
+        return 0;
+    }
+    return 1;
+}
+
+void acd3_pathfinder_free(acd3_pathfinder *pf) {
+    free(pf->dist);
+    free(pf->pred);
+    free(pf->stamp);
+    free(pf->closed);
+    free(pf->heap);
+    free(pf->path);
+    memset(pf, 0, sizeof *pf);
+}
+
+static double dist3(const double *a, const double *b) {
+    double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+    return sqrt(x * x + y * y + z * z);
+}
+
+int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
+    const acd_edge_graph *g = pf->g;
+    if (++pf->cur == 0) { /* stamp wrapped: clear */
+        memset(pf->stamp, 0, g->nvertices * sizeof *pf->stamp);
+        pf->cur = 1;
+    }
+    uint32_t cur = pf->cur;
+    const double *tp = pf->coords + 3 * (size_t)t;
+    pf->hn = 0;
+    pf->stamp[s] = cur;
+    pf->dist[s] = 0;
+    pf->pred[s] = UINT32_MAX;
+    pf->closed[s] = 0;
+    if (!push(pf, dist3(pf->coords + 3 * (size_t)s, tp), s)) return -1;
+    int found = 0;
+    while (pf->hn) {
+        heap_item it = pop(pf);
+        uint32_t v = it.v;
+        if (pf->closed[v]) continue;
+        pf->closed[v] = 1;
+        if (v == t) {
+            found = 1;
+            break;
+        }
+        for (size_t k = g->row[v]; k < g->row[v + 1]; k++) {
+            uint32_t u = g->adj[k];
+            double d = pf->dist[v] + g->length[g->adj_edge[k]];
+            if (pf->stamp[u] != cur) {
+                pf->stamp[u] = cur;
+                pf->closed[u] = 0;
+                pf->dist[u] = INFINITY;
+            }
+            if (pf->closed[u]) continue;
+            if (d < pf->dist[u] || (d == pf->dist[u] && v < pf->pred[u])) {
+                pf->dist[u] = d;
+                pf->pred[u] = v;
+                if (!push(pf, d + dist3(pf->coords + 3 * (size_t)u, tp), u)) return -1;
+            }
+        }
+    }
+    if (!found) return 0;
+    size_t len = 0;
+    for (uint32_t v = t; v != UINT32_MAX; v = pf->pred[v]) len++;
+    if (len > pf->path_cap) {
+        uint32_t *np = realloc(pf->path, len * sizeof *np);
+        if (!np) return -1;
+        pf->path = np;
+        pf->path_cap = len;
+    }
+    size_t i = len;
+    for (uint32_t v = t; v != UINT32_MAX; v = pf->pred[v]) pf->path[--i] = v;
+    pf->path_len = len;
+    return 1;
+}
