@@ -108,18 +108,23 @@ acd_status acd_cut_plane_from_normal(const double point[3], const double normal[
     return acd_cut_plane_from_points(a, b, c, out, err);
 }
 
+/* Coordinates this many binary orders below the model's largest are flushed to zero. */
+#define PLANE_CUT_FLUSH_BITS 200
+
+static double flush_tiny(double x, double below) { return fabs(x) < below ? 0.0 : x; }
+
 int acd_cut_plane_side(const acd_cut_plane *pl, const double v[3]) {
     double mx = 0;
     for (int k = 0; k < 3; k++) mx = fmax(mx, fmax(fmax(fabs(pl->a[k]), fabs(v[k])), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
-    int e = 0; /* as in acd_plane_cut: huge or tiny coordinates scaled by a power of two first */
+    int e = 0; /* as in acd_plane_cut: huge or tiny coordinates scaled by a power of two first, */
     if (mx > 1e90 || mx < 1e-90) frexp(mx, &e);
-    if (e == 0) return -acd_orient3d_sign(pl->a, pl->b, pl->c, v);
+    double fl = e != 0 ? ldexp(mx, -e - PLANE_CUT_FLUSH_BITS) : 0.0; /* and tiny coordinates flushed */
     double a[3], b[3], c[3], w[3];
     for (int k = 0; k < 3; k++) {
-        a[k] = ldexp(pl->a[k], -e);
-        b[k] = ldexp(pl->b[k], -e);
-        c[k] = ldexp(pl->c[k], -e);
-        w[k] = ldexp(v[k], -e);
+        a[k] = flush_tiny(ldexp(pl->a[k], -e), fl);
+        b[k] = flush_tiny(ldexp(pl->b[k], -e), fl);
+        c[k] = flush_tiny(ldexp(pl->c[k], -e), fl);
+        w[k] = flush_tiny(ldexp(v[k], -e), fl);
     }
     /* orient3d > 0 when v is below the plane of a, b, c (counterclockwise seen from above) */
     return -acd_orient3d_sign(a, b, c, w);
@@ -738,11 +743,15 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
     for (int k = 0; k < 3; k++) maxabs = fmax(maxabs, fmax(fabs(pl->a[k]), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
     int e2 = 0; /* only outside [1e-90, 1e90]: scaling down could flush subnormal coordinates */
     if (maxabs > 0 && (maxabs > 1e90 || maxabs < 1e-90)) frexp(maxabs, &e2);
+    /* and then coordinates below 2^-200 of the largest are flushed to zero in the working copy: the
+     * predicates' products of differences cannot underflow (exact decisions, for a geometry moved by
+     * less than 1e-60 of the model's size). Models within [1e-90, 1e90] are used as they are. */
+    double flush = e2 != 0 ? ldexp(maxabs, -e2 - PLANE_CUT_FLUSH_BITS) : 0.0;
     acd_cut_plane spl = *pl;
     for (int k = 0; k < 3; k++) {
-        spl.a[k] = ldexp(pl->a[k], -e2);
-        spl.b[k] = ldexp(pl->b[k], -e2);
-        spl.c[k] = ldexp(pl->c[k], -e2);
+        spl.a[k] = flush_tiny(ldexp(pl->a[k], -e2), flush);
+        spl.b[k] = flush_tiny(ldexp(pl->b[k], -e2), flush);
+        spl.c[k] = flush_tiny(ldexp(pl->c[k], -e2), flush);
     }
     if (e2 != 0) {
         acd_cut_plane chk;
@@ -777,7 +786,7 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory cutting a mesh of %zu triangles", nt);
         goto fail;
     }
-    for (size_t i = 0; i < 3 * nv; i++) c.V[i] = ldexp(m->vertices[i], -e2);
+    for (size_t i = 0; i < 3 * nv; i++) c.V[i] = flush_tiny(ldexp(m->vertices[i], -e2), flush);
     for (size_t v = 0; v < nv; v++) {
         c.src[v] = (uint32_t)v;
         f[v] = -acd_orient3d(pl->a, pl->b, pl->c, c.V + 3 * v); /* > 0 on the + side */
