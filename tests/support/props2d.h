@@ -12,6 +12,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "acd/acd2d.h"
@@ -103,6 +104,16 @@ static void p2d_check(const acd_polygon *p, const char *name, acd2d_measure m, d
         print_message("    REFUSED: %s, measure %s, tau %g: %s: %s\n", name, acd2d_measure_name(m), tau,
                       acd_status_string(st), err.message);
         stats->refused++;
+        const char *dump = getenv("ACD_P2D_DUMP"); /* a directory: write the polygon there */
+        if (dump) {
+            char path[1024];
+            int k = snprintf(path, sizeof path, "%s/", dump);
+            for (const char *c = name; *c && k < (int)sizeof path - 8; c++)
+                path[k++] = (char)((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') ? *c : '_');
+            snprintf(path + k, sizeof path - (size_t)k, ".poly");
+            acd_polygon_set one = {(acd_polygon *)p, 1};
+            if (acd_polygon_set_write_poly(&one, path, &err) == ACD_OK) print_message("    written to %s\n", path);
+        }
         return;
     }
     stats->runs++;
