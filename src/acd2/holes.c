@@ -98,13 +98,8 @@ void acd2_holes_free(acd2_holes *hs) {
     memset(hs, 0, sizeof *hs);
 }
 
-typedef struct target {
-    int ok;
-    size_t owner;     /* 0 = outer, else 1 + hole index */
-    acd2_hit hit;
-    size_t e;         /* extreme position in the hole ring */
-    double dist;
-} target;
+/* target: see holes.h (acd2_target) */
+typedef acd2_target target;
 
 /* nearest point of segment (a, b) to R (strictly inside the cone u R w), if any */
 static int nearest_on_edge(acd_vec2 u, acd_vec2 R, acd_vec2 w, acd_vec2 a, acd_vec2 b, acd_vec2 *out) {
@@ -125,6 +120,8 @@ static void find_target(const acd2_holes *hs, const acd2_ring *rings, size_t nr,
     size_t n = hr->n;
     acd_vec2 u = hr->p[acd2_prev(e, n)], R = hr->p[e], w = hr->p[acd2_next(e, n)];
     t->ok = 0;
+    t->from = R;
+    t->aim_dist = INFINITY;
     if (acd2_orient_sign(u, R, w) >= 0) return; /* not a notch of P (degenerate extreme) */
     double best = INFINITY;
     acd_vec2 aim = R;
@@ -153,6 +150,7 @@ static void find_target(const acd2_holes *hs, const acd2_ring *rings, size_t nr,
         aim.x = R.x + dx / l * hs->far;
         aim.y = R.y + dy / l * hs->far;
     } else {
+        t->aim_dist = best;
         /* aim past the nearest point so that a point on an edge is met as an edge crossing */
         aim.x = R.x + (aim.x - R.x) * 2;
         aim.y = R.y + (aim.y - R.y) * 2;
@@ -164,6 +162,9 @@ static void find_target(const acd2_holes *hs, const acd2_ring *rings, size_t nr,
     t->hit = hit;
     t->e = e;
     t->dist = hypot(hit.z.x - R.x, hit.z.y - R.y);
+    const acd2_ring *hg = &rings[hit.ring];
+    t->ida = hg->id[hit.j];
+    t->idb = hit.is_vertex ? -1 : hg->id[acd2_next(hit.j, hg->n)];
 }
 
 /* splices hole ring `h` (merge from its vertex e) into ring `dst` at hit (vertex or edge) */
@@ -187,75 +188,105 @@ static int splice(acd2_ring *dst, const acd2_ring *h, size_t e, const acd2_hit *
     return 0;
 }
 
-static double anchor_conc(const acd2_holes *hs, const acd2_ring *rg, const acd2_hit *hit) {
-    int64_t a = rg->id[hit->j];
+static double anchor_conc(const acd2_holes *hs, const target *t) {
+    int64_t a = t->ida, b = t->idb;
     double c = a >= 0 && a < hs->idcap ? hs->idconc[a] : 0;
-    if (!hit->is_vertex) {
-        int64_t b = rg->id[acd2_next(hit->j, rg->n)];
-        double cb = b >= 0 && b < hs->idcap ? hs->idconc[b] : 0;
-        if (cb > c) c = cb;
-    }
-    return c;
+    double cb = b >= 0 && b < hs->idcap ? hs->idconc[b] : 0;
+    return cb > c ? cb : c;
+}
+
+/* does the new slit (e, z) change the target t of an extreme of a remaining hole? It does when
+ * it has a point strictly inside the extreme's cone nearer than the current aim, or when it
+ * touches the current diagonal. */
+static int slit_affects(const acd2_ring *hr, size_t ext, const target *t, acd_vec2 e, acd_vec2 z) {
+    size_t n = hr->n;
+    acd_vec2 u = hr->p[acd2_prev(ext, n)], R = hr->p[ext], w = hr->p[acd2_next(ext, n)];
+    if (!t->ok) return 1;
+    const acd_vec2 ends[2] = {e, z};
+    for (int k = 0; k < 2; k++)
+        if (!acd2_same(ends[k], R) && acd2_in_resolving_cone(u, R, w, ends[k]) &&
+            hypot(ends[k].x - R.x, ends[k].y - R.y) <= t->aim_dist)
+            return 1;
+    acd_vec2 f;
+    if (nearest_on_edge(u, R, w, e, z, &f) && hypot(f.x - R.x, f.y - R.y) <= t->aim_dist) return 1;
+    const double A[2] = {R.x, R.y}, B[2] = {t->hit.z.x, t->hit.z.y}, C[2] = {e.x, e.y}, D[2] = {z.x, z.y};
+    return acd_segments_relation(A, B, C, D) != ACD_SEG_DISJOINT;
 }
 
 acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, double *value, acd_error *err) {
     size_t nr = 1 + hs->alive;
     acd2_ring *rings = malloc(nr * sizeof *rings);
     size_t *which = malloc(nr * sizeof *which);
-    target *tg = malloc(2 * nr * sizeof *tg);
-    if (!rings || !which || !tg) {
-        free(rings); free(which); free(tg);
+    size_t *slot = malloc((hs->nh ? hs->nh : 1) * sizeof *slot);
+    if (!rings || !which || !slot) {
+        free(rings); free(which); free(slot);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory while merging holes");
     }
     rings[0] = hs->outer;
     size_t k = 1;
     for (size_t i = 0; i < hs->nh; i++)
-        if (hs->h[i].alive) { rings[k] = hs->h[i].ring; which[k] = i; k++; }
-    /* targets of both extremes of every alive hole */
-    int best_ready = -1, best_other = -1;
+        if (hs->h[i].alive) { rings[k] = hs->h[i].ring; which[k] = i; slot[i] = k; k++; }
+    /* (re)compute the targets that are not cached; owners are kept as hole indices + 1 */
+    for (size_t g = 1; g < nr; g++) {
+        acd2_hole *h = &hs->h[which[g]];
+        for (int x = 0; x < 2; x++) {
+            if (h->cached[x]) continue;
+            find_target(hs, rings, nr, g, h->ext[x], &h->t[x]);
+            if (h->t[x].ok) h->t[x].owner = h->t[x].owner == 0 ? 0 : which[h->t[x].owner] + 1;
+            h->cached[x] = 1;
+        }
+    }
+    int best_ready = -1, best_other = -1, pick_ready = 0, pick_other = 0;
     double best_val = -INFINITY, best_dist = INFINITY;
     for (size_t g = 1; g < nr; g++) {
         const acd2_hole *h = &hs->h[which[g]];
-        target *t = &tg[2 * g];
-        for (int x = 0; x < 2; x++) find_target(hs, rings, nr, g, h->ext[x], &t[x]);
-        /* the extreme reaching the outer ring, the nearer if both do */
+        const target *t = h->t;
         int pick = -1;
         for (int x = 0; x < 2; x++)
             if (t[x].ok && t[x].owner == 0 && (pick < 0 || t[x].dist < t[pick].dist)) pick = x;
         if (pick >= 0) {
-            const acd2_ring *hr = &rings[g];
-            acd_vec2 P = hr->p[t[pick].e], Q = hr->p[h->ext[1 - pick]];
-            double val = anchor_conc(hs, &rings[0], &t[pick].hit) + t[pick].dist + hypot(P.x - Q.x, P.y - Q.y);
-            if (val > best_val) { best_val = val; best_ready = (int)(2 * g + (size_t)pick); }
+            acd_vec2 P = h->ring.p[t[pick].e], Q = h->ring.p[h->ext[1 - pick]];
+            double val = anchor_conc(hs, &t[pick]) + t[pick].dist + hypot(P.x - Q.x, P.y - Q.y);
+            if (val > best_val) { best_val = val; best_ready = (int)g; pick_ready = pick; }
         } else {
             for (int x = 0; x < 2; x++)
-                if (t[x].ok && t[x].owner != g && t[x].dist < best_dist) {
+                if (t[x].ok && t[x].owner != which[g] + 1 && t[x].dist < best_dist) {
                     best_dist = t[x].dist;
-                    best_other = (int)(2 * g + (size_t)x);
+                    best_other = (int)g;
+                    pick_other = x;
                 }
         }
     }
     acd_status st = ACD_OK;
-    int chosen = best_ready >= 0 ? best_ready : best_other;
-    if (chosen < 0) {
+    if (best_ready < 0 && best_other < 0) {
         st = acd_fail(err, ACD_ERR_INTERNAL, "no hole could be connected to the outer boundary or another hole");
         goto done;
     }
-    size_t g = (size_t)chosen / 2;
-    target *t = &tg[chosen];
-    acd2_hole *h = &hs->h[which[g]];
-    acd_vec2 P = h->ring.p[t->e];
+    size_t g = (size_t)(best_ready >= 0 ? best_ready : best_other);
+    int pick = best_ready >= 0 ? pick_ready : pick_other;
+    size_t hidx = which[g];
+    acd2_hole *h = &hs->h[hidx];
+    /* fresh target (ring positions for the splice); the geometry is that of the cached one */
+    target t;
+    find_target(hs, rings, nr, g, h->ext[pick], &t);
+    if (!t.ok || t.owner == g) {
+        st = acd_fail(err, ACD_ERR_INTERNAL, "hole %zu: its connection vanished", hidx);
+        goto done;
+    }
+    acd_vec2 P = h->ring.p[t.e];
     seg[0] = P;
-    seg[1] = t->hit.z;
+    seg[1] = t.hit.z;
     int64_t nid = hs->next_id;
     if (nid >= hs->idcap) {
         st = acd_fail(err, ACD_ERR_INTERNAL, "too many new points while merging holes");
         goto done;
     }
-    if (best_ready >= 0) {
-        double val = best_val;
-        hs->idconc[nid] = anchor_conc(hs, &rings[0], &t->hit);
-        if (splice(&hs->outer, &h->ring, t->e, &t->hit, nid)) {
+    size_t into = 0; /* 0 = outer, else hole index + 1 */
+    if (t.owner == 0) {
+        acd_vec2 Q = h->ring.p[h->ext[1 - pick]];
+        double val = anchor_conc(hs, &t) + t.dist + hypot(P.x - Q.x, P.y - Q.y);
+        hs->idconc[nid] = anchor_conc(hs, &t);
+        if (splice(&hs->outer, &h->ring, t.e, &t.hit, nid)) {
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory while merging a hole");
             goto done;
         }
@@ -264,23 +295,36 @@ acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, dou
         *into_outer = 1;
         *value = val;
     } else {
-        acd2_hole *J = &hs->h[which[t->owner]];
+        into = which[t.owner] + 1;
+        acd2_hole *J = &hs->h[into - 1];
         hs->idconc[nid] = 0;
-        if (splice(&J->ring, &h->ring, t->e, &t->hit, nid)) {
+        if (splice(&J->ring, &h->ring, t.e, &t.hit, nid)) {
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory while merging two holes");
             goto done;
         }
         acd2_pa_extremes(J->ring.p, J->ring.n, &J->ext[0], &J->ext[1]);
+        J->cached[0] = J->cached[1] = 0;
         *into_outer = 0;
         *value = 0;
     }
-    if (!t->hit.is_vertex) hs->next_id++;
+    if (!t.hit.is_vertex) hs->next_id++;
     acd2_ring_free(&h->ring);
     h->alive = 0;
     hs->alive--;
+    /* update the other holes' cached targets: owners and the new slit */
+    for (size_t i = 0; i < hs->nh; i++) {
+        acd2_hole *J = &hs->h[i];
+        if (!J->alive) continue;
+        for (int x = 0; x < 2; x++) {
+            if (!J->cached[x]) continue;
+            target *tt = &J->t[x];
+            if (tt->ok && tt->owner == hidx + 1) tt->owner = into;
+            if (slit_affects(&J->ring, J->ext[x], tt, seg[0], seg[1])) J->cached[x] = 0;
+        }
+    }
 done:
     free(rings);
     free(which);
-    free(tg);
+    free(slot);
     return st;
 }

@@ -15,12 +15,27 @@
 
 #include "acd/base.h"
 #include "acd/polygon.h"
+#include "acd2/cut.h"
 #include "acd2/ring.h"
+
+/* where a ray from a hole's extreme first meets the boundary (cached between merges) */
+typedef struct acd2_target {
+    int ok;
+    size_t owner;       /* while computing: ring index; cached: 0 = outer, else hole index + 1 */
+    acd2_hit hit;
+    size_t e;           /* extreme position in the hole ring */
+    double dist;        /* |from - hit| */
+    acd_vec2 from;
+    double aim_dist;    /* distance of the nearest boundary point in the cone (inf: bisector) */
+    int64_t ida, idb;   /* ids of the hit vertex, or of the hit edge's ends */
+} acd2_target;
 
 typedef struct acd2_hole {
     acd2_ring ring;   /* clockwise */
     size_t ext[2];    /* principal-axis extremes (positions in ring) */
     int alive;
+    int cached[2];
+    acd2_target t[2];
 } acd2_hole;
 
 typedef struct acd2_holes {
