@@ -41,11 +41,12 @@ static void fuzz_2d_one(const uint8_t *data, size_t size, acd_polygon_format fmt
         if (a != ACD_OK) all_valid = 0;
     }
     if (all_valid) {
-        for (int k = 0; k < 2; k++) {
+        for (int k = 0; k < 3; k++) {
             char *text;
             size_t len;
-            acd_status st = k ? acd_polygon_set_to_geojson_text(&s, 0, &text, &len, &err)
-                              : acd_polygon_set_to_poly_text(&s, &text, &len, &err);
+            acd_status st = k == 2   ? acd_polygon_set_to_wkt_text(&s, &text, &len, &err)
+                            : k == 1 ? acd_polygon_set_to_geojson_text(&s, 0, &text, &len, &err)
+                                     : acd_polygon_set_to_poly_text(&s, &text, &len, &err);
             if (st != ACD_OK) abort();
             acd_polygon_set t;
             if (acd_polygon_set_parse(&t, text, len, ACD_POLY_FORMAT_AUTO, "rt", NULL, &err) != ACD_OK) abort();

@@ -3,6 +3,7 @@
 #include "testutil.h"
 
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "acd/polygon.h"
@@ -81,10 +82,40 @@ static void test_errors(void **state) {
     assert_non_null(strstr(err.message, "too deep"));
 }
 
+/* WKT writer: exact round trip of one polygon (POLYGON) and of several (MULTIPOLYGON). */
+static void test_round_trip(void **state) {
+    (void)state;
+    acd_polygon_set s, t;
+    acd_error err;
+    assert_int_equal(parse(&s, "MULTIPOLYGON (((0 0, 10 0, 10 10, 0 10, 0 0), (2 2, 2 4, 4 4, 4 2, 2 2)), "
+                               "((20 0, 21 0, 20 1)))",
+                           &err),
+                     ACD_OK);
+    s.polygons[1].points[1].x = 1.0 / 3.0 + 20;
+    for (int single = 0; single < 2; single++) {
+        acd_polygon_set one = {s.polygons, single ? 1 : s.count};
+        char *text;
+        size_t len;
+        assert_int_equal(acd_polygon_set_to_wkt_text(&one, &text, &len, &err), ACD_OK);
+        assert_non_null(strstr(text, single ? "POLYGON ((" : "MULTIPOLYGON ((("));
+        assert_int_equal(parse(&t, text, &err), ACD_OK);
+        assert_int_equal(t.count, one.count);
+        for (size_t i = 0; i < t.count; i++) {
+            assert_int_equal(t.polygons[i].nrings, one.polygons[i].nrings);
+            assert_memory_equal(t.polygons[i].points, one.polygons[i].points,
+                                acd_polygon_num_points(&one.polygons[i]) * sizeof(acd_vec2));
+        }
+        acd_polygon_set_free(&t);
+        free(text);
+    }
+    acd_polygon_set_free(&s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_polygons),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_round_trip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

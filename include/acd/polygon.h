@@ -100,6 +100,8 @@ acd_status acd_polygon_set_write_geojson(const acd_polygon_set *s, const char *p
 acd_status acd_polygon_set_to_poly_text(const acd_polygon_set *s, char **text, size_t *len, acd_error *err);
 acd_status acd_polygon_set_to_geojson_text(const acd_polygon_set *s, int multipolygon, char **text, size_t *len,
                                            acd_error *err);
+/* WKT: POLYGON for a single polygon, else MULTIPOLYGON; rings closed. */
+acd_status acd_polygon_set_to_wkt_text(const acd_polygon_set *s, char **text, size_t *len, acd_error *err);
 /* Writes len bytes of text to path ("-" = standard output). */
 acd_status acd_polygon_write_text_file(const char *path, const char *text, size_t len, acd_error *err);
 

@@ -1,4 +1,4 @@
-/* geom2/polygon_write: writers of polygon sets as Lien's .poly and as GeoJSON.
+/* geom2/polygon_write: writers of polygon sets as Lien's .poly, GeoJSON and WKT.
  *
  * Coordinates are printed with %.17g, which reads back to the same double, so
  * write-then-read is the identity on normalized polygons. */
@@ -135,6 +135,44 @@ acd_status acd_polygon_set_to_geojson_text(const acd_polygon_set *s, int multipo
         }
         sb_printf(&b, "\n]}\n");
     }
+    return finish(&b, text, len, err);
+}
+
+static void wkt_rings(sbuf *b, const acd_polygon *p) {
+    sb_printf(b, "(");
+    for (size_t r = 0; r < p->nrings; r++) {
+        size_t n = acd_polygon_ring_size(p, r);
+        const acd_vec2 *v = acd_polygon_ring(p, r);
+        sb_printf(b, r ? ", (" : "(");
+        for (size_t k = 0; k <= n; k++) { /* closed, like GeoJSON */
+            acd_vec2 q = v[k < n ? k : 0];
+            sb_printf(b, k ? ", %.17g %.17g" : "%.17g %.17g", q.x, q.y);
+        }
+        sb_printf(b, ")");
+    }
+    sb_printf(b, ")");
+}
+
+acd_status acd_polygon_set_to_wkt_text(const acd_polygon_set *s, char **text, size_t *len, acd_error *err) {
+    if (!s || !text) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_polygon_set_to_wkt_text: NULL argument");
+    *text = NULL;
+    acd_status st = check_finite(s, err);
+    if (st != ACD_OK) return st;
+    sbuf b = {0};
+    if (s->count == 1) {
+        sb_printf(&b, "POLYGON ");
+        wkt_rings(&b, &s->polygons[0]);
+    } else if (s->count == 0) {
+        sb_printf(&b, "MULTIPOLYGON EMPTY");
+    } else {
+        sb_printf(&b, "MULTIPOLYGON (");
+        for (size_t i = 0; i < s->count; i++) {
+            if (i) sb_printf(&b, ",\n  ");
+            wkt_rings(&b, &s->polygons[i]);
+        }
+        sb_printf(&b, ")");
+    }
+    sb_printf(&b, "\n");
     return finish(&b, text, len, err);
 }
 
