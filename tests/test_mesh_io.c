@@ -268,6 +268,19 @@ static void test_obj_groups(void **state) {
         assert_string_equal(q.parts[i].name, p.parts[i].name);
         assert_same_mesh(&p.parts[i].mesh, &q.parts[i].mesh, 0);
     }
+    /* a name with a newline is written on one line */
+    char *old = p.parts[0].name;
+    p.parts[0].name = (char *)"bad\nname";
+    char path2[256];
+    tmp_path(path2, sizeof path2, "_names.obj");
+    assert_int_equal(acd_mesh_write_obj_parts(path2, &p, &err), ACD_OK);
+    p.parts[0].name = old;
+    acd_mesh_parts q2;
+    assert_int_equal(acd_mesh_read_obj_groups(path2, &q2, &err), ACD_OK);
+    assert_int_equal(q2.count, 3);
+    assert_string_equal(q2.parts[0].name, "bad_name");
+    acd_mesh_parts_free(&q2);
+    unlink(path2);
     /* the whole file as one mesh: all 4 triangles */
     acd_mesh all;
     assert_int_equal(acd_mesh_read(path, &all, &err), ACD_OK);
@@ -378,7 +391,7 @@ static void test_malformed(void **state) {
         {"v 0 0 0\n1 2 3\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:2: unexpected text"},
         {"v 0 0 0\nf 1 2 99999999999\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:2:"},
         {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:6: face 0: vertex index 3"},
-        {"OFF\n3 1 0\n0 0 0\n1 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:5: vertex 1: coordinate 3 is missing"},
+        {"OFF\n3 1 0\n0 0 0\n1 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:4: vertex 1: coordinate 3 is missing"},
         {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:6: face 0 has 2"},
         {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "face 0: vertex index 2"},
         {"OFF\nx 1 0\n", ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:2: expected the number of vertices"},
@@ -418,6 +431,9 @@ static void test_malformed(void **state) {
          ACD_ERR_PARSE, "exceeds"},
         {"ply\nformat ascii 1.0\nelement vertex 1\nproperty int x\nproperty int y\nproperty int z\nend_header\n0 0.5 0\n",
          ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "integer property"},
+        {"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+         "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n9e101 0 1 2\n",
+         ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:13: face 0: integer property has value 9e+101"},
         {"short", ACD_MESH_FORMAT_STL, ACD_ERR_PARSE, "shorter than its 84-byte header"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

@@ -186,7 +186,11 @@ void acd_obj_write_parts(acd_obuf *o, const acd_mesh_parts *p) {
     uint64_t base = 0;
     for (size_t i = 0; i < p->count; i++) {
         const char *nm = p->parts[i].name;
-        acd_obuf_printf(o, "o %s\n", nm && nm[0] ? nm : "part");
+        acd_obuf_write(o, "o ", 2);
+        if (!nm || !nm[0]) nm = "part";
+        for (const char *c = nm; *c; c++) /* one line: control characters become '_' */
+            acd_obuf_write(o, (unsigned char)*c < 0x20 ? "_" : c, 1);
+        acd_obuf_write(o, "\n", 1);
         write_vertices(o, &p->parts[i].mesh);
         write_faces(o, &p->parts[i].mesh, base);
         base += p->parts[i].mesh.nvertices;

@@ -3,7 +3,8 @@
  * Reads OFF with the optional ST, C and N prefixes (texture coordinates, colours and normals
  * after a vertex's coordinates are skipped, as is a face's colour after its indices), '#'
  * comments anywhere, and the counts on the header line or the next. A face of n >= 3 vertices
- * is fanned. 4OFF/nOFF (other dimensions) and binary OFF are refused as unsupported. */
+ * is fanned. A vertex's coordinates and a face's indices must be on one line (what makes the
+ * trailing colours skippable), blank and comment lines may come between. 4OFF/nOFF (other dimensions) and binary OFF are refused as unsupported. */
 #include "mesh/io_formats.h"
 
 #include <math.h>
@@ -78,10 +79,14 @@ acd_status acd_off_read(const char *buf, size_t len, const char *name, acd_mesh_
     for (int64_t i = 0; i < nv; i++) {
         double x[3];
         for (int k = 0; k < 3; k++) {
-            acd_text_skip_space(&t, 1);
+            /* blank and comment lines may come before a vertex; its coordinates share one line */
+            if (k == 0) acd_text_skip_space(&t, 1);
+            else acd_text_skip_blank(&t);
             const char *q = acd_parse_double(t.p, &x[k]);
             if (!q || (*q && !is_space(*q) && *q != '#'))
-                return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: vertex %lld: coordinate %d is missing or malformed ('%.12s')",
+                return acd_fail(err, ACD_ERR_PARSE,
+                                "%s:%zu: vertex %lld: coordinate %d is missing or malformed ('%.12s'; a vertex's "
+                                "coordinates must be on one line)",
                                 name, t.line, (long long)i, k + 1, t.p);
             if (!isfinite(x[k]))
                 return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: vertex %lld: coordinate %d is not finite", name, t.line,
@@ -109,7 +114,7 @@ acd_status acd_off_read(const char *buf, size_t len, const char *name, acd_mesh_
         b->npoly = 0;
         for (int64_t k = 0; k < n; k++) {
             int64_t idx;
-            acd_text_skip_space(&t, 1);
+            acd_text_skip_blank(&t); /* a face's indices share its line */
             q = acd_parse_int64(t.p, &idx);
             if (!q || (*q && !is_space(*q) && *q != '#'))
                 return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face %lld: vertex index %lld is missing or malformed", name,

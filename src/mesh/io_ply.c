@@ -77,6 +77,27 @@ static size_t word(acd_text *t, const char **w) {
 
 static int word_is(const char *w, size_t n, const char *s) { return strlen(s) == n && !strncmp(w, s, n); }
 
+static double type_min(ply_type t) {
+    switch (t) {
+    case PT_I8: return -128;
+    case PT_I16: return -32768;
+    case PT_I32: return -2147483648.0;
+    default: return t == PT_F32 || t == PT_F64 ? -INFINITY : 0;
+    }
+}
+
+static double type_max(ply_type t) {
+    switch (t) {
+    case PT_I8: return 127;
+    case PT_U8: return 255;
+    case PT_I16: return 32767;
+    case PT_U16: return 65535;
+    case PT_I32: return 2147483647.0;
+    case PT_U32: return 4294967295.0;
+    default: return INFINITY;
+    }
+}
+
 static double decode(const unsigned char *p, ply_type t, int be) {
     unsigned char b[8];
     size_t n = type_size(t);
@@ -124,9 +145,9 @@ static acd_status read_value(ply_reader *r, ply_type ty, double *out, const char
             return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: %s %llu: expected a number, found '%.12s'", r->name, r->t.line,
                             what, (unsigned long long)index, r->t.p);
         r->t.p = q;
-        if (ty != PT_F32 && ty != PT_F64 && *out != floor(*out))
-            return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: %s %llu: integer property has value %g", r->name, r->t.line, what,
-                            (unsigned long long)index, *out);
+        if (ty != PT_F32 && ty != PT_F64 && (*out != floor(*out) || *out < type_min(ty) || *out > type_max(ty)))
+            return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: %s %llu: integer property has value %g (not an integer of its type)",
+                            r->name, r->t.line, what, (unsigned long long)index, *out);
         return ACD_OK;
     }
     size_t n = type_size(ty);
