@@ -172,7 +172,7 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
         /* best patch per region: sort votes by (region, patch, weight) -- a total order, so the
          * sums below are bitwise reproducible -- and sum the runs */
         for (size_t i = 0; i < nvote; i++) vl[i].face = out->face_region[vl[i].face];
-        qsort(vl, nvote, sizeof *vl, cmp_vote);
+        if (nvote) qsort(vl, nvote, sizeof *vl, cmp_vote);
         double *best = malloc((nr ? nr : 1) * sizeof *best);
         if (!best) {
             free(vl);
