@@ -5,6 +5,8 @@
 #include <string.h>
 
 #include "acd/eval.h"
+#include "acd/export.h"
+#include "acd/hull.h"
 #include "acd/mesh.h"
 #include "cli.h"
 
@@ -23,6 +25,12 @@ static void usage(FILE *f) {
             "  --surface-samples N    surface samples, each way (default 200000)\n"
             "  --seed S               random seed (default 1)\n"
             "  -o FILE                write the report to FILE instead of stdout\n"
+            "  --export DIR           also write the decomposition's hulls for other tools: one OBJ with\n"
+            "                         a group per hull, one file per hull and part, summary.json, URDF\n"
+            "                         and MuJoCo MJCF (docs/eval.md, Exports)\n"
+            "  --max-hull-vertices N  with --export: simplify each hull to at most N (>= 4) vertices,\n"
+            "                         still enclosing it\n"
+            "  --name NAME            with --export: model name (default acd)\n"
             "  -h, --help             this text\n");
 }
 
@@ -46,7 +54,8 @@ static void print_text(FILE *f, const acd_eval_report *r) {
 }
 
 int acd_cmd_eval(int argc, char **argv) {
-    const char *paths[2] = {NULL, NULL}, *outpath = NULL;
+    const char *paths[2] = {NULL, NULL}, *outpath = NULL, *export_dir = NULL;
+    acd_export_options xo = acd_export_default_options();
     int npaths = 0, json = 0;
     acd_eval_params prm = acd_eval_default_params();
     for (int i = 1; i < argc; i++) {
@@ -57,7 +66,8 @@ int acd_cmd_eval(int argc, char **argv) {
         } else if (!strcmp(a, "--json")) {
             json = 1;
         } else if (!strcmp(a, "--samples") || !strcmp(a, "--surface-samples") || !strcmp(a, "--seed") ||
-                   !strcmp(a, "-o")) {
+                   !strcmp(a, "-o") || !strcmp(a, "--export") || !strcmp(a, "--max-hull-vertices") ||
+                   !strcmp(a, "--name")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "acd eval: option %s needs a value\n", a);
                 return ACD_EXIT_USAGE;
@@ -66,6 +76,17 @@ int acd_cmd_eval(int argc, char **argv) {
             size_t n;
             if (!strcmp(a, "-o")) {
                 outpath = v;
+            } else if (!strcmp(a, "--export")) {
+                export_dir = v;
+            } else if (!strcmp(a, "--name")) {
+                xo.name = v;
+            } else if (!strcmp(a, "--max-hull-vertices")) {
+                if (!acd_cli_parse_size("eval", a, v, &n)) return ACD_EXIT_USAGE;
+                if (n < 4) {
+                    fprintf(stderr, "acd eval: option %s needs at least 4, got '%s'\n", a, v);
+                    return ACD_EXIT_USAGE;
+                }
+                xo.max_hull_vertices = n;
             } else {
                 if (!acd_cli_parse_size("eval", a, v, &n)) return ACD_EXIT_USAGE;
                 if (!strcmp(a, "--seed")) {
@@ -104,7 +125,26 @@ int acd_cmd_eval(int argc, char **argv) {
         return acd_cli_report("eval", &err);
     }
     acd_eval_report rep;
-    acd_status st = acd_eval_parts(&mesh, &parts, &prm, &rep, &err);
+    acd_hull *hulls = calloc(parts.count ? parts.count : 1, sizeof *hulls);
+    acd_status st = ACD_OK;
+    if (!hulls) {
+        st = err.status = ACD_ERR_NOMEM;
+        snprintf(err.message, sizeof err.message, "out of memory for %zu hulls", parts.count);
+    }
+    for (size_t i = 0; i < parts.count && st == ACD_OK; i++) {
+        const acd_mesh *pm = &parts.parts[i].mesh;
+        acd_error e2;
+        st = acd_hull_compute(pm->vertices, pm->nvertices, &hulls[i], &e2);
+        if (st != ACD_OK) {
+            err.status = st;
+            snprintf(err.message, sizeof err.message, "%s: hull of part %zu ('%.100s'): %.300s", paths[1], i,
+                     parts.parts[i].name ? parts.parts[i].name : "", e2.message);
+        }
+    }
+    if (st == ACD_OK) st = acd_eval_hulls(&mesh, hulls, parts.count, &prm, &rep, &err);
+    if (st == ACD_OK && export_dir) st = acd_export_all(export_dir, &parts, hulls, parts.count, &rep, &xo, &err);
+    for (size_t i = 0; hulls && i < parts.count; i++) acd_hull_free(&hulls[i]);
+    free(hulls);
     acd_mesh_free(&mesh);
     acd_mesh_parts_free(&parts);
     if (st != ACD_OK) return acd_cli_report("eval", &err);
