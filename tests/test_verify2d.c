@@ -407,6 +407,55 @@ static void test_area_compensated(void **state) {
     assert_int_equal(r, -1);
 }
 
+/* acd_verify2d_result on a hand-made result: passes, then a hull missing a corner, a clockwise
+ * hull and a result claiming a smaller tau fail. */
+static void test_result_hulls(void **state) {
+    (void)state;
+    const acd_vec2 *rings[] = {L_shape};
+    size_t sizes[] = {6};
+    acd_polygon in;
+    acd_error err;
+    assert_int_equal(acd_polygon_from_rings(&in, rings, sizes, 1, &err), ACD_OK);
+    acd_vec2 a[] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {0, 1}}, b[] = {{0, 1}, {1, 1}, {1, 2}, {0, 2}};
+    acd_vec2 ha[] = {{0, 0}, {2, 0}, {2, 1}, {0, 1}}, hb[] = {{0, 1}, {1, 1}, {1, 2}, {0, 2}};
+    acd2d_component comps[2] = {
+        {.points = a, .npoints = 5, .hull = ha, .nhull = 4, .node = 1},
+        {.points = b, .npoints = 4, .hull = hb, .nhull = 4, .node = 2},
+    };
+    acd2d_result res;
+    memset(&res, 0, sizeof res);
+    res.tau = 0;
+    res.measure = ACD2D_MEASURE_SL;
+    res.components = comps;
+    res.ncomponents = 2;
+    acd2d_params prm = acd2d_default_params();
+    acd_verify2d_report rep;
+    assert_int_equal(acd_verify2d_result(&in, &res, &prm, 0, &rep, &err), ACD_OK);
+    acd_vec2 bad[] = {{0, 0}, {2, 0}, {2, 1}}; /* misses (0,1) */
+    comps[0].hull = bad;
+    comps[0].nhull = 3;
+    assert_int_equal(acd_verify2d_result(&in, &res, &prm, 7, &rep, &err), ACD_ERR_VERIFY);
+    assert_int_equal(rep.failed, ACD_V2D_HULL);
+    assert_non_null(strstr(err.message, "component 7"));
+    acd_vec2 cw[] = {{0, 1}, {2, 1}, {2, 0}, {0, 0}};
+    comps[0].hull = cw;
+    comps[0].nhull = 4;
+    assert_int_equal(acd_verify2d_result(&in, &res, &prm, 0, &rep, &err), ACD_ERR_VERIFY);
+    assert_int_equal(rep.failed, ACD_V2D_HULL);
+    /* the whole L as one component claimed at tau 0.5 */
+    comps[0] = (acd2d_component){.points = (acd_vec2 *)L_shape, .npoints = 6, .hull = ha, .nhull = 4};
+    acd_vec2 hl[] = {{0, 0}, {2, 0}, {2, 1}, {1, 2}, {0, 2}};
+    comps[0].hull = hl;
+    comps[0].nhull = 5;
+    res.ncomponents = 1;
+    res.tau = 0.5;
+    assert_int_equal(acd_verify2d_result(&in, &res, &prm, 0, &rep, &err), ACD_ERR_VERIFY);
+    assert_int_equal(rep.failed, ACD_V2D_CONCAVITY);
+    res.tau = 0.75;
+    assert_int_equal(acd_verify2d_result(&in, &res, &prm, 0, &rep, &err), ACD_OK);
+    acd_polygon_free(&in);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_two_halves_pass),
@@ -426,6 +475,7 @@ int main(void) {
         cmocka_unit_test(test_many_components),
         cmocka_unit_test(test_rounded_steiner),
         cmocka_unit_test(test_area_compensated),
+        cmocka_unit_test(test_result_hulls),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

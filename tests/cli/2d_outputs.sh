@@ -84,6 +84,17 @@ assert abs(area - (12 + 3 + 1)) < 1e-9, area
 assert d["verify"]["passed"] is True
 PY
 
+# a .poly file with two outer chains, the first with a hole: both decomposed
+printf '3\n4 out\n0 0\n4 0\n4 4\n0 4\n1 2 3 4\n4 in\n1 1\n1 3\n3 3\n3 1\n1 2 3 4\n6 out\n10 0\n12 0\n12 1\n11 1\n11 2\n10 2\n1 2 3 4 5 6\n' > "$T/two.poly"
+"$ACD" 2d "$T/two.poly" --verify --json "$T/two.json" > "$T/out" || fail "two outer chains: exit $?"
+grep -q "2 polygons, 14 vertices" "$T/out" || fail "two outer chains: $(cat "$T/out")"
+python3 - "$T/two.json" <<'PY' || fail "two outer chains JSON"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["input"]["holes"] == 1 and len(d["polygons"]) == 2
+assert d["polygons"][1]["first_component"] == d["polygons"][0]["components"]
+PY
+
 # -v reports normalization fixes: a clockwise ring with a repeated vertex
 printf '{"type":"Polygon","coordinates":[[[0,0],[0,1],[1,1],[1,1],[1,0],[0,0]]]}' > "$T/fix.geojson"
 "$ACD" 2d "$T/fix.geojson" -v > /dev/null 2> "$T/err" || fail "-v exit $?"
