@@ -209,6 +209,32 @@ static void test_node_polygons(void **state) {
     acd_polygon_free(&p);
 }
 
+/* Lemma A.3: with SP (and H1), no piece is more concave than its parent (spec §11 A10) */
+static void test_sp_monotone(void **state) {
+    (void)state;
+    for (uint64_t seed = 1; seed <= 6; seed++) {
+        acd_polygon p = random_star(seed * 31, 150, 1.0, 5.0);
+        for (int m = ACD2D_MEASURE_SP; m <= ACD2D_MEASURE_H1; m++) {
+            acd2d_params prm = acd2d_default_params();
+            prm.measure = (acd2d_measure)m;
+            acd2d_result res;
+            acd_error err;
+            assert_int_equal(acd2d_decompose(&p, &prm, &res, &err), ACD_OK);
+            for (size_t v = 1; v < res.nnodes; v++) {
+                int par = res.nodes[v].parent;
+                if (res.nodes[par].is_hole_merge || !res.nodes[par].acceptable) continue;
+                if (res.nodes[v].concavity > res.nodes[par].concavity * (1 + 1e-12) + 1e-12) {
+                    print_message("seed %llu measure %d node %zu: %.17g > parent %.17g\n", (unsigned long long)seed, m, v,
+                                  res.nodes[v].concavity, res.nodes[par].concavity);
+                    fail();
+                }
+            }
+            acd2d_result_free(&res);
+        }
+        acd_polygon_free(&p);
+    }
+}
+
 static int cancel_after(void *user, double f, const char *stage) {
     (void)f;
     (void)stage;
@@ -263,7 +289,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_l_shape_concavity),  cmocka_unit_test(test_l_shape_decompose),
         cmocka_unit_test(test_random_stars),       cmocka_unit_test(test_square_with_holes),
-        cmocka_unit_test(test_hierarchy_readout),  cmocka_unit_test(test_node_polygons),  cmocka_unit_test(test_cancel_and_args),
+        cmocka_unit_test(test_hierarchy_readout),  cmocka_unit_test(test_node_polygons), cmocka_unit_test(test_sp_monotone),  cmocka_unit_test(test_cancel_and_args),
         cmocka_unit_test(test_normalize_and_determinism),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

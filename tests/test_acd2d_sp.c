@@ -153,7 +153,26 @@ static void test_known_values(void **state) {
     acd2_sp_work_free(&w);
 }
 
+/* H1 = SP where the pocket has a hazard edge, SL where it has none; H2 keeps SL when SL exceeds
+ * tau, else follows H1 (Algs. 3-4) */
+static void test_hybrids(void **state) {
+    (void)state;
+    const acd_vec2 hook[] = {{0, 0}, {10, 0}, {10, 10}, {8, 9}, {8, 3}, {2, 3}, {2, 7}, {6, 7}, {6, 8.5}, {1, 8.5}, {0, 10}};
+    const acd_vec2 v[] = {{0, 0}, {10, 0}, {10, 10}, {7, 4}, {5, 6}, {3, 4}, {0, 10}};
+    size_t w;
+    double sl = acd2d_concavity(hook, 11, ACD2D_MEASURE_SL, 0, &w), sp = acd2d_concavity(hook, 11, ACD2D_MEASURE_SP, 0, &w);
+    assert_true(sp > sl + 1);
+    assert_true(acd2d_concavity(hook, 11, ACD2D_MEASURE_H1, 0, &w) == sp);
+    assert_true(acd2d_concavity(hook, 11, ACD2D_MEASURE_H2, sl - 0.5, &w) == sl); /* SL > tau: keep SL */
+    assert_true(acd2d_concavity(hook, 11, ACD2D_MEASURE_H2, sl + 0.5, &w) == sp); /* SL <= tau, hazard: SP */
+    double vsl = acd2d_concavity(v, 7, ACD2D_MEASURE_SL, 0, &w);
+    assert_true(acd2d_concavity(v, 7, ACD2D_MEASURE_H1, 0, &w) == vsl); /* no hazard: SL */
+    assert_true(acd2d_concavity(v, 7, ACD2D_MEASURE_H2, 100, &w) == vsl);
+    assert_true(fabs(vsl - 6) < 1e-12);
+}
+
 int main(void) {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_known_values), cmocka_unit_test(test_sp_oracle)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_known_values), cmocka_unit_test(test_sp_oracle),
+                                       cmocka_unit_test(test_hybrids)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
