@@ -1,4 +1,4 @@
-/* geom2/seg_sweep: exact Shamos-Hoffman sweep for edge conflicts (see seg_sweep.h).
+/* geom2/seg_sweep: exact Shamos-Hoey sweep for edge conflicts (see seg_sweep.h).
  *
  * Events are the vertices in lexicographic (x, y) order; an edge's left end is its
  * lexicographically smaller vertex (the lower end of a vertical edge). At a vertex, the edges

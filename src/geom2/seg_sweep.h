@@ -1,4 +1,4 @@
-/* geom2/seg_sweep: does any pair of polygon edges meet where it should not? A Shamos-Hoffman
+/* geom2/seg_sweep: does any pair of polygon edges meet where it should not? A Shamos-Hoey
  * sweep line (M. I. Shamos, D. Hoey, "Geometric intersection problems", FOCS 1976), exact.
  *
  * The edges are those of closed rings: edge i runs from pts[i] to pts[next[i]]. The caller's

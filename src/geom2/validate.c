@@ -6,7 +6,7 @@
  * rings may not meet at all; every hole lies inside dP0 and outside every other hole (an
  * island inside a hole is a separate polygon). All decisions use the exact predicates.
  *
- * Which pairs of edges get the exact pair test: by default a Shamos-Hoffman sweep line
+ * Which pairs of edges get the exact pair test: by default a Shamos-Hoey sweep line
  * (geom2/seg_sweep, O(n log n)); alternatively an adaptive binary subdivision of the bounding box
  * (a box holding more than a few edges is split at its middle along the axis that separates the
  * edges best, each edge going conservatively to every half it may touch; two edges that meet share
@@ -233,6 +233,12 @@ static int edge_meets_box(const vctx *c, size_t e, const double b[4]) {
 
 #define SUBDIV_LEAF 8
 #define SUBDIV_MAX_DEPTH 60
+/* Growth of a box in the conservative segment/box test: a fraction of the input's extent plus
+ * a multiple of the unit roundoff of its largest coordinate. Not a geometric tolerance: any
+ * value above the rounding error of the side computation (about 23 eps max|coord|) keeps the
+ * test conservative; larger values only cost speed. */
+#define SUBDIV_MARGIN_REL_EXTENT 1e-9
+#define SUBDIV_MARGIN_ROUNDOFFS 256.0
 
 static acd_status subdivide(const vctx *c, const double box_in[4], const size_t *ids, size_t m, int depth) {
     if (m <= SUBDIV_LEAF || depth >= SUBDIV_MAX_DEPTH) return brute_pairs(c, ids, m);
@@ -590,7 +596,7 @@ acd_status acd_polygon_validate_with(const acd_polygon *p, size_t index, acd_val
         }
     }
     double extent = hypot(box[2] - box[0], box[3] - box[1]);
-    c.margin = 1e-9 * extent + 256.0 * DBL_EPSILON * maxabs + DBL_MIN;
+    c.margin = SUBDIV_MARGIN_REL_EXTENT * extent + SUBDIV_MARGIN_ROUNDOFFS * DBL_EPSILON * maxabs + DBL_MIN;
     if (method == ACD_VALIDATE_BRUTE) st = brute_pairs(&c, ids, c.n);
     else if (method == ACD_VALIDATE_SUBDIV) st = subdivide(&c, box, ids, c.n, 0);
     else {
