@@ -1,0 +1,495 @@
+/* corise/corise: the CoRiSe loop (§3, §5.2; spec corise.md §2.1, §2.8). */
+#include "corise/corise.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "corise/regions.h"
+#include "corise/ridge.h"
+#include "corise/valley.h"
+#include "geom3/dijkstra.h"
+
+acd_corise_params acd_corise_default_params(void) {
+    acd_corise_params p;
+    memset(&p, 0, sizeof p);
+    p.tau = 0.1;
+    p.normalize = 1;
+    p.cut = acd_corise_cut_default_params();
+    p.max_depth = 64;
+    return p;
+}
+
+typedef struct ef {
+    uint32_t lo, hi, face;
+} ef;
+
+static int cmp_ef(const void *x, const void *y) {
+    const ef *p = x, *q = y;
+    if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
+    if (p->hi != q->hi) return p->hi < q->hi ? -1 : 1;
+    return (p->face > q->face) - (p->face < q->face);
+}
+
+static uint32_t uf_find(uint32_t *p, uint32_t x) {
+    while (p[x] != x) {
+        p[x] = p[p[x]];
+        x = p[x];
+    }
+    return x;
+}
+
+/* Edge-connected components of the facets faces[0..n) of m: comp[i] = component of faces[i],
+ * numbered by first occurrence. Returns the count, or SIZE_MAX when out of memory. */
+static size_t components(const acd_mesh *m, const uint32_t *faces, size_t n, uint32_t *comp) {
+    ef *e = malloc((n ? 3 * n : 1) * sizeof *e);
+    uint32_t *p = malloc((n ? n : 1) * sizeof *p), *id = malloc((n ? n : 1) * sizeof *id);
+    if (!e || !p || !id) {
+        free(e);
+        free(p);
+        free(id);
+        return SIZE_MAX;
+    }
+    for (size_t i = 0; i < n; i++) {
+        p[i] = (uint32_t)i;
+        const uint32_t *T = m->triangles + 3 * (size_t)faces[i];
+        for (int k = 0; k < 3; k++) {
+            uint32_t u = T[k], v = T[(k + 1) % 3];
+            e[3 * i + k] = (ef){u < v ? u : v, u < v ? v : u, (uint32_t)i};
+        }
+    }
+    qsort(e, 3 * n, sizeof *e, cmp_ef);
+    for (size_t i = 1; i < 3 * n; i++)
+        if (e[i].lo == e[i - 1].lo && e[i].hi == e[i - 1].hi) {
+            uint32_t a = uf_find(p, e[i].face), b = uf_find(p, e[i - 1].face);
+            if (a != b) p[a < b ? b : a] = a < b ? a : b;
+        }
+    size_t nc = 0;
+    for (size_t i = 0; i < n; i++) id[i] = UINT32_MAX;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t r = uf_find(p, (uint32_t)i);
+        if (id[r] == UINT32_MAX) id[r] = (uint32_t)nc++;
+        comp[i] = id[r];
+    }
+    free(e);
+    free(p);
+    free(id);
+    return nc;
+}
+
+typedef struct part {
+    uint32_t *faces;
+    size_t n;
+    size_t depth;
+} part;
+
+typedef struct part_list {
+    part *p;
+    size_t n, cap, head;
+} part_list;
+
+static int push_part(part_list *l, uint32_t *faces, size_t n, size_t depth) {
+    if (l->n == l->cap) {
+        size_t nc = l->cap ? 2 * l->cap : 16;
+        part *q = realloc(l->p, nc * sizeof *q);
+        if (!q) return 0;
+        l->p = q;
+        l->cap = nc;
+    }
+    l->p[l->n++] = (part){faces, n, depth};
+    return 1;
+}
+
+/* Pushes every component of faces[0..n) (taking ownership of faces). */
+static int push_components(const acd_mesh *m, part_list *q, uint32_t *faces, size_t n, size_t depth) {
+    uint32_t *comp = malloc((n ? n : 1) * sizeof *comp);
+    if (!comp) {
+        free(faces);
+        return 0;
+    }
+    size_t nc = components(m, faces, n, comp);
+    if (nc == SIZE_MAX) {
+        free(comp);
+        free(faces);
+        return 0;
+    }
+    if (nc == 1) {
+        free(comp);
+        return push_part(q, faces, n, depth) ? 1 : (free(faces), 0);
+    }
+    int ok = 1;
+    for (size_t c = 0; c < nc && ok; c++) {
+        size_t k = 0;
+        for (size_t i = 0; i < n; i++) k += comp[i] == c;
+        uint32_t *f = malloc(k * sizeof *f);
+        if (!f) {
+            ok = 0;
+            break;
+        }
+        k = 0;
+        for (size_t i = 0; i < n; i++)
+            if (comp[i] == c) f[k++] = faces[i];
+        if (!push_part(q, f, k, depth)) {
+            free(f);
+            ok = 0;
+        }
+    }
+    free(comp);
+    free(faces);
+    return ok;
+}
+
+/* Submesh of the facets faces[0..n): vertices in order of first use; l2g (3n entries) receives
+ * the global id of each local vertex. */
+static int extract(const acd_mesh *m, const uint32_t *faces, size_t n, uint32_t *map, uint32_t *l2g, acd_mesh *out) {
+    memset(out, 0, sizeof *out);
+    out->triangles = malloc((n ? 3 * n : 1) * sizeof *out->triangles);
+    out->vertices = malloc((n ? 3 * n : 1) * 3 * sizeof *out->vertices);
+    if (!out->triangles || !out->vertices) {
+        acd_mesh_free(out);
+        return 0;
+    }
+    size_t nv = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = m->triangles[3 * (size_t)faces[i] + k];
+            if (map[v] == UINT32_MAX) {
+                map[v] = (uint32_t)nv;
+                l2g[nv] = v;
+                memcpy(out->vertices + 3 * nv, m->vertices + 3 * (size_t)v, 3 * sizeof(double));
+                nv++;
+            }
+            out->triangles[3 * i + k] = map[v];
+        }
+    for (size_t i = 0; i < n; i++) /* reset the map for the next call */
+        for (int k = 0; k < 3; k++) map[m->triangles[3 * (size_t)faces[i] + k]] = UINT32_MAX;
+    out->nvertices = nv;
+    out->ntriangles = n;
+    return 1;
+}
+
+/* Edges of the whole (normalised) mesh with their facet counts, to tell the boundaries a cut
+ * opened from the input's own boundaries. */
+typedef struct edge_count {
+    uint32_t lo, hi;
+    size_t count;
+} edge_count;
+
+static int cmp_edge_count(const void *x, const void *y) {
+    const edge_count *p = x, *q = y;
+    if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
+    return (p->hi > q->hi) - (p->hi < q->hi);
+}
+
+static edge_count *global_edges(const acd_mesh *m, size_t *n) {
+    size_t ne = 3 * m->ntriangles;
+    edge_count *e = malloc((ne ? ne : 1) * sizeof *e);
+    if (!e) return NULL;
+    for (size_t t = 0; t < m->ntriangles; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t u = m->triangles[3 * t + k], v = m->triangles[3 * t + (k + 1) % 3];
+            e[3 * t + k] = (edge_count){u < v ? u : v, u < v ? v : u, 1};
+        }
+    qsort(e, ne, sizeof *e, cmp_edge_count);
+    size_t k = 0;
+    for (size_t i = 0; i < ne; i++) {
+        if (k && e[k - 1].lo == e[i].lo && e[k - 1].hi == e[i].hi)
+            e[k - 1].count++;
+        else
+            e[k++] = e[i];
+    }
+    *n = k;
+    return e;
+}
+
+static size_t global_count(const edge_count *e, size_t n, uint32_t a, uint32_t b) {
+    edge_count key = {a < b ? a : b, a < b ? b : a, 0};
+    const edge_count *f = bsearch(&key, e, n, sizeof *e, cmp_edge_count);
+    return f ? f->count : 0;
+}
+
+/* Caps the holes a cut opened in the part s (decision recorded in docs/corise.md): every
+ * boundary edge of s that is interior in the whole mesh gets a triangle to the centroid of its
+ * connected boundary curve, so that valleys (and region balls, and later cuts) may cross the
+ * opening, where the solid was, instead of running around its rim. out = s plus the caps (the
+ * first s->ntriangles facets are s's). */
+static int cap_cut_holes(const acd_mesh *s, const uint32_t *l2g, const edge_count *ge, size_t nge, acd_mesh *out) {
+    memset(out, 0, sizeof *out);
+    size_t nt = s->ntriangles, ne = 3 * nt;
+    ef *e = malloc((ne ? ne : 1) * sizeof *e);
+    uint32_t *cu = malloc((ne ? ne : 1) * 2 * sizeof *cu); /* directed cut edges */
+    uint32_t *p = malloc((s->nvertices ? s->nvertices : 1) * sizeof *p);
+    uint32_t *gid = malloc((s->nvertices ? s->nvertices : 1) * sizeof *gid);
+    if (!e || !cu || !p || !gid) goto fail;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t u = s->triangles[3 * t + k], v = s->triangles[3 * t + (k + 1) % 3];
+            e[3 * t + k] = (ef){u < v ? u : v, u < v ? v : u, (uint32_t)(3 * t + (size_t)k)};
+        }
+    qsort(e, ne, sizeof *e, cmp_ef);
+    size_t nc = 0;
+    for (size_t i = 0; i < ne;) {
+        size_t j = i + 1;
+        while (j < ne && e[j].lo == e[i].lo && e[j].hi == e[i].hi) j++;
+        if (j == i + 1 && e[i].lo != e[i].hi && global_count(ge, nge, l2g[e[i].lo], l2g[e[i].hi]) >= 2) {
+            size_t t = e[i].face / 3, k = e[i].face % 3;
+            cu[2 * nc] = s->triangles[3 * t + k];
+            cu[2 * nc + 1] = s->triangles[3 * t + (k + 1) % 3];
+            nc++;
+        }
+        i = j;
+    }
+    for (size_t v = 0; v < s->nvertices; v++) p[v] = (uint32_t)v, gid[v] = UINT32_MAX;
+    for (size_t i = 0; i < nc; i++) {
+        uint32_t a = uf_find(p, cu[2 * i]), b = uf_find(p, cu[2 * i + 1]);
+        if (a != b) p[a < b ? b : a] = a < b ? a : b;
+    }
+    size_t ng = 0;
+    for (size_t i = 0; i < nc; i++) {
+        uint32_t r = uf_find(p, cu[2 * i]);
+        if (gid[r] == UINT32_MAX) gid[r] = (uint32_t)ng++;
+    }
+    out->nvertices = s->nvertices + ng;
+    out->ntriangles = nt + nc;
+    out->vertices = calloc(3 * (out->nvertices ? out->nvertices : 1), sizeof *out->vertices);
+    out->triangles = malloc(3 * (out->ntriangles ? out->ntriangles : 1) * sizeof *out->triangles);
+    double *cnt = calloc(ng ? ng : 1, sizeof *cnt);
+    if (!out->vertices || !out->triangles || !cnt) {
+        free(cnt);
+        goto fail;
+    }
+    memcpy(out->vertices, s->vertices, 3 * s->nvertices * sizeof *out->vertices);
+    memcpy(out->triangles, s->triangles, 3 * nt * sizeof *out->triangles);
+    for (size_t i = 0; i < nc; i++) { /* centroid of each curve's edge endpoints */
+        uint32_t g = gid[uf_find(p, cu[2 * i])];
+        for (int k = 0; k < 2; k++)
+            for (int c = 0; c < 3; c++)
+                out->vertices[3 * (s->nvertices + g) + c] += s->vertices[3 * (size_t)cu[2 * i + k] + c];
+        cnt[g] += 2;
+    }
+    for (size_t g = 0; g < ng; g++)
+        for (int c = 0; c < 3; c++) out->vertices[3 * (s->nvertices + g) + c] /= cnt[g];
+    for (size_t i = 0; i < nc; i++) {
+        uint32_t g = gid[uf_find(p, cu[2 * i])];
+        uint32_t *T = out->triangles + 3 * (nt + i);
+        T[0] = cu[2 * i + 1]; /* reversed edge: consistent orientation with the part */
+        T[1] = cu[2 * i];
+        T[2] = (uint32_t)(s->nvertices + g);
+    }
+    free(cnt);
+    free(e);
+    free(cu);
+    free(p);
+    free(gid);
+    return 1;
+fail:
+    free(e);
+    free(cu);
+    free(p);
+    free(gid);
+    acd_mesh_free(out);
+    return 0;
+}
+
+/* One CoRiSe step on the submesh s: *nparts = 0 when s is final (no deep valley or flat hull),
+ * else part[] holds the cut result. */
+static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t *part, size_t *nparts,
+                       acd_corise_stats *stats, acd_error *err) {
+    *nparts = 0;
+    acd_edge_graph g;
+    acd_corise_bridges b;
+    acd_corise_ridges r;
+    memset(&g, 0, sizeof g);
+    memset(&b, 0, sizeof b);
+    memset(&r, 0, sizeof r);
+    uint32_t *ml = NULL;
+    acd_status st = acd_edge_graph_from_mesh(s->vertices, s->nvertices, s->triangles, s->ntriangles, &g, err);
+    if (st == ACD_OK) st = acd_corise_bridges_compute(s, &g, &b, err);
+    if (st != ACD_OK) goto done;
+    stats->fallbacks += b.fallbacks;
+    stats->unreachable += b.unreachable;
+    if (b.hull_dim < 3) goto done;
+    int deep = 0;
+    for (size_t i = 0; i < b.nbridges; i++)
+        if (isfinite(b.bridge[i].length) && b.bridge[i].concavity > prm->tau) deep = 1;
+    if (!deep) goto done;
+    if ((st = acd_corise_ridges_compute(&b, prm->tau, &r, err)) != ACD_OK) goto done;
+    ml = malloc(s->ntriangles * sizeof *ml);
+    if (!ml) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu facets", s->ntriangles);
+        goto done;
+    }
+    if ((st = acd_corise_regions(s, &g, &b, &r, prm->tau, ml, NULL, err)) != ACD_OK) goto done;
+    st = acd_corise_cut(s, &b, &r, ml, &prm->cut, part, nparts, err);
+done:
+    free(ml);
+    acd_corise_ridges_free(&r);
+    acd_corise_bridges_free(&b);
+    acd_edge_graph_free(&g);
+    return st;
+}
+
+typedef struct final_part {
+    uint32_t first; /* smallest facet */
+    size_t index;   /* in the final list */
+} final_part;
+
+static int cmp_final(const void *x, const void *y) {
+    const final_part *p = x, *q = y;
+    return (p->first > q->first) - (p->first < q->first);
+}
+
+acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params, uint32_t *labels,
+                              acd_corise_stats *stats, acd_error *err) {
+    if (!m || !labels) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
+    acd_corise_params prm = params ? *params : acd_corise_default_params();
+    acd_corise_stats local;
+    acd_corise_stats *S = stats ? stats : &local;
+    memset(S, 0, sizeof *S);
+    if (!isfinite(prm.tau) || prm.tau < 0)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: tau %g must be finite and >= 0", prm.tau);
+    if (m->ntriangles == 0) return acd_fail(err, ACD_ERR_DEGENERATE, "corise: the mesh has no facets");
+    if (m->ntriangles > UINT32_MAX / 3)
+        return acd_fail(err, ACD_ERR_UNSUPPORTED, "corise: %zu facets exceed the supported size", m->ntriangles);
+    for (size_t t = 0; t < 3 * m->ntriangles; t++)
+        if (m->triangles[t] >= m->nvertices)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "corise: triangle %zu uses vertex %u, but the mesh has %zu", t / 3,
+                            m->triangles[t], m->nvertices);
+    for (size_t i = 0; i < 3 * m->nvertices; i++)
+        if (!isfinite(m->vertices[i]))
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "corise: vertex %zu has a non-finite coordinate", i / 3);
+    /* normalised copy (A1) */
+    acd_mesh w = *m;
+    w.vertices = malloc(3 * (m->nvertices ? m->nvertices : 1) * sizeof *w.vertices);
+    uint32_t *map = malloc((m->nvertices ? m->nvertices : 1) * sizeof *map);
+    part_list q = {0};
+    part_list fin = {0};
+    uint32_t *all = malloc(m->ntriangles * sizeof *all);
+    uint32_t *cutpart = NULL;
+    uint32_t *l2g = malloc(3 * m->ntriangles * sizeof *l2g);
+    size_t nge = 0;
+    edge_count *ge = NULL;
+    acd_status st = ACD_OK;
+    if (!w.vertices || !map || !all || !l2g) goto nomem;
+    memcpy(w.vertices, m->vertices, 3 * m->nvertices * sizeof *w.vertices);
+    for (size_t v = 0; v < m->nvertices; v++) map[v] = UINT32_MAX;
+    S->scale = 1.0;
+    if (prm.normalize) {
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (size_t t = 0; t < 3 * m->ntriangles; t++)
+            for (int c = 0; c < 3; c++) {
+                double x = m->vertices[3 * (size_t)m->triangles[t] + c];
+                if (x < lo[c]) lo[c] = x;
+                if (x > hi[c]) hi[c] = x;
+            }
+        double cen[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])}, rad = 0;
+        for (size_t t = 0; t < 3 * m->ntriangles; t++) {
+            const double *p = m->vertices + 3 * (size_t)m->triangles[t];
+            double d = sqrt((p[0] - cen[0]) * (p[0] - cen[0]) + (p[1] - cen[1]) * (p[1] - cen[1]) +
+                            (p[2] - cen[2]) * (p[2] - cen[2]));
+            if (d > rad) rad = d;
+        }
+        if (rad > 0) {
+            S->scale = 1.0 / rad;
+            for (size_t v = 0; v < m->nvertices; v++)
+                for (int c = 0; c < 3; c++) w.vertices[3 * v + c] = (m->vertices[3 * v + c] - cen[c]) / rad;
+        }
+    }
+    if (!(ge = global_edges(&w, &nge))) goto nomem;
+    for (size_t f = 0; f < m->ntriangles; f++) all[f] = (uint32_t)f;
+    uint32_t *first = malloc(m->ntriangles * sizeof *first);
+    if (!first) goto nomem;
+    memcpy(first, all, m->ntriangles * sizeof *first);
+    if (!push_components(&w, &q, first, m->ntriangles, 0)) goto nomem;
+    while (q.head < q.n) {
+        part cur = q.p[q.head];
+        q.p[q.head++].faces = NULL;
+        acd_mesh sub, aug;
+        if (!extract(&w, cur.faces, cur.n, map, l2g, &sub)) {
+            free(cur.faces);
+            goto nomem;
+        }
+        int capped = cap_cut_holes(&sub, l2g, ge, nge, &aug);
+        acd_mesh_free(&sub);
+        uint32_t *cp = capped ? realloc(cutpart, (aug.ntriangles ? aug.ntriangles : 1) * sizeof *cutpart) : NULL;
+        if (!cp) {
+            acd_mesh_free(&aug);
+            free(cur.faces);
+            goto nomem;
+        }
+        cutpart = cp;
+        size_t np = 0;
+        st = step(&aug, &prm, cutpart, &np, S, err);
+        acd_mesh_free(&aug);
+        if (st != ACD_OK) {
+            free(cur.faces);
+            goto done;
+        }
+        size_t real = 0; /* pieces holding facets of the part (not only caps) */
+        for (uint32_t k = 0; k < np; k++) {
+            size_t i = 0;
+            while (i < cur.n && cutpart[i] != k) i++;
+            real += i < cur.n;
+        }
+        if (np > 1 && real < 2) np = 1;
+        if (np == 0 || np == 1 || cur.depth >= prm.max_depth) {
+            if (np == 1 || (np > 1 && cur.depth >= prm.max_depth)) S->unresolved++;
+            if (!push_part(&fin, cur.faces, cur.n, cur.depth)) {
+                free(cur.faces);
+                goto nomem;
+            }
+            continue;
+        }
+        S->cuts++;
+        if (cur.depth + 1 > S->depth) S->depth = cur.depth + 1;
+        int ok = 1;
+        for (uint32_t k = 0; k < np && ok; k++) {
+            size_t cnt = 0;
+            for (size_t i = 0; i < cur.n; i++) cnt += cutpart[i] == k;
+            if (!cnt) continue;
+            uint32_t *f = malloc(cnt * sizeof *f);
+            if (!f) {
+                ok = 0;
+                break;
+            }
+            cnt = 0;
+            for (size_t i = 0; i < cur.n; i++)
+                if (cutpart[i] == k) f[cnt++] = cur.faces[i];
+            ok = push_components(&w, &q, f, cnt, cur.depth + 1);
+        }
+        free(cur.faces);
+        if (!ok) goto nomem;
+    }
+    /* number the final parts by their smallest facet */
+    final_part *fp = malloc((fin.n ? fin.n : 1) * sizeof *fp);
+    if (!fp) goto nomem;
+    for (size_t i = 0; i < fin.n; i++) {
+        uint32_t mn = UINT32_MAX;
+        for (size_t k = 0; k < fin.p[i].n; k++)
+            if (fin.p[i].faces[k] < mn) mn = fin.p[i].faces[k];
+        fp[i] = (final_part){mn, i};
+    }
+    qsort(fp, fin.n, sizeof *fp, cmp_final);
+    for (size_t r = 0; r < fin.n; r++) {
+        const part *p = &fin.p[fp[r].index];
+        for (size_t k = 0; k < p->n; k++) labels[p->faces[k]] = (uint32_t)r;
+    }
+    free(fp);
+    S->parts = fin.n;
+    goto done;
+nomem:
+    st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory segmenting %zu facets", m->ntriangles);
+done:
+    for (size_t i = q.head; i < q.n; i++) free(q.p[i].faces);
+    for (size_t i = 0; i < fin.n; i++) free(fin.p[i].faces);
+    free(q.p);
+    free(fin.p);
+    free(w.vertices);
+    free(map);
+    free(all);
+    free(cutpart);
+    free(l2g);
+    free(ge);
+    return st;
+}

@@ -1,0 +1,46 @@
+/* corise/corise: the CoRiSe segmentation loop, CoRiSe §3 and §5.2 (Liu, Xi, Lien, CAD 2016);
+ * spec corise.md §2.1 and §2.8. Internal driver; a public API can wrap it.
+ *
+ *   normalise once to the unit bounding sphere (A1: AABB centre, max vertex distance);
+ *   queue <- edge-connected components of the facets;
+ *   for each part: bridges and valleys of its own hull; if no valley is deeper than tau (or its
+ *   hull is flat), the part is final; otherwise ridges, separators, must-link regions and the
+ *   sequential cuts split it, and every edge-connected component of every piece goes back into
+ *   the queue (A15). A part whose cuts leave fewer than 2 pieces, or that is max_depth cuts deep,
+ *   is final and counted as unresolved (A14).
+ * Deterministic: FIFO queue, every stage deterministic. */
+#ifndef ACD_CORISE_CORISE_H
+#define ACD_CORISE_CORISE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "acd/base.h"
+#include "acd/mesh.h"
+#include "corise/cut.h"
+
+typedef struct acd_corise_params {
+    double tau;                 /* concavity tolerance, in normalised units (default 0.1) */
+    int normalize;              /* scale to the unit bounding sphere first (default 1) */
+    acd_corise_cut_params cut;  /* Eq. 8 (alpha 0.8, concave weight 0.3) */
+    size_t max_depth;           /* safety cap on nested cuts (default 64) */
+} acd_corise_params;
+
+acd_corise_params acd_corise_default_params(void);
+
+typedef struct acd_corise_stats {
+    size_t parts;        /* final parts */
+    size_t cuts;         /* parts that were split */
+    size_t depth;        /* deepest nesting of cuts */
+    size_t unresolved;   /* parts left final although still deeper than tau */
+    size_t fallbacks;    /* valleys measured with the Eq. 1 fallback */
+    size_t unreachable;  /* bridges without a valley */
+    double scale;        /* normalisation factor applied to the coordinates */
+} acd_corise_stats;
+
+/* labels: m->ntriangles entries, set to the part of each facet, 0 .. parts-1, numbered by their
+ * smallest facet. stats may be NULL. */
+acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params, uint32_t *labels,
+                              acd_corise_stats *stats, acd_error *err);
+
+#endif
