@@ -447,12 +447,14 @@ static int compute(mcd *m, size_t i, size_t k, mcd_entry *out) {
     for (size_t q = 0; q < nopt; q++)
         if (opt[q].cost == best) opt[nk++] = opt[q];
     qsort(opt, nk, sizeof *opt, cmp_pair_s);
-    /* non-dominated: scanning s downwards, keep strictly decreasing t */
-    size_t keep = 0, mint = NONE;
+    /* non-dominated: scanning s downwards, keep strictly decreasing t; the kept ones are packed at
+     * the top (positions already visited), ending as opt[nk - keep .. nk) in staircase order */
+    size_t keep = 0, mint = NONE, top = nk;
     for (size_t q = nk; q-- > 0;)
         if (mint == NONE || opt[q].pr.t < mint) {
             mint = opt[q].pr.t;
-            opt[keep++] = opt[q];
+            opt[--top] = opt[q];
+            keep++;
         }
     if (m->npool + keep > m->cpool) {
         size_t c = m->cpool ? m->cpool : 1024;
@@ -462,7 +464,7 @@ static int compute(mcd *m, size_t i, size_t k, mcd_entry *out) {
         m->pool = p;
         m->cpool = c;
     }
-    for (size_t q = keep; q-- > 0;) m->pool[m->npool++] = opt[q].pr;
+    for (size_t q = top; q < nk; q++) m->pool[m->npool++] = opt[q].pr;
     out->w = best;
     out->count = keep;
     return 1;
