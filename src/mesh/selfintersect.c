@@ -1,6 +1,7 @@
 /* mesh/selfintersect: exact detection of intersecting triangle pairs.
  *
- * Broad phase: the triangle BVH of geom3/bvh (closed box overlaps). Narrow phase, all decisions
+ * Broad phase: the triangle BVH of geom3/bvh (closed box overlaps); for coordinates of subnormal or
+ * near-overflow magnitude an exact sort-and-sweep on x instead. Narrow phase, all decisions
  * by the exact predicates acd_orient3d / acd_orient2d:
  * - no shared vertex: the closed triangles meet iff an edge of one meets the other (for two
  *   triangles the intersection, when not empty, always contains a point of some edge);
@@ -159,28 +160,86 @@ static int visit_pair(void *user, uint32_t a, uint32_t b) {
     return 0;
 }
 
+/* Coordinates beyond the range the BVH's floating-point binning handles (subnormal or near-overflow
+ * magnitudes, which no real model has): an exact sort-and-sweep on x is used instead. */
+#define SI_HUGE 1e300
+#define SI_TINY 1e-290
+
+static int extreme_coordinates(const acd_mesh *m) {
+    for (size_t i = 0; i < 3 * m->nvertices; i++) {
+        double a = m->vertices[i] < 0 ? -m->vertices[i] : m->vertices[i];
+        if (a > SI_HUGE || (a != 0 && a < SI_TINY)) return 1;
+    }
+    return 0;
+}
+
+typedef struct sweep_box {
+    double lo[3], hi[3];
+    uint32_t t;
+} sweep_box;
+
+static int cmp_sweep(const void *x, const void *y) {
+    const sweep_box *a = x, *b = y;
+    if (a->lo[0] != b->lo[0]) return a->lo[0] < b->lo[0] ? -1 : 1;
+    return a->t < b->t ? -1 : a->t > b->t;
+}
+
+static acd_status sweep_pairs(const acd_mesh *m, si_ctx *c, acd_error *err) {
+    sweep_box *b = malloc(m->ntriangles * sizeof *b);
+    if (!b) return acd_fail(err, ACD_ERR_NOMEM, "out of memory testing self-intersections");
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        b[t].t = (uint32_t)t;
+        for (int k = 0; k < 3; k++) {
+            b[t].lo[k] = b[t].hi[k] = m->vertices[3 * (size_t)m->triangles[3 * t] + (size_t)k];
+            for (int j = 1; j < 3; j++) {
+                double v = m->vertices[3 * (size_t)m->triangles[3 * t + (size_t)j] + (size_t)k];
+                if (v < b[t].lo[k]) b[t].lo[k] = v;
+                if (v > b[t].hi[k]) b[t].hi[k] = v;
+            }
+        }
+    }
+    qsort(b, m->ntriangles, sizeof *b, cmp_sweep);
+    for (size_t i = 0; i < m->ntriangles; i++)
+        for (size_t j = i + 1; j < m->ntriangles && b[j].lo[0] <= b[i].hi[0]; j++)
+            if (b[j].lo[1] <= b[i].hi[1] && b[i].lo[1] <= b[j].hi[1] && b[j].lo[2] <= b[i].hi[2] &&
+                b[i].lo[2] <= b[j].hi[2]) {
+                uint32_t x = b[i].t, y = b[j].t;
+                visit_pair(c, x < y ? x : y, x < y ? y : x);
+            }
+    free(b);
+    return ACD_OK;
+}
+
 acd_status acd_mesh_self_intersections(const acd_mesh *m, size_t *count, uint32_t *pairs, size_t max_pairs,
                                        acd_error *err) {
     if (!m || !count) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_self_intersections: NULL argument");
     *count = 0;
     if (m->ntriangles == 0) return ACD_OK;
-    acd_bvh bvh;
-    acd_status s = acd_bvh_build(&bvh, m->vertices, m->nvertices, m->triangles, m->ntriangles, err);
-    if (s != ACD_OK) return s;
+    for (size_t i = 0; i < 3 * m->ntriangles; i++)
+        if (m->triangles[i] >= m->nvertices)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "triangle %zu refers to vertex %u of %zu", i / 3, m->triangles[i],
+                            m->nvertices);
     unsigned char *deg = malloc(m->ntriangles);
-    if (!deg) {
-        acd_bvh_free(&bvh);
-        return acd_fail(err, ACD_ERR_NOMEM, "out of memory testing self-intersections");
-    }
+    if (!deg) return acd_fail(err, ACD_ERR_NOMEM, "out of memory testing self-intersections");
     for (size_t t = 0; t < m->ntriangles; t++) {
         const uint32_t *i = m->triangles + 3 * t;
         deg[t] = drop_axis(m->vertices + 3 * (size_t)i[0], m->vertices + 3 * (size_t)i[1],
                            m->vertices + 3 * (size_t)i[2]) < 0;
     }
     si_ctx c = {m, deg, 0, pairs, pairs ? max_pairs : 0};
-    acd_bvh_overlap_pairs(&bvh, 0.0, visit_pair, &c);
+    acd_status s;
+    if (extreme_coordinates(m)) {
+        s = sweep_pairs(m, &c, err);
+    } else {
+        acd_bvh bvh;
+        s = acd_bvh_build(&bvh, m->vertices, m->nvertices, m->triangles, m->ntriangles, err);
+        if (s == ACD_OK) {
+            acd_bvh_overlap_pairs(&bvh, 0.0, visit_pair, &c);
+            acd_bvh_free(&bvh);
+        }
+    }
     free(deg);
-    acd_bvh_free(&bvh);
+    if (s != ACD_OK) return s;
     *count = c.count;
     return ACD_OK;
 }
