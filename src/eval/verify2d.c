@@ -95,7 +95,7 @@ double acd_v2d_ring_area(const acd_vec2 *pts, size_t n) {
     return 0.5 * (k.s + k.c);
 }
 
-/* Does the upward ray... rather: does edge a->b cross the horizontal ray from q to +x? Exact. */
+/* Does edge a->b cross the horizontal ray from q towards +x (half-open in y)? Exact. */
 static int ray_crosses(acd_vec2 a, acd_vec2 b, acd_vec2 q) {
     if ((a.y > q.y) == (b.y > q.y)) return 0;
     double o = acd_ref_orient(a, b, q);
@@ -248,30 +248,34 @@ typedef struct sweep_item {
 
 typedef struct verifier {
     double tol;
-    size_t base;
-    acd_error *err;
     /* scratch, grown on demand */
     size_t *ex, *ey;
-    size_t cap_e;
+    size_t cap_ex, cap_ey;
     sweep_item *items;
     size_t cap_items;
     split *splits;
     size_t nsplits, cap_splits;
 } verifier;
 
-static int grow(void **p, size_t *cap, size_t need, size_t elem) {
+/* Makes room for `need` elements of size elem in `old` (capacity *cap); *out receives the array
+ * (old itself when it was big enough or the reallocation failed). 0, or -1 when out of memory. */
+static int grow_raw(void *old, void **out, size_t *cap, size_t need, size_t elem) {
+    *out = old;
     if (need <= *cap) return 0;
     size_t c = *cap ? *cap : 64;
     while (c < need) c *= 2;
-    void *q = realloc(*p, c * elem);
+    void *q = realloc(old, c * elem);
     if (!q) return -1;
-    *p = q;
+    *out = q;
     *cap = c;
     return 0;
 }
 
 static int add_split(verifier *v, int side, size_t edge, double t) {
-    if (grow((void **)&v->splits, &v->cap_splits, v->nsplits + 1, sizeof *v->splits)) return -1;
+    void *mem;
+    int r = grow_raw(v->splits, &mem, &v->cap_splits, v->nsplits + 1, sizeof *v->splits);
+    v->splits = mem;
+    if (r) return -1;
     v->splits[v->nsplits++] = (split){side, edge, t};
     return 0;
 }
@@ -378,13 +382,13 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
     box q = {fmax(X->bb.x0, Y->bb.x0) - tol, fmax(X->bb.y0, Y->bb.y0) - tol, fmin(X->bb.x1, Y->bb.x1) + tol,
              fmin(X->bb.y1, Y->bb.y1) + tol};
     size_t need = X->n > Y->n ? X->n : Y->n;
-    if (grow((void **)&v->ex, &v->cap_e, need, sizeof *v->ex)) return -1;
-    {
-        size_t cap = v->cap_e; /* ey shares the capacity bookkeeping of ex */
-        size_t *e2 = realloc(v->ey, cap * sizeof *e2);
-        if (!e2) return -1;
-        v->ey = e2;
-    }
+    void *t;
+    int r = grow_raw(v->ex, &t, &v->cap_ex, need, sizeof *v->ex);
+    v->ex = t;
+    if (r) return -1;
+    r = grow_raw(v->ey, &t, &v->cap_ey, need, sizeof *v->ey);
+    v->ey = t;
+    if (r) return -1;
     size_t nx = 0, ny = 0;
     if (q.x0 <= q.x1 && q.y0 <= q.y1) {
         nx = region_edges_in(X, q, tol, v->ex);
@@ -395,7 +399,9 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
     }
     it->ex_count = nx;
     it->ey_count = ny;
-    if (grow((void **)&v->items, &v->cap_items, nx + ny, sizeof *v->items)) return -1;
+    r = grow_raw(v->items, &t, &v->cap_items, nx + ny, sizeof *v->items);
+    v->items = t;
+    if (r) return -1;
     size_t ni = 0;
     for (size_t a = 0; a < nx; a++) {
         box b = seg_box(X->p[v->ex[a]], X->p[X->nxt[v->ex[a]]], tol);
@@ -448,14 +454,13 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
 
 /* ------------------------------------------------------------------ the checks */
 
-static int cmp_item_self(const void *a, const void *b) {
-    return cmp_item(a, b);
-}
-
 /* Two non-adjacent edges of the region cross properly: returns 1 and the edges. */
 static int self_crossing(verifier *v, const region *r, size_t *e1, size_t *e2, int *oom) {
     *oom = 0;
-    if (grow((void **)&v->items, &v->cap_items, r->n, sizeof *v->items)) {
+    void *t;
+    int g = grow_raw(v->items, &t, &v->cap_items, r->n, sizeof *v->items);
+    v->items = t;
+    if (g) {
         *oom = 1;
         return 0;
     }
@@ -463,7 +468,7 @@ static int self_crossing(verifier *v, const region *r, size_t *e1, size_t *e2, i
         box b = seg_box(r->p[i], r->p[r->nxt[i]], 0);
         v->items[i] = (sweep_item){b.x0, b.x1, b.y0, b.y1, 0, i};
     }
-    qsort(v->items, r->n, sizeof *v->items, cmp_item_self);
+    qsort(v->items, r->n, sizeof *v->items, cmp_item);
     for (size_t i = 0; i < r->n; i++) {
         const sweep_item *A = &v->items[i];
         for (size_t j = i + 1; j < r->n && v->items[j].x0 <= A->x1; j++) {
@@ -628,8 +633,6 @@ acd_status acd_verify2d(const acd_polygon *input, const acd_vec2 *const *compone
     verifier v;
     memset(&v, 0, sizeof v);
     v.tol = sc.dist;
-    v.base = opt.component_base;
-    v.err = err;
     size_t B = opt.component_base;
     char pa[96], pb[96];
 
