@@ -190,7 +190,7 @@ static void test_bad_inputs(void **state) {
         {"1\n3 out\n0 0 1 0 0 1\n1 2 2\n", "t.poly:4:", "repeats point 2"},
         {"1\n3 out\n0 0 1 0 0 1\n1 2 2.5\n", "t.poly:4:", "entry 3 of 3"},
         {"1\n3 out\n0 0 nan 0 0 1\n1 2 3\n", "t.poly:3:", "point 2 of 3: expected the x coordinate"},
-        {"1\n3 out\n0 0 inf 0 0 1\n1 2 3\n", "t.poly:3:", "not a number"},
+        {"1\n3 out\n0 0 inf 0 0 1\n1 2 3\n", "t.poly:3:", "expected the x coordinate (a decimal number) (found 'inf"},
         {"1\n3 out\n0 0 1e999 0 0 1\n1 2 3\n", "t.poly:3:", "out of the range"},
         {"1\n3 out\n0 0 0x10 0 0 1\n1 2 3\n", "t.poly:3:", "point 2 of 3"},
         {"1\n3 out\n0 0 1 0 0 1\n1 2 3\ngarbage\n", "t.poly:5:", "chain 1"},

@@ -35,9 +35,9 @@ static size_t read_word(acd_scan *s, char *w, size_t size) {
 
 static const char *scan_problem(acd_scan_result r) {
     switch (r) {
-    case ACD_SCAN_RANGE: return "a number out of the range of double";
-    case ACD_SCAN_TOO_LONG: return "a number that is too long";
-    default: return "something that is not a number";
+    case ACD_SCAN_RANGE: return ", got a number out of the range of double";
+    case ACD_SCAN_TOO_LONG: return ", got a number that is too long";
+    default: return " (a decimal number)";
     }
 }
 
@@ -105,7 +105,7 @@ acd_status acd_poly_parse(acd_polygon_set *out, const char *text, size_t len, co
                 acd_scan_skip_space(&s, 1);
                 r = acd_scan_number(&s, &xy[k]);
                 if (r != ACD_SCAN_OK)
-                    POLY_FAIL(ACD_ERR_PARSE, "chain %zu, point %zu of %zu: expected the %s coordinate, got %s", c, i + 1, n,
+                    POLY_FAIL(ACD_ERR_PARSE, "chain %zu, point %zu of %zu: expected the %s coordinate%s", c, i + 1, n,
                               k ? "y" : "x", scan_problem(r));
             }
             status = acd_pbuild_add_point(dst, xy[0], xy[1], err);
