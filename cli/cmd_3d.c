@@ -16,7 +16,8 @@
 static void usage(FILE *f) {
     fprintf(f,
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
-            "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--verify] [-v]\n"
+            "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
+            "              [--verify] [-v]\n"
             "\n"
             "Decomposes a closed triangle mesh (OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
@@ -26,6 +27,7 @@ static void usage(FILE *f) {
             "  --mode solid        parts are closed solids, cut by planes with capped sections (default)\n"
             "  -o HULLS.obj        the convex hulls, one 'o hull_N' group each, full precision\n"
             "  --parts PARTS.obj   the parts themselves, one group each\n"
+            "  --region-cuts       cut only the section region at the most concave vertex (spec A13)\n"
             "  --json FILE         summary: per part concavity, volume, hull volume; the tree\n"
             "  --verify            check: part volumes add up to the input's, every part meets tau (or says\n"
             "                      why not), every part lies inside its hull; exit 3 otherwise\n"
@@ -224,6 +226,8 @@ int acd_cmd_3d(int argc, char **argv) {
             if (!acd_cli_parse_size("3d", a, val, &n)) return ACD_EXIT_USAGE;
             p.threads = (int)n; /* the run is sequential for now; results never depend on it */
             i++;
+        } else if (!strcmp(a, "--region-cuts")) {
+            p.region_cuts = 1;
         } else if (!strcmp(a, "--verify")) {
             do_verify = 1;
         } else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) {

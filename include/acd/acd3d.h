@@ -42,7 +42,10 @@ typedef struct acd3d_params {
     size_t max_hulls;         /* 0: no limit; else merge cheapest adjacent parts down to this many */
     size_t max_hull_vertices; /* 0: no limit; else simplify each hull to at most this many vertices */
     int threads;              /* 0: as many as cores; results are identical for any count */
-    size_t max_depth;         /* recursion guard (default 64) */
+    size_t max_depth;         /* recursion guard (default 48) */
+    int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
+                                 (spec decision A13), falling back to the whole plane; default 0,
+                                 see docs/acd3d.md for the measurements behind the default */
     acd_progress_fn progress; /* optional; may cancel */
     void *progress_user;
 } acd3d_params;

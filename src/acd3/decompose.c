@@ -18,6 +18,7 @@
 
 #include "acd/hull.h"
 #include "acd3/measure.h"
+#include "acd3/region_cut.h"
 #include "acd3/resolve.h"
 #include "core/error.h"
 #include "core/tolerance.h"
@@ -154,11 +155,12 @@ static void choice_free(split_choice *c) {
 
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
  * piece concavity (up to tol), then the fewest pieces, then the candidates' order. A cut whose
- * pieces all meet tau, or that at least halves the concavity, is taken at once. The pieces'
+ * pieces all meet tau, or that at least halves the concavity, is taken at once. With
+ * restrict_cut, each plane cuts only its section region nearest the witness (acd3/region_cut). The pieces'
  * measures are kept for when they are processed. Returns 1 if split, 0 if no candidate splits,
  * or -(status) on failure. */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
-                     double tau, double tol, split_choice *best, acd_error *err) {
+                     double tau, double tol, int restrict_cut, split_choice *best, acd_error *err) {
     acd3_plane_candidate cand[ACD3_MAX_CANDIDATES];
     int nc = acd3_cut_candidates(m, g, ms, cand);
     double vol = acd_geom3_signed_volume(m);
@@ -177,6 +179,10 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
                 return -(int)ACD_ERR_NOMEM;
             }
             continue;
+        }
+        if (restrict_cut && acd3_restrict_cut(&trial.cut, cand[i].point, err) != ACD_OK) {
+            if (found) choice_free(best);
+            return -(int)ACD_ERR_NOMEM;
         }
         int ok = trial.cut.npieces >= 2;
         for (size_t k = 0; ok && k < trial.cut.npieces; k++) {
@@ -295,7 +301,12 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         memset(&choice, 0, sizeof choice);
         int split = 0;
         if (reason == ACD3D_LEAF_NONE) {
-            split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, &choice, err);
+            /* with region_cuts, cuts restricted to the section region at the witness first;
+             * whole-plane cuts when no restricted one splits the part */
+            split = 0;
+            if (params->region_cuts)
+                split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, 1, &choice, err);
+            if (split == 0) split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, 0, &choice, err);
             if (split < 0) {
                 st = (acd_status)(-split);
                 measured_free(&cur);
