@@ -118,7 +118,7 @@ int acd_cut_plane_side(const acd_cut_plane *pl, const double v[3]) {
     for (int k = 0; k < 3; k++) mx = fmax(mx, fmax(fmax(fabs(pl->a[k]), fabs(v[k])), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
     int e = 0; /* as in acd_plane_cut: huge or tiny coordinates scaled by a power of two first, */
     if (mx > 1e90 || mx < 1e-90) frexp(mx, &e);
-    double fl = e != 0 ? ldexp(mx, -e - PLANE_CUT_FLUSH_BITS) : 0.0; /* and tiny coordinates flushed */
+    double fl = ldexp(mx, -e - PLANE_CUT_FLUSH_BITS); /* and tiny coordinates flushed */
     double a[3], b[3], c[3], w[3];
     for (int k = 0; k < 3; k++) {
         a[k] = flush_tiny(ldexp(pl->a[k], -e), fl);
@@ -743,17 +743,17 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
     for (int k = 0; k < 3; k++) maxabs = fmax(maxabs, fmax(fabs(pl->a[k]), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
     int e2 = 0; /* only outside [1e-90, 1e90]: scaling down could flush subnormal coordinates */
     if (maxabs > 0 && (maxabs > 1e90 || maxabs < 1e-90)) frexp(maxabs, &e2);
-    /* and then coordinates below 2^-200 of the largest are flushed to zero in the working copy: the
+    /* and coordinates below 2^-200 of the largest are flushed to zero in the working copy: the
      * predicates' products of differences cannot underflow (exact decisions, for a geometry moved by
-     * less than 1e-60 of the model's size). Models within [1e-90, 1e90] are used as they are. */
-    double flush = e2 != 0 ? ldexp(maxabs, -e2 - PLANE_CUT_FLUSH_BITS) : 0.0;
+     * less than 1e-60 of the model's size) */
+    double flush = ldexp(maxabs, -e2 - PLANE_CUT_FLUSH_BITS);
     acd_cut_plane spl = *pl;
     for (int k = 0; k < 3; k++) {
         spl.a[k] = flush_tiny(ldexp(pl->a[k], -e2), flush);
         spl.b[k] = flush_tiny(ldexp(pl->b[k], -e2), flush);
         spl.c[k] = flush_tiny(ldexp(pl->c[k], -e2), flush);
     }
-    if (e2 != 0) {
+    {
         acd_cut_plane chk;
         if (acd_cut_plane_from_points(spl.a, spl.b, spl.c, &chk, NULL) != ACD_OK) {
             double plmax = 0;
