@@ -171,8 +171,26 @@ static void test_hybrids(void **state) {
     assert_true(fabs(vsl - 6) < 1e-12);
 }
 
+/* a maze whose pocket touches its bridge at collinear vertices (weakly simple pocket polygon):
+ * the pocket is split there and SP follows the corridors (regression: SP used to fall back to SL) */
+static void test_maze_pocket(void **state) {
+    (void)state;
+    char path[1024];
+    if (!tu_shared_data(path, sizeof path, "polygons-lien/wierd1.poly")) TU_SKIP("wierd1.poly not found");
+    acd_polygon_set set;
+    acd_error err;
+    assert_int_equal(acd_polygon_set_read_file(&set, path, ACD_POLY_FORMAT_AUTO, NULL, &err), ACD_OK);
+    const acd_polygon *p = &set.polygons[0];
+    size_t n = acd_polygon_ring_size(p, 0), w;
+    double sl = acd2d_concavity(p->points, n, ACD2D_MEASURE_SL, 0, &w);
+    double sp = acd2d_concavity(p->points, n, ACD2D_MEASURE_SP, 0, &w);
+    print_message("maze: SL %g, SP %g\n", sl, sp);
+    assert_true(sl < 10 && sp > 150);
+    acd_polygon_set_free(&set);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_known_values), cmocka_unit_test(test_sp_oracle),
-                                       cmocka_unit_test(test_hybrids)};
+                                       cmocka_unit_test(test_hybrids), cmocka_unit_test(test_maze_pocket)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -59,7 +59,21 @@ size_t acd2_ring_hull(const acd_vec2 *p, size_t n, acd2_work *w) {
             w->hull[j] = v;
         }
     }
-    return nh;
+    /* pocket vertices lying on their bridge (collinear points of the hull boundary, dropped by
+     * the strict hull) are hull points too: they pinch the pocket polygon, so the pocket is split
+     * there (their concavity is 0 under every measure either way) */
+    size_t m2 = 0;
+    for (size_t h = 0; h < nh; h++) {
+        size_t a = w->hull[h], b = w->hull[(h + 1) % nh];
+        w->scratch[m2++] = a;
+        if (acd2_next(a, n) == b) continue;
+        for (size_t k = acd2_next(a, n); k != b; k = acd2_next(k, n))
+            if (acd2_orient_sign(p[a], p[b], p[k]) == 0 && acd2_between(p[a], p[b], p[k], 0) &&
+                !acd2_same(p[k], p[w->scratch[m2 - 1]]))
+                w->scratch[m2++] = k;
+    }
+    for (size_t i = 0; i < m2; i++) w->hull[i] = w->scratch[i];
+    return m2;
 }
 
 static double pocket_max(const double *conc, size_t n, size_t a, size_t b) {
