@@ -169,6 +169,32 @@ static void test_open_and_reversed_meshes(void **state) {
     tm_free(&m);
 }
 
+static void test_soup_is_closed(void **state) {
+    (void)state;
+    /* the box with three vertices per triangle (an unwelded soup) is still closed */
+    double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    tm_mesh m = tm_box(lo, hi);
+    double *v = malloc(3 * 3 * m.nt * sizeof(double));
+    uint32_t *t = malloc(3 * m.nt * sizeof(uint32_t));
+    assert_non_null(v);
+    assert_non_null(t);
+    for (size_t i = 0; i < 3 * m.nt; i++) {
+        memcpy(v + 3 * i, m.v + 3 * m.t[i], 3 * sizeof(double));
+        t[i] = (uint32_t)i;
+    }
+    acd_spatial sp;
+    assert_int_equal(acd_spatial_build(&sp, v, 3 * m.nt, t, m.nt, NULL), ACD_OK);
+    assert_true(sp.closed);
+    double c[3] = {0.5, 0.5, 0.5}, d[3] = {0.5, 0.5, 0.5 + 1e-9}, o[3] = {1.5, 0.5, 0.5};
+    assert_int_equal(acd_spatial_classify(&sp, c), ACD_SPATIAL_INSIDE);
+    assert_int_equal(acd_spatial_classify(&sp, d), ACD_SPATIAL_INSIDE);
+    assert_int_equal(acd_spatial_classify(&sp, o), ACD_SPATIAL_OUTSIDE);
+    acd_spatial_free(&sp);
+    free(v);
+    free(t);
+    tm_free(&m);
+}
+
 static void test_line_matches_ray(void **state) {
     (void)state;
     tm_mesh m = tm_torus(1.0, 0.4, 24, 12);
@@ -197,6 +223,7 @@ int main(void) {
         cmocka_unit_test(test_ray_through_vertex),
         cmocka_unit_test(test_torus_ray_and_gwn),
         cmocka_unit_test(test_open_and_reversed_meshes),
+        cmocka_unit_test(test_soup_is_closed),
         cmocka_unit_test(test_line_matches_ray),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -29,16 +29,43 @@ static int cmp_edge(const void *x, const void *y) {
     return (e->b > f->b) - (e->b < f->b);
 }
 
+typedef struct vkey {
+    const double *p;
+    uint32_t i;
+} vkey;
+
+static int cmp_vkey(const void *x, const void *y) {
+    const vkey *a = x, *b = y;
+    for (int k = 0; k < 3; k++)
+        if (a->p[k] != b->p[k]) return a->p[k] < b->p[k] ? -1 : 1;
+    return (a->i > b->i) - (a->i < b->i);
+}
+
+/* Boundary edges of the mesh with vertices of equal coordinates identified (a polygon soup whose
+ * faces meet exactly is closed: the ray crossings depend on coordinates only). */
 static acd_status count_boundary(acd_spatial *sp, acd_error *err) {
-    size_t nt = sp->bvh.ntriangles, ne = 0;
+    size_t nt = sp->bvh.ntriangles, ne = 0, nv = sp->bvh.nvertices;
     edge_key *e = malloc((nt ? 3 * nt : 1) * sizeof *e);
-    if (!e) return acd_fail(err, ACD_ERR_NOMEM, "spatial: out of memory for %zu edges", 3 * nt);
+    uint32_t *canon = malloc((nv ? nv : 1) * sizeof *canon);
+    vkey *vk = malloc((nv ? nv : 1) * sizeof *vk);
+    if (!e || !canon || !vk) {
+        free(e);
+        free(canon);
+        free(vk);
+        return acd_fail(err, ACD_ERR_NOMEM, "spatial: out of memory for %zu edges", 3 * nt);
+    }
+    for (size_t v = 0; v < nv; v++) vk[v] = (vkey){sp->bvh.vertices + 3 * v, (uint32_t)v};
+    qsort(vk, nv, sizeof *vk, cmp_vkey);
+    for (size_t v = 0; v < nv; v++)
+        canon[vk[v].i] = (v > 0 && memcmp(vk[v].p, vk[v - 1].p, 3 * sizeof(double)) == 0) ? canon[vk[v - 1].i] : vk[v].i;
+    free(vk);
     for (size_t t = 0; t < nt; t++)
         for (int k = 0; k < 3; k++) {
-            uint32_t a = sp->bvh.triangles[3 * t + k], b = sp->bvh.triangles[3 * t + (k + 1) % 3];
+            uint32_t a = canon[sp->bvh.triangles[3 * t + k]], b = canon[sp->bvh.triangles[3 * t + (k + 1) % 3]];
             if (a == b) continue;
             e[ne++] = a < b ? (edge_key){a, b, 1} : (edge_key){b, a, -1};
         }
+    free(canon);
     qsort(e, ne, sizeof *e, cmp_edge);
     size_t boundary = 0;
     for (size_t i = 0; i < ne;) {

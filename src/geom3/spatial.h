@@ -2,7 +2,8 @@
  * distance, winding number, inside/outside.
  *
  * Inside/outside (docs/eval.md, "Point in mesh"):
- *  - Closed meshes (every undirected edge is used as often in one direction as in the other, so
+ *  - Closed meshes (every undirected edge is used as often in one direction as in the other,
+ *    vertices with equal coordinates taken as one (a soup whose faces meet exactly is closed), so
  *    the triangles form a cycle without boundary; self-intersections and non-manifold edges are
  *    allowed): the winding number is an integer and equals the signed count of the crossings of
  *    the ray from the point towards +x. Each crossing is decided with the exact predicates
@@ -36,7 +37,8 @@ enum { ACD_SPATIAL_OUTSIDE = -1, ACD_SPATIAL_ON_SURFACE = 0, ACD_SPATIAL_INSIDE 
 typedef struct acd_spatial {
     acd_bvh bvh;
     int closed;            /* no boundary edges: exact ray winding numbers */
-    size_t boundary_edges; /* undirected edges whose two directions are not used equally often */
+    size_t boundary_edges; /* undirected edges whose two directions are not used equally often
+                              (vertices with equal coordinates identified) */
     double *moments;       /* 16 per BVH node: area vector, area-weighted centroid, radius,
                               second-order moment (sum of area vector x offset of centroid) */
     acd_scale scale;       /* of the vertices used by triangles */
