@@ -162,11 +162,35 @@ static void test_convex_box_and_two_components(void **state) {
     acd_mesh_free(&m);
 }
 
+/* With the hull-depth clamp (not in the paper) the default tau = 0.1 cuts a finer trench box
+ * exactly into its two halves. */
+static void test_one_trench_clamped(void **state) {
+    (void)state;
+    trenches tr = {1, 1.0, 0.6, {1.0}, 0.25};
+    acd_mesh m;
+    cm_heightfield_box(&m, 64, 32, 32, 2.0, 1.0, top, &tr);
+    uint32_t *lab = malloc(m.ntriangles * sizeof *lab);
+    acd_corise_params p = acd_corise_default_params();
+    p.clamp_hull_depth = 1;
+    acd_corise_stats st;
+    acd_error err;
+    assert_int_equal(acd_corise_segment(&m, &p, lab, &st, &err), ACD_OK);
+    assert_int_equal(st.parts, 2);
+    double cuts[] = {1.0};
+    check_slabs(&m, lab, 2, cuts, 1);
+    size_t n0 = 0;
+    for (size_t f = 0; f < m.ntriangles; f++) n0 += lab[f] == 0;
+    assert_int_equal(n0, m.ntriangles / 2);
+    free(lab);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_trench),
         cmocka_unit_test(test_two_trenches),
         cmocka_unit_test(test_convex_box_and_two_components),
+        cmocka_unit_test(test_one_trench_clamped),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -212,6 +212,41 @@ static void test_trench_box(void **state) {
     acd_mesh_free(&m);
 }
 
+/* The hull-depth clamp (not in the paper): on the convex box every valley lies on the hull's
+ * surface, so every concavity is 0; on the trench box the valleys along the top edges run on the
+ * front/back hull faces (0), while the top diagonal crosses the trench bottom (1, 0.5, 0.4) at
+ * depth min(0.6 below the top, 0.4 above the bottom, 0.5 from the front and back) = 0.4. */
+static void test_hull_depth_clamp(void **state) {
+    (void)state;
+    trench flat = {1.0, 0.0, 0.5, 0.1}, tr = {1.0, 0.6, 1.0, 0.25};
+    acd_mesh m;
+    acd_edge_graph g;
+    acd_corise_bridges b;
+    acd_error err;
+    cm_heightfield_box(&m, 6, 4, 4, 1.5, 1.0, trench_top, &flat);
+    assert_int_equal(acd_edge_graph_from_mesh(m.vertices, m.nvertices, m.triangles, m.ntriangles, &g, &err), ACD_OK);
+    assert_int_equal(acd_corise_bridges_compute_ex(&m, &g, 1, &b, &err), ACD_OK);
+    assert_int_equal(b.nbridges, 18);
+    for (size_t i = 0; i < b.nbridges; i++) assert_true(b.bridge[i].concavity <= 1e-12);
+    acd_corise_bridges_free(&b);
+    acd_edge_graph_free(&g);
+    acd_mesh_free(&m);
+
+    cm_heightfield_box(&m, 16, 8, 8, 2.0, 1.0, trench_top, &tr);
+    assert_int_equal(acd_edge_graph_from_mesh(m.vertices, m.nvertices, m.triangles, m.ntriangles, &g, &err), ACD_OK);
+    assert_int_equal(acd_corise_bridges_compute_ex(&m, &g, 1, &b, &err), ACD_OK);
+    double cmax = 0;
+    for (size_t i = 0; i < b.nbridges; i++) {
+        const acd_corise_bridge *br = &b.bridge[i];
+        if ((br->a == 0 && br->b == 16) || (br->a == 136 && br->b == 152)) assert_true(br->concavity <= 1e-12);
+        if (br->concavity > cmax) cmax = br->concavity;
+    }
+    assert_true(fabs(cmax - 0.4) < 1e-12);
+    acd_corise_bridges_free(&b);
+    acd_edge_graph_free(&g);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_monotone_chain),
@@ -219,6 +254,7 @@ int main(void) {
         cmocka_unit_test(test_self_intersecting_fallback),
         cmocka_unit_test(test_convex_box),
         cmocka_unit_test(test_trench_box),
+        cmocka_unit_test(test_hull_depth_clamp),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

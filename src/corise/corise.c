@@ -305,7 +305,7 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t
     memset(&r, 0, sizeof r);
     uint32_t *ml = NULL;
     acd_status st = acd_edge_graph_from_mesh(s->vertices, s->nvertices, s->triangles, s->ntriangles, &g, err);
-    if (st == ACD_OK) st = acd_corise_bridges_compute(s, &g, &b, err);
+    if (st == ACD_OK) st = acd_corise_bridges_compute_ex(s, &g, prm->clamp_hull_depth, &b, err);
     if (st != ACD_OK) goto done;
     stats->fallbacks += b.fallbacks;
     stats->unreachable += b.unreachable;

@@ -24,6 +24,8 @@ typedef struct acd_corise_params {
     int normalize;              /* scale to the unit bounding sphere first (default 1) */
     acd_corise_cut_params cut;  /* Eq. 8 (alpha 0.8, concave weight 0.3) */
     size_t max_depth;           /* safety cap on nested cuts (default 64) */
+    int clamp_hull_depth;       /* not in the paper: cap valley concavity by the depth below the
+                                   hull (acd_corise_bridges_compute_ex; default 0 = literal) */
 } acd_corise_params;
 
 acd_corise_params acd_corise_default_params(void);

@@ -282,6 +282,11 @@ void acd_corise_bridges_free(acd_corise_bridges *b) {
 
 acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g, acd_corise_bridges *out,
                                       acd_error *err) {
+    return acd_corise_bridges_compute_ex(m, g, 0, out, err);
+}
+
+acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth,
+                                         acd_corise_bridges *out, acd_error *err) {
     if (!m || !g || !out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
     memset(out, 0, sizeof *out);
     out->hull_dim = -1;
@@ -297,6 +302,8 @@ acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g
     memset(&h, 0, sizeof h);
     valley_search vs;
     memset(&vs, 0, sizeof vs);
+    double *conc = NULL;
+    size_t cap_conc = 0;
     if (!used || !ids || !pts) goto nomem;
     for (size_t t = 0; t < 3 * m->ntriangles; t++) {
         if (m->triangles[t] >= m->nvertices) {
@@ -364,9 +371,25 @@ acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g
         br->count = len;
         br->length = length;
         out->npath += len;
-        st = acd_corise_chain_concavity(m->vertices, out->path + br->first, len, NULL, &br->concavity, &br->deepest,
-                                        &br->kind, err);
+        if (len > cap_conc) {
+            double *nc = realloc(conc, len * sizeof *nc);
+            if (!nc) goto nomem;
+            conc = nc;
+            cap_conc = len;
+        }
+        st = acd_corise_chain_concavity(m->vertices, out->path + br->first, len, conc, NULL, NULL, &br->kind, err);
         if (st != ACD_OK) goto done;
+        /* a valley point on the hull's surface is not concave: clamp by its depth below it */
+        br->concavity = 0;
+        br->deepest = 0;
+        for (size_t k = 0; k < len; k++) {
+            double c = conc[k];
+            if (clamp_depth && h.dim == 3) {
+                double depth = -acd_hull_plane_distance(&h, m->vertices + 3 * (size_t)out->path[br->first + k]);
+                if (depth < c) c = depth > 0 ? depth : 0;
+            }
+            if (c > br->concavity) br->concavity = c, br->deepest = k;
+        }
         if (br->kind == ACD_CORISE_CONC_FALLBACK) out->fallbacks++;
     }
     out->nbridges = nb;
@@ -380,6 +403,7 @@ done:
     free(pairs);
     acd_hull_free(&h);
     vs_free(&vs);
+    free(conc);
     if (st != ACD_OK) acd_corise_bridges_free(out);
     return st;
 }

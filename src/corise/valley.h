@@ -72,4 +72,11 @@ acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g
                                       acd_error *err);
 void acd_corise_bridges_free(acd_corise_bridges *b);
 
+/* Same, with an option that is not in the paper (docs/corise.md): clamp_depth != 0 caps the
+ * concavity of every valley vertex by its depth below the hull's surface (-acd_hull_plane_
+ * distance), so that valley points lying on the hull (Dijkstra detours over flat hull faces)
+ * count as 0. It also lowers features that open onto a flat hull face. */
+acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth,
+                                         acd_corise_bridges *out, acd_error *err);
+
 #endif
