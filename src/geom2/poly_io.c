@@ -122,8 +122,9 @@ acd_status acd_poly_parse(acd_polygon_set *out, const char *text, size_t len, co
         }
         for (size_t i = 0; i < n; i++) {
             acd_scan_skip_space(&s, 1);
-            size_t v = 0;
+            size_t v = 0, at = s.pos;
             r = acd_scan_uint(&s, SIZE_MAX / 2, &v);
+            if (r == ACD_SCAN_OK && (v < 1 || v > n || seen[v - 1])) s.pos = at; /* show the entry */
             if (r != ACD_SCAN_OK || v < 1 || v > n)
                 POLY_FAIL(ACD_ERR_PARSE,
                           "chain %zu: vertex order entry %zu of %zu must be an integer in 1..%zu (the order line is a permutation of the point numbers)",
