@@ -185,12 +185,54 @@ static void test_one_trench_clamped(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Degenerate and open input: one triangle and a flat grid (planar hull: one part), an open box
+ * (no top: runs, every facet labelled, parts connected by construction), duplicate triangles. */
+static void test_degenerate_and_open(void **state) {
+    (void)state;
+    acd_error err;
+    acd_corise_stats st;
+    acd_corise_params p = acd_corise_default_params();
+    double v[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint32_t t[] = {0, 1, 2, 0, 1, 2};
+    acd_mesh tri = {v, 3, t, 1};
+    uint32_t lab[2048];
+    assert_int_equal(acd_corise_segment(&tri, &p, lab, &st, &err), ACD_OK);
+    assert_int_equal(st.parts, 1);
+    assert_int_equal(lab[0], 0);
+    tri.ntriangles = 2; /* the same triangle twice */
+    assert_int_equal(acd_corise_segment(&tri, &p, lab, &st, &err), ACD_OK);
+    assert_int_equal(st.parts, 1);
+    tri.ntriangles = 0;
+    assert_int_equal(acd_corise_segment(&tri, &p, lab, &st, &err), ACD_ERR_DEGENERATE);
+
+    trenches tr = {1, 1.0, 0.6, {1.0}, 0.25};
+    acd_mesh m;
+    cm_heightfield_box(&m, 16, 8, 8, 2.0, 1.0, top, &tr);
+    /* drop the top (the first 2 * 16 * 8 * 2 triangles are top and bottom interleaved: keep the
+     * bottom ones and the walls) */
+    size_t k = 0;
+    for (size_t f = 0; f < m.ntriangles; f++) {
+        int is_top = f < 4 * 16 * 8 && (f % 4) < 2;
+        if (is_top) continue;
+        memmove(m.triangles + 3 * k, m.triangles + 3 * f, 3 * sizeof(uint32_t));
+        k++;
+    }
+    m.ntriangles = k;
+    assert_true(k <= 2048);
+    p.tau = 0.3;
+    assert_int_equal(acd_corise_segment(&m, &p, lab, &st, &err), ACD_OK);
+    assert_true(st.parts >= 1);
+    for (size_t f = 0; f < m.ntriangles; f++) assert_true(lab[f] < st.parts);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_trench),
         cmocka_unit_test(test_two_trenches),
         cmocka_unit_test(test_convex_box_and_two_components),
         cmocka_unit_test(test_one_trench_clamped),
+        cmocka_unit_test(test_degenerate_and_open),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
