@@ -97,14 +97,17 @@ acd_status acd_corise_chain_concavity(const double *vertices, const uint32_t *ch
 
 /* ---- valley search ------------------------------------------------------------------------ */
 
-/* Dijkstra from a to b on the edge graph with edge cost
+/* A* from a to b (Euclidean distance to b as the heuristic: consistent, because every edge costs
+ * at least its length, so the first time b is settled its path is optimal) on the edge graph
+ * with edge cost
  *     |uv| * (1 + ACD_CORISE_VALLEY_TIEBREAK * (dev(u) + dev(v)) / (2 |ab|)),
  * dev = distance to the bridge segment: among paths of (almost) equal length the one closest to
  * the bridge wins. Without it, the many equal-length staircases of a regular grid tie and the
  * id tie-break picks an extreme one, which reads as false concavity (docs/corise.md). The
  * workspace is reused across bridges; stamps avoid clearing it. */
 typedef struct vs_item {
-    double cost;
+    double cost; /* key: g + h (A*) */
+    double g;    /* cost from a */
     uint32_t v;
 } vs_item;
 
@@ -144,7 +147,7 @@ static int vs_init(valley_search *s, size_t nv) {
 
 static int vs_less(vs_item x, vs_item y) { return x.cost < y.cost || (x.cost == y.cost && x.v < y.v); }
 
-static int vs_push(valley_search *s, double cost, uint32_t v) {
+static int vs_push(valley_search *s, double cost, double gcost, uint32_t v) {
     if (s->nheap == s->cap) {
         size_t nc = s->cap ? 2 * s->cap : 256;
         vs_item *h = realloc(s->heap, nc * sizeof *h);
@@ -153,7 +156,7 @@ static int vs_push(valley_search *s, double cost, uint32_t v) {
         s->cap = nc;
     }
     size_t i = s->nheap++;
-    vs_item it = {cost, v};
+    vs_item it = {cost, gcost, v};
     while (i > 0) {
         size_t p = (i - 1) / 2;
         if (!vs_less(it, s->heap[p])) break;
@@ -206,12 +209,12 @@ static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V,
     s->done[a] = 0;
     s->cost[a] = 0;
     s->pred[a] = ACD_NO_VERTEX;
-    if (!vs_push(s, 0, a)) return -1;
+    if (!vs_push(s, L, 0, a)) return -1;
     int found = 0;
     while (s->nheap) {
         vs_item it = vs_pop(s);
         uint32_t x = it.v;
-        if (s->done[x] || it.cost > s->cost[x]) continue;
+        if (s->done[x] || it.g > s->cost[x]) continue;
         s->done[x] = 1;
         if (x == b) {
             found = 1;
@@ -222,13 +225,16 @@ static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V,
             uint32_t y = g->adj[k];
             if (s->stamp[y] == run && s->done[y]) continue;
             double dy = seg_dist(V + 3 * (size_t)y, pa, u, L);
-            double c = it.cost + g->length[g->adj_edge[k]] * (1 + kappa * (dx + dy));
+            double c = it.g + g->length[g->adj_edge[k]] * (1 + kappa * (dx + dy));
             if (s->stamp[y] != run || c < s->cost[y]) {
+                const double *py = V + 3 * (size_t)y;
+                double hy = sqrt((py[0] - pb[0]) * (py[0] - pb[0]) + (py[1] - pb[1]) * (py[1] - pb[1]) +
+                                 (py[2] - pb[2]) * (py[2] - pb[2]));
                 s->stamp[y] = run;
                 s->done[y] = 0;
                 s->cost[y] = c;
                 s->pred[y] = x;
-                if (!vs_push(s, c, y)) return -1;
+                if (!vs_push(s, c + hy, c, y)) return -1;
             }
         }
     }
