@@ -20,7 +20,7 @@ grep -q '"passed":false' "$T/r.json" || fail "JSON lacks the failed verification
 
 M="$DATA/polygons-lien"
 if [ -d "$M" ]; then
-  for f in texas bird hole1 hole3 nazca_nazca_heron; do
+  for f in texas bird hole1 hole3 wierd1 nazca_nazca_heron; do
     for m in sl sp h1 h2; do
       for t in 0 0.5 10; do
         "$ACD" 2d "$M/$f.poly" -m $m -t $t --verify > "$T/out" 2> "$T/err"; rc=$?
