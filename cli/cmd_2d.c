@@ -9,6 +9,7 @@
 #include "acd/polygon.h"
 #include "acd/verify2d.h"
 #include "cli.h"
+#include "core/error.h"
 #include "export/json2d.h"
 #include "export/svg2d.h"
 
@@ -91,11 +92,7 @@ static acd_status write_components(const char *path, const acd2d_result *res, si
     acd_polygon_set set;
     set.count = 0;
     set.polygons = calloc(total ? total : 1, sizeof *set.polygons);
-    if (!set.polygons) {
-        snprintf(err->message, sizeof err->message, "out of memory for %zu components", total);
-        err->status = ACD_ERR_NOMEM;
-        return ACD_ERR_NOMEM;
-    }
+    if (!set.polygons) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu components", total);
     acd_status st = ACD_OK;
     for (size_t i = 0; i < count && st == ACD_OK; i++)
         for (size_t c = 0; c < res[i].ncomponents && st == ACD_OK; c++) {
