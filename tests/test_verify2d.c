@@ -76,6 +76,7 @@ static void test_missing_piece(void **state) {
     assert_int_equal(run(&in, c, sz, 1, 0, &rep, &err), ACD_ERR_VERIFY);
     assert_int_equal(rep.failed, ACD_V2D_AREA);
     assert_non_null(strstr(err.message, "not covered"));
+    assert_non_null(strstr(err.message, "the input's boundary at (1.25, 0) lies on no component"));
     acd_polygon_free(&in);
 }
 

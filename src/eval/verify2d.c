@@ -604,6 +604,31 @@ static size_t ring_of_boundary_point(const acd_polygon *input, const region *in,
     return 0;
 }
 
+/* For the message of a missing piece: the midpoint of an input edge (or of a piece of it between
+ * the components' vertices) that lies on no component. Only run after a failure: O(n m). */
+static int uncovered_boundary_point(const acd_polygon *input, const region *rs, size_t count, double tol,
+                                    acd_vec2 *out) {
+    for (size_t r = 0; r < input->nrings; r++) {
+        const acd_vec2 *p = acd_polygon_ring(input, r);
+        size_t n = acd_polygon_ring_size(input, r);
+        for (size_t i = 0; i < n; i++) {
+            acd_vec2 a = p[i], b = p[i + 1 == n ? 0 : i + 1];
+            /* probe a few points along the edge */
+            for (int k = 1; k < 8; k += 2) {
+                double t = k / 8.0;
+                acd_vec2 q = {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+                int covered = 0;
+                for (size_t c = 0; c < count && !covered; c++) covered = region_classify(&rs[c], q, tol) >= 0;
+                if (!covered) {
+                    *out = q;
+                    return 1;
+                }
+            }
+        }
+    }
+    return 0;
+}
+
 static const char *measure_name(acd2d_measure m) {
     switch (m) {
     case ACD2D_MEASURE_SL: return "sl";
@@ -786,13 +811,20 @@ acd_status acd_verify2d(const acd_polygon *input, const acd_vec2 *const *compone
         double diff = rep->components_area - rep->input_area;
         double lim = opt.area_rel_tol * fabs(rep->input_area);
         if (!(fabs(diff) <= lim)) {
+            char where[160] = "";
+            acd_vec2 gap;
+            if (diff < 0 && uncovered_boundary_point(input, rs, count, v.tol, &gap)) {
+                fmt_pt(pa, sizeof pa, gap);
+                snprintf(where, sizeof where, "; the input's boundary at %s lies on no component", pa);
+            }
             st = acd_fail(err, ACD_ERR_VERIFY,
                           "the components' areas add up to %.17g but the input's area is %.17g (difference %.3g, "
-                          "relative %.3g > %.3g): %s",
+                          "relative %.3g > %.3g): %s%s",
                           rep->components_area, rep->input_area, diff,
                           rep->input_area != 0 ? fabs(diff) / fabs(rep->input_area) : INFINITY, opt.area_rel_tol,
                           diff < 0 ? "part of the input is not covered (a missing piece)"
-                                   : "the components cover more than the input");
+                                   : "the components cover more than the input",
+                          where);
             fail(rep, ACD_V2D_AREA, -1, -1);
         }
     }
