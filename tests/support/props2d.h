@@ -6,7 +6,8 @@
  * the verifier is not vacuous (it rejects the same result against half its largest
  * concavity); at most notches + 1 components for hole-free input with ray cuts (Thm C.5); the
  * reported concavities agree with the recomputed ones; at tau = 0 no component has a notch; with SP and H1 no split increases
- * concavity (Lemma A.3); the result is the same when computed twice. */
+ * concavity (Lemma A.3); coarser levels read from the tree verify too; the result is the same when
+ * computed twice. */
 #ifndef ACD_TESTS_PROPS2D_H
 #define ACD_TESTS_PROPS2D_H
 
@@ -161,6 +162,25 @@ static void p2d_check(const acd_polygon *p, const char *name, acd2d_measure m, d
                     P2D_FAIL("%s, measure %s, tau %g: node %d has concavity %.17g > its parent %zu's %.17g", name,
                              acd2d_measure_name(m), tau, c, res.nodes[c].concavity, k, nd->concavity);
             }
+        }
+    }
+    /* the coarser levels read out of the tree (acd2d_result_at_tau) are decompositions too, within
+     * their tolerance (not for H2, whose values depend on the tau they were measured with) */
+    if (tau == 0 && m != ACD2D_MEASURE_H2) {
+        static const double coarser[] = {0.5, 5};
+        for (size_t k = 0; k < 2; k++) {
+            acd2d_result lod;
+            st = acd2d_result_at_tau(&res, coarser[k], &lod, &err);
+            if (st != ACD_OK)
+                P2D_FAIL("%s, measure %s: acd2d_result_at_tau(%g) failed: %s", name, acd2d_measure_name(m), coarser[k],
+                         err.message);
+            assert_true(lod.ncomponents >= 1 && lod.ncomponents <= res.ncomponents);
+            lod.tau = coarser[k]; /* the bound to check, whatever the result says */
+            st = acd_verify2d_result(p, &lod, &prm, 0, &rep, &err);
+            acd2d_result_free(&lod);
+            if (st != ACD_OK)
+                P2D_FAIL("%s, measure %s: the level at tau %g from the tree fails verification: %s", name,
+                         acd2d_measure_name(m), coarser[k], err.message);
         }
     }
     if (determinism) {
