@@ -8,6 +8,9 @@ JOBS=$(nproc 2>/dev/null || echo 2)
 FUZZ_SECONDS=${FUZZ_SECONDS:-20}
 
 bash scripts/install-deps.sh
+# Real meshes for the data-driven tests (Debian's libcgal-demo and assimp-testmodels, npm's bunny;
+# about 15 s). Without them those tests skip and say so.
+bash scripts/fetch-data.sh || echo "test: fetch-data failed; the tests that need real meshes will skip"
 
 echo "== release build"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null

@@ -164,7 +164,7 @@ static void test_box_and_line_queries(void **state) {
     acd_rng r;
     acd_rng_seed(&r, 13);
     for (int q = 0; q < 50; q++) {
-        double lo[3], hi[3];
+        double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
         for (int k = 0; k < 3; k++) {
             lo[k] = acd_rng_uniform(&r);
             hi[k] = lo[k] + 0.2 * acd_rng_uniform(&r);

@@ -12,7 +12,7 @@
 #include "core/rng.h"
 
 static double extent_of(const double *p, size_t n) {
-    double lo[3], hi[3];
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     for (size_t i = 0; i < n; i++)
         for (int k = 0; k < 3; k++) {
             if (i == 0 || p[3 * i + k] < lo[k]) lo[k] = p[3 * i + k];

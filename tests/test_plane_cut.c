@@ -33,7 +33,7 @@ static void check_cut(const acd_mesh *m, const acd_cut_plane *pl, stats *S, size
     if (st != ACD_OK) print_message("cut failed: %s\n", err.message);
     assert_int_equal(st, ACD_OK);
     double v0 = acd_geom3_signed_volume(m), vs = 0, absv = 0;
-    double lo[3], hi[3];
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     for (size_t v = 0; v < m->nvertices; v++)
         for (int k = 0; k < 3; k++) {
             if (v == 0 || m->vertices[3 * v + k] < lo[k]) lo[k] = m->vertices[3 * v + k];
