@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <zlib.h>
 
 #include "core/error.h"
@@ -202,10 +203,13 @@ static acd_status load_file(const char *path, unsigned char **data, size_t *size
     if (!f) return acd_fail(err, ACD_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
     size_t cap = 1 << 16, len = 0;
     unsigned char *buf = NULL;
-    if (fseek(f, 0, SEEK_END) == 0) {
-        long n = ftell(f);
-        if (n > 0) cap = (size_t)n + 1;
-        rewind(f);
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            fclose(f);
+            return acd_fail(err, ACD_ERR_IO, "%s: is a directory, not a mesh file", path);
+        }
+        if (S_ISREG(st.st_mode) && st.st_size > 0) cap = (size_t)st.st_size + 1;
     }
     buf = malloc(cap);
     if (!buf) {
@@ -230,7 +234,7 @@ static acd_status load_file(const char *path, unsigned char **data, size_t *size
     fclose(f);
     if (bad) {
         free(buf);
-        return acd_fail(err, ACD_ERR_IO, "%s: read error after %zu bytes", path, len);
+        return acd_fail(err, ACD_ERR_IO, "%s: read error after %zu bytes: %s", path, len, strerror(errno));
     }
     *data = buf;
     *size = len;

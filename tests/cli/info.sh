@@ -45,6 +45,9 @@ set +e
 "$ACD" info "$TMP/missing.off" 2>/dev/null; rc=$?
 "$ACD" info 2>/dev/null; rc2=$?
 "$ACD" info --bogus "$D/torus.off" 2>/dev/null; rc3=$?
+"$ACD" info "$TMP" 2>/dev/null; rc4=$?
 set -e
-[ $rc -eq 4 ] && [ $rc2 -eq 1 ] && [ $rc3 -eq 1 ] || { echo "exit codes $rc $rc2 $rc3, expected 4 1 1"; exit 1; }
+[ $rc -eq 4 ] && [ $rc2 -eq 1 ] && [ $rc3 -eq 1 ] && [ $rc4 -eq 4 ] || { echo "exit codes $rc $rc2 $rc3 $rc4, expected 4 1 1 4"; exit 1; }
+# a mesh through a pipe
+cat "$D/torus.off" | "$ACD" info --json /dev/stdin | grep -q '"genus":	1' 
 echo "acd info: all checks passed"
