@@ -381,6 +381,53 @@ static void test_nearly_flat(void **state) {
     }
 }
 
+static void test_edges(void **state) {
+    (void)state;
+    acd_rng r;
+    acd_rng_seed(&r, 17);
+    double p[3 * 40];
+    for (int i = 0; i < 120; i++) p[i] = acd_rng_uniform(&r);
+    acd_hull h;
+    acd_hull_edge *e;
+    size_t ne;
+    assert_int_equal(acd_hull_compute(p, 40, &h, NULL), ACD_OK);
+    assert_int_equal(acd_hull_edges(&h, &e, &ne, NULL), ACD_OK);
+    assert_int_equal(ne, 3 * h.ntriangles / 2); /* closed: every edge in two triangles */
+    for (size_t i = 0; i < ne; i++) {
+        assert_true(e[i].v[0] < e[i].v[1]);
+        if (i > 0) assert_true(e[i - 1].v[0] < e[i].v[0] || (e[i - 1].v[0] == e[i].v[0] && e[i - 1].v[1] < e[i].v[1]));
+        int fl = 0, fr = 0;
+        for (int k = 0; k < 3; k++) {
+            const uint32_t *L = h.triangles + 3 * e[i].left, *R = h.triangles + 3 * e[i].right;
+            if (L[k] == e[i].v[0] && L[(k + 1) % 3] == e[i].v[1]) fl = 1;
+            if (R[k] == e[i].v[1] && R[(k + 1) % 3] == e[i].v[0]) fr = 1;
+        }
+        assert_true(fl && fr);
+    }
+    free(e);
+    acd_hull_free(&h);
+    /* planar: a square's 4 boundary edges have one side only, its diagonal both */
+    double sq[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    assert_int_equal(acd_hull_compute(sq, 4, &h, NULL), ACD_OK);
+    assert_int_equal(acd_hull_edges(&h, &e, &ne, NULL), ACD_OK);
+    assert_int_equal(ne, 5);
+    size_t inner = 0;
+    for (size_t i = 0; i < ne; i++) {
+        int missing = (e[i].left == ACD_HULL_NO_NEIGHBOR) + (e[i].right == ACD_HULL_NO_NEIGHBOR);
+        assert_true(missing <= 1);
+        inner += missing == 0;
+    }
+    assert_int_equal(inner, 1);
+    free(e);
+    acd_hull_free(&h);
+    double seg[6] = {0, 0, 0, 1, 2, 3};
+    assert_int_equal(acd_hull_compute(seg, 2, &h, NULL), ACD_OK);
+    assert_int_equal(acd_hull_edges(&h, &e, &ne, NULL), ACD_OK);
+    assert_int_equal(ne, 1);
+    free(e);
+    acd_hull_free(&h);
+}
+
 static void test_nan_rejected(void **state) {
     (void)state;
     double p[12] = {0, 0, 0, 1, 0, 0, 0, NAN, 0, 0, 0, 1};
@@ -405,6 +452,7 @@ int main(void) {
         cmocka_unit_test(test_collinear),
         cmocka_unit_test(test_coplanar),
         cmocka_unit_test(test_nearly_flat),
+        cmocka_unit_test(test_edges),
         cmocka_unit_test(test_nan_rejected),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -43,6 +43,18 @@ void acd_hull_free(acd_hull *h);
  * Empty hull: +INFINITY. */
 double acd_hull_plane_distance(const acd_hull *h, const double p[3]);
 
+/* An undirected hull edge v[0] < v[1]: left is the triangle that runs v[0] -> v[1] (the facet on the
+ * left walking from v[0] to v[1], seen from outside), right the one that runs v[1] -> v[0];
+ * ACD_HULL_NO_NEIGHBOR on the boundary of a planar hull. */
+typedef struct acd_hull_edge {
+    uint32_t v[2];
+    uint32_t left, right;
+} acd_hull_edge;
+
+/* The hull's edges in increasing (v[0], v[1]) order, in a malloc'd array (caller frees). dim < 2:
+ * none for dim 0, one (0, 1) for dim 1 (left = right = ACD_HULL_NO_NEIGHBOR). */
+acd_status acd_hull_edges(const acd_hull *h, acd_hull_edge **edges, size_t *nedges, acd_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -589,3 +589,46 @@ double acd_hull_plane_distance(const acd_hull *h, const double p[3]) {
     }
     return inside ? fabs(hgt) : edge;
 }
+
+static int cmp_hull_edge(const void *x, const void *y) {
+    const acd_hull_edge *a = x, *b = y;
+    if (a->v[0] != b->v[0]) return a->v[0] < b->v[0] ? -1 : 1;
+    return (a->v[1] > b->v[1]) - (a->v[1] < b->v[1]);
+}
+
+acd_status acd_hull_edges(const acd_hull *h, acd_hull_edge **edges, size_t *nedges, acd_error *err) {
+    *edges = NULL;
+    *nedges = 0;
+    size_t cap = h->ntriangles * 3 + 1;
+    acd_hull_edge *e = malloc(cap * sizeof *e);
+    if (!e) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the edges of %zu hull triangles", h->ntriangles);
+    size_t n = 0;
+    if (h->dim == 1 && h->nvertices == 2) {
+        e[n].v[0] = 0;
+        e[n].v[1] = 1;
+        e[n].left = e[n].right = ACD_HULL_NO_NEIGHBOR;
+        n++;
+    }
+    for (size_t t = 0; t < h->ntriangles; t++)
+        for (int i = 0; i < 3; i++) {
+            uint32_t a = h->triangles[3 * t + i], b = h->triangles[3 * t + (i + 1) % 3];
+            uint32_t u = h->neighbors[3 * t + i];
+            if (a < b) {
+                e[n].v[0] = a;
+                e[n].v[1] = b;
+                e[n].left = (uint32_t)t;
+                e[n].right = u;
+                n++;
+            } else if (u == ACD_HULL_NO_NEIGHBOR) {
+                e[n].v[0] = b;
+                e[n].v[1] = a;
+                e[n].left = ACD_HULL_NO_NEIGHBOR;
+                e[n].right = (uint32_t)t;
+                n++;
+            }
+        }
+    qsort(e, n, sizeof *e, cmp_hull_edge);
+    *edges = e;
+    *nedges = n;
+    return ACD_OK;
+}
