@@ -19,12 +19,13 @@ static void usage(FILE *f) {
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
             "              [--verify] [-v]\n"
             "\n"
-            "Decomposes a closed triangle mesh (OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
+            "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
             "\n"
             "  -t TAU              concavity tolerance, relative to the radius of the minimum enclosing\n"
             "                      sphere (default 0.05); with --tau-abs in model units\n"
             "  --mode solid        parts are closed solids, cut by planes with capped sections (default)\n"
+            "  --mode surface      parts are surface patches split along cut loops (open meshes welcome)\n"
             "  -o HULLS.obj        the convex hulls, one 'o hull_N' group each, full precision\n"
             "  --parts PARTS.obj   the parts themselves, one group each\n"
             "  --region-cuts       cut only the section region at the most concave vertex (spec A13)\n"
@@ -134,6 +135,35 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
     cJSON_AddNumberToObject(stats, "hull_volume_sum", hv);
     cJSON_AddNumberToObject(stats, "seconds", r->seconds);
     return o;
+}
+
+static double tri_area(const acd_mesh *m, size_t t) {
+    const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
+                 *c = m->vertices + 3 * m->triangles[3 * t + 2];
+    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+    return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
+/* --verify in surface mode: the parts tile the input surface (face counts and areas add up). */
+static int verify_surface(const acd_mesh *in, const acd3d_result *r, acd_error *err) {
+    size_t faces = 0;
+    double area = 0, ain = 0;
+    for (size_t t = 0; t < in->ntriangles; t++) ain += tri_area(in, t);
+    for (size_t i = 0; i < r->nparts; i++) {
+        const acd_mesh *m = &r->parts[i].mesh;
+        faces += m->ntriangles;
+        for (size_t t = 0; t < m->ntriangles; t++) area += tri_area(m, t);
+        const acd3d_node *n = &r->nodes[r->parts[i].node];
+        if (n->leaf_reason == ACD3D_LEAF_TAU && r->parts[i].concavity > r->tau * (1 + 1e-12) + 1e-12 * r->scale)
+            return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g", i, r->parts[i].concavity,
+                            r->tau);
+    }
+    if (faces != in->ntriangles)
+        return acd_fail(err, ACD_ERR_VERIFY, "the parts hold %zu faces, the input %zu", faces, in->ntriangles);
+    if (fabs(area - ain) > 1e-9 * ain)
+        return acd_fail(err, ACD_ERR_VERIFY, "the parts' areas add up to %.17g, the input's is %.17g", area, ain);
+    return ACD_OK;
 }
 
 /* --verify: checks computed here from the result, independently of the driver's bookkeeping. */
@@ -264,8 +294,10 @@ int acd_cmd_3d(int argc, char **argv) {
     p.progress_user = &ps;
     acd3d_result r;
     acd_status st = acd3d_decompose(&mesh, &p, &r, &err);
-    acd_mesh_free(&mesh);
-    if (st != ACD_OK) return acd_cli_report("3d", &err);
+    if (st != ACD_OK) {
+        acd_mesh_free(&mesh);
+        return acd_cli_report("3d", &err);
+    }
     int code = ACD_EXIT_OK;
     size_t stuck = 0;
     for (size_t i = 0; i < r.nparts; i++) stuck += r.nodes[r.parts[i].node].leaf_reason == ACD3D_LEAF_NO_CUT ||
@@ -292,9 +324,13 @@ int acd_cmd_3d(int argc, char **argv) {
         cJSON_Delete(j);
     }
     if (!code && do_verify) {
-        if (verify(&r, &err) != ACD_OK) code = acd_cli_report("3d", &err);
-        else if (verbose) fprintf(stderr, "acd 3d: verified: volumes add up, parts meet tau, parts inside hulls\n");
+        st = p.mode == ACD3D_SOLID ? verify(&r, &err) : verify_surface(&mesh, &r, &err);
+        if (st != ACD_OK) code = acd_cli_report("3d", &err);
+        else if (verbose)
+            fprintf(stderr, p.mode == ACD3D_SOLID ? "acd 3d: verified: volumes add up, parts meet tau, parts inside hulls\n"
+                                                  : "acd 3d: verified: the parts tile the surface and meet tau\n");
     }
     acd3d_result_free(&r);
+    acd_mesh_free(&mesh);
     return code;
 }

@@ -133,6 +133,73 @@ static void test_torus_finishes(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Surface mode: the parts tile the surface (every input face in exactly one part, areas add up)
+ * and the tau bound holds for parts that stopped on it. */
+static double mesh_area(const acd_mesh *m) {
+    double a = 0;
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        const double *p = m->vertices + 3 * m->triangles[3 * t], *q = m->vertices + 3 * m->triangles[3 * t + 1],
+                     *r = m->vertices + 3 * m->triangles[3 * t + 2];
+        double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+        double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        a += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    }
+    return a;
+}
+
+static void check_surface(const acd_mesh *in, const acd3d_result *r, const acd3d_params *p) {
+    size_t faces = 0;
+    double area = 0;
+    for (size_t i = 0; i < r->nparts; i++) {
+        faces += r->parts[i].mesh.ntriangles;
+        area += mesh_area(&r->parts[i].mesh);
+        const acd3d_node *nd = &r->nodes[r->parts[i].node];
+        if (nd->leaf_reason == ACD3D_LEAF_TAU)
+            assert_true(remeasure(&r->parts[i].mesh, p->eps_ratio * r->tau) <= r->tau + 1e-9);
+    }
+    assert_int_equal(faces, in->ntriangles);
+    assert_true(fabs(area - mesh_area(in)) <= 1e-9 * mesh_area(in));
+}
+
+static double hemi_r(double th, double ph, void *u) { (void)th, (void)ph, (void)u; return 1.0; }
+
+static void test_surface_mode(void **state) {
+    (void)state;
+    acd3d_params p = acd3d_default_params();
+    p.mode = ACD3D_SURFACE;
+    p.tau = 0.05;
+    acd3d_result r;
+    acd_error err;
+    /* a closed convex surface stays whole */
+    acd_mesh m;
+    assert_true(mg_radial(&m, 24, 12, sphere_r, NULL));
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.nparts, 1);
+    check_surface(&m, &r, &p);
+    acd3d_result_free(&r);
+    /* an open surface (the sphere without its southern cap) is taken as it is */
+    size_t keep = m.ntriangles - 24; /* the last ring of triangles touches the south pole */
+    m.ntriangles = keep;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    check_surface(&m, &r, &p);
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+    (void)hemi_r;
+    /* the waist splits into several patches that tile the surface */
+    double k = 0.7;
+    assert_true(mg_radial(&m, 48, 48, waist_r, &k));
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_true(r.nparts >= 2);
+    check_surface(&m, &r, &p);
+    acd3d_result r2;
+    assert_int_equal(acd3d_decompose(&m, &p, &r2, &err), ACD_OK);
+    assert_int_equal(r.nparts, r2.nparts);
+    for (size_t i = 0; i < r.nparts; i++) assert_int_equal(r.parts[i].mesh.ntriangles, r2.parts[i].mesh.ntriangles);
+    acd3d_result_free(&r);
+    acd3d_result_free(&r2);
+    acd_mesh_free(&m);
+}
+
 static void test_bad_input(void **state) {
     (void)state;
     acd3d_params p = acd3d_default_params();
@@ -163,6 +230,7 @@ int main(void) {
         cmocka_unit_test(test_l_shape_two_convex_parts),
         cmocka_unit_test(test_waist_splits_and_is_deterministic),
         cmocka_unit_test(test_torus_finishes),
+        cmocka_unit_test(test_surface_mode),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -20,6 +20,7 @@
 #include "acd3/measure.h"
 #include "acd3/region_cut.h"
 #include "acd3/resolve.h"
+#include "acd3/surface_cut.h"
 #include "core/error.h"
 #include "core/tolerance.h"
 #include "geom3/dijkstra.h"
@@ -86,7 +87,7 @@ typedef struct tree {
     size_t n, cap;
 } tree;
 
-static int tree_push(tree *t, int parent, acd_mesh *mesh, size_t depth) {
+static int tree_push(tree *t, int parent, acd_mesh *mesh, size_t depth, int solid) {
     if (t->n == t->cap) {
         size_t nc = t->cap ? 2 * t->cap : 16;
         work_node *na = realloc(t->a, nc * sizeof *na);
@@ -101,7 +102,7 @@ static int tree_push(tree *t, int parent, acd_mesh *mesh, size_t depth) {
     w->node.part = -1;
     w->mesh = *mesh;
     w->depth = depth;
-    w->node.volume = acd_geom3_signed_volume(mesh);
+    w->node.volume = solid ? acd_geom3_signed_volume(mesh) : 0.0;
     return 1;
 }
 
@@ -160,10 +161,10 @@ static void choice_free(split_choice *c) {
  * measures are kept for when they are processed. Returns 1 if split, 0 if no candidate splits,
  * or -(status) on failure. */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
-                     double tau, double tol, int restrict_cut, split_choice *best, acd_error *err) {
+                     double tau, double tol, int solid, int restrict_cut, split_choice *best, acd_error *err) {
     acd3_plane_candidate cand[ACD3_MAX_CANDIDATES];
     int nc = acd3_cut_candidates(m, g, ms, cand);
-    double vol = acd_geom3_signed_volume(m);
+    double vol = solid ? acd_geom3_signed_volume(m) : 0.0;
     int found = 0, compared = 0;
     memset(best, 0, sizeof *best);
     for (int i = 0; i < nc && compared < ACD3_COMPARED_CANDIDATES; i++) {
@@ -172,7 +173,8 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
         split_choice trial;
         memset(&trial, 0, sizeof trial);
         acd_error cerr;
-        if (acd_plane_cut(m, &pl, &trial.cut, &cerr) != ACD_OK) {
+        acd_status cst = solid ? acd_plane_cut(m, &pl, &trial.cut, &cerr) : acd3_surface_cut(m, g, &pl, restrict_cut ? cand[i].point : NULL, &trial.cut, &cerr);
+        if (cst != ACD_OK) {
             if (cerr.status == ACD_ERR_NOMEM) {
                 if (found) choice_free(best);
                 *err = cerr;
@@ -180,12 +182,12 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
             }
             continue;
         }
-        if (restrict_cut && acd3_restrict_cut(&trial.cut, cand[i].point, err) != ACD_OK) {
+        if (solid && restrict_cut && acd3_restrict_cut(&trial.cut, cand[i].point, err) != ACD_OK) {
             if (found) choice_free(best);
             return -(int)ACD_ERR_NOMEM;
         }
         int ok = trial.cut.npieces >= 2;
-        for (size_t k = 0; ok && k < trial.cut.npieces; k++) {
+        for (size_t k = 0; ok && solid && k < trial.cut.npieces; k++) {
             const acd_mesh *pm = &trial.cut.pieces[k].mesh;
             if (acd_geom3_signed_volume(pm) < ACD3_MIN_PIECE_FRACTION * vol) ok = 0;
             /* every piece must be a closed, consistently oriented surface; a cut that rounding
@@ -240,26 +242,32 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd3d_params not initialised by acd3d_default_params");
     if (!(params->tau >= 0) || !isfinite(params->tau))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "tau must be a finite number >= 0");
-    if (params->mode != ACD3D_SOLID)
-        return acd_fail(err, ACD_ERR_UNSUPPORTED, "surface mode is not implemented yet");
+    if (params->mode != ACD3D_SOLID && params->mode != ACD3D_SURFACE)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown mode %d", (int)params->mode);
+    int solid = params->mode == ACD3D_SOLID;
     acd_status st = check_input(mesh, err);
     if (st != ACD_OK) return st;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
 
-    /* solid mode: the input must be closed and consistently oriented */
-    acd_edge_map em;
-    st = acd_edge_map_build(mesh->triangles, mesh->ntriangles, NULL, &em, err);
-    if (st != ACD_OK) return st;
-    acd_error cerr;
-    st = acd_edge_map_check_closed(&em, mesh->triangles, mesh->ntriangles, &cerr);
-    acd_edge_map_free(&em);
-    if (st != ACD_OK)
-        return acd_fail(err, st, "solid mode needs a closed, consistently oriented mesh: %.400s", cerr.message);
-    double vol = acd_geom3_signed_volume(mesh);
-    if (!(vol > 0))
-        return acd_fail(err, ACD_ERR_DEGENERATE,
-                        "the mesh encloses no positive volume (%g): it is flat or oriented inward", vol);
+    double vol = 0;
+    if (solid) { /* solid mode: the input must be closed and consistently oriented */
+        acd_edge_map em;
+        st = acd_edge_map_build(mesh->triangles, mesh->ntriangles, NULL, &em, err);
+        if (st != ACD_OK) return st;
+        acd_error cerr;
+        st = acd_edge_map_check_closed(&em, mesh->triangles, mesh->ntriangles, &cerr);
+        acd_edge_map_free(&em);
+        if (st != ACD_OK)
+            return acd_fail(err, st,
+                            "solid mode needs a closed, consistently oriented mesh: %.300s (repair it with "
+                            "'acd info --repair', or use surface mode)",
+                            cerr.message);
+        vol = acd_geom3_signed_volume(mesh);
+        if (!(vol > 0))
+            return acd_fail(err, ACD_ERR_DEGENERATE,
+                            "the mesh encloses no positive volume (%g): it is flat or oriented inward", vol);
+    }
 
     acd_sphere sph;
     st = acd_min_sphere(mesh->vertices, mesh->nvertices, &sph, err);
@@ -274,7 +282,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     acd_mesh root;
     st = acd_mesh_copy(&root, mesh, err);
     if (st != ACD_OK) return st;
-    if (!tree_push(&t, -1, &root, 0)) {
+    if (!tree_push(&t, -1, &root, 0, solid)) {
         acd_mesh_free(&root);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
     }
@@ -304,9 +312,9 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
             /* with region_cuts, cuts restricted to the section region at the witness first;
              * whole-plane cuts when no restricted one splits the part */
             split = 0;
-            if (params->region_cuts)
-                split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, 1, &choice, err);
-            if (split == 0) split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, 0, &choice, err);
+            if (params->region_cuts || !solid) /* surface mode always cuts along the nearest loop first */
+                split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, solid, 1, &choice, err);
+            if (split == 0) split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, solid, 0, &choice, err);
             if (split < 0) {
                 st = (acd_status)(-split);
                 measured_free(&cur);
@@ -332,7 +340,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         for (size_t k = 0; k < cut.npieces; k++) {
             acd_mesh piece = cut.pieces[k].mesh;
             memset(&cut.pieces[k].mesh, 0, sizeof piece);
-            if (!tree_push(&t, (int)i, &piece, depth)) {
+            if (!tree_push(&t, (int)i, &piece, depth, solid)) {
                 acd_mesh_free(&piece);
                 choice_free(&choice);
                 st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");

@@ -60,4 +60,7 @@ grep -q "closed" "$T/err.txt" || fail "open mesh message: $(cat "$T/err.txt")"
 "$ACD" 3d "$T/l.obj" -t abc 2>/dev/null; [ $? = 1 ] || fail "bad tau"
 printf 'v 0 0 0\nf 1 2 3\n' > "$T/bad.obj"
 "$ACD" 3d "$T/bad.obj" 2>/dev/null; [ $? = 2 ] || fail "bad indices"
+# surface mode takes the open mesh, and the parts tile it
+"$ACD" 3d "$T/open.obj" --mode surface -t 0 --tau-abs --verify --parts "$T/sp.obj" > "$T/s.txt" || fail "surface mode exit $?"
+[ "$(grep -c '^f ' "$T/sp.obj")" = 19 ] || fail "surface parts should hold the 19 faces"
 echo ok
