@@ -30,6 +30,8 @@ static void usage(FILE *f) {
             "  --parts PARTS.obj   the parts themselves, one group each\n"
             "  --region-cuts       cut only the section region at the most concave vertex (spec A13)\n"
             "  --json FILE         summary: per part concavity, volume, hull volume; the tree\n"
+            "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
+            "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
             "  --verify            check: part volumes add up to the input's, every part meets tau (or says\n"
             "                      why not), every part lies inside its hull; exit 3 otherwise\n"
             "  -v                  report progress and statistics on stderr\n");
@@ -243,18 +245,25 @@ int acd_cmd_3d(int argc, char **argv) {
         } else if (!strcmp(a, "--json")) {
             if (!val) break;
             json_path = argv[++i];
-        } else if (!strcmp(a, "--max-hulls") || !strcmp(a, "--max-hull-vertices")) {
+        } else if (!strcmp(a, "--max-hulls")) {
             size_t n;
             if (!acd_cli_parse_size("3d", a, val, &n)) return ACD_EXIT_USAGE;
             if (n > 0) {
-                fprintf(stderr, "acd 3d: %s is not implemented yet in this build\n", a);
+                fprintf(stderr, "acd 3d: --max-hulls (merging parts) is not implemented yet in this build\n");
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--max-hull-vertices")) {
+            if (!acd_cli_parse_size("3d", a, val, &p.max_hull_vertices)) return ACD_EXIT_USAGE;
+            if (p.max_hull_vertices > 0 && p.max_hull_vertices < 4) {
+                fprintf(stderr, "acd 3d: --max-hull-vertices needs at least 4\n");
                 return ACD_EXIT_USAGE;
             }
             i++;
         } else if (!strcmp(a, "--threads")) {
             size_t n;
             if (!acd_cli_parse_size("3d", a, val, &n)) return ACD_EXIT_USAGE;
-            p.threads = (int)n; /* the run is sequential for now; results never depend on it */
+            p.threads = (int)n; /* results never depend on it */
             i++;
         } else if (!strcmp(a, "--region-cuts")) {
             p.region_cuts = 1;

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "acd/acd3d.h"
+#include "acd/hull.h"
 #include "acd3/measure.h"
 #include "geom3/dijkstra.h"
 #include "geom3/edge_map.h"
@@ -115,6 +116,50 @@ static void test_waist_splits_and_is_deterministic(void **state) {
     }
     acd3d_result_free(&r);
     acd3d_result_free(&r2);
+    acd_mesh_free(&m);
+}
+
+static void test_threads_and_hull_budget(void **state) {
+    (void)state;
+    double k = 0.7;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 48, waist_r, &k));
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.02;
+    acd3d_result r[3];
+    acd_error err;
+    int th[3] = {1, 2, 4};
+    for (int i = 0; i < 3; i++) {
+        p.threads = th[i];
+        assert_int_equal(acd3d_decompose(&m, &p, &r[i], &err), ACD_OK);
+    }
+    for (int i = 1; i < 3; i++) {
+        assert_int_equal(r[i].nparts, r[0].nparts);
+        assert_int_equal(r[i].nnodes, r[0].nnodes);
+        for (size_t j = 0; j < r[0].nparts; j++) {
+            assert_int_equal(r[i].parts[j].mesh.nvertices, r[0].parts[j].mesh.nvertices);
+            assert_memory_equal(r[i].parts[j].mesh.vertices, r[0].parts[j].mesh.vertices,
+                                3 * r[0].parts[j].mesh.nvertices * sizeof(double));
+        }
+    }
+    /* a hull budget: at most 8 vertices per hull, every part still inside its hull */
+    p.threads = 1;
+    p.max_hull_vertices = 8;
+    acd3d_result rb;
+    assert_int_equal(acd3d_decompose(&m, &p, &rb, &err), ACD_OK);
+    assert_int_equal(rb.nparts, r[0].nparts);
+    for (size_t j = 0; j < rb.nparts; j++) {
+        assert_true(rb.parts[j].hull.nvertices <= 8);
+        acd_hull h;
+        assert_int_equal(acd_hull_compute(rb.parts[j].hull.vertices, rb.parts[j].hull.nvertices, &h, &err), ACD_OK);
+        for (size_t v = 0; v < rb.parts[j].mesh.nvertices; v++)
+            assert_true(acd_hull_plane_distance(&h, rb.parts[j].mesh.vertices + 3 * v) <= 1e-9);
+        acd_hull_free(&h);
+    }
+    acd3d_result_free(&rb);
+    for (int i = 0; i < 3; i++) acd3d_result_free(&r[i]);
+    p.max_hull_vertices = 3;
+    assert_int_equal(acd3d_decompose(&m, &p, &rb, &err), ACD_ERR_INVALID_ARGUMENT);
     acd_mesh_free(&m);
 }
 
@@ -229,6 +274,7 @@ int main(void) {
         cmocka_unit_test(test_convex_stays_whole),
         cmocka_unit_test(test_l_shape_two_convex_parts),
         cmocka_unit_test(test_waist_splits_and_is_deterministic),
+        cmocka_unit_test(test_threads_and_hull_budget),
         cmocka_unit_test(test_torus_finishes),
         cmocka_unit_test(test_surface_mode),
         cmocka_unit_test(test_bad_input),

@@ -39,9 +39,11 @@ typedef struct acd3d_params {
     double eps_ratio;         /* bridge clustering threshold eps = eps_ratio * tau (default 0.5) */
     double delta_ratio;       /* knot threshold delta = delta_ratio * tau (default 0.1) */
     acd3d_weight weight;      /* cut weight (default ratio) */
-    size_t max_hulls;         /* 0: no limit; else merge cheapest adjacent parts down to this many */
-    size_t max_hull_vertices; /* 0: no limit; else simplify each hull to at most this many vertices */
-    int threads;              /* 0: as many as cores; results are identical for any count */
+    size_t max_hulls;         /* 0: no limit (merging parts down to a count is not implemented yet:
+                                 a non-zero value is ACD_ERR_UNSUPPORTED) */
+    size_t max_hull_vertices; /* 0: no limit; else (>= 4) each hull is replaced, when it has more
+                                 vertices, by an enclosing polytope with at most this many */
+    int threads;              /* 0: as many as cores (OpenMP); results are identical for any count */
     size_t max_depth;         /* recursion guard (default 48) */
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
                                  (spec decision A13), falling back to the whole plane; default 0,

@@ -15,6 +15,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "acd/hull.h"
 #include "acd3/measure.h"
@@ -25,6 +28,7 @@
 #include "core/tolerance.h"
 #include "geom3/dijkstra.h"
 #include "geom3/edge_map.h"
+#include "geom3/hull_simplify.h"
 #include "geom3/plane_cut.h"
 #include "geom3/sphere.h"
 
@@ -106,10 +110,16 @@ static int tree_push(tree *t, int parent, acd_mesh *mesh, size_t depth, int soli
     return 1;
 }
 
-static acd_status hull_mesh(const acd_mesh *m, acd_mesh *out, double *volume, acd_error *err) {
+/* The part's convex hull as a mesh; with max_vertices >= 4, an enclosing polytope of at most that
+ * many vertices (geom3/hull_simplify) when the hull has more. */
+static acd_status hull_mesh(const acd_mesh *m, size_t max_vertices, acd_mesh *out, double *volume, acd_error *err) {
     memset(out, 0, sizeof *out);
     acd_hull h;
     acd_status st = acd_hull_compute(m->vertices, m->nvertices, &h, err);
+    if (st == ACD_OK && max_vertices >= 4 && h.dim == 3 && h.nvertices > max_vertices) {
+        acd_hull_free(&h);
+        st = acd_hull_simplify(m->vertices, m->nvertices, max_vertices, &h, err);
+    }
     if (st != ACD_OK) return st;
     *volume = h.volume;
     out->vertices = h.vertices;
@@ -236,12 +246,66 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     return found;
 }
 
+typedef struct run_ctx {
+    const acd3d_params *params;
+    int solid;
+    double tau, eps, tol, extent;
+    int tree_full; /* the node budget is spent: no more splits */
+} run_ctx;
+
+typedef struct node_work {
+    acd_status st;
+    acd_error err;
+    acd3d_leaf_reason reason;
+    int split;
+    split_choice choice;
+} node_work;
+
+/* Measures node w (unless its measure was kept) and chooses its split; touches only w and out. */
+static void process_node(const run_ctx *c, work_node *w, node_work *out) {
+    measured cur = w->cache;
+    w->cache.valid = 0;
+    out->st = ACD_OK;
+    if (!cur.valid) {
+        out->st = measure_mesh(&w->mesh, c->eps, c->tol, &cur, &out->err);
+        if (out->st != ACD_OK) return;
+    }
+    w->node.concavity = cur.ms.concavity;
+    acd3d_leaf_reason reason = ACD3D_LEAF_NONE;
+    if (cur.ms.hull.dim < 3) reason = ACD3D_LEAF_FLAT;
+    else if (cur.ms.concavity <= c->tau + c->tol) reason = ACD3D_LEAF_TAU; /* tau = 0: up to rounding */
+    else if (w->depth >= c->params->max_depth || c->tree_full) reason = ACD3D_LEAF_DEPTH;
+    int split = 0;
+    if (reason == ACD3D_LEAF_NONE) {
+        /* surface mode, and solid mode with region_cuts, cut along the section nearest the
+         * witness first; whole-plane cuts when that does not split the part */
+        if (c->params->region_cuts || !c->solid)
+            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1, &out->choice,
+                              &out->err);
+        if (split == 0)
+            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0, &out->choice,
+                              &out->err);
+        if (split < 0) {
+            out->st = (acd_status)(-split);
+            split = 0;
+        }
+        if (!split) reason = ACD3D_LEAF_NO_CUT;
+    }
+    measured_free(&cur);
+    out->reason = reason;
+    out->split = split;
+}
+
 acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!params || params->cookie != ACD3D_PARAMS_COOKIE)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd3d_params not initialised by acd3d_default_params");
     if (!(params->tau >= 0) || !isfinite(params->tau))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "tau must be a finite number >= 0");
+    if (params->max_hull_vertices > 0 && params->max_hull_vertices < 4)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "max_hull_vertices must be 0 (no limit) or at least 4");
+    if (params->max_hulls > 0)
+        return acd_fail(err, ACD_ERR_UNSUPPORTED, "max_hulls (merging parts) is not implemented yet");
     if (params->mode != ACD3D_SOLID && params->mode != ACD3D_SURFACE)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown mode %d", (int)params->mode);
     int solid = params->mode == ACD3D_SOLID;
@@ -287,71 +351,73 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
     }
     size_t nleaves = 0;
-    for (size_t i = 0; i < t.n; i++) {
+    int nthreads = params->threads;
+#ifdef _OPENMP
+    if (nthreads <= 0) nthreads = omp_get_num_procs();
+#else
+    nthreads = 1;
+#endif
+    /* Nodes are processed in batches: every node waiting when a batch starts is measured and
+     * split independently (in parallel), then the children are appended in node order. The
+     * tree, and so the output, is the same for any number of threads. */
+    for (size_t i = 0; i < t.n;) {
         if (params->progress && params->progress(params->progress_user, -1.0, "3d: measuring and cutting")) {
             st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled after %zu parts", nleaves);
             goto fail;
         }
-        acd_mesh *m = &t.a[i].mesh;
-        measured cur = t.a[i].cache;
-        t.a[i].cache.valid = 0;
-        if (!cur.valid) {
-            st = measure_mesh(m, eps, sc.dist, &cur, err);
-            if (st != ACD_OK) goto fail;
+        size_t b0 = i, b1 = t.n;
+        int full = t.n >= ACD3_MAX_NODES;
+        node_work *wk = calloc(b1 - b0, sizeof *wk);
+        if (!wk) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            goto fail;
         }
-        t.a[i].node.concavity = cur.ms.concavity;
-        acd3d_leaf_reason reason = ACD3D_LEAF_NONE;
-        if (cur.ms.hull.dim < 3) reason = ACD3D_LEAF_FLAT;
-        else if (cur.ms.concavity <= tau + sc.dist) reason = ACD3D_LEAF_TAU; /* tau = 0: up to rounding */
-        else if (t.a[i].depth >= params->max_depth) reason = ACD3D_LEAF_DEPTH;
-        else if (t.n >= ACD3_MAX_NODES) reason = ACD3D_LEAF_DEPTH;
-        split_choice choice;
-        memset(&choice, 0, sizeof choice);
-        int split = 0;
-        if (reason == ACD3D_LEAF_NONE) {
-            /* with region_cuts, cuts restricted to the section region at the witness first;
-             * whole-plane cuts when no restricted one splits the part */
-            split = 0;
-            if (params->region_cuts || !solid) /* surface mode always cuts along the nearest loop first */
-                split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, solid, 1, &choice, err);
-            if (split == 0) split = try_split(m, &cur.g, &cur.ms, sc.extent, eps, tau, sc.dist, solid, 0, &choice, err);
-            if (split < 0) {
-                st = (acd_status)(-split);
-                measured_free(&cur);
-                goto fail;
+        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full};
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) if (nthreads > 1 && b1 - b0 > 1)
+#endif
+        for (long j = 0; j < (long)(b1 - b0); j++) process_node(&ctx, &t.a[b0 + (size_t)j], &wk[j]);
+        /* the first failure in node order is reported */
+        for (size_t j = 0; j < b1 - b0; j++)
+            if (wk[j].st != ACD_OK && st == ACD_OK) {
+                st = wk[j].st;
+                if (err) *err = wk[j].err;
             }
-            if (!split) reason = ACD3D_LEAF_NO_CUT;
-        }
-        measured_free(&cur);
-        if (!split) {
-            t.a[i].node.leaf_reason = reason;
-            nleaves++;
-            continue;
-        }
-        acd_cut_result cut = choice.cut;
-        acd3_plane_candidate used = choice.plane;
-        /* plane n.x + d = 0 */
-        double *cp = t.a[i].node.cut_plane;
-        memcpy(cp, used.normal, sizeof(double[3]));
-        cp[3] = -(used.normal[0] * used.point[0] + used.normal[1] * used.point[1] + used.normal[2] * used.point[2]);
-        t.a[i].node.first_child = (int)t.n;
-        t.a[i].node.nchildren = (int)cut.npieces;
-        size_t depth = t.a[i].depth + 1;
-        for (size_t k = 0; k < cut.npieces; k++) {
-            acd_mesh piece = cut.pieces[k].mesh;
-            memset(&cut.pieces[k].mesh, 0, sizeof piece);
-            if (!tree_push(&t, (int)i, &piece, depth, solid)) {
-                acd_mesh_free(&piece);
-                choice_free(&choice);
-                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-                goto fail;
+        for (size_t j = 0; j < b1 - b0 && st == ACD_OK; j++) {
+            size_t n = b0 + j;
+            if (!wk[j].split) {
+                t.a[n].node.leaf_reason = wk[j].reason;
+                nleaves++;
+                continue;
             }
-            t.a[t.n - 1].cache = choice.pieces[k];
-            choice.pieces[k].valid = 0;
+            split_choice *choice = &wk[j].choice;
+            acd_cut_result *cut = &choice->cut;
+            const acd3_plane_candidate *used = &choice->plane;
+            /* plane n.x + d = 0 */
+            double *cp = t.a[n].node.cut_plane;
+            memcpy(cp, used->normal, sizeof(double[3]));
+            cp[3] = -(used->normal[0] * used->point[0] + used->normal[1] * used->point[1] + used->normal[2] * used->point[2]);
+            t.a[n].node.first_child = (int)t.n;
+            t.a[n].node.nchildren = (int)cut->npieces;
+            size_t depth = t.a[n].depth + 1;
+            for (size_t k = 0; k < cut->npieces; k++) {
+                acd_mesh piece = cut->pieces[k].mesh;
+                memset(&cut->pieces[k].mesh, 0, sizeof piece);
+                if (!tree_push(&t, (int)n, &piece, depth, solid)) {
+                    acd_mesh_free(&piece);
+                    st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+                    break;
+                }
+                t.a[t.n - 1].cache = choice->pieces[k];
+                choice->pieces[k].valid = 0;
+            }
+            /* the interior node's mesh is no longer needed */
+            acd_mesh_free(&t.a[n].mesh);
         }
-        choice_free(&choice);
-        /* the interior node's mesh is no longer needed */
-        acd_mesh_free(&t.a[i].mesh);
+        for (size_t j = 0; j < b1 - b0; j++) choice_free(&wk[j].choice);
+        free(wk);
+        if (st != ACD_OK) goto fail;
+        i = b1;
     }
 
     /* results: nodes, parts (leaves in node order) with hulls */
@@ -373,7 +439,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         p->node = (int)i;
         out->nodes[i].part = (int)out->nparts;
         out->nparts++;
-        st = hull_mesh(&p->mesh, &p->hull, &p->hull_volume, err);
+        st = hull_mesh(&p->mesh, params->max_hull_vertices, &p->hull, &p->hull_volume, err);
         if (st != ACD_OK) goto fail;
         if (p->concavity > out->max_concavity) out->max_concavity = p->concavity;
     }
