@@ -320,8 +320,23 @@ static void test_bad_input(void **state) {
     acd_bvh_free(&b);
 }
 
+/* Subnormal extents (found by fuzzing): building must not convert NaN/inf to int (UBSan). */
+static void test_subnormal_extent(void **state) {
+    (void)state;
+    double v[] = {0, 0, 0, 1, 0, 4.9e-324, 1e-320, 1e-310, 1, 1e-315, 2e-320, 1};
+    uint32_t t[] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 1, 2};
+    acd_bvh bvh;
+    acd_error err;
+    assert_int_equal(acd_bvh_build(&bvh, v, 4, t, 4, &err), ACD_OK);
+    acd_bvh_closest_result r;
+    double p[3] = {2, 0, 0};
+    assert_true(acd_bvh_closest(&bvh, p, INFINITY, &r));
+    acd_bvh_free(&bvh);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_subnormal_extent),
         cmocka_unit_test(test_closest_point_triangle_regions),
         cmocka_unit_test(test_closest_matches_brute_force),
         cmocka_unit_test(test_raycast_matches_brute_force),

@@ -191,11 +191,12 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
             uint32_t bcnt[BVH_BINS] = {0};
             for (int b = 0; b < BVH_BINS; b++) box_empty(blo[b], bhi[b]);
             double scale = BVH_BINS / ext;
+            if (!isfinite(scale)) continue; /* a subnormal extent: no binning on this axis */
             for (uint32_t i = it.start; i < it.end; i++) {
                 uint32_t t = bvh->order[i];
-                int b = (int)((cent[3 * (size_t)t + ax] - clo[ax]) * scale);
-                if (b >= BVH_BINS) b = BVH_BINS - 1;
-                if (b < 0) b = 0;
+                /* clamp in floating point before converting (NaN and overflow go to a bin too) */
+                double fb = (cent[3 * (size_t)t + ax] - clo[ax]) * scale;
+                int b = fb >= BVH_BINS ? BVH_BINS - 1 : fb > 0 ? (int)fb : 0;
                 bcnt[b]++;
                 box_grow(blo[b], bhi[b], tbox + 6 * (size_t)t, tbox + 6 * (size_t)t + 3);
             }
