@@ -320,17 +320,33 @@ static void test_bad_input(void **state) {
     acd_bvh_free(&b);
 }
 
-/* Subnormal extents (found by fuzzing): building must not convert NaN/inf to int (UBSan). */
+/* Subnormal extents (found by fuzzing): a flat grid whose z coordinates differ by subnormal
+ * amounts gives node boxes with a subnormal z extent; building must not convert NaN/inf to int
+ * (UBSan) and queries must still work. */
 static void test_subnormal_extent(void **state) {
     (void)state;
-    double v[] = {0, 0, 0, 1, 0, 4.9e-324, 1e-320, 1e-310, 1, 1e-315, 2e-320, 1};
-    uint32_t t[] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 1, 2};
+    enum { N = 9 };
+    double v[3 * N * N];
+    uint32_t t[6 * (N - 1) * (N - 1)];
+    for (int y = 0; y < N; y++)
+        for (int x = 0; x < N; x++) {
+            double *p = v + 3 * (y * N + x);
+            p[0] = x, p[1] = y, p[2] = ((x + y) % 3) * 1e-320;
+        }
+    size_t nt = 0;
+    for (int y = 0; y + 1 < N; y++)
+        for (int x = 0; x + 1 < N; x++) {
+            uint32_t a = (uint32_t)(y * N + x), b = a + 1, c = a + N + 1, d = a + N;
+            t[3 * nt] = a, t[3 * nt + 1] = b, t[3 * nt + 2] = c, nt++;
+            t[3 * nt] = a, t[3 * nt + 1] = c, t[3 * nt + 2] = d, nt++;
+        }
     acd_bvh bvh;
     acd_error err;
-    assert_int_equal(acd_bvh_build(&bvh, v, 4, t, 4, &err), ACD_OK);
+    assert_int_equal(acd_bvh_build(&bvh, v, N * N, t, nt, &err), ACD_OK);
     acd_bvh_closest_result r;
-    double p[3] = {2, 0, 0};
+    double p[3] = {3.25, 4.5, 2};
     assert_true(acd_bvh_closest(&bvh, p, INFINITY, &r));
+    assert_true(fabs(r.dist2 - 4.0) < 1e-12);
     acd_bvh_free(&bvh);
 }
 
