@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "acd/acd3d.h"
+#include "acd/export.h"
 #include "acd/hull.h"
 #include "acd/mesh.h"
 #include "cli.h"
@@ -30,6 +31,8 @@ static void usage(FILE *f) {
             "  --parts PARTS.obj   the parts themselves, one group each\n"
             "  --region-cuts       cut only the section region at the most concave vertex (spec A13)\n"
             "  --json FILE         summary: per part concavity, volume, hull volume; the tree\n"
+            "  --export DIR        for other tools: decomposition.obj, hulls/, parts/, summary.json,\n"
+            "                      NAME.urdf (one collision per hull), NAME.xml (MuJoCo); --name NAME\n"
             "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
             "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
             "  --verify            check: part volumes add up to the input's, every part meets tau (or says\n"
@@ -87,6 +90,33 @@ static int write_parts(const char *path, const acd3d_result *r, int hulls, acd_e
     }
     free(names);
     free(parts.parts);
+    return st;
+}
+
+/* --export DIR: the hulls for other tools (OBJ groups, one file per hull, the parts, summary.json,
+ * URDF and MJCF), through the library's exporter. */
+static int export_dir(const char *dir, const char *name, const acd3d_result *r, acd_error *err) {
+    acd_hull *hulls = calloc(r->nparts ? r->nparts : 1, sizeof *hulls);
+    acd_mesh_parts parts = {0};
+    char(*names)[32] = malloc((r->nparts ? r->nparts : 1) * sizeof *names);
+    parts.parts = calloc(r->nparts ? r->nparts : 1, sizeof *parts.parts);
+    acd_status st = ACD_OK;
+    if (!hulls || !names || !parts.parts) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    size_t made = 0;
+    for (size_t i = 0; st == ACD_OK && i < r->nparts; i++, made++) {
+        st = acd_hull_compute(r->parts[i].hull.vertices, r->parts[i].hull.nvertices, &hulls[i], err);
+        snprintf(names[i], sizeof names[i], "part_%zu", i);
+        parts.parts[i].name = names[i]; /* borrowed: the exporter only reads */
+        parts.parts[i].mesh = r->parts[i].mesh;
+    }
+    parts.count = r->nparts;
+    if (st == ACD_OK) {
+        acd_export_options xo = acd_export_default_options();
+        if (name) xo.name = name;
+        st = acd_export_all(dir, &parts, hulls, r->nparts, NULL, &xo, err);
+    }
+    for (size_t i = 0; i < made; i++) acd_hull_free(&hulls[i]);
+    free(hulls), free(names), free(parts.parts);
     return st;
 }
 
@@ -211,7 +241,8 @@ static int verify(const acd3d_result *r, acd_error *err) {
 }
 
 int acd_cmd_3d(int argc, char **argv) {
-    const char *input = NULL, *hulls_path = NULL, *parts_path = NULL, *json_path = NULL;
+    const char *input = NULL, *hulls_path = NULL, *parts_path = NULL, *json_path = NULL, *export_path = NULL,
+               *model_name = NULL;
     int do_verify = 0, verbose = 0;
     acd3d_params p = acd3d_default_params();
     for (int i = 1; i < argc; i++) {
@@ -245,6 +276,12 @@ int acd_cmd_3d(int argc, char **argv) {
         } else if (!strcmp(a, "--json")) {
             if (!val) break;
             json_path = argv[++i];
+        } else if (!strcmp(a, "--export")) {
+            if (!val) break;
+            export_path = argv[++i];
+        } else if (!strcmp(a, "--name")) {
+            if (!val) break;
+            model_name = argv[++i];
         } else if (!strcmp(a, "--max-hulls")) {
             size_t n;
             if (!acd_cli_parse_size("3d", a, val, &n)) return ACD_EXIT_USAGE;
@@ -281,10 +318,15 @@ int acd_cmd_3d(int argc, char **argv) {
             fprintf(stderr, "acd 3d: more than one input ('%s' and '%s')\n", input, a);
             return ACD_EXIT_USAGE;
         }
-        if ((!strcmp(a, "-o") || !strcmp(a, "--parts") || !strcmp(a, "--json")) && !val) break;
+        if ((!strcmp(a, "-o") || !strcmp(a, "--parts") || !strcmp(a, "--json") || !strcmp(a, "--export") ||
+             !strcmp(a, "--name")) &&
+            !val)
+            break;
     }
     for (int i = 1; i < argc; i++)
-        if ((!strcmp(argv[i], "-o") || !strcmp(argv[i], "--parts") || !strcmp(argv[i], "--json")) && i + 1 >= argc) {
+        if ((!strcmp(argv[i], "-o") || !strcmp(argv[i], "--parts") || !strcmp(argv[i], "--json") ||
+             !strcmp(argv[i], "--export") || !strcmp(argv[i], "--name")) &&
+            i + 1 >= argc) {
             fprintf(stderr, "acd 3d: option %s needs a file name\n", argv[i]);
             return ACD_EXIT_USAGE;
         }
@@ -318,6 +360,8 @@ int acd_cmd_3d(int argc, char **argv) {
                 stuck);
     if (hulls_path && (st = write_parts(hulls_path, &r, 1, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
     if (!code && parts_path && (st = write_parts(parts_path, &r, 0, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
+    if (!code && export_path && (st = export_dir(export_path, model_name, &r, &err)) != ACD_OK)
+        code = acd_cli_report("3d", &err);
     if (!code && json_path) {
         cJSON *j = result_json(input, &r, &p);
         char *txt = j ? cJSON_Print(j) : NULL;

@@ -50,6 +50,11 @@ assert d["stats"]["parts"] == 2 and len(d["parts"]) == 2
 assert abs(sum(p["volume"] for p in d["parts"]) - d["input_volume"]) <= 1e-9 * d["input_volume"]
 assert d["tree"][0]["parent"] == -1 and len(d["tree"][0]["children"]) == 2
 PY
+# exports for simulators
+"$ACD" 3d "$T/l.obj" -t 0 --tau-abs --export "$T/x" --name lprism > /dev/null || fail "export exit $?"
+for f in decomposition.obj summary.json lprism.urdf lprism.xml; do [ -s "$T/x/$f" ] || fail "export: $f missing"; done
+[ "$(grep -c '<collision' "$T/x/lprism.urdf")" = 2 ] || fail "urdf collisions"
+python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/x/summary.json" || fail "summary json"
 # bad input: an open mesh in solid mode -> exit 2 with a message naming the problem
 head -n 31 "$T/l.obj" > "$T/open.obj"
 "$ACD" 3d "$T/open.obj" 2> "$T/err.txt"; rc=$?
