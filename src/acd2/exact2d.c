@@ -80,7 +80,7 @@ static double region_area(const acd_polygon *p) {
 
 acd_status acd_exact2d_verify(const acd_polygon *poly, const acd_exact2d_result *r, acd_error *err) {
     size_t n = acd_polygon_num_points(poly);
-    double sum = 0;
+    double sum = 0, sumabs = 0;
     for (size_t i = 0; i < r->npieces; i++) {
         const acd_exact2d_piece *pc = &r->pieces[i];
         if (pc->npoints < 3)
@@ -105,13 +105,13 @@ acd_status acd_exact2d_verify(const acd_polygon *poly, const acd_exact2d_result 
         }
         if (!any) return acd_fail(err, ACD_ERR_VERIFY, "exact2d verify: piece %zu is degenerate (all collinear)", i);
         sum += a / 2;
+        sumabs += fabs(a) / 2;
     }
     for (size_t d = 0; d < r->ndiagonals; d++)
         if (r->diagonals[d][0] >= n || r->diagonals[d][1] >= n)
             return acd_fail(err, ACD_ERR_VERIFY, "exact2d verify: diagonal %zu names a vertex out of range", d);
     double area = region_area(poly);
-    acd_scale sc = acd_scale_of_points(V2(poly->points), n, 2);
-    double tol = ACD_TOL_REL_MEASURE * (fabs(area) + sc.extent * sc.extent * 1e-6);
+    double tol = ACD_TOL_REL_MEASURE * (fabs(area) + sumabs); /* relative to the areas involved */
     if (!(fabs(sum - area) <= tol))
         return acd_fail(err, ACD_ERR_VERIFY,
                         "exact2d verify: the pieces' areas add up to %.17g, the polygon's area is %.17g "
