@@ -125,20 +125,21 @@ static void find_target(const acd2_holes *hs, const acd2_ring *rings, size_t nr,
     if (acd2_orient_sign(u, R, w) >= 0) return; /* not a notch of P (degenerate extreme) */
     double best = INFINITY;
     acd_vec2 aim = R;
+    int aim_vertex = 0;
     for (size_t g = 0; g < nr; g++) {
         const acd2_ring *rg = &rings[g];
         for (size_t k = 0; k < rg->n; k++) {
             acd_vec2 q = rg->p[k];
             if (!acd2_same(q, R) && acd2_in_resolving_cone(u, R, w, q)) {
                 double d = hypot(q.x - R.x, q.y - R.y);
-                if (d < best) { best = d; aim = q; }
+                if (d < best) { best = d; aim = q; aim_vertex = 1; }
             }
             size_t k2 = acd2_next(k, rg->n);
             if (g == self && (k == e || k2 == e)) continue;
             acd_vec2 f;
             if (nearest_on_edge(u, R, w, q, rg->p[k2], &f)) {
                 double d = hypot(f.x - R.x, f.y - R.y);
-                if (d < best) { best = d; aim = f; }
+                if (d < best) { best = d; aim = f; aim_vertex = 0; }
             }
         }
     }
@@ -151,9 +152,16 @@ static void find_target(const acd2_holes *hs, const acd2_ring *rings, size_t nr,
         aim.y = R.y + dy / l * hs->far;
     } else {
         t->aim_dist = best;
-        /* aim past the nearest point so that a point on an edge is met as an edge crossing */
-        aim.x = R.x + (aim.x - R.x) * 2;
-        aim.y = R.y + (aim.y - R.y) * 2;
+        /* A vertex is shot at exactly (the segment ends on the boundary, so something is met).
+         * A foot on an edge is rounded off the edge's line: shoot along its direction past the
+         * whole polygon, so that an edge crossing is always met. (Aiming at 2 * foot - R, or at
+         * 2 * vertex - R, which is rounded off the line through the vertex, let the ray graze a
+         * vertex and end in the interior: "no hole could be connected", tests/data/2d/
+         * star120-hole-refused.poly.) */
+        if (!aim_vertex) {
+            aim.x = R.x + (aim.x - R.x) / best * hs->far;
+            aim.y = R.y + (aim.y - R.y) / best * hs->far;
+        }
     }
     acd2_hit hit;
     if (acd2_shoot_multi(rings, nr, self, e, aim, &hit)) return;
