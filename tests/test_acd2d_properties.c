@@ -88,9 +88,9 @@ static void test_random_stars(void **state) {
     print_message("    %zu known-defect failures, %zu failures\n", st.known, st.failed);
     assert_int_equal(st.failed, 0);
     assert_true(st.runs > 0);
-    /* Known acd2d defect at the time of writing: "no hole could be connected to the outer
-     * boundary" on "star n=120 holes=1 #1" (9 taus x 4 measures). Lower this bound when fixed. */
-    assert_true(st.refused <= 36);
+    /* a valid polygon with holes is always decomposed (the refusal of "star n=120 holes=1 #1",
+     * tests/data/2d/star120-hole-refused.poly, is fixed: test_acd2d_holes.c) */
+    assert_int_equal(st.refused, 0);
 }
 
 int main(void) {

@@ -221,6 +221,144 @@ static int slit_affects(const acd2_ring *hr, size_t ext, const target *t, acd_ve
     return acd_segments_relation(A, B, C, D) != ACD_SEG_DISJOINT;
 }
 
+/* Does edge (a, b) block the diagonal (m, v)? It may meet it only at m or v, and only at an end
+ * of the edge (exact: acd_segments_relation). */
+static int edge_blocks(acd_vec2 m, acd_vec2 v, acd_vec2 a, acd_vec2 b) {
+    const double M[2] = {m.x, m.y}, V[2] = {v.x, v.y}, A[2] = {a.x, a.y}, B[2] = {b.x, b.y};
+    acd_seg_relation rel = acd_segments_relation(M, V, A, B);
+    if (rel == ACD_SEG_DISJOINT) return 0;
+    if (rel != ACD_SEG_TOUCH) return 1;
+    int ea = acd2_same(a, m) || acd2_same(a, v), eb = acd2_same(b, m) || acd2_same(b, v);
+    if (ea && eb) return 0; /* a copy of the diagonal itself (cannot happen for a valid input) */
+    if (!ea && !eb) return 1; /* an edge end inside the diagonal, or m / v inside the edge */
+    /* one end of the edge is m or v: blocked when the other end, m or v lies inside the other
+     * segment (touch away from the shared end point) */
+    acd_vec2 o = ea ? b : a, s = ea ? a : b;
+    const double O[2] = {o.x, o.y};
+    if (acd_point_on_segment(O, M, V)) return 1;
+    acd_vec2 far_end = acd2_same(s, m) ? v : m;
+    const double F[2] = {far_end.x, far_end.y};
+    return acd_point_on_segment(F, A, B);
+}
+
+/* Is the diagonal from vertex m of ring rm to vertex v of ring rv valid: it leaves both into the
+ * interior (exact wedge tests) and meets no ring except at its two ends? */
+static int diagonal_ok(const acd2_ring *rings, size_t nr, size_t rm, size_t m, size_t rv, size_t v) {
+    const acd2_ring *a = &rings[rm], *b = &rings[rv];
+    acd_vec2 M = a->p[m], V = b->p[v];
+    if (acd2_same(M, V)) return 0;
+    if (!acd2_in_wedge(a->p[acd2_prev(m, a->n)], M, a->p[acd2_next(m, a->n)], V)) return 0;
+    if (!acd2_in_wedge(b->p[acd2_prev(v, b->n)], V, b->p[acd2_next(v, b->n)], M)) return 0;
+    for (size_t g = 0; g < nr; g++)
+        for (size_t k = 0; k < rings[g].n; k++)
+            if (edge_blocks(M, V, rings[g].p[k], rings[g].p[acd2_next(k, rings[g].n)])) return 0;
+    return 1;
+}
+
+typedef struct bridge_cand {
+    double tan, d2;
+    size_t g, k;
+} bridge_cand;
+
+static int bridge_cand_cmp(const void *x, const void *y) {
+    const bridge_cand *a = x, *b = y;
+    if (a->tan != b->tan) return a->tan < b->tan ? -1 : 1;
+    if (a->d2 != b->d2) return a->d2 < b->d2 ? -1 : 1;
+    if (a->g != b->g) return a->g < b->g ? -1 : 1;
+    return (a->k > b->k) - (a->k < b->k);
+}
+
+/* The fallback connection (classic hole bridging, D. Eberly, "Triangulation by ear clipping";
+ * the same idea as geom2/triangulate.c step 2, on these rings): the alive hole with the rightmost
+ * vertex M (largest x, ties: largest y) sees, along the ray to the right of M, the nearest
+ * crossed edge facing it, of the outer ring (merged holes included) or of another alive hole;
+ * that edge's end P of larger x, or the vertex inside the triangle (M, I, P) with the smallest
+ * angle to the ray, is visible from M. Every candidate is checked exactly (diagonal_ok) in that
+ * order; when none passes (rounding of I), the exact ray shot from M to the right ends on the
+ * first boundary point met (a vertex or a new point on an edge). Sets *gsel (ring index) and t;
+ * returns 0, -1 when nothing is found (cannot happen for valid rings), -2 when out of memory. */
+static int bridge_target(const acd2_holes *hs, const acd2_ring *rings, size_t nr, size_t *gsel, target *t) {
+    size_t gm = 0, m = 0;
+    for (size_t g = 1; g < nr; g++)
+        for (size_t k = 0; k < rings[g].n; k++) {
+            acd_vec2 q = rings[g].p[k];
+            if (gm == 0 || q.x > rings[gm].p[m].x || (q.x == rings[gm].p[m].x && q.y > rings[gm].p[m].y)) {
+                gm = g;
+                m = k;
+            }
+        }
+    if (gm == 0) return -1;
+    acd_vec2 M = rings[gm].p[m];
+    /* 1. the nearest upward edge (interior on its left, i.e. facing M) crossing the ray */
+    double bx = INFINITY;
+    size_t eg = 0, ek = 0;
+    int found = 0;
+    for (size_t g = 0; g < nr; g++) {
+        if (g == gm) continue;
+        for (size_t k = 0; k < rings[g].n; k++) {
+            acd_vec2 a = rings[g].p[k], b = rings[g].p[acd2_next(k, rings[g].n)];
+            if (!(a.y <= M.y && M.y <= b.y && a.y < b.y)) continue;
+            if (acd2_orient_sign(a, b, M) <= 0) continue;
+            double x = a.x + (M.y - a.y) * (b.x - a.x) / (b.y - a.y);
+            if (x < M.x) x = M.x;
+            if (!found || x < bx) { bx = x; eg = g; ek = k; found = 1; }
+        }
+    }
+    size_t ncand = 0;
+    bridge_cand *cs = NULL;
+    if (found) {
+        size_t total = 0;
+        for (size_t g = 0; g < nr; g++) total += rings[g].n;
+        cs = malloc((total + 1) * sizeof *cs);
+        if (!cs) return -2;
+        size_t k2 = acd2_next(ek, rings[eg].n);
+        size_t pk = rings[eg].p[ek].x >= rings[eg].p[k2].x ? ek : k2;
+        acd_vec2 Pp = rings[eg].p[pk], I = {bx, M.y};
+        cs[ncand++] = (bridge_cand){-1, 0, eg, pk};
+        int tri = acd2_orient_sign(M, I, Pp);
+        for (size_t g = 0; tri != 0 && g < nr; g++) {
+            if (g == gm) continue;
+            for (size_t k = 0; k < rings[g].n; k++) {
+                acd_vec2 x = rings[g].p[k];
+                if (x.x < M.x || acd2_same(x, Pp)) continue;
+                int o1 = acd2_orient_sign(M, I, x), o2 = acd2_orient_sign(I, Pp, x), o3 = acd2_orient_sign(Pp, M, x);
+                if (o1 * tri < 0 || o2 * tri < 0 || o3 * tri < 0) continue;
+                double dx = x.x - M.x, dy = x.y - M.y;
+                cs[ncand++] = (bridge_cand){dx > 0 ? fabs(dy) / dx : INFINITY, dx * dx + dy * dy, g, k};
+            }
+        }
+        qsort(cs, ncand, sizeof *cs, bridge_cand_cmp);
+    }
+    t->ok = 0;
+    for (size_t i = 0; i < ncand && !t->ok; i++) {
+        const acd2_ring *rg = &rings[cs[i].g];
+        acd_vec2 V = rg->p[cs[i].k];
+        /* the copy of V (an earlier slit duplicates points) that the diagonal enters */
+        for (size_t g = 0; g < nr && !t->ok; g++)
+            for (size_t k = 0; k < rings[g].n && !t->ok; k++)
+                if (g != gm && acd2_same(rings[g].p[k], V) && diagonal_ok(rings, nr, gm, m, g, k)) {
+                    t->ok = 1;
+                    t->hit = (acd2_hit){g, 1, k, V};
+                }
+    }
+    free(cs);
+    if (!t->ok) {
+        acd_vec2 aim = {M.x + hs->far, M.y};
+        if (acd2_shoot_multi(rings, nr, gm, m, aim, &t->hit) || t->hit.ring == gm) return -1;
+        t->ok = 1;
+    }
+    const acd2_ring *hg = &rings[t->hit.ring];
+    t->owner = t->hit.ring;
+    t->e = m;
+    t->from = M;
+    t->dist = hypot(t->hit.z.x - M.x, t->hit.z.y - M.y);
+    t->aim_dist = t->dist;
+    t->ida = hg->id[t->hit.j];
+    t->idb = t->hit.is_vertex ? -1 : hg->id[acd2_next(t->hit.j, hg->n)];
+    *gsel = gm;
+    return 0;
+}
+
 acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, double *value, acd_error *err) {
     size_t nr = 1 + hs->alive;
     acd2_ring *rings = malloc(nr * sizeof *rings);
@@ -266,21 +404,39 @@ acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, dou
         }
     }
     acd_status st = ACD_OK;
-    if (best_ready < 0 && best_other < 0) {
-        st = acd_fail(err, ACD_ERR_INTERNAL, "no hole could be connected to the outer boundary or another hole");
-        goto done;
+    size_t g;
+    target t;
+    acd_vec2 Q; /* the antipode of the merge vertex (Eqn 4.2's |p - cw(p)|) */
+    if ((best_ready < 0 && best_other < 0) || hs->force_bridge) {
+        /* no hole has a target by its resolving cones: the bridge that always exists */
+        int rc = bridge_target(hs, rings, nr, &g, &t);
+        if (rc == -2) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory while bridging a hole");
+            goto done;
+        }
+        if (rc) {
+            st = acd_fail(err, ACD_ERR_INTERNAL,
+                          "no hole could be connected to the outer boundary or another hole (%zu holes left)",
+                          hs->alive);
+            goto done;
+        }
+        const acd2_hole *hb = &hs->h[which[g]];
+        acd_vec2 M = hb->ring.p[t.e], A = hb->ring.p[hb->ext[0]], B = hb->ring.p[hb->ext[1]];
+        Q = hypot(A.x - M.x, A.y - M.y) >= hypot(B.x - M.x, B.y - M.y) ? A : B;
+    } else {
+        g = (size_t)(best_ready >= 0 ? best_ready : best_other);
+        int pick = best_ready >= 0 ? pick_ready : pick_other;
+        const acd2_hole *hp = &hs->h[which[g]];
+        /* fresh target (ring positions for the splice); the geometry is that of the cached one */
+        find_target(hs, rings, nr, g, hp->ext[pick], &t);
+        if (!t.ok || t.owner == g) {
+            st = acd_fail(err, ACD_ERR_INTERNAL, "hole %zu: its connection vanished", which[g]);
+            goto done;
+        }
+        Q = hp->ring.p[hp->ext[1 - pick]];
     }
-    size_t g = (size_t)(best_ready >= 0 ? best_ready : best_other);
-    int pick = best_ready >= 0 ? pick_ready : pick_other;
     size_t hidx = which[g];
     acd2_hole *h = &hs->h[hidx];
-    /* fresh target (ring positions for the splice); the geometry is that of the cached one */
-    target t;
-    find_target(hs, rings, nr, g, h->ext[pick], &t);
-    if (!t.ok || t.owner == g) {
-        st = acd_fail(err, ACD_ERR_INTERNAL, "hole %zu: its connection vanished", hidx);
-        goto done;
-    }
     acd_vec2 P = h->ring.p[t.e];
     seg[0] = P;
     seg[1] = t.hit.z;
@@ -291,7 +447,6 @@ acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, dou
     }
     size_t into = 0; /* 0 = outer, else hole index + 1 */
     if (t.owner == 0) {
-        acd_vec2 Q = h->ring.p[h->ext[1 - pick]];
         double val = anchor_conc(hs, &t) + t.dist + hypot(P.x - Q.x, P.y - Q.y);
         hs->idconc[nid] = anchor_conc(hs, &t);
         if (splice(&hs->outer, &h->ring, t.e, &t.hit, nid)) {

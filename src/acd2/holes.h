@@ -46,6 +46,7 @@ typedef struct acd2_holes {
     int64_t idcap;
     int64_t next_id;  /* next id for a new point */
     double far;       /* longer than the polygon's diameter */
+    int force_bridge; /* tests only: always take the fallback bridge (0 after acd2_holes_init) */
 } acd2_holes;
 
 /* Takes the rings of poly (outer counterclockwise, holes clockwise); ids are positions in
@@ -55,7 +56,9 @@ acd_status acd2_holes_init(acd2_holes *hs, const acd_polygon *poly, const double
 void acd2_holes_free(acd2_holes *hs);
 
 /* Merges one hole (into the outer ring, or, when every hole is blocked by others, into another
- * hole). seg receives the diagonal (hole vertex, boundary point); *into_outer whether the
+ * hole). When no hole gets a target through its resolving cones, the fallback is the classic
+ * bridge from the rightmost hole vertex (holes.c, bridge_target), which always exists for valid
+ * rings. seg receives the diagonal (hole vertex, boundary point); *into_outer whether the
  * merge reached the outer ring; *value the Eqn 4.2 value of the merged hole. */
 acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, double *value, acd_error *err);
 
