@@ -15,7 +15,11 @@
  *     where x is the target and concavity(x) its stored concavity (a merged hole's value for
  *     points on merged holes);
  *  4. when no hole is ready (each is hidden behind others), splice the hole whose target is the
- *     nearest point on another hole into that hole, and go on.
+ *     nearest point on another hole into that hole, and go on;
+ *  5. when no hole has any target (fallback, not in the dissertation): bridge the hole with the
+ *     rightmost vertex M to a vertex it sees, found along the ray to the right of M (Eberly's
+ *     hole bridging, as in geom2/triangulate.c) and checked exactly (bridge_target); it always
+ *     exists for valid rings, so valid input is never refused here.
  * Cost: O(h N) per merge (h holes, N vertices). */
 #include "acd2/holes.h"
 
