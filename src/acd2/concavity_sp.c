@@ -4,7 +4,8 @@
  * design:
  *  1. pocket polygon Q: the pocket chain reversed (counterclockwise) closed by the bridge;
  *  2. triangulate Q by ear clipping (exact orientation; O(k^2) worst case, spec §3.2 "fine in
- *     practice"); if that fails on a degenerate pocket, the pocket falls back to SL;
+ *     practice"); if that fails on a degenerate pocket, the walk along the chain (an upper
+ *     bound of SP) is used;
  *  3. shortest-path trees T- and T+ rooted at the bridge ends by the funnel algorithm over the
  *     dual tree of the triangulation (Guibas et al. [53]; Lee and Preparata);
  *  4. h(u) = perpendicular distance to the bridge line when u is perpendicularly visible
@@ -18,7 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "acd2/concavity_sl.h"
 #include "acd2/ring.h"
 
 void acd2_sp_work_free(acd2_sp_work *w) {
@@ -288,6 +288,24 @@ static size_t spt(acd2_sp_work *w, size_t m, const edge_key *keys, size_t nk, si
     return no;
 }
 
+/* Fallback for a pocket that cannot be triangulated (degenerate): the length of the walk along the
+ * pocket chain to the nearer bridge end. It is a path inside the closed pocket polygon, hence an
+ * upper bound of SP: the decomposition may cut more, never accept a piece too concave. */
+static void chain_bound(const acd_vec2 *p, size_t n, size_t a, size_t b, double *conc) {
+    double acc = 0;
+    for (size_t k = acd2_next(a, n); k != b; k = acd2_next(k, n)) {
+        size_t q = acd2_prev(k, n);
+        acc += hypot(p[k].x - p[q].x, p[k].y - p[q].y);
+        conc[k] = acc;
+    }
+    acc = 0;
+    for (size_t k = acd2_prev(b, n); k != a; k = acd2_prev(k, n)) {
+        size_t q = acd2_next(k, n);
+        acc += hypot(p[k].x - p[q].x, p[k].y - p[q].y);
+        if (acc < conc[k]) conc[k] = acc;
+    }
+}
+
 acd_status acd2_sp_pocket(const acd_vec2 *p, size_t n, size_t a, size_t b, double *conc, acd2_sp_work *w) {
     size_t k = (b + n - a) % n; /* chain a..b has k + 1 vertices */
     size_t m = k + 1;
@@ -298,7 +316,7 @@ acd_status acd2_sp_pocket(const acd_vec2 *p, size_t n, size_t a, size_t b, doubl
     int tr = triangulate(w, m);
     if (tr == -2) return ACD_ERR_NOMEM;
     if (tr) {
-        acd2_sl_pocket(p, n, a, b, conc);
+        chain_bound(p, n, a, b, conc);
         return ACD_OK;
     }
     size_t nt = m - 2, nk = 3 * nt;
@@ -331,7 +349,7 @@ acd_status acd2_sp_pocket(const acd_vec2 *p, size_t n, size_t a, size_t b, doubl
         free(ord[0]);
         free(ord[1]);
         if (st != ACD_OK) return st;
-        acd2_sl_pocket(p, n, a, b, conc); /* degenerate triangulation: fall back */
+        chain_bound(p, n, a, b, conc); /* degenerate triangulation: fall back */
         return ACD_OK;
     }
     const acd_vec2 *q = w->q;
