@@ -72,6 +72,70 @@ acd_status acd_segeval_regions(const int *a, const int *b, size_t n, const doubl
 acd_status acd_segeval(const acd_mesh *m, const int *a, const int *b, const acd_segeval_options *opts,
                        acd_segeval_result *out, acd_error *err);
 
+/* =========================================================================================
+ * Nearly convex segmentation, CoRiSe (G. Liu, Z. Xi, J.-M. Lien, "Nearly convex segmentation of
+ * polyhedra through convex ridge separation", CAD 2016; src/corise/, docs/corise.md)
+ *
+ * Usage:
+ *   acd_segment_params prm = acd_segment_default_params();
+ *   prm.tau = 0.1;                        // in units of the bounding sphere's radius
+ *   acd_segment_result res;
+ *   if (acd_segment(&mesh, &prm, &res, &err) == ACD_OK) { ...; acd_segment_result_free(&res); }
+ */
+
+#define ACD_SEGMENT_PARAMS_COOKIE 0x41435347u
+
+typedef struct acd_segment_params {
+    uint32_t cookie;          /* set by acd_segment_default_params; guards against uninitialized params */
+    double tau;               /* valley concavity tolerance, relative to the radius of the bounding
+                                 sphere (AABB centre, farthest used vertex); default 0.1 */
+    double alpha;             /* Eq. 8 weight of the dihedral term against the length term (default 0.8) */
+    double concave_weight;    /* Theta of a concave edge in Eq. 8 (convex edges 1; default 0.3) */
+    int clamp_hull_depth;     /* not in the paper: cap each valley point's concavity by its depth
+                                 below the hull (docs/corise.md, default and why) */
+    size_t max_depth;         /* safety cap on nested cuts (default 64) */
+    acd_progress_fn progress; /* optional; may cancel */
+    void *progress_user;
+} acd_segment_params;
+
+acd_segment_params acd_segment_default_params(void);
+
+typedef struct acd_segment_part {
+    size_t nfaces;            /* faces labelled with this part */
+    double concavity;         /* largest valley concavity of the part, model units */
+    double concavity_rel;     /* the same relative to the bounding sphere's radius (compare with tau) */
+    acd_mesh hull;            /* convex hull of the part's vertices (acd_hull_compute), outward
+                                 triangles; empty when the part is flat (hull_dim < 3) */
+    int hull_dim;             /* affine dimension of the part's vertices */
+    double hull_volume;       /* volume of hull (0 when flat) */
+    double area;              /* surface area of the part's faces */
+} acd_segment_part;
+
+typedef struct acd_segment_result {
+    uint32_t *labels;         /* nfaces entries: the part of each face, 0 .. nparts-1, parts numbered
+                                 by their smallest face */
+    size_t nfaces;
+    acd_segment_part *parts;
+    size_t nparts;
+    double tau;               /* relative, as given */
+    double scale;             /* radius of the bounding sphere (model units per relative unit) */
+    double mesh_volume;       /* signed volume of the input (divergence theorem; meaningful when closed) */
+    double hull_volume;       /* sum of the parts' hull volumes */
+    size_t cuts;              /* parts that were split */
+    size_t depth;             /* deepest nesting of cuts */
+    size_t unresolved;        /* parts left deeper than tau (a cut could not split them, or max_depth) */
+    double seconds;           /* wall-clock time of acd_segment */
+} acd_segment_result;
+
+/* Segments a triangle mesh (ideally closed and consistently oriented: concave edges are decided
+ * from the faces' orientation) into nearly convex parts. Every face gets a label; parts are
+ * edge-connected. out is caller-owned, freed with acd_segment_result_free (also safe after a
+ * failure). Bad params: ACD_ERR_INVALID_ARGUMENT; no faces: ACD_ERR_DEGENERATE; indices out of
+ * range or non-finite coordinates: ACD_ERR_INVALID_INPUT. */
+acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, acd_segment_result *out,
+                       acd_error *err);
+void acd_segment_result_free(acd_segment_result *r);
+
 /* ========================================================================================= */
 
 #ifdef __cplusplus

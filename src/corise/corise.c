@@ -292,6 +292,30 @@ fail:
     return 0;
 }
 
+/* Normalised coordinates (A1): AABB centre of the used vertices at the origin, largest distance
+ * of a used vertex 1; w->vertices is a copy of m's. *scale (may be NULL) receives the factor. */
+static void normalise(const acd_mesh *m, acd_mesh *w, double *scale) {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t t = 0; t < 3 * m->ntriangles; t++)
+        for (int c = 0; c < 3; c++) {
+            double x = m->vertices[3 * (size_t)m->triangles[t] + c];
+            if (x < lo[c]) lo[c] = x;
+            if (x > hi[c]) hi[c] = x;
+        }
+    double cen[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])}, rad = 0;
+    for (size_t t = 0; t < 3 * m->ntriangles; t++) {
+        const double *p = m->vertices + 3 * (size_t)m->triangles[t];
+        double d = sqrt((p[0] - cen[0]) * (p[0] - cen[0]) + (p[1] - cen[1]) * (p[1] - cen[1]) +
+                        (p[2] - cen[2]) * (p[2] - cen[2]));
+        if (d > rad) rad = d;
+    }
+    if (rad > 0) {
+        if (scale) *scale = 1.0 / rad;
+        for (size_t v = 0; v < m->nvertices; v++)
+            for (int c = 0; c < 3; c++) w->vertices[3 * v + c] = (m->vertices[3 * v + c] - cen[c]) / rad;
+    }
+}
+
 /* One CoRiSe step on the submesh s: *nparts = 0 when s is final (no deep valley or flat hull),
  * else part[] holds the cut result. */
 static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t *part, size_t *nparts,
@@ -371,31 +395,12 @@ acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params
     size_t nge = 0;
     edge_count *ge = NULL;
     acd_status st = ACD_OK;
+    size_t done_faces = 0;
     if (!w.vertices || !map || !all || !l2g) goto nomem;
     memcpy(w.vertices, m->vertices, 3 * m->nvertices * sizeof *w.vertices);
     for (size_t v = 0; v < m->nvertices; v++) map[v] = UINT32_MAX;
     S->scale = 1.0;
-    if (prm.normalize) {
-        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        for (size_t t = 0; t < 3 * m->ntriangles; t++)
-            for (int c = 0; c < 3; c++) {
-                double x = m->vertices[3 * (size_t)m->triangles[t] + c];
-                if (x < lo[c]) lo[c] = x;
-                if (x > hi[c]) hi[c] = x;
-            }
-        double cen[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])}, rad = 0;
-        for (size_t t = 0; t < 3 * m->ntriangles; t++) {
-            const double *p = m->vertices + 3 * (size_t)m->triangles[t];
-            double d = sqrt((p[0] - cen[0]) * (p[0] - cen[0]) + (p[1] - cen[1]) * (p[1] - cen[1]) +
-                            (p[2] - cen[2]) * (p[2] - cen[2]));
-            if (d > rad) rad = d;
-        }
-        if (rad > 0) {
-            S->scale = 1.0 / rad;
-            for (size_t v = 0; v < m->nvertices; v++)
-                for (int c = 0; c < 3; c++) w.vertices[3 * v + c] = (m->vertices[3 * v + c] - cen[c]) / rad;
-        }
-    }
+    if (prm.normalize) normalise(m, &w, &S->scale);
     if (!(ge = global_edges(&w, &nge))) goto nomem;
     for (size_t f = 0; f < m->ntriangles; f++) all[f] = (uint32_t)f;
     uint32_t *first = malloc(m->ntriangles * sizeof *first);
@@ -438,6 +443,12 @@ acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params
             if (!push_part(&fin, cur.faces, cur.n, cur.depth)) {
                 free(cur.faces);
                 goto nomem;
+            }
+            done_faces += cur.n;
+            if (prm.progress && prm.progress(prm.progress_user, (double)done_faces / (double)m->ntriangles, "corise")) {
+                st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback after %zu of %zu facets",
+                              done_faces, m->ntriangles);
+                goto done;
             }
             continue;
         }
@@ -489,6 +500,80 @@ done:
     free(map);
     free(all);
     free(cutpart);
+    free(l2g);
+    free(ge);
+    return st;
+}
+
+/* Largest valley concavity of the (capped) submesh s, 0 when its hull is flat. */
+static acd_status max_valley_concavity(const acd_mesh *s, int clamp, double *out, acd_error *err) {
+    *out = 0;
+    acd_edge_graph g;
+    acd_corise_bridges b;
+    memset(&g, 0, sizeof g);
+    memset(&b, 0, sizeof b);
+    acd_status st = acd_edge_graph_from_mesh(s->vertices, s->nvertices, s->triangles, s->ntriangles, &g, err);
+    if (st == ACD_OK) st = acd_corise_bridges_compute_ex(s, &g, clamp, &b, err);
+    if (st == ACD_OK && b.hull_dim >= 3)
+        for (size_t i = 0; i < b.nbridges; i++)
+            if (isfinite(b.bridge[i].length) && b.bridge[i].concavity > *out) *out = b.bridge[i].concavity;
+    acd_corise_bridges_free(&b);
+    acd_edge_graph_free(&g);
+    return st;
+}
+
+acd_status acd_corise_parts_concavity(const acd_mesh *m, const acd_corise_params *params, const uint32_t *labels,
+                                      size_t nparts, double *conc, acd_error *err) {
+    if (!m || !labels || (nparts && !conc)) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
+    acd_corise_params prm = params ? *params : acd_corise_default_params();
+    if (m->ntriangles == 0) return acd_fail(err, ACD_ERR_DEGENERATE, "corise: the mesh has no facets");
+    if (m->ntriangles > UINT32_MAX / 3)
+        return acd_fail(err, ACD_ERR_UNSUPPORTED, "corise: %zu facets exceed the supported size", m->ntriangles);
+    for (size_t t = 0; t < 3 * m->ntriangles; t++)
+        if (m->triangles[t] >= m->nvertices)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "corise: triangle %zu uses vertex %u, but the mesh has %zu", t / 3,
+                            m->triangles[t], m->nvertices);
+    for (size_t f = 0; f < m->ntriangles; f++)
+        if (labels[f] >= nparts)
+            return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: face %zu has label %u, but there are %zu parts", f,
+                            labels[f], nparts);
+    for (size_t i = 0; i < 3 * m->nvertices; i++)
+        if (!isfinite(m->vertices[i]))
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "corise: vertex %zu has a non-finite coordinate", i / 3);
+    acd_mesh w = *m;
+    w.vertices = malloc(3 * (m->nvertices ? m->nvertices : 1) * sizeof *w.vertices);
+    uint32_t *map = malloc((m->nvertices ? m->nvertices : 1) * sizeof *map);
+    uint32_t *faces = malloc(m->ntriangles * sizeof *faces);
+    uint32_t *l2g = malloc(3 * m->ntriangles * sizeof *l2g);
+    size_t nge = 0;
+    edge_count *ge = NULL;
+    acd_status st = ACD_OK;
+    if (!w.vertices || !map || !faces || !l2g) goto nomem;
+    memcpy(w.vertices, m->vertices, 3 * m->nvertices * sizeof *w.vertices);
+    for (size_t v = 0; v < m->nvertices; v++) map[v] = UINT32_MAX;
+    if (prm.normalize) normalise(m, &w, NULL);
+    if (!(ge = global_edges(&w, &nge))) goto nomem;
+    for (size_t k = 0; k < nparts && st == ACD_OK; k++) {
+        size_t n = 0;
+        for (size_t f = 0; f < m->ntriangles; f++)
+            if (labels[f] == k) faces[n++] = (uint32_t)f;
+        conc[k] = 0;
+        if (!n) continue;
+        acd_mesh sub, aug;
+        if (!extract(&w, faces, n, map, l2g, &sub)) goto nomem;
+        int capped = cap_cut_holes(&sub, l2g, ge, nge, &aug);
+        acd_mesh_free(&sub);
+        if (!capped) goto nomem;
+        st = max_valley_concavity(&aug, prm.clamp_hull_depth, &conc[k], err);
+        acd_mesh_free(&aug);
+    }
+    goto done;
+nomem:
+    st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory measuring the parts of %zu facets", m->ntriangles);
+done:
+    free(w.vertices);
+    free(map);
+    free(faces);
     free(l2g);
     free(ge);
     return st;

@@ -26,6 +26,9 @@ typedef struct acd_corise_params {
     size_t max_depth;           /* safety cap on nested cuts (default 64) */
     int clamp_hull_depth;       /* not in the paper: cap valley concavity by the depth below the
                                    hull (acd_corise_bridges_compute_ex; default 0 = literal) */
+    acd_progress_fn progress;   /* optional: called after each part; fraction = facets in final
+                                   parts / all facets; non-zero return cancels */
+    void *progress_user;
 } acd_corise_params;
 
 acd_corise_params acd_corise_default_params(void);
@@ -44,5 +47,14 @@ typedef struct acd_corise_stats {
  * smallest facet. stats may be NULL. */
 acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params, uint32_t *labels,
                               acd_corise_stats *stats, acd_error *err);
+
+/* The valley test of the loop, re-run on a labelling: for each part k < nparts (the facets with
+ * labels[f] == k, in facet order) the part is extracted, the holes that separate it from the rest
+ * of the mesh are capped (as in the loop), and conc[k] receives the largest valley concavity of
+ * its bridges in normalised units (0 for a part with a flat hull or no valley), computed with
+ * params' normalisation and clamp_hull_depth. The loop's final parts pass this test with
+ * conc <= tau unless counted as unresolved. Labels >= nparts are ACD_ERR_INVALID_ARGUMENT. */
+acd_status acd_corise_parts_concavity(const acd_mesh *m, const acd_corise_params *params, const uint32_t *labels,
+                                      size_t nparts, double *conc, acd_error *err);
 
 #endif

@@ -1,0 +1,146 @@
+/* corise/segment_api: the public segmentation API (acd/segment.h) over the CoRiSe loop of
+ * corise/corise (Liu, Xi, Lien, CAD 2016, §3 and §5.2; spec corise.md §2.1, §2.10): parameters,
+ * per-part concavity (the loop's valley test re-run per part), per-part convex hulls
+ * (acd_hull_compute) and volumes. */
+#define _POSIX_C_SOURCE 200809L
+#include "acd/segment.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "acd/hull.h"
+#include "core/error.h"
+#include "corise/corise.h"
+
+acd_segment_params acd_segment_default_params(void) {
+    acd_segment_params p;
+    memset(&p, 0, sizeof p);
+    p.cookie = ACD_SEGMENT_PARAMS_COOKIE;
+    acd_corise_params c = acd_corise_default_params();
+    p.tau = c.tau;
+    p.alpha = c.cut.alpha;
+    p.concave_weight = c.cut.concave_weight;
+    p.clamp_hull_depth = 1; /* docs/corise.md, "Default of clamp_hull_depth" */
+    p.max_depth = c.max_depth;
+    return p;
+}
+
+void acd_segment_result_free(acd_segment_result *r) {
+    if (!r) return;
+    if (r->parts)
+        for (size_t k = 0; k < r->nparts; k++) acd_mesh_free(&r->parts[k].hull);
+    free(r->parts);
+    free(r->labels);
+    memset(r, 0, sizeof *r);
+}
+
+static double now_seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Hull of the vertices used by the faces labelled k into part->hull. pts: scratch of 9 n doubles. */
+static acd_status part_hull(const acd_mesh *m, const uint32_t *labels, uint32_t k, double *pts, acd_segment_part *part,
+                            acd_error *err) {
+    size_t n = 0;
+    for (size_t f = 0; f < m->ntriangles; f++)
+        if (labels[f] == k)
+            for (int c = 0; c < 3; c++) memcpy(pts + 3 * n++, m->vertices + 3 * (size_t)m->triangles[3 * f + c], 3 * sizeof *pts);
+    acd_hull h;
+    acd_status st = acd_hull_compute(pts, n, &h, err);
+    if (st != ACD_OK) {
+        acd_hull_free(&h);
+        return st;
+    }
+    part->hull_dim = h.dim;
+    if (h.dim == 3) {
+        part->hull_volume = h.volume;
+        part->hull.vertices = h.vertices;
+        part->hull.nvertices = h.nvertices;
+        part->hull.triangles = h.triangles;
+        part->hull.ntriangles = h.ntriangles;
+        h.vertices = NULL;
+        h.triangles = NULL;
+    }
+    acd_hull_free(&h);
+    return ACD_OK;
+}
+
+acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, acd_segment_result *out,
+                       acd_error *err) {
+    if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: NULL result");
+    memset(out, 0, sizeof *out);
+    if (!mesh) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: NULL mesh");
+    if (!params || params->cookie != ACD_SEGMENT_PARAMS_COOKIE)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT,
+                        "segment: params not initialised by acd_segment_default_params (cookie missing)");
+    if (!isfinite(params->tau) || params->tau < 0)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: tau %g must be finite and >= 0", params->tau);
+    if (!isfinite(params->alpha) || params->alpha < 0 || params->alpha > 1)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: alpha %g must be in [0, 1]", params->alpha);
+    if (!isfinite(params->concave_weight) || params->concave_weight <= 0)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: concave_weight %g must be finite and > 0",
+                        params->concave_weight);
+    if (params->max_depth == 0)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: max_depth must be at least 1");
+    double t0 = now_seconds();
+    acd_corise_params c = acd_corise_default_params();
+    c.tau = params->tau;
+    c.cut.alpha = params->alpha;
+    c.cut.concave_weight = params->concave_weight;
+    c.clamp_hull_depth = params->clamp_hull_depth;
+    c.max_depth = params->max_depth;
+    c.progress = params->progress;
+    c.progress_user = params->progress_user;
+    acd_corise_stats stats;
+    double *conc = NULL, *pts = NULL;
+    out->labels = malloc((mesh->ntriangles ? mesh->ntriangles : 1) * sizeof *out->labels);
+    if (!out->labels) goto nomem;
+    acd_status st = acd_corise_segment(mesh, &c, out->labels, &stats, err);
+    if (st != ACD_OK) goto fail;
+    out->nfaces = mesh->ntriangles;
+    out->tau = params->tau;
+    out->scale = stats.scale > 0 ? 1.0 / stats.scale : 1.0;
+    out->cuts = stats.cuts;
+    out->depth = stats.depth;
+    out->unresolved = stats.unresolved;
+    out->parts = calloc(stats.parts ? stats.parts : 1, sizeof *out->parts);
+    conc = malloc((stats.parts ? stats.parts : 1) * sizeof *conc);
+    pts = malloc(9 * mesh->ntriangles * sizeof *pts);
+    if (!out->parts || !conc || !pts) goto nomem;
+    out->nparts = stats.parts;
+    if ((st = acd_corise_parts_concavity(mesh, &c, out->labels, out->nparts, conc, err)) != ACD_OK) goto fail;
+    for (size_t f = 0; f < mesh->ntriangles; f++) {
+        acd_segment_part *p = &out->parts[out->labels[f]];
+        const uint32_t *T = mesh->triangles + 3 * f;
+        const double *a = mesh->vertices + 3 * (size_t)T[0], *b = mesh->vertices + 3 * (size_t)T[1],
+                     *d = mesh->vertices + 3 * (size_t)T[2];
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        double x[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        p->nfaces++;
+        p->area += 0.5 * sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        out->mesh_volume += (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                             a[2] * (b[0] * d[1] - b[1] * d[0])) / 6.0;
+    }
+    for (size_t k = 0; k < out->nparts; k++) {
+        acd_segment_part *p = &out->parts[k];
+        p->concavity_rel = conc[k];
+        p->concavity = conc[k] * out->scale;
+        if ((st = part_hull(mesh, out->labels, (uint32_t)k, pts, p, err)) != ACD_OK) goto fail;
+        out->hull_volume += p->hull_volume;
+    }
+    free(conc);
+    free(pts);
+    out->seconds = now_seconds() - t0;
+    return ACD_OK;
+nomem:
+    st = acd_fail(err, ACD_ERR_NOMEM, "segment: out of memory for a mesh of %zu faces", mesh->ntriangles);
+fail:
+    free(conc);
+    free(pts);
+    acd_segment_result_free(out);
+    return st;
+}

@@ -1,0 +1,215 @@
+/* Tests of the public segmentation API (acd/segment.h, src/corise/segment_api.c): a dumbbell
+ * splits into its two bulbs, a convex shape stays one part, every face is labelled and the
+ * parts cover the faces, per-part hulls enclose their faces, parts meet tau, output is bitwise
+ * deterministic, bad params are refused. */
+// ctest: TIMEOUT 600
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/segment.h"
+#include "shapes.h"
+
+static double sphere_r(double th, double ph, void *u) { (void)th, (void)ph, (void)u; return 1.0; }
+/* r = 1 - k sin^2(theta): two bulbs along z joined by a waist of radius 1 - k */
+static double waist_r(double th, double ph, void *u) {
+    (void)ph;
+    double k = *(double *)u, s = sin(th);
+    return 1.0 - k * s * s;
+}
+
+static void check_result(const acd_mesh *m, const acd_segment_result *r, double tau) {
+    assert_int_equal(r->nfaces, m->ntriangles);
+    size_t sum = 0;
+    for (size_t k = 0; k < r->nparts; k++) sum += r->parts[k].nfaces;
+    assert_int_equal(sum, m->ntriangles);
+    for (size_t f = 0; f < m->ntriangles; f++) assert_true(r->labels[f] < r->nparts);
+    /* parts numbered by their smallest face */
+    uint32_t next = 0;
+    for (size_t f = 0; f < m->ntriangles; f++) {
+        assert_true(r->labels[f] <= next);
+        if (r->labels[f] == next) next++;
+    }
+    for (size_t k = 0; k < r->nparts; k++) {
+        const acd_segment_part *p = &r->parts[k];
+        assert_true(p->nfaces > 0);
+        if (r->unresolved == 0) assert_true(p->concavity_rel <= tau);
+        assert_true(fabs(p->concavity - p->concavity_rel * r->scale) <= 1e-12 * (1 + p->concavity));
+        if (p->hull_dim == 3) {
+            assert_true(p->hull_volume > 0);
+            /* the hull encloses the part's vertices (planes from the triangles) */
+            for (size_t f = 0; f < m->ntriangles; f++) {
+                if (r->labels[f] != k) continue;
+                for (int c = 0; c < 3; c++) {
+                    const double *q = m->vertices + 3 * (size_t)m->triangles[3 * f + c];
+                    for (size_t t = 0; t < p->hull.ntriangles; t++) {
+                        const uint32_t *T = p->hull.triangles + 3 * t;
+                        const double *a = p->hull.vertices + 3 * (size_t)T[0], *b = p->hull.vertices + 3 * (size_t)T[1],
+                                     *d = p->hull.vertices + 3 * (size_t)T[2];
+                        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+                        double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+                        double s = n[0] * (q[0] - a[0]) + n[1] * (q[1] - a[1]) + n[2] * (q[2] - a[2]);
+                        assert_true(s <= 1e-9 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+                    }
+                }
+            }
+        }
+    }
+    double hv = 0;
+    for (size_t k = 0; k < r->nparts; k++) hv += r->parts[k].hull_volume;
+    assert_true(fabs(hv - r->hull_volume) <= 1e-12 * hv);
+    assert_true(r->seconds >= 0);
+}
+
+static void test_dumbbell_splits_in_two(void **state) {
+    (void)state;
+    double k = 0.7;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 32, 32, waist_r, &k));
+    acd_segment_params p = acd_segment_default_params();
+    p.tau = 0.1;
+    acd_segment_result r;
+    acd_error err;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_OK);
+    check_result(&m, &r, p.tau);
+    assert_int_equal(r.nparts, 2);
+    /* one bulb each side of the waist: faces away from the waist are labelled by the sign of z */
+    int lab[2] = {-1, -1};
+    size_t wrong = 0;
+    for (size_t f = 0; f < m.ntriangles; f++) {
+        double z = 0;
+        for (int c = 0; c < 3; c++) z += m.vertices[3 * (size_t)m.triangles[3 * f + c] + 2] / 3;
+        if (fabs(z) < 0.3) continue; /* near the waist: either side */
+        int side = z > 0;
+        if (lab[side] < 0) lab[side] = (int)r.labels[f];
+        wrong += r.labels[f] != (uint32_t)lab[side];
+    }
+    assert_int_equal(wrong, 0);
+    assert_true(lab[0] >= 0 && lab[1] >= 0 && lab[0] != lab[1]);
+    /* the hulls of the two bulbs hold less than the dumbbell's hull, more than the dumbbell */
+    assert_true(r.hull_volume > r.mesh_volume);
+    acd_segment_result_free(&r);
+    acd_mesh_free(&m);
+}
+
+static void test_convex_stays_one(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 24, 12, sphere_r, NULL));
+    acd_segment_params p = acd_segment_default_params();
+    acd_segment_result r;
+    acd_error err;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_OK);
+    check_result(&m, &r, p.tau);
+    assert_int_equal(r.nparts, 1);
+    assert_int_equal(r.cuts, 0);
+    /* one part: its hull is the sphere's polyhedron itself */
+    assert_true(fabs(r.hull_volume - r.mesh_volume) <= 1e-9 * r.mesh_volume);
+    assert_true(r.parts[0].concavity_rel <= 1e-9);
+    acd_segment_result_free(&r);
+    acd_mesh_free(&m);
+}
+
+static void test_cross_deterministic(void **state) {
+    (void)state;
+    /* a 3D cross of voxels: six arms of 2 cells around a centre cell, 5 x 5 x 5 */
+    unsigned char occ[125];
+    for (int z = 0; z < 5; z++)
+        for (int y = 0; y < 5; y++)
+            for (int x = 0; x < 5; x++) occ[(z * 5 + y) * 5 + x] = (x == 2) + (y == 2) + (z == 2) >= 2;
+    acd_mesh m;
+    assert_true(mg_voxels(&m, occ, 5, 5, 5));
+    acd_segment_params p = acd_segment_default_params();
+    p.tau = 0.1;
+    acd_segment_result a, b;
+    acd_error err;
+    assert_int_equal(acd_segment(&m, &p, &a, &err), ACD_OK);
+    assert_int_equal(acd_segment(&m, &p, &b, &err), ACD_OK);
+    check_result(&m, &a, p.tau);
+    assert_true(a.nparts >= 2);
+    assert_int_equal(a.nparts, b.nparts);
+    assert_memory_equal(a.labels, b.labels, m.ntriangles * sizeof *a.labels);
+    for (size_t k = 0; k < a.nparts; k++) {
+        assert_memory_equal(&a.parts[k].concavity, &b.parts[k].concavity, sizeof(double));
+        assert_memory_equal(&a.parts[k].hull_volume, &b.parts[k].hull_volume, sizeof(double));
+        assert_int_equal(a.parts[k].hull.ntriangles, b.parts[k].hull.ntriangles);
+        assert_memory_equal(a.parts[k].hull.vertices, b.parts[k].hull.vertices,
+                            3 * a.parts[k].hull.nvertices * sizeof(double));
+    }
+    acd_segment_result_free(&a);
+    acd_segment_result_free(&b);
+    acd_mesh_free(&m);
+}
+
+static int cancel_cb(void *u, double f, const char *s) {
+    (void)f, (void)s;
+    ++*(int *)u;
+    return 1;
+}
+
+static void test_bad_params(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 8, 4, sphere_r, NULL));
+    acd_segment_result r;
+    acd_error err;
+    acd_segment_params p;
+    memset(&p, 0, sizeof p); /* no cookie */
+    p.tau = 0.1;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(err.message, "cookie"));
+    assert_null(r.labels);
+    const double bad_tau[] = {-1, NAN, INFINITY};
+    for (int i = 0; i < 3; i++) {
+        p = acd_segment_default_params();
+        p.tau = bad_tau[i];
+        assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+        assert_non_null(strstr(err.message, "tau"));
+    }
+    p = acd_segment_default_params();
+    p.alpha = 1.5;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    p = acd_segment_default_params();
+    p.concave_weight = 0;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    p = acd_segment_default_params();
+    p.max_depth = 0;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    p = acd_segment_default_params();
+    assert_int_equal(acd_segment(NULL, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    assert_int_equal(acd_segment(&m, &p, NULL, &err), ACD_ERR_INVALID_ARGUMENT);
+    /* bad mesh: index out of range, NaN coordinate, no faces */
+    m.triangles[4] = (uint32_t)m.nvertices;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+    assert_non_null(strstr(err.message, "triangle 1"));
+    m.triangles[4] = 0;
+    double keep = m.vertices[5];
+    m.vertices[5] = NAN;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+    m.vertices[5] = keep;
+    size_t nt = m.ntriangles;
+    m.ntriangles = 0;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_DEGENERATE);
+    m.ntriangles = nt;
+    /* cancellation */
+    int calls = 0;
+    p.progress = cancel_cb;
+    p.progress_user = &calls;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_CANCELLED);
+    assert_int_equal(calls, 1);
+    assert_null(r.labels);
+    acd_segment_result_free(&r);
+    acd_mesh_free(&m);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_dumbbell_splits_in_two),
+        cmocka_unit_test(test_convex_stays_one),
+        cmocka_unit_test(test_cross_deterministic),
+        cmocka_unit_test(test_bad_params),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
