@@ -33,6 +33,8 @@ static void usage(FILE *f) {
             "  --json FILE         summary: per part concavity, volume, hull volume; the tree\n"
             "  --export DIR        for other tools: decomposition.obj, hulls/, parts/, summary.json,\n"
             "                      NAME.urdf (one collision per hull), NAME.xml (MuJoCo); --name NAME\n"
+            "  --max-hulls N       merge the cheapest adjacent parts (undo the splits of least concavity)\n"
+            "                      until at most N remain; the concavity reached is reported\n"
             "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
             "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
             "  --verify            check: part volumes add up to the input's, every part meets tau (or says\n"
@@ -68,6 +70,7 @@ static const char *leaf_reason_name(acd3d_leaf_reason r) {
     case ACD3D_LEAF_FLAT: return "flat";
     case ACD3D_LEAF_NO_CUT: return "no_cut";
     case ACD3D_LEAF_DEPTH: return "depth";
+    case ACD3D_LEAF_MERGED: return "merged";
     }
     return "unknown";
 }
@@ -153,10 +156,10 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
         if (n->first_child >= 0) {
             cJSON *pl = cJSON_AddArrayToObject(q, "cut_plane");
             for (int k = 0; k < 4; k++) cJSON_AddItemToArray(pl, cJSON_CreateNumber(n->cut_plane[k]));
-        } else {
-            cJSON_AddNumberToObject(q, "part", n->part);
-            cJSON_AddStringToObject(q, "leaf_reason", leaf_reason_name(n->leaf_reason));
         }
+        if (n->part >= 0) cJSON_AddNumberToObject(q, "part", n->part);
+        if (n->first_child < 0 || n->leaf_reason == ACD3D_LEAF_MERGED)
+            cJSON_AddStringToObject(q, "leaf_reason", leaf_reason_name(n->leaf_reason));
         cJSON_AddItemToArray(tree, q);
     }
     cJSON *stats = cJSON_AddObjectToObject(o, "stats");
@@ -217,7 +220,8 @@ static int verify(const acd3d_result *r, acd_error *err) {
         sum += v;
         if (n->leaf_reason == ACD3D_LEAF_TAU && p->concavity > r->tau * (1 + 1e-12) + 1e-12 * r->scale)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g", i, p->concavity, r->tau);
-        if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT && p->concavity > r->tau)
+        if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT &&
+            n->leaf_reason != ACD3D_LEAF_MERGED && p->concavity > r->tau)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g (%s)", i, p->concavity,
                             r->tau, leaf_reason_name(n->leaf_reason));
         /* inside its hull: every part vertex on the inner side of every hull facet plane */
@@ -283,12 +287,7 @@ int acd_cmd_3d(int argc, char **argv) {
             if (!val) break;
             model_name = argv[++i];
         } else if (!strcmp(a, "--max-hulls")) {
-            size_t n;
-            if (!acd_cli_parse_size("3d", a, val, &n)) return ACD_EXIT_USAGE;
-            if (n > 0) {
-                fprintf(stderr, "acd 3d: --max-hulls (merging parts) is not implemented yet in this build\n");
-                return ACD_EXIT_USAGE;
-            }
+            if (!acd_cli_parse_size("3d", a, val, &p.max_hulls)) return ACD_EXIT_USAGE;
             i++;
         } else if (!strcmp(a, "--max-hull-vertices")) {
             if (!acd_cli_parse_size("3d", a, val, &p.max_hull_vertices)) return ACD_EXIT_USAGE;

@@ -55,7 +55,7 @@ static void check_solid(const acd_mesh *in, const acd3d_result *r, const acd3d_p
         assert_true(fabs(c - r->parts[i].concavity) <= 1e-12 * (1 + c));
         if (nd->leaf_reason == ACD3D_LEAF_TAU) assert_true(c <= r->tau + 1e-9);
         else assert_true(nd->leaf_reason == ACD3D_LEAF_FLAT || nd->leaf_reason == ACD3D_LEAF_NO_CUT ||
-                         nd->leaf_reason == ACD3D_LEAF_DEPTH);
+                         nd->leaf_reason == ACD3D_LEAF_DEPTH || nd->leaf_reason == ACD3D_LEAF_MERGED);
     }
     assert_true(fabs(sum - vin) <= 1e-9 * vin);
 }
@@ -157,6 +157,22 @@ static void test_threads_and_hull_budget(void **state) {
         acd_hull_free(&h);
     }
     acd3d_result_free(&rb);
+    /* max_hulls: at most that many parts, still a partition; the merged parts are the nodes
+     * whose splits were undone, smallest concavity first */
+    p.max_hull_vertices = 0;
+    for (size_t cap = 1; cap <= 3; cap++) {
+        p.max_hulls = cap;
+        assert_int_equal(acd3d_decompose(&m, &p, &rb, &err), ACD_OK);
+        assert_true(rb.nparts <= cap);
+        check_solid(&m, &rb, &p);
+        if (cap == 1) {
+            assert_int_equal(rb.nparts, 1);
+            assert_true(fabs(rb.max_concavity - rb.nodes[0].concavity) <= 0); /* back to the input */
+        }
+        assert_true(rb.max_concavity >= r[0].max_concavity); /* merging never lowers concavity */
+        acd3d_result_free(&rb);
+    }
+    p.max_hulls = 0;
     for (int i = 0; i < 3; i++) acd3d_result_free(&r[i]);
     p.max_hull_vertices = 3;
     assert_int_equal(acd3d_decompose(&m, &p, &rb, &err), ACD_ERR_INVALID_ARGUMENT);

@@ -39,8 +39,9 @@ typedef struct acd3d_params {
     double eps_ratio;         /* bridge clustering threshold eps = eps_ratio * tau (default 0.5) */
     double delta_ratio;       /* knot threshold delta = delta_ratio * tau (default 0.1) */
     acd3d_weight weight;      /* cut weight (default ratio) */
-    size_t max_hulls;         /* 0: no limit (merging parts down to a count is not implemented yet:
-                                 a non-zero value is ACD_ERR_UNSUPPORTED) */
+    size_t max_hulls;         /* 0: no limit; else the cheapest adjacent parts are merged (a split is
+                                 undone, smallest parent concavity first) until at most this many
+                                 remain; result.max_concavity is the concavity reached */
     size_t max_hull_vertices; /* 0: no limit; else (>= 4) each hull is replaced, when it has more
                                  vertices, by an enclosing polytope with at most this many */
     int threads;              /* 0: as many as cores (OpenMP); results are identical for any count */
@@ -60,7 +61,9 @@ typedef enum acd3d_leaf_reason {
     ACD3D_LEAF_TAU,           /* concavity <= tau */
     ACD3D_LEAF_FLAT,          /* no volume (solid) or flat (surface): convex by definition */
     ACD3D_LEAF_NO_CUT,        /* no cut could split it further (the concavity stays above tau) */
-    ACD3D_LEAF_DEPTH          /* max_depth reached */
+    ACD3D_LEAF_DEPTH,         /* max_depth reached */
+    ACD3D_LEAF_MERGED         /* a split node made a part again by max_hulls (its children are dropped:
+                                 leaf_reason NONE, part -1) */
 } acd3d_leaf_reason;
 
 typedef struct acd3d_node {

@@ -304,8 +304,6 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "tau must be a finite number >= 0");
     if (params->max_hull_vertices > 0 && params->max_hull_vertices < 4)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "max_hull_vertices must be 0 (no limit) or at least 4");
-    if (params->max_hulls > 0)
-        return acd_fail(err, ACD_ERR_UNSUPPORTED, "max_hulls (merging parts) is not implemented yet");
     if (params->mode != ACD3D_SOLID && params->mode != ACD3D_SURFACE)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown mode %d", (int)params->mode);
     int solid = params->mode == ACD3D_SOLID;
@@ -411,8 +409,8 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
                 t.a[t.n - 1].cache = choice->pieces[k];
                 choice->pieces[k].valid = 0;
             }
-            /* the interior node's mesh is no longer needed */
-            acd_mesh_free(&t.a[n].mesh);
+            /* the interior node's mesh is no longer needed, unless parts may be merged back */
+            if (!params->max_hulls) acd_mesh_free(&t.a[n].mesh);
         }
         for (size_t j = 0; j < b1 - b0; j++) choice_free(&wk[j].choice);
         free(wk);
@@ -420,7 +418,38 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         i = b1;
     }
 
-    /* results: nodes, parts (leaves in node order) with hulls */
+    /* max_hulls: merge the cheapest adjacent parts. Siblings are adjacent (they share their
+     * parent's cut), and their union is their parent, whose concavity is known: collapse the
+     * node whose children are all leaves and whose concavity is smallest (lowest index on
+     * ties), until at most max_hulls parts remain. */
+    if (params->max_hulls > 0)
+        while (nleaves > params->max_hulls) {
+            size_t best = SIZE_MAX;
+            for (size_t n = 0; n < t.n; n++) {
+                const acd3d_node *nd = &t.a[n].node;
+                if (nd->first_child < 0 || nd->leaf_reason == ACD3D_LEAF_MERGED) continue;
+                int all_leaves = 1;
+                for (int k = 0; k < nd->nchildren && all_leaves; k++) {
+                    const acd3d_node *c = &t.a[nd->first_child + k].node;
+                    all_leaves = c->leaf_reason == ACD3D_LEAF_MERGED || (c->first_child < 0 && c->leaf_reason != ACD3D_LEAF_NONE);
+                }
+                if (all_leaves && (best == SIZE_MAX || nd->concavity < t.a[best].node.concavity)) best = n;
+            }
+            if (best == SIZE_MAX) break;
+            acd3d_node *nd = &t.a[best].node;
+            for (int k = 0; k < nd->nchildren; k++) {
+                work_node *c = &t.a[nd->first_child + k];
+                acd_mesh_free(&c->mesh);
+                c->node.leaf_reason = ACD3D_LEAF_NONE; /* dropped: merged into its parent */
+                c->node.part = -1;
+            }
+            nleaves -= (size_t)nd->nchildren - 1;
+            nd->leaf_reason = ACD3D_LEAF_MERGED;
+        }
+    for (size_t n = 0; n < t.n; n++)
+        if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
+
+    /* results: nodes, parts (leaves and merged nodes, in node order) with hulls */
     out->nodes = calloc(t.n, sizeof *out->nodes);
     out->parts = calloc(nleaves ? nleaves : 1, sizeof *out->parts);
     if (!out->nodes || !out->parts) {
@@ -430,7 +459,9 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     out->nnodes = t.n;
     for (size_t i = 0; i < t.n; i++) {
         out->nodes[i] = t.a[i].node;
-        if (t.a[i].node.first_child >= 0) continue;
+        int is_part = t.a[i].node.leaf_reason == ACD3D_LEAF_MERGED ||
+                      (t.a[i].node.first_child < 0 && t.a[i].node.leaf_reason != ACD3D_LEAF_NONE);
+        if (!is_part) continue;
         acd3d_part *p = &out->parts[out->nparts];
         p->mesh = t.a[i].mesh;
         memset(&t.a[i].mesh, 0, sizeof t.a[i].mesh);
