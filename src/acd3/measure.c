@@ -203,7 +203,7 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
             double *bestd = malloc(nr * sizeof *bestd), *worst = malloc(nr * sizeof *worst);
             if (!bestd || !worst) {
                 free(bestd);
-            free(worst);
+                free(worst);
                 st = acd_fail(err, ACD_ERR_NOMEM, "out of memory labelling pockets");
                 goto fail;
             }
