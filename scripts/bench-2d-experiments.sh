@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The one command for the 2D experiments of the dissertation (IV.D) and the 2D peers:
+#   bash scripts/bench-2d-experiments.sh
+# installs libcgal-dev and npm poly-decomp when missing, builds bench_2d_experiments and the CGAL
+# harness, runs the sweeps, MCD/HM and the peers on the same polygons, and writes
+# docs/results/2d-experiments.md with the SVG plots under docs/results/img/.
+# Environment: DATA (default ../shared/data/polygons-lien), PEER_TIMEOUT seconds per exhaustive
+# peer run (default 20), OUT (default build/exper2d). See docs/experiments-2d.md.
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+cd "$ROOT"
+DATA=${DATA:-$ROOT/../shared/data/polygons-lien}
+OUT=${OUT:-$ROOT/build/exper2d}
+PEER_TIMEOUT=${PEER_TIMEOUT:-20}
+PEERS=$ROOT/bench/peers
+mkdir -p "$OUT"
+
+# --- dependencies (bench only, not CI) ---
+if [ ! -d /usr/include/CGAL ]; then
+  echo "installing libcgal-dev" >&2
+  SUDO=; [ "$(id -u)" -ne 0 ] && SUDO=sudo
+  $SUDO apt-get install -y --no-install-recommends libcgal-dev >&2 || echo "libcgal-dev not installed: CGAL peers skipped" >&2
+fi
+if [ ! -d "$PEERS/node_modules/poly-decomp" ] && command -v npm >/dev/null; then
+  echo "installing poly-decomp into bench/peers/node_modules" >&2
+  (cd "$PEERS" && npm install --no-save --no-package-lock --silent poly-decomp >&2) || echo "npm install failed: poly-decomp skipped" >&2
+fi
+
+# --- build ---
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build build -j2 --target bench_2d_experiments >/dev/null
+BENCH=$ROOT/build/bench/bench_2d_experiments
+CGAL_BIN=$OUT/cgal_partition
+if [ -d /usr/include/CGAL ]; then
+  g++ -O2 -std=c++17 -o "$CGAL_BIN" "$PEERS/cgal_partition.cpp" -lgmp -lmpfr || CGAL_BIN=
+else
+  CGAL_BIN=
+fi
+
+# --- acd sweeps, MCD, HM ---
+"$BENCH" --data "$DATA" --out "$OUT"
+
+# --- peers on the same polygons ---
+echo "model,peer,status,pieces,cpu_s,covered,verify" > "$OUT/peers.csv"
+tail -n +2 "$OUT/models.csv" | while IFS=, read -r model file n notches holes; do
+  poly=$OUT/polys/$model.txt
+  run_peer() { # name timeout command...
+    local name=$1 to=$2; shift 2
+    local pieces=$OUT/pieces-$model-$(echo "$name" | tr ' /' '__').txt line rc=0
+    line=$(timeout "$to" "$@" "$poly" "$pieces" 2>/dev/null) || rc=$?
+    if [ $rc -eq 124 ]; then echo "$model,$name,timeout (>${to} s),,,," >> "$OUT/peers.csv"; return; fi
+    if [ $rc -ne 0 ]; then echo "$model,$name,error (exit $rc),,,," >> "$OUT/peers.csv"; return; fi
+    local cpu=${line##*,}
+    local chk
+    chk=$("$BENCH" --check "$DATA/$file.poly" "$pieces") || { echo "$model,$name,check failed,,,," >> "$OUT/peers.csv"; return; }
+    IFS=, read -r np ia pa cov ver <<< "$chk"
+    echo "$model,$name,ok,$np,$cpu,$cov,$ver" >> "$OUT/peers.csv"
+  }
+  if [ -d "$PEERS/node_modules/poly-decomp" ]; then
+    run_peer "poly-decomp quickDecomp" 120 env NODE_PATH="$PEERS/node_modules" node "$PEERS/polydecomp.js" quick
+    run_peer "poly-decomp decomp" "$PEER_TIMEOUT" env NODE_PATH="$PEERS/node_modules" node "$PEERS/polydecomp.js" exact
+  fi
+  if [ -n "$CGAL_BIN" ]; then
+    run_peer "CGAL approx (HM)" 120 "$CGAL_BIN" approx
+    run_peer "CGAL greene_approx" 120 "$CGAL_BIN" greene
+    run_peer "CGAL optimal" "$PEER_TIMEOUT" "$CGAL_BIN" optimal
+  fi
+  echo "peers: $model done" >&2
+done
+
+MODEL=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
+MACHINE="Machine: $(nproc) cores online, $MODEL; load average $(cut -d' ' -f1 /proc/loadavg) at the end of the run; $(date -u '+%Y-%m-%d %H:%M UTC'); g++ $(g++ -dumpversion), node $(node --version 2>/dev/null || echo none), CGAL $(grep -m1 'define CGAL_VERSION ' /usr/include/CGAL/version.h 2>/dev/null | awk '{print $3}'), poly-decomp $(node -p "require('$PEERS/node_modules/poly-decomp/package.json').version" 2>/dev/null || echo none)."
+python3 "$ROOT/bench/bench_2d_experiments_report.py" "$OUT" "$ROOT/docs/results/2d-experiments.md" "$ROOT/docs/results/img" "$MACHINE"
+echo "wrote docs/results/2d-experiments.md and docs/results/img/2d-exp-*.svg" >&2
