@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "acd/segment.h"
+#include "corise/corise.h"
 #include "shapes.h"
 
 static double sphere_r(double th, double ph, void *u) { (void)th, (void)ph, (void)u; return 1.0; }
@@ -88,6 +89,20 @@ static void test_dumbbell_splits_in_two(void **state) {
     }
     assert_int_equal(wrong, 0);
     assert_true(lab[0] >= 0 && lab[1] >= 0 && lab[0] != lab[1]);
+    /* the valley test re-run per part: the two parts pass, the whole dumbbell as one part does not */
+    acd_corise_params c = acd_corise_default_params();
+    c.clamp_hull_depth = p.clamp_hull_depth;
+    double conc[2];
+    assert_int_equal(acd_corise_parts_concavity(&m, &c, r.labels, 2, conc, &err), ACD_OK);
+    assert_memory_equal(&conc[0], &r.parts[0].concavity_rel, sizeof(double));
+    assert_memory_equal(&conc[1], &r.parts[1].concavity_rel, sizeof(double));
+    uint32_t *one = calloc(m.ntriangles, sizeof *one);
+    assert_non_null(one);
+    assert_int_equal(acd_corise_parts_concavity(&m, &c, one, 1, conc, &err), ACD_OK);
+    assert_true(conc[0] > p.tau);
+    one[3] = 1; /* label out of range */
+    assert_int_equal(acd_corise_parts_concavity(&m, &c, one, 1, conc, &err), ACD_ERR_INVALID_ARGUMENT);
+    free(one);
     /* the hulls of the two bulbs hold less than the dumbbell's hull, more than the dumbbell */
     assert_true(r.hull_volume > r.mesh_volume);
     acd_segment_result_free(&r);
