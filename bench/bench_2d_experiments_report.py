@@ -275,26 +275,38 @@ w("poly-decomp (npm): `quickDecomp` (Bayazit's heuristic, recursion capped at 10
   "Time ratio = the peer's CPU time over acd's (SL, tau = 0) in this run; all three use process CPU time "
   "around the decomposition call only (node: process.cpuUsage; C++: std::clock).")
 w("")
-w("| model | method | pieces | CPU s | time / acd(tau=0) | covered | verify |")
-w("|---|---|---:|---:|---:|---:|---|")
+w("The verifier checks in the order simple, counterclockwise, inside the input, pairwise overlap, areas; "
+  "so \"areas do not add up\" means the pieces lie inside the input without overlapping and leave part of "
+  "it uncovered (a partial cover). Column overlap: from the verifier's pairwise check.")
+w("")
+
+def overlap(ver):
+    if ver in ("pass", "areas do not add up"):
+        return "no"
+    if ver == "overlapping components":
+        return "yes"
+    return "not reached"
+
+w("| model | method | pieces | CPU s | time / acd(tau=0) | covered | overlap | verify |")
+w("|---|---|---:|---:|---:|---:|---|---|")
 for model in model_names:
     at = get(model, "sl", 0.0, "cpu_s")
     ac = get(model, "sl", 0.0, "components")
     av = next((r["verified"] for r in sweep if r["model"] == model and r["measure"] == "sl" and float(r["tau"]) == 0), "-")
-    w(f"| {model} | acd SL tau=0 | {ac or 0:.0f} | {at or 0:.4g} | 1 | 1.000000 | {av} (acd_verify2d_result) |")
+    w(f"| {model} | acd SL tau=0 | {ac or 0:.0f} | {at or 0:.4g} | 1 | 1.000000 | no | {av} (acd_verify2d_result) |")
     for r in exact:
         if r["model"] == model and r["pieces"]:
             t = fnum(r["cpu_s"])
             w(f"| {model} | acd {r['method'].upper()} (exact2d) | {r['pieces']} | {t:.4g} | "
-              f"{(t/at if at else 0):.2f} | 1.000000 | {r['verified']} (acd_exact2d_verify) |")
+              f"{(t/at if at else 0):.2f} | 1.000000 | no | {r['verified']} (acd_exact2d_verify) |")
     for r in peers:
         if r["model"] != model:
             continue
         t = fnum(r["cpu_s"])
         if r["status"] != "ok":
-            w(f"| {model} | {r['peer']} | - | - | - | - | {r['status']} |")
+            w(f"| {model} | {r['peer']} | - | - | - | - | - | {r['status']} |")
             continue
-        w(f"| {model} | {r['peer']} | {r['pieces']} | {t:.4g} | {(t/at if at else 0):.2f} | {r['covered']} | {r['verify']} |")
+        w(f"| {model} | {r['peer']} | {r['pieces']} | {t:.4g} | {(t/at if at else 0):.2f} | {r['covered']} | {overlap(r['verify'])} | {r['verify']} |")
 w("")
 with open(md_path, "w") as f:
     f.write("\n".join(L_) + "\n")

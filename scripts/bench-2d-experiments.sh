@@ -4,14 +4,16 @@
 # installs libcgal-dev and npm poly-decomp when missing, builds bench_2d_experiments and the CGAL
 # harness, runs the sweeps, MCD/HM and the peers on the same polygons, and writes
 # docs/results/2d-experiments.md with the SVG plots under docs/results/img/.
-# Environment: DATA (default ../shared/data/polygons-lien), PEER_TIMEOUT seconds per exhaustive
-# peer run (default 20), OUT (default build/exper2d). See docs/experiments-2d.md.
+# Environment: DATA (default ../shared/data/polygons-lien), PEER_TIMEOUT seconds for poly-decomp's
+# exhaustive decomp (default 20), CGAL_OPTIMAL_TIMEOUT for CGAL's optimal partition (default 60),
+# OUT (default build/exper2d). See docs/experiments-2d.md.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 cd "$ROOT"
 DATA=${DATA:-$ROOT/../shared/data/polygons-lien}
 OUT=${OUT:-$ROOT/build/exper2d}
 PEER_TIMEOUT=${PEER_TIMEOUT:-20}
+CGAL_OPTIMAL_TIMEOUT=${CGAL_OPTIMAL_TIMEOUT:-60}
 PEERS=$ROOT/bench/peers
 mkdir -p "$OUT"
 
@@ -63,7 +65,7 @@ tail -n +2 "$OUT/models.csv" | while IFS=, read -r model file n notches holes; d
   if [ -n "$CGAL_BIN" ]; then
     run_peer "CGAL approx (HM)" 120 "$CGAL_BIN" approx
     run_peer "CGAL greene_approx" 120 "$CGAL_BIN" greene
-    run_peer "CGAL optimal" "$PEER_TIMEOUT" "$CGAL_BIN" optimal
+    run_peer "CGAL optimal" "$CGAL_OPTIMAL_TIMEOUT" "$CGAL_BIN" optimal
   fi
   echo "peers: $model done" >&2
 done
