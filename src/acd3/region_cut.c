@@ -6,65 +6,15 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "geom3/bvh.h"
 
 typedef struct region {
     size_t piece;
     double key[3];      /* lexicographically smallest vertex: the same point on both sides */
     size_t nverts;      /* with key, identifies the region across the two sides */
-    double dist;        /* distance from x to the region's triangles */
+    double dist;        /* squared distance from x to the region's triangles */
     int side;
 } region;
-
-/* Distance from p to triangle abc (Ericson's closest-point regions). */
-static double point_triangle_distance(const double p[3], const double a[3], const double b[3], const double c[3]) {
-    double ab[3], ac[3], ap[3], q[3];
-    for (int k = 0; k < 3; k++) ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k];
-#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
-    double d1 = DOT(ab, ap), d2 = DOT(ac, ap);
-    if (d1 <= 0 && d2 <= 0) {
-        memcpy(q, a, sizeof q);
-        goto out;
-    }
-    double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
-    double d3 = DOT(ab, bp), d4 = DOT(ac, bp);
-    if (d3 >= 0 && d4 <= d3) {
-        memcpy(q, b, sizeof q);
-        goto out;
-    }
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        double v = d1 / (d1 - d3);
-        for (int k = 0; k < 3; k++) q[k] = a[k] + v * ab[k];
-        goto out;
-    }
-    double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-    double d5 = DOT(ab, cp), d6 = DOT(ac, cp);
-    if (d6 >= 0 && d5 <= d6) {
-        memcpy(q, c, sizeof q);
-        goto out;
-    }
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        double w = d2 / (d2 - d6);
-        for (int k = 0; k < 3; k++) q[k] = a[k] + w * ac[k];
-        goto out;
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        for (int k = 0; k < 3; k++) q[k] = b[k] + w * (c[k] - b[k]);
-        goto out;
-    }
-    {
-        double denom = 1.0 / (va + vb + vc);
-        double v = vb * denom, w = vc * denom;
-        for (int k = 0; k < 3; k++) q[k] = a[k] + ab[k] * v + ac[k] * w;
-    }
-out:;
-    double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
-    return sqrt(DOT(d, d));
-#undef DOT
-}
 
 /* Orders by the leading uint64_t key (edge keys). */
 static int cmp_u64(const void *a, const void *b) {
@@ -172,7 +122,8 @@ static acd_status piece_regions(const acd_cut_piece *pc, size_t piece, const dou
             if (lex_less(p[k], r->key)) memcpy(r->key, p[k], sizeof r->key);
         }
         r->nverts += 3; /* corner count: equal on both sides since the caps mirror each other */
-        double d = point_triangle_distance(x, p[0], p[1], p[2]);
+        double q[3];
+        double d = acd_closest_point_triangle(x, p[0], p[1], p[2], q); /* squared: only compared */
         if (d < r->dist) r->dist = d;
     }
     free(par);
