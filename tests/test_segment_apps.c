@@ -1,10 +1,12 @@
 /* Applications of CoRiSe (Liu, Xi, Lien, CAD 2016, §7; spec corise.md §5), as tests:
  *  - hulls for physics (§7.1): the convex hulls of the parts stand in for the mesh. Asserted: every
- *    mesh vertex lies in the hull of each part it belongs to (so the surface is covered by the union
- *    of hulls: each face lies in its part's hull by convexity), decided exactly with acd_orient3d on
- *    the hull's triangles; the volume coverage |M n U| / |M| (acd_eval_hulls) is measured and
- *    reported, and asserted >= 0.999 only where it holds by construction (the dumbbell, whose cut
- *    loop bounds a disc inside both halves' hulls; docs/corise.md, "Applications").
+ *    vertex of every face lies in its part's hull (so the surface is in the union of hulls: each face
+ *    lies in its part's hull by convexity), within ACD_TOL_REL_DIST x diagonal; how many exactly
+ *    (acd_orient3d against the hull's triangles) is reported. The volume coverage |M n U| / |M|
+ *    (acd_eval_hulls) is measured and reported; it is asserted >= 0.999 only on the dumbbell, whose
+ *    cut loop bounds a disc inside both halves' hulls, and shown < 0.9 on a sphere labelled into six
+ *    cube patches (the union of surface-patch hulls need not contain the solid; docs/corise.md,
+ *    "Applications").
  *  - model repair (§7.3, Fig. 15): 45 % of a real mesh's facets deleted (fixed seed), the rest
  *    segmented, once deleted uniformly at random and once as holes grown over shared edges.
  *    Asserted: it finishes, labels every face, every part is edge-connected and parts are at least
@@ -233,6 +235,61 @@ static void test_physics_dumbbell(void **state) {
     acd_mesh_free(&m);
 }
 
+static double unit_r(double th, double ph, void *u) { (void)th, (void)ph, (void)u; return 1.0; }
+
+/* Why volume coverage is not asserted on real meshes: a sphere labelled by hand into the six
+ * patches of a cube projected onto it (face centroid's dominant axis and sign). Every patch is
+ * edge-connected and its hull encloses its faces, yet the six hulls are shallow caps and the
+ * centre lies in none (exactly: outside some facet of each). */
+static void test_patch_hulls_miss_interior(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 32, 32, unit_r, NULL));
+    acd_segment_result r = {.nfaces = m.ntriangles, .nparts = 6};
+    r.labels = malloc(m.ntriangles * sizeof *r.labels);
+    r.parts = calloc(6, sizeof *r.parts);
+    assert_true(r.labels && r.parts);
+    for (size_t f = 0; f < m.ntriangles; f++) {
+        double c[3] = {0, 0, 0};
+        for (int j = 0; j < 3; j++)
+            for (int a = 0; a < 3; a++) c[a] += m.vertices[3 * m.triangles[3 * f + j] + a];
+        int best = 0;
+        for (int a = 1; a < 3; a++)
+            if (fabs(c[a]) > fabs(c[best])) best = a;
+        r.labels[f] = (uint32_t)(2 * best + (c[best] < 0));
+        r.parts[r.labels[f]].nfaces++;
+    }
+    size_t ncomp;
+    check_labels(&m, &r, &ncomp);
+    assert_int_equal(ncomp, 1);
+    acd_hull *h = part_hulls(&m, &r);
+    size_t exact, flat, checked = check_surface_covered(&m, &r, h, &exact, &flat);
+    const double centre[3] = {0, 0, 0};
+    for (size_t k = 0; k < 6; k++) {
+        assert_int_equal(h[k].dim, 3);
+        int outside = 0;
+        for (size_t t = 0; t < h[k].ntriangles && !outside; t++) {
+            const uint32_t *T = h[k].triangles + 3 * t;
+            outside = acd_orient3d(h[k].vertices + 3 * T[0], h[k].vertices + 3 * T[1], h[k].vertices + 3 * T[2],
+                                   centre) < 0;
+        }
+        assert_true(outside);
+    }
+    acd_eval_params ep = acd_eval_default_params();
+    ep.samples = 100000;
+    ep.surface_samples = 10000;
+    acd_eval_report rep;
+    acd_error err;
+    assert_int_equal(acd_eval_hulls(&m, h, 6, &ep, &rep, &err), ACD_OK);
+    print_message("[  INFO    ] sphere as six cube patches: vertices in their part's hull %zu of %zu exactly; volume "
+                  "coverage %.4f, hull sum / sphere %.4f\n",
+                  exact, checked, rep.coverage, rep.hull_volume_sum / rep.mesh_volume);
+    assert_true(rep.coverage < 0.9);
+    free_hulls(h, 6);
+    free(r.labels), free(r.parts);
+    acd_mesh_free(&m);
+}
+
 static int load(acd_mesh *m, const char *name) {
     char path[1024];
     if (!tu_mesh_data(path, sizeof path, name)) return 0;
@@ -395,6 +452,7 @@ static void test_damaged_dumbbell(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_physics_dumbbell),
+        cmocka_unit_test(test_patch_hulls_miss_interior),
         cmocka_unit_test(test_damaged_dumbbell),
         cmocka_unit_test(test_physics_real),
         cmocka_unit_test(test_damaged_real),
