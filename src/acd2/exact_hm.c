@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/union_find.h"
 #include "core/predicates.h"
 #include "geom2/triangulate.h"
 
@@ -45,14 +46,6 @@ static int cmp_key(const void *x, const void *y) {
     if (p->a != q->a) return p->a < q->a ? -1 : 1;
     if (p->b != q->b) return p->b < q->b ? -1 : 1;
     return (p->he > q->he) - (p->he < q->he);
-}
-
-static size_t uf_find(size_t *par, size_t x) {
-    while (par[x] != x) {
-        par[x] = par[par[x]];
-        x = par[x];
-    }
-    return x;
 }
 
 acd_status acd_exact_hm(const acd_polygon *p, acd_index_pieces *out, acd_error *err) {
@@ -102,7 +95,7 @@ acd_status acd_exact_hm(const acd_polygon *p, acd_index_pieces *out, acd_error *
     for (size_t h = 0; h < nh; h++) {
         size_t t = twin[h];
         if (t == NONE || t < h || dead[h]) continue;
-        size_t fa = uf_find(par, h / 3), fb = uf_find(par, t / 3);
+        size_t fa = acd_uf_find_z(par, h / 3), fb = acd_uf_find_z(par, t / 3);
         if (fa == fb) continue;
         const double *u = V2(&pts[org[h]]), *v = V2(&pts[dst[h]]);
         if (acd_orient2d_sign(V2(&pts[org[prv[h]]]), u, V2(&pts[dst[nxt[t]]])) < 0) continue;

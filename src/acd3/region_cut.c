@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/union_find.h"
 #include "geom3/bvh.h"
 
 typedef struct region {
@@ -35,11 +36,6 @@ static int lex_less(const double *a, const double *b) {
     for (int k = 0; k < 3; k++)
         if (a[k] != b[k]) return a[k] < b[k];
     return 0;
-}
-
-static size_t uf_find(size_t *p, size_t x) {
-    while (p[x] != x) x = p[x] = p[p[x]];
-    return x;
 }
 
 /* Cap regions of one piece: connected components of its cap triangles across shared edges.
@@ -83,14 +79,11 @@ static acd_status piece_regions(const acd_cut_piece *pc, size_t piece, const dou
     for (size_t i = 0; i < n; i++) arr[i] = (kt){key[i], tri[i]};
     qsort(arr, n, sizeof *arr, cmp_u64);
     for (size_t i = 1; i < n; i++)
-        if (arr[i].k == arr[i - 1].k) {
-            size_t ra = uf_find(par, arr[i].t), rb = uf_find(par, arr[i - 1].t);
-            if (ra != rb) par[ra > rb ? ra : rb] = ra < rb ? ra : rb;
-        }
+        if (arr[i].k == arr[i - 1].k) acd_uf_union_z(par, arr[i].t, arr[i - 1].t);
     free(arr), free(key), free(tri);
     /* one region per root */
     for (size_t t = 0; t < nt; t++) {
-        if (!pc->is_cap[t] || uf_find(par, t) != t) continue;
+        if (!pc->is_cap[t] || acd_uf_find_z(par, t) != t) continue;
         if (*nreg == *capreg) {
             size_t nc = *capreg ? 2 * *capreg : 16;
             region *nr = realloc(*regs, nc * sizeof *nr);
@@ -112,7 +105,7 @@ static acd_status piece_regions(const acd_cut_piece *pc, size_t piece, const dou
     }
     for (size_t t = 0; t < nt; t++) {
         if (!pc->is_cap[t]) continue;
-        size_t root = uf_find(par, t);
+        size_t root = acd_uf_find_z(par, t);
         uint32_t ri = region_of[root];
         region_of[t] = ri;
         region *r = &(*regs)[ri];
@@ -267,8 +260,7 @@ acd_status acd3_restrict_cut(acd_cut_result *cut, const double x[3], acd_error *
             if (regs[q].side > 0 || regs[q].nverts != regs[r].nverts || memcmp(regs[q].key, regs[r].key, sizeof regs[r].key))
                 continue;
             drop[r] = drop[q] = 1;
-            size_t a = uf_find(par, regs[r].piece), b = uf_find(par, regs[q].piece);
-            if (a != b) par[a > b ? a : b] = a < b ? a : b;
+            acd_uf_union_z(par, regs[r].piece, regs[q].piece);
             glued++;
             break;
         }
@@ -284,10 +276,10 @@ acd_status acd3_restrict_cut(acd_cut_result *cut, const double x[3], acd_error *
     }
     size_t nout = 0;
     for (size_t i = 0; i < np && st == ACD_OK; i++) {
-        if (uf_find(par, i) != i) continue;
+        if (acd_uf_find_z(par, i) != i) continue;
         size_t nm = 0;
         for (size_t j = i; j < np; j++)
-            if (uf_find(par, j) == i) members[nm++] = j;
+            if (acd_uf_find_z(par, j) == i) members[nm++] = j;
         if (nm == 1) {
             np_list[nout] = cut->pieces[i];
             memset(&cut->pieces[i], 0, sizeof cut->pieces[i]);

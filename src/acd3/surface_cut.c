@@ -7,6 +7,7 @@
 
 #include "acd3/measure.h"
 #include "core/error.h"
+#include "core/union_find.h"
 
 /* Extracts the faces with piece label `label` into a new mesh with its own vertices. */
 static acd_status extract(const acd_mesh *m, const uint32_t *piece, uint32_t label, uint32_t *remap,
@@ -109,11 +110,6 @@ done:
     return st;
 }
 
-static size_t uf_find(size_t *p, size_t x) {
-    while (p[x] != x) x = p[x] = p[p[x]];
-    return x;
-}
-
 acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const acd_cut_plane *pl, const double *near,
                             acd_cut_result *out, acd_error *err) {
     size_t nf = m->ntriangles, ne = g->nedges, nv = m->nvertices;
@@ -150,8 +146,7 @@ acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const ac
         uint32_t f0 = face_of[2 * e], f1 = face_of[2 * e + 1];
         if (f0 == UINT32_MAX || f1 == UINT32_MAX || cls[f0] == cls[f1]) continue;
         blocked[e] = 1;
-        size_t a = uf_find(par, g->edge_v[2 * e]), b = uf_find(par, g->edge_v[2 * e + 1]);
-        if (a != b) par[a > b ? a : b] = a < b ? a : b;
+        acd_uf_union_z(par, g->edge_v[2 * e], g->edge_v[2 * e + 1]);
         const double *p = m->vertices + 3 * (size_t)g->edge_v[2 * e], *q = m->vertices + 3 * (size_t)g->edge_v[2 * e + 1];
         double d = 0;
         for (int k = 0; k < 3; k++) {
@@ -164,9 +159,9 @@ acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const ac
         }
     }
     if (best_e != SIZE_MAX) {
-        size_t root = uf_find(par, g->edge_v[2 * best_e]);
+        size_t root = acd_uf_find_z(par, g->edge_v[2 * best_e]);
         for (size_t e = 0; e < ne; e++)
-            if (blocked[e] && uf_find(par, g->edge_v[2 * e]) != root) blocked[e] = 0;
+            if (blocked[e] && acd_uf_find_z(par, g->edge_v[2 * e]) != root) blocked[e] = 0;
     }
     st = split_by_class(m, g, cls, blocked, out, err);
 done:

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/union_find.h"
 #include "corise/regions.h"
 #include "corise/ridge.h"
 #include "corise/valley.h"
@@ -32,14 +33,6 @@ static int cmp_ef(const void *x, const void *y) {
     return (p->face > q->face) - (p->face < q->face);
 }
 
-static uint32_t uf_find(uint32_t *p, uint32_t x) {
-    while (p[x] != x) {
-        p[x] = p[p[x]];
-        x = p[x];
-    }
-    return x;
-}
-
 /* Edge-connected components of the facets faces[0..n) of m: comp[i] = component of faces[i],
  * numbered by first occurrence. Returns the count, or SIZE_MAX when out of memory. */
 static size_t components(const acd_mesh *m, const uint32_t *faces, size_t n, uint32_t *comp) {
@@ -62,13 +55,13 @@ static size_t components(const acd_mesh *m, const uint32_t *faces, size_t n, uin
     qsort(e, 3 * n, sizeof *e, cmp_ef);
     for (size_t i = 1; i < 3 * n; i++)
         if (e[i].lo == e[i - 1].lo && e[i].hi == e[i - 1].hi) {
-            uint32_t a = uf_find(p, e[i].face), b = uf_find(p, e[i - 1].face);
+            uint32_t a = acd_uf_find(p, e[i].face), b = acd_uf_find(p, e[i - 1].face);
             if (a != b) p[a < b ? b : a] = a < b ? a : b;
         }
     size_t nc = 0;
     for (size_t i = 0; i < n; i++) id[i] = UINT32_MAX;
     for (size_t i = 0; i < n; i++) {
-        uint32_t r = uf_find(p, (uint32_t)i);
+        uint32_t r = acd_uf_find(p, (uint32_t)i);
         if (id[r] == UINT32_MAX) id[r] = (uint32_t)nc++;
         comp[i] = id[r];
     }
@@ -242,12 +235,12 @@ static int cap_cut_holes(const acd_mesh *s, const uint32_t *l2g, const edge_coun
     }
     for (size_t v = 0; v < s->nvertices; v++) p[v] = (uint32_t)v, gid[v] = UINT32_MAX;
     for (size_t i = 0; i < nc; i++) {
-        uint32_t a = uf_find(p, cu[2 * i]), b = uf_find(p, cu[2 * i + 1]);
+        uint32_t a = acd_uf_find(p, cu[2 * i]), b = acd_uf_find(p, cu[2 * i + 1]);
         if (a != b) p[a < b ? b : a] = a < b ? a : b;
     }
     size_t ng = 0;
     for (size_t i = 0; i < nc; i++) {
-        uint32_t r = uf_find(p, cu[2 * i]);
+        uint32_t r = acd_uf_find(p, cu[2 * i]);
         if (gid[r] == UINT32_MAX) gid[r] = (uint32_t)ng++;
     }
     out->nvertices = s->nvertices + ng;
@@ -262,7 +255,7 @@ static int cap_cut_holes(const acd_mesh *s, const uint32_t *l2g, const edge_coun
     memcpy(out->vertices, s->vertices, 3 * s->nvertices * sizeof *out->vertices);
     memcpy(out->triangles, s->triangles, 3 * nt * sizeof *out->triangles);
     for (size_t i = 0; i < nc; i++) { /* centroid of each curve's edge endpoints */
-        uint32_t g = gid[uf_find(p, cu[2 * i])];
+        uint32_t g = gid[acd_uf_find(p, cu[2 * i])];
         for (int k = 0; k < 2; k++)
             for (int c = 0; c < 3; c++)
                 out->vertices[3 * (s->nvertices + g) + c] += s->vertices[3 * (size_t)cu[2 * i + k] + c];
@@ -271,7 +264,7 @@ static int cap_cut_holes(const acd_mesh *s, const uint32_t *l2g, const edge_coun
     for (size_t g = 0; g < ng; g++)
         for (int c = 0; c < 3; c++) out->vertices[3 * (s->nvertices + g) + c] /= cnt[g];
     for (size_t i = 0; i < nc; i++) {
-        uint32_t g = gid[uf_find(p, cu[2 * i])];
+        uint32_t g = gid[acd_uf_find(p, cu[2 * i])];
         uint32_t *T = out->triangles + 3 * (nt + i);
         T[0] = cu[2 * i + 1]; /* reversed edge: consistent orientation with the part */
         T[1] = cu[2 * i];

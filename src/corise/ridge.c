@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/union_find.h"
 
 size_t acd_corise_hull_index(const acd_corise_bridges *b, uint32_t v) {
     size_t lo = 0, hi = b->nhull;
@@ -23,14 +24,6 @@ void acd_corise_ridges_free(acd_corise_ridges *r) {
     if (!r) return;
     free(r->ridge_of);
     memset(r, 0, sizeof *r);
-}
-
-static size_t uf_find(size_t *parent, size_t x) {
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
 }
 
 typedef struct low_item {
@@ -82,11 +75,11 @@ acd_status acd_corise_ridges_compute(const acd_corise_bridges *b, double tau, ac
     qsort(low, nlow, sizeof *low, cmp_low);
     for (size_t k = 0; k < nlow; k++) {
         size_t i = low[k].bridge;
-        size_t cu = uf_find(parent, ends[2 * i]), cw = uf_find(parent, ends[2 * i + 1]);
+        size_t cu = acd_uf_find_z(parent, ends[2 * i]), cw = acd_uf_find_z(parent, ends[2 * i + 1]);
         if (cu == cw) continue;
         int blocked = 0;
         for (size_t h = 0; h < nhigh && !blocked; h++) {
-            size_t x = uf_find(parent, ends[2 * high[h]]), y = uf_find(parent, ends[2 * high[h] + 1]);
+            size_t x = acd_uf_find_z(parent, ends[2 * high[h]]), y = acd_uf_find_z(parent, ends[2 * high[h] + 1]);
             blocked = (x == cu && y == cw) || (x == cw && y == cu);
         }
         if (blocked) continue;
@@ -99,7 +92,7 @@ acd_status acd_corise_ridges_compute(const acd_corise_bridges *b, double tau, ac
     size_t nr = 0;
     for (size_t v = 0; v < nh; v++) out->ridge_of[v] = UINT32_MAX;
     for (size_t v = 0; v < nh; v++) {
-        size_t r = uf_find(parent, v);
+        size_t r = acd_uf_find_z(parent, v);
         if (out->ridge_of[r] == UINT32_MAX) out->ridge_of[r] = (uint32_t)nr++;
         out->ridge_of[v] = out->ridge_of[r];
     }

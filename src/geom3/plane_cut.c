@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/union_find.h"
 #include "core/predicates.h"
 #include "geom2/triangulate.h"
 #include "geom3/edge_map.h"
@@ -492,23 +493,6 @@ done:
     return st;
 }
 
-/* Union-find. */
-static uint32_t uf_find(uint32_t *p, uint32_t x) {
-    while (p[x] != x) {
-        p[x] = p[p[x]];
-        x = p[x];
-    }
-    return x;
-}
-static void uf_union(uint32_t *p, uint32_t a, uint32_t b) {
-    a = uf_find(p, a);
-    b = uf_find(p, b);
-    if (a < b)
-        p[b] = a;
-    else if (b < a)
-        p[a] = b;
-}
-
 /* Shells of negative volume (cavities: inward-facing surfaces) join the smallest shell of positive
  * volume on the same side that contains them (exact ray winding number of one of their vertices
  * not on that shell's surface). */
@@ -532,7 +516,7 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent) {
         double a[3], b[3], d[3], bd[3];
         for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], d[k] = p[2][k] - o[k];
         cross3(b, d, bd);
-        vol[uf_find(parent, (uint32_t)t)] += (a[0] * bd[0] + a[1] * bd[1] + a[2] * bd[2]) / 6.0;
+        vol[acd_uf_find(parent, (uint32_t)t)] += (a[0] * bd[0] + a[1] * bd[1] + a[2] * bd[2]) / 6.0;
     }
     for (size_t t = 0; t < nt; t++)
         if (parent[t] == t && vol[t] < 0) nneg++;
@@ -551,7 +535,7 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent) {
         goto out;
     }
     for (size_t t = 0; t < nt; t++) {
-        root[t] = uf_find(parent, (uint32_t)t);
+        root[t] = acd_uf_find(parent, (uint32_t)t);
         start[root[t] + 1]++;
         merge[t] = NONE;
     }
@@ -597,7 +581,7 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent) {
     }
     free(tris);
     for (size_t n = 0; n < nt; n++)
-        if (merge[n] != NONE) uf_union(parent, (uint32_t)n, merge[n]);
+        if (merge[n] != NONE) acd_uf_union(parent, (uint32_t)n, merge[n]);
 out:
     if (sp)
         for (size_t p = 0; p < nt; p++)
@@ -631,7 +615,7 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         for (size_t i = 0; i < m.n; i++) {
             uint32_t a = (uint32_t)(m.key[i] >> 32), b = (uint32_t)m.key[i];
             uint32_t h = acd_edge_map_find(&m, b, a);
-            if (h != ACD_EDGE_NONE) uf_union(parent, m.half[i] / 3, h / 3);
+            if (h != ACD_EDGE_NONE) acd_uf_union(parent, m.half[i] / 3, h / 3);
         }
         acd_edge_map_free(&m);
     }
@@ -653,7 +637,7 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     size_t np = 0;
     for (int side = 1; side >= -1; side -= 2)
         for (size_t t = 0; t < c->nt; t++)
-            if (c->tside[t] == side && uf_find(parent, (uint32_t)t) == t) pidx[t] = (uint32_t)np++;
+            if (c->tside[t] == side && acd_uf_find(parent, (uint32_t)t) == t) pidx[t] = (uint32_t)np++;
     res->pieces = calloc(np ? np : 1, sizeof *res->pieces);
     if (!res->pieces) {
         free(parent);
@@ -664,7 +648,7 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     res->npieces = np;
     size_t *ntri = calloc(np ? np : 1, sizeof *ntri);
     if (!ntri) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu cut pieces", np);
-    for (size_t t = 0; t < c->nt && st == ACD_OK; t++) ntri[pidx[uf_find(parent, (uint32_t)t)]]++;
+    for (size_t t = 0; t < c->nt && st == ACD_OK; t++) ntri[pidx[acd_uf_find(parent, (uint32_t)t)]]++;
     for (size_t p = 0; p < np && st == ACD_OK; p++) {
         acd_cut_piece *pc = &res->pieces[p];
         pc->mesh.triangles = malloc(ntri[p] * 3 * sizeof *pc->mesh.triangles);
@@ -677,7 +661,7 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         acd_cut_piece *pc = &res->pieces[p];
         size_t nv = 0, k = 0;
         for (size_t t = 0; t < c->nt; t++) {
-            if (pidx[uf_find(parent, (uint32_t)t)] != p) continue;
+            if (pidx[acd_uf_find(parent, (uint32_t)t)] != p) continue;
             pc->side = c->tside[t];
             for (int i = 0; i < 3; i++) {
                 uint32_t v = c->T[3 * t + i];

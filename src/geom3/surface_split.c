@@ -8,25 +8,10 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/union_find.h"
 #include "geom3/edge_map.h"
 
 #define NONE UINT32_MAX
-
-static uint32_t uf_find(uint32_t *p, uint32_t x) {
-    while (p[x] != x) {
-        p[x] = p[p[x]];
-        x = p[x];
-    }
-    return x;
-}
-static void uf_union(uint32_t *p, uint32_t a, uint32_t b) {
-    a = uf_find(p, a);
-    b = uf_find(p, b);
-    if (a < b)
-        p[b] = a;
-    else if (b < a)
-        p[a] = b;
-}
 
 static int cmp_u64(const void *x, const void *y) {
     uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
@@ -105,13 +90,13 @@ acd_status acd_surface_split_edges(const acd_mesh *m, const uint32_t *edges, siz
             uint32_t h = acd_edge_map_find(&em, b, a);
             if (h == ACD_EDGE_NONE || is_cut(cut, ncut, a, b)) continue;
             uint32_t u = h / 3, j = h % 3; /* in u, corner j is b, corner j+1 is a */
-            uf_union(face, (uint32_t)t, u);
-            uf_union(corner, (uint32_t)(3 * t + (size_t)i), 3 * u + (j + 1) % 3);
-            uf_union(corner, (uint32_t)(3 * t + (size_t)(i + 1) % 3), 3 * u + j);
+            acd_uf_union(face, (uint32_t)t, u);
+            acd_uf_union(corner, (uint32_t)(3 * t + (size_t)i), 3 * u + (j + 1) % 3);
+            acd_uf_union(corner, (uint32_t)(3 * t + (size_t)(i + 1) % 3), 3 * u + j);
         }
     /* patches in order of their lowest triangle; vertices in order of first use within a patch */
     size_t np = 0;
-    for (size_t t = 0; t < nt; t++) pid[t] = uf_find(face, (uint32_t)t) == t ? (uint32_t)np++ : NONE;
+    for (size_t t = 0; t < nt; t++) pid[t] = acd_uf_find(face, (uint32_t)t) == t ? (uint32_t)np++ : NONE;
     out->face_patch = malloc((nt ? nt : 1) * sizeof *out->face_patch);
     out->patches = calloc(np ? np : 1, sizeof *out->patches);
     pcount = calloc(np ? np : 1, sizeof *pcount);
@@ -121,7 +106,7 @@ acd_status acd_surface_split_edges(const acd_mesh *m, const uint32_t *edges, siz
     }
     out->npatches = np;
     for (size_t t = 0; t < nt; t++) {
-        out->face_patch[t] = pid[uf_find(face, (uint32_t)t)];
+        out->face_patch[t] = pid[acd_uf_find(face, (uint32_t)t)];
         pcount[out->face_patch[t]]++;
     }
     for (size_t p = 0; p < np; p++) {
@@ -141,7 +126,7 @@ acd_status acd_surface_split_edges(const acd_mesh *m, const uint32_t *edges, siz
         size_t k = pc->mesh.ntriangles++;
         pc->source_face[k] = (uint32_t)t;
         for (int i = 0; i < 3; i++) {
-            uint32_t r = uf_find(corner, (uint32_t)(3 * t + (size_t)i));
+            uint32_t r = acd_uf_find(corner, (uint32_t)(3 * t + (size_t)i));
             if (cid[r] == NONE) {
                 uint32_t v = m->triangles[3 * t + i];
                 cid[r] = (uint32_t)pc->mesh.nvertices++;

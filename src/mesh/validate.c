@@ -23,23 +23,9 @@
 
 #include "acd/mesh.h"
 #include "core/error.h"
+#include "core/union_find.h"
 #include "core/predicates.h"
 #include "mesh/halfedge.h"
-
-static uint32_t uf_find(uint32_t *p, uint32_t x) {
-    while (p[x] != x) {
-        p[x] = p[p[x]];
-        x = p[x];
-    }
-    return x;
-}
-
-static void uf_union(uint32_t *p, uint32_t a, uint32_t b) {
-    a = uf_find(p, a);
-    b = uf_find(p, b);
-    if (a < b) p[b] = a;
-    else if (b < a) p[a] = b;
-}
 
 void acd_mesh_report_free(acd_mesh_report *r) {
     if (!r) return;
@@ -117,12 +103,12 @@ acd_status acd_mesh_validate(const acd_mesh *m, int check_self_intersections, ac
         const uint32_t *hs = he.edge_he + he.edge_start[e];
         if (n == 1) r->boundary_edges++;
         if (n > 2) r->nonmanifold_edges++;
-        for (uint32_t k = 1; k < n; k++) uf_union(fparent, hs[0] / 3, hs[k] / 3);
+        for (uint32_t k = 1; k < n; k++) acd_uf_union(fparent, hs[0] / 3, hs[k] / 3);
         if (n == 2) {
             uint32_t h0 = hs[0], h1 = hs[1], a = acd_he_from(m, h0), b = acd_he_to(m, h0);
             if (acd_he_from(m, h1) == a) r->orientation_conflicts++;
-            uf_union(cparent, h0, corner_of(m, h1 / 3, a));
-            uf_union(cparent, acd_he_next(h0), corner_of(m, h1 / 3, b));
+            acd_uf_union(cparent, h0, corner_of(m, h1 / 3, a));
+            acd_uf_union(cparent, acd_he_next(h0), corner_of(m, h1 / 3, b));
         }
     }
     /* component numbering by first face; faces repeating an index belong to none */
@@ -132,7 +118,7 @@ acd_status acd_mesh_validate(const acd_mesh *m, int check_self_intersections, ac
             comp[t] = UINT32_MAX;
             continue;
         }
-        uint32_t root = uf_find(fparent, (uint32_t)t);
+        uint32_t root = acd_uf_find(fparent, (uint32_t)t);
         comp[t] = root == t ? (uint32_t)r->components++ : comp[root];
     }
     r->component = calloc(r->components ? r->components : 1, sizeof *r->component);
@@ -195,7 +181,7 @@ acd_status acd_mesh_validate(const acd_mesh *m, int check_self_intersections, ac
             vstamp[v] = comp[t];
             r->component[comp[t]].vertices++;
         }
-        if (uf_find(cparent, (uint32_t)c) == c) {
+        if (acd_uf_find(cparent, (uint32_t)c) == c) {
             vfans[v]++;
             cfans[comp[t]]++;
         }

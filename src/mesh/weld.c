@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "core/union_find.h"
 
 static uint64_t bits_of(double d) {
     if (d == 0) d = 0; /* -0 -> +0 */
@@ -68,14 +69,6 @@ int acd_weld_exact(const double *v, size_t n, uint32_t *remap, size_t *nunique) 
     return 1;
 }
 
-static uint32_t uf_find(uint32_t *parent, uint32_t x) {
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
-}
-
 int acd_weld_tolerance(const double *v, size_t n, double tol, uint32_t *remap, size_t *nunique) {
     if (!(tol > 0) || !isfinite(tol)) return acd_weld_exact(v, n, remap, nunique);
     size_t cap = table_size(n), mask = cap - 1;
@@ -113,7 +106,7 @@ int acd_weld_tolerance(const double *v, size_t n, double tol, uint32_t *remap, s
                     for (uint32_t j = head[h]; j != UINT32_MAX; j = next[j]) {
                         const double *r = v + 3 * j;
                         if (fabs(r[0] - p[0]) <= tol && fabs(r[1] - p[1]) <= tol && fabs(r[2] - p[2]) <= tol) {
-                            uint32_t a = uf_find(parent, (uint32_t)i), b = uf_find(parent, j);
+                            uint32_t a = acd_uf_find(parent, (uint32_t)i), b = acd_uf_find(parent, j);
                             if (a != b) {
                                 if (a < b) parent[b] = a;
                                 else parent[a] = b;
@@ -137,7 +130,7 @@ int acd_weld_tolerance(const double *v, size_t n, double tol, uint32_t *remap, s
     /* number clusters by their smallest member (the root, since roots are minimal) */
     size_t u = 0;
     for (size_t i = 0; i < n; i++) {
-        uint32_t r = uf_find(parent, (uint32_t)i);
+        uint32_t r = acd_uf_find(parent, (uint32_t)i);
         remap[i] = r == i ? (uint32_t)u++ : remap[r];
     }
     free(keys);
