@@ -18,7 +18,7 @@ static void usage(FILE *f) {
     fprintf(f,
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
-            "              [--verify] [-v]\n"
+            "              [--no-close-holes] [--verify] [-v]\n"
             "\n"
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
@@ -37,6 +37,8 @@ static void usage(FILE *f) {
             "                      until at most N remain; the concavity reached is reported\n"
             "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
             "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
+            "  --no-close-holes    solid mode refuses an open mesh instead of closing its holes (by default\n"
+            "                      an open or unoriented input is welded, oriented and its holes closed)\n"
             "  --verify            check: part volumes add up to the input's, every part meets tau (or says\n"
             "                      why not), every part lies inside its hull; exit 3 otherwise\n"
             "  -v                  report progress and statistics on stderr\n");
@@ -247,7 +249,7 @@ static int verify(const acd3d_result *r, acd_error *err) {
 int acd_cmd_3d(int argc, char **argv) {
     const char *input = NULL, *hulls_path = NULL, *parts_path = NULL, *json_path = NULL, *export_path = NULL,
                *model_name = NULL;
-    int do_verify = 0, verbose = 0;
+    int do_verify = 0, verbose = 0, close_holes = 1;
     acd3d_params p = acd3d_default_params();
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -303,6 +305,8 @@ int acd_cmd_3d(int argc, char **argv) {
             i++;
         } else if (!strcmp(a, "--region-cuts")) {
             p.region_cuts = 1;
+        } else if (!strcmp(a, "--no-close-holes")) {
+            close_holes = 0;
         } else if (!strcmp(a, "--verify")) {
             do_verify = 1;
         } else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) {
@@ -344,6 +348,33 @@ int acd_cmd_3d(int argc, char **argv) {
     p.progress_user = &ps;
     acd3d_result r;
     acd_status st = acd3d_decompose(&mesh, &p, &r, &err);
+    if (st == ACD_ERR_NON_MANIFOLD && p.mode == ACD3D_SOLID && close_holes) {
+        /* solid mode on an open or unoriented mesh: weld, orient and close every hole, then
+         * decompose the closed mesh (the parts' volumes then add up to the closed volume) */
+        acd_error first = err;
+        acd_repair_options ro = acd_repair_default_options();
+        ro.fill_holes_max_edges = SIZE_MAX;
+        acd_repair_stats rs;
+        acd_error_clear(&err);
+        if (acd_mesh_repair(&mesh, &ro, &rs, &err) != ACD_OK) {
+            acd_mesh_free(&mesh);
+            return acd_cli_report("3d", &err);
+        }
+        if (verbose) fprintf(stderr, "acd 3d: %s\n", first.message);
+        fprintf(stderr,
+                "acd 3d: the input is not a closed, consistently oriented mesh; repaired for solid mode: %zu "
+                "vertices merged, %zu degenerate and %zu duplicate faces dropped, %zu faces flipped, %zu holes "
+                "closed with %zu faces (%zu new vertices) (--no-close-holes refuses instead; --mode surface keeps "
+                "it open)\n",
+                rs.vertices_merged, rs.degenerate_dropped, rs.duplicates_dropped, rs.faces_flipped, rs.holes_filled,
+                rs.hole_faces_added, rs.hole_vertices_added);
+        st = acd3d_decompose(&mesh, &p, &r, &err);
+        if (st == ACD_ERR_NON_MANIFOLD) {
+            char why[sizeof err.message];
+            snprintf(why, sizeof why, "%s", err.message);
+            acd_fail(&err, st, "the mesh could not be closed for solid mode: after repair, %.400s", why);
+        }
+    }
     if (st != ACD_OK) {
         acd_mesh_free(&mesh);
         return acd_cli_report("3d", &err);

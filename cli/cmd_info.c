@@ -43,6 +43,7 @@ static cJSON *report_json(const char *path, const acd_mesh_report *r, int list_c
             cJSON_AddNumberToObject(rp, "nonorientable_parts", (double)st->nonorientable_parts);
             cJSON_AddNumberToObject(rp, "holes_filled", (double)st->holes_filled);
             cJSON_AddNumberToObject(rp, "hole_faces_added", (double)st->hole_faces_added);
+            cJSON_AddNumberToObject(rp, "hole_vertices_added", (double)st->hole_vertices_added);
             cJSON_AddNumberToObject(rp, "unused_vertices_dropped", (double)st->unused_vertices_dropped);
         }
     }
@@ -105,9 +106,9 @@ static void print_text(const char *path, const acd_mesh_report *r, int list_comp
                        const acd_repair_stats *st) {
     if (st)
         printf("repair                %zu vertices merged, %zu degenerate and %zu duplicate faces dropped, %zu faces "
-               "flipped, %zu holes filled (%zu faces), %zu unused vertices dropped%s\n",
+               "flipped, %zu holes filled (%zu faces, %zu new vertices), %zu unused vertices dropped%s\n",
                st->vertices_merged, st->degenerate_dropped, st->duplicates_dropped, st->faces_flipped, st->holes_filled,
-               st->hole_faces_added, st->unused_vertices_dropped,
+               st->hole_faces_added, st->hole_vertices_added, st->unused_vertices_dropped,
                st->nonorientable_parts ? " (some parts are not orientable)" : "");
     printf("file                  %s\n", path);
     printf("vertices              %zu (%zu unused)\n", r->vertices, r->unused_vertices);

@@ -3,6 +3,7 @@
 #include "testutil.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -200,11 +201,148 @@ static void test_nonorientable_survives(void **state) {
     acd_mesh_free(&m);
 }
 
+/* An open cylinder (n segments, radius 1, height 1, no caps) as an indexed mesh. */
+static void open_cylinder(acd_mesh *m, int n) {
+    m->nvertices = (size_t)(2 * n);
+    m->ntriangles = (size_t)(2 * n);
+    m->vertices = malloc(m->nvertices * 3 * sizeof(double));
+    m->triangles = malloc(m->ntriangles * 3 * sizeof(uint32_t));
+    assert_non_null(m->vertices);
+    assert_non_null(m->triangles);
+    for (int i = 0; i < n; i++) {
+        double u = 6.283185307179586 * i / n;
+        for (int s = 0; s < 2; s++) {
+            m->vertices[3 * (2 * i + s)] = cos(u);
+            m->vertices[3 * (2 * i + s) + 1] = sin(u);
+            m->vertices[3 * (2 * i + s) + 2] = s;
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        uint32_t a = (uint32_t)(2 * i), b = (uint32_t)(2 * ((i + 1) % n));
+        uint32_t t[6] = {a, b, b + 1, a, b + 1, a + 1};
+        memcpy(m->triangles + 6 * i, t, sizeof t);
+    }
+}
+
+/* Both caps of a cylinder: a short rim (24 edges) is triangulated over its own vertices, a
+ * long one (200 edges) gets a fan around a new centre vertex; the result is closed, oriented
+ * outward, edge-manifold, with the volume of the prism over the regular polygon exactly. */
+static void test_fill_caps_short_and_long(void **state) {
+    (void)state;
+    for (int n = 24; n <= 200; n += 176) {
+        acd_mesh m;
+        open_cylinder(&m, n);
+        acd_repair_options o = acd_repair_default_options();
+        o.fill_holes_max_edges = SIZE_MAX;
+        acd_repair_stats st;
+        acd_error err;
+        assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+        assert_int_equal(st.holes_filled, 2);
+        assert_int_equal(st.hole_vertices_added, n > 96 ? 2 : 0);
+        assert_int_equal(st.hole_faces_added, n > 96 ? 2 * (size_t)n : 2 * (size_t)(n - 2));
+        acd_mesh_report r;
+        report(&m, &r);
+        assert_true(r.closed && r.oriented);
+        assert_int_equal(r.nonmanifold_edges, 0);
+        assert_int_equal(r.nonmanifold_vertices, 0);
+        assert_int_equal(r.self_intersections, 0);
+        double area = 0.5 * n * sin(6.283185307179586 / n);
+        assert_true(fabs(r.volume - area) < 1e-12);
+        acd_mesh_report_free(&r);
+        acd_mesh_free(&m);
+    }
+}
+
+/* Two square holes in the top of a box that touch at one vertex: the boundary walk passes twice
+ * through that vertex and must be split into two simple loops (a single loop through the pinch
+ * would give non-manifold edges). Top face grid 2x2 with cells (0,0) and (1,1) removed. */
+static void test_fill_pinched_holes(void **state) {
+    (void)state;
+    /* vertices: the 3x3 top grid at z = 1 (index 3*j + i), the bottom corners at z = 0 */
+    double v[13][3];
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) {
+            v[3 * j + i][0] = i;
+            v[3 * j + i][1] = j;
+            v[3 * j + i][2] = 1;
+        }
+    const double bc[4][2] = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+    for (int k = 0; k < 4; k++) {
+        v[9 + k][0] = bc[k][0];
+        v[9 + k][1] = bc[k][1];
+        v[9 + k][2] = 0;
+    }
+    /* outward faces: top cells (1,0) and (0,1) only; sides through the grid's border vertices;
+     * bottom as two triangles */
+    const uint32_t t[][3] = {
+        {1, 2, 5}, {1, 5, 4},                          /* top cell (1,0) */
+        {3, 4, 7}, {3, 7, 6},                          /* top cell (0,1) */
+        {9, 10, 1}, {10, 2, 1}, {9, 1, 0},             /* side y = 0: bottom 9-10, top 0-1-2 */
+        {10, 11, 5}, {10, 5, 2}, {11, 8, 5},           /* side x = 2: bottom 10-11, top 2-5-8 */
+        {11, 12, 7}, {11, 7, 8}, {12, 6, 7},           /* side y = 2: bottom 11-12, top 8-7-6 */
+        {12, 9, 3}, {12, 3, 6}, {9, 0, 3},             /* side x = 0: bottom 12-9, top 6-3-0 */
+        {9, 12, 11}, {9, 11, 10},                      /* bottom */
+    };
+    size_t nt = sizeof t / sizeof t[0];
+    acd_mesh m = {malloc(sizeof v), 13, malloc(sizeof t), nt};
+    assert_non_null(m.vertices);
+    assert_non_null(m.triangles);
+    memcpy(m.vertices, v, sizeof v);
+    memcpy(m.triangles, t, sizeof t);
+    acd_mesh_report r;
+    report(&m, &r);
+    assert_int_equal(r.boundary_edges, 8); /* the two squares' rims, meeting at vertex 4 */
+    assert_int_equal(r.nonmanifold_edges, 0);
+    acd_mesh_report_free(&r);
+    acd_repair_options o = acd_repair_default_options();
+    o.fill_holes_max_edges = SIZE_MAX;
+    acd_repair_stats st;
+    acd_error err;
+    assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+    assert_int_equal(st.holes_filled, 2);
+    assert_int_equal(st.hole_faces_added, 4);
+    report(&m, &r);
+    assert_true(r.closed && r.oriented);
+    assert_int_equal(r.nonmanifold_edges, 0);
+    assert_true(fabs(r.volume - 4) < 1e-12);
+    acd_mesh_report_free(&r);
+    acd_mesh_free(&m);
+}
+
+/* A real scan-like mesh with 171 holes of up to hundreds of edges: closing them all gives a
+ * closed, edge-manifold, self-intersection-free mesh of the elephant's genus (3). */
+static void test_fill_real_holes(void **state) {
+    (void)state;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/elephant-with-holes.off", ACD_MESH_DATA);
+    acd_mesh m;
+    acd_error err;
+    if (acd_mesh_read(path, &m, &err) != ACD_OK) TU_SKIP("%s not found (run scripts/fetch-data.sh)", path);
+    acd_repair_options o = acd_repair_default_options();
+    o.fill_holes_max_edges = SIZE_MAX;
+    acd_repair_stats st;
+    assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+    assert_true(st.holes_filled > 100);
+    acd_mesh_report r;
+    report(&m, &r);
+    assert_true(r.closed && r.oriented);
+    assert_int_equal(r.nonmanifold_edges, 0);
+    assert_int_equal(r.duplicate_faces, 0);
+    assert_int_equal(r.self_intersections, 0);
+    assert_int_equal(r.genus, 3);
+    assert_true(r.volume > 0);
+    acd_mesh_report_free(&r);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_soup_to_closed_cube),
         cmocka_unit_test(test_inside_out_is_reversed),
         cmocka_unit_test(test_fill_holes),
+        cmocka_unit_test(test_fill_caps_short_and_long),
+        cmocka_unit_test(test_fill_pinched_holes),
+        cmocka_unit_test(test_fill_real_holes),
         cmocka_unit_test(test_tolerance_weld),
         cmocka_unit_test(test_nonorientable_survives),
     };

@@ -178,11 +178,13 @@ typedef struct acd_repair_stats {
     size_t nonorientable_parts;    /* parts oriented as far as possible (a spanning tree) */
     size_t holes_filled;
     size_t hole_faces_added;
+    size_t hole_vertices_added;    /* centroids of loops closed by a fan (long loops) */
     size_t unused_vertices_dropped;
 } acd_repair_stats;
 
 /* Repairs m in place, in this order: weld, drop degenerate faces, drop duplicate faces, orient,
- * fill small holes (fans from the loop's first vertex), orient again (closed parts outward),
+ * fill holes (minimum-area triangulations without repeated edges; long loops get a fan around
+ * a new centroid vertex), orient again (closed parts outward),
  * drop unused vertices. Orientation: within each part connected through manifold edges, faces
  * are flipped to agree with the part's first face; a closed part with negative volume is then
  * reversed, an open part keeps the orientation of the majority of its faces. stats may be NULL. */

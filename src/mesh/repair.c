@@ -9,9 +9,13 @@
  *     when it traverses the shared edge in the same direction as its neighbour; a part all of
  *     whose edges are manifold (closed) is reversed if its signed volume is negative, an open
  *     part is reversed if that flips fewer faces (majority orientation kept);
- *  4. fill holes: boundary loops traced along boundary half-edges; a loop of at most
- *     fill_holes_max_edges edges is closed by a fan from its first vertex, oriented against the
- *     loop (so the new faces agree with their neighbours); then orient again;
+ *  4. fill holes: the boundary is walked along its half-edges and split into simple loops
+ *     (a boundary through a pinch vertex gives one loop per side); a loop of at most
+ *     fill_holes_max_edges edges is closed by the minimum-area triangulation over its own
+ *     vertices that adds no edge the mesh already has (dynamic programme, loops up to
+ *     FILL_DP_MAX_EDGES edges), else by a fan around a new vertex at its centroid, so the
+ *     result stays edge-manifold; the new faces run against the loop (they agree with their
+ *     neighbours); then orient again;
  *  5. drop unused vertices. */
 #include <math.h>
 #include <stdlib.h>
@@ -231,110 +235,283 @@ done:
     return s;
 }
 
+/* An open-addressing set of undirected edges (key: smaller vertex << 32 | larger). */
+typedef struct edge_set {
+    uint64_t *slot; /* EDGE_SET_EMPTY when free */
+    size_t mask, n;
+} edge_set;
+
+#define EDGE_SET_EMPTY UINT64_MAX
+
+static uint64_t edge_key(uint32_t a, uint32_t b) {
+    return a < b ? ((uint64_t)a << 32) | b : ((uint64_t)b << 32) | a;
+}
+
+static size_t edge_hash(uint64_t k, size_t mask) {
+    k ^= k >> 33;
+    k *= 0xff51afd7ed558ccdULL;
+    k ^= k >> 33;
+    return (size_t)k & mask;
+}
+
+static int edge_set_init(edge_set *s, size_t expected) {
+    size_t cap = 16;
+    while (cap < 2 * expected + 16) cap *= 2;
+    s->slot = malloc(cap * sizeof *s->slot);
+    if (!s->slot) return 0;
+    for (size_t i = 0; i < cap; i++) s->slot[i] = EDGE_SET_EMPTY;
+    s->mask = cap - 1;
+    s->n = 0;
+    return 1;
+}
+
+static int edge_set_has(const edge_set *s, uint32_t a, uint32_t b) {
+    uint64_t k = edge_key(a, b);
+    for (size_t i = edge_hash(k, s->mask);; i = (i + 1) & s->mask) {
+        if (s->slot[i] == k) return 1;
+        if (s->slot[i] == EDGE_SET_EMPTY) return 0;
+    }
+}
+
+static int edge_set_add(edge_set *s, uint32_t a, uint32_t b) {
+    if (2 * (s->n + 1) > s->mask + 1) { /* grow */
+        edge_set g;
+        if (!edge_set_init(&g, s->mask + 1)) return 0;
+        for (size_t i = 0; i <= s->mask; i++)
+            if (s->slot[i] != EDGE_SET_EMPTY) {
+                size_t j = edge_hash(s->slot[i], g.mask);
+                while (g.slot[j] != EDGE_SET_EMPTY) j = (j + 1) & g.mask;
+                g.slot[j] = s->slot[i];
+            }
+        g.n = s->n;
+        free(s->slot);
+        *s = g;
+    }
+    uint64_t k = edge_key(a, b);
+    size_t i = edge_hash(k, s->mask);
+    for (; s->slot[i] != EDGE_SET_EMPTY; i = (i + 1) & s->mask)
+        if (s->slot[i] == k) return 1;
+    s->slot[i] = k;
+    s->n++;
+    return 1;
+}
+
+/* Output of hole filling: triangles and new vertices appended to growable arrays. */
+typedef struct fill_out {
+    uint32_t *tri;
+    size_t ntri, tcap;
+    double *vert;
+    size_t nvert, vcap;
+} fill_out;
+
+static int fill_push_tri(fill_out *o, uint32_t a, uint32_t b, uint32_t c) {
+    if (o->ntri == o->tcap) {
+        size_t c2 = o->tcap ? 2 * o->tcap : 64;
+        uint32_t *t2 = realloc(o->tri, c2 * 3 * sizeof *t2);
+        if (!t2) return 0;
+        o->tri = t2;
+        o->tcap = c2;
+    }
+    o->tri[3 * o->ntri] = a;
+    o->tri[3 * o->ntri + 1] = b;
+    o->tri[3 * o->ntri + 2] = c;
+    o->ntri++;
+    return 1;
+}
+
+static double tri_area(const double *p, const double *q, const double *r) {
+    double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    return 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+/* Loops up to this many edges are triangulated by the minimum-area dynamic programme over
+ * their own vertices (O(n^3)); longer loops, and loops whose every triangulation would repeat
+ * an existing edge, get a fan around one new vertex at their centroid. */
+#define FILL_DP_MAX_EDGES 96
+
+/* Closes the simple loop v[0..n-1] (the boundary runs v[i] -> v[i+1]); the new faces run
+ * against it so they agree with their neighbours. Returns 0 when out of memory. */
+static int fill_loop(const acd_mesh *m, const uint32_t *v, size_t n, edge_set *edges, fill_out *o,
+                     size_t new_vertex_index) {
+    if (n <= FILL_DP_MAX_EDGES) {
+        /* cost[i][j]: minimum area of a triangulation of the sub-polygon v[i..j] whose
+         * diagonals are all new edges; split[i][j]: the apex k of the triangle on (i, j) */
+        double *cost = malloc(n * n * sizeof *cost);
+        uint32_t *split = malloc(n * n * sizeof *split);
+        if (!cost || !split) {
+            free(cost);
+            free(split);
+            return 0;
+        }
+        for (size_t i = 0; i + 1 < n; i++) cost[i * n + i + 1] = 0;
+        for (size_t len = 2; len < n; len++)
+            for (size_t i = 0; i + len < n; i++) {
+                size_t j = i + len;
+                double best = INFINITY;
+                uint32_t bk = 0;
+                /* (i, j) is a diagonal unless it is the loop's closing edge (0, n-1) */
+                int diag_ok = (i == 0 && j == n - 1) || !edge_set_has(edges, v[i], v[j]);
+                if (diag_ok)
+                    for (size_t k = i + 1; k < j; k++) {
+                        double c = cost[i * n + k] + cost[k * n + j];
+                        if (!(c < best)) continue;
+                        c += tri_area(m->vertices + 3 * (size_t)v[i], m->vertices + 3 * (size_t)v[k],
+                                      m->vertices + 3 * (size_t)v[j]);
+                        if (c < best) {
+                            best = c;
+                            bk = (uint32_t)k;
+                        }
+                    }
+                cost[i * n + j] = best;
+                split[i * n + j] = bk;
+            }
+        int ok = 1, feasible = isfinite(cost[n - 1]) != 0;
+        if (feasible) {
+            /* emit the triangles (iterative, a stack of sub-polygons) */
+            size_t *stack = malloc(2 * n * sizeof *stack), top = 0;
+            if (!stack) ok = 0;
+            if (ok) {
+                stack[top++] = 0;
+                stack[top++] = n - 1;
+            }
+            while (ok && top) {
+                size_t j = stack[--top], i = stack[--top];
+                if (j - i < 2) continue;
+                size_t k = split[i * n + j];
+                ok = fill_push_tri(o, v[i], v[j], v[k]) && edge_set_add(edges, v[i], v[j]) &&
+                     edge_set_add(edges, v[i], v[k]) && edge_set_add(edges, v[k], v[j]);
+                stack[top++] = i;
+                stack[top++] = k;
+                stack[top++] = k;
+                stack[top++] = j;
+            }
+            free(stack);
+        }
+        free(cost);
+        free(split);
+        if (!ok) return 0;
+        if (feasible) return 1;
+    }
+    /* a fan around a new vertex at the centroid of the loop */
+    if (o->nvert == o->vcap) {
+        size_t c2 = o->vcap ? 2 * o->vcap : 16;
+        double *v2 = realloc(o->vert, c2 * 3 * sizeof *v2);
+        if (!v2) return 0;
+        o->vert = v2;
+        o->vcap = c2;
+    }
+    double *c = o->vert + 3 * o->nvert;
+    c[0] = c[1] = c[2] = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++) c[d] += m->vertices[3 * (size_t)v[i] + d];
+    for (int d = 0; d < 3; d++) c[d] /= (double)n;
+    uint32_t ci = (uint32_t)(new_vertex_index + o->nvert);
+    o->nvert++;
+    for (size_t i = 0; i < n; i++)
+        if (!fill_push_tri(o, ci, v[(i + 1) % n], v[i])) return 0;
+    return 1;
+}
+
 static acd_status fill_holes(acd_mesh *m, size_t max_edges, acd_repair_stats *st, acd_error *err) {
     if (!max_edges || !m->ntriangles) return ACD_OK;
     acd_halfedges he;
     acd_status s = acd_halfedges_build(m, &he, err);
     if (s != ACD_OK) return s;
-    size_t nh = he.nhalfedges;
+    size_t nh = he.nhalfedges, nv = m->nvertices;
     /* boundary half-edges by their start vertex (CSR over vertices) */
-    uint32_t *start = calloc(m->nvertices + 1, sizeof *start);
+    uint32_t *start = calloc(nv + 1, sizeof *start);
     uint32_t *list = malloc((nh ? nh : 1) * sizeof *list);
     unsigned char *used = calloc(nh ? nh : 1, 1);
-    uint32_t *loop = malloc((max_edges + 1) * sizeof *loop);
-    uint32_t *loopv = malloc((max_edges + 1) * sizeof *loopv);
-    uint32_t *added = NULL;
-    size_t nadded = 0, cap = 0;
-    if (!start || !list || !used || !loop || !loopv) {
+    uint32_t *pathv = malloc((nh + 1) * sizeof *pathv);
+    size_t *pos = malloc((nv ? nv : 1) * sizeof *pos);
+    uint32_t *fillp = malloc((nv ? nv : 1) * sizeof *fillp);
+    edge_set edges = {0};
+    fill_out out = {0};
+    if (!start || !list || !used || !pathv || !pos || !fillp || !edge_set_init(&edges, nh)) {
         s = acd_fail(err, ACD_ERR_NOMEM, "out of memory filling holes");
         goto done;
     }
-    for (size_t h = 0; h < nh; h++)
-        if (he.edge[h] != ACD_HE_NONE && acd_edge_valence(&he, he.edge[h]) == 1) start[acd_he_from(m, (uint32_t)h) + 1]++;
-    for (size_t v = 0; v < m->nvertices; v++) start[v + 1] += start[v];
-    {
-        uint32_t *fillp = malloc((m->nvertices ? m->nvertices : 1) * sizeof *fillp);
-        if (!fillp) {
+    for (size_t h = 0; h < nh; h++) {
+        if (!edge_set_add(&edges, acd_he_from(m, (uint32_t)h), acd_he_to(m, (uint32_t)h))) {
             s = acd_fail(err, ACD_ERR_NOMEM, "out of memory filling holes");
             goto done;
         }
-        memcpy(fillp, start, m->nvertices * sizeof *fillp);
-        for (size_t h = 0; h < nh; h++)
-            if (he.edge[h] != ACD_HE_NONE && acd_edge_valence(&he, he.edge[h]) == 1)
-                list[fillp[acd_he_from(m, (uint32_t)h)]++] = (uint32_t)h;
-        free(fillp);
+        if (he.edge[h] != ACD_HE_NONE && acd_edge_valence(&he, he.edge[h]) == 1) start[acd_he_from(m, (uint32_t)h) + 1]++;
     }
-    for (size_t v0 = 0; v0 < m->nvertices; v0++)
-        for (uint32_t i = start[v0]; i < start[v0 + 1]; i++) {
-            uint32_t h = list[i];
-            if (used[h]) continue;
-            /* trace the loop from h; give up (leave it open) when it is longer than max_edges */
-            size_t n = 0;
-            int closed = 0;
-            uint32_t cur = h;
-            while (n <= max_edges) {
-                loop[n] = cur;
-                loopv[n] = acd_he_from(m, cur);
-                n++;
-                uint32_t w = acd_he_to(m, cur), next = ACD_HE_NONE;
-                for (uint32_t j = start[w]; j < start[w + 1]; j++)
-                    if (!used[list[j]] && list[j] != cur) {
-                        int in_loop = 0;
-                        for (size_t q = 1; q < n; q++) in_loop |= loop[q] == list[j];
-                        if (!in_loop) {
-                            next = list[j];
-                            break;
-                        }
-                    }
-                if (w == loopv[0]) {
-                    closed = 1;
-                    break;
-                }
-                if (next == ACD_HE_NONE) break;
-                cur = next;
-            }
-            if (!closed || n < 3 || n > max_edges) {
-                for (size_t q = 0; q < n && q <= max_edges; q++) used[loop[q]] = 1;
-                continue;
-            }
-            for (size_t q = 0; q < n; q++) used[loop[q]] = 1;
-            /* the loop runs v0 -> v1 -> ... ; the filling faces run against it */
-            for (size_t q = 1; q + 1 < n; q++) {
-                if (nadded == cap) {
-                    size_t c2 = cap ? 2 * cap : 64;
-                    uint32_t *a2 = realloc(added, c2 * 3 * sizeof *a2);
-                    if (!a2) {
+    for (size_t v = 0; v < nv; v++) start[v + 1] += start[v];
+    memcpy(fillp, start, nv * sizeof *fillp);
+    for (size_t h = 0; h < nh; h++)
+        if (he.edge[h] != ACD_HE_NONE && acd_edge_valence(&he, he.edge[h]) == 1)
+            list[fillp[acd_he_from(m, (uint32_t)h)]++] = (uint32_t)h;
+    for (size_t v = 0; v < nv; v++) pos[v] = SIZE_MAX;
+    /* Walk the boundary; whenever the walk returns to a vertex already on its path, the part
+     * of the path since that vertex is a simple loop: close it and go on from that vertex. A
+     * boundary that passes twice through a vertex (a pinch) thus gives two simple loops. */
+    for (size_t b = 0; b < start[nv]; b++) {
+        uint32_t cur = list[b];
+        if (used[cur]) continue;
+        size_t top = 0;
+        pathv[0] = acd_he_from(m, cur);
+        pos[pathv[0]] = 0;
+        for (;;) {
+            used[cur] = 1;
+            uint32_t w = acd_he_to(m, cur);
+            if (pos[w] != SIZE_MAX) {
+                size_t k = pos[w], n = top - k + 1;
+                if (n >= 3 && n <= max_edges) {
+                    if (!fill_loop(m, pathv + k, n, &edges, &out, nv)) {
                         s = acd_fail(err, ACD_ERR_NOMEM, "out of memory filling holes");
                         goto done;
                     }
-                    added = a2;
-                    cap = c2;
+                    st->holes_filled++;
                 }
-                added[3 * nadded] = loopv[0];
-                added[3 * nadded + 1] = loopv[q + 1];
-                added[3 * nadded + 2] = loopv[q];
-                nadded++;
+                for (size_t q = k + 1; q <= top; q++) pos[pathv[q]] = SIZE_MAX;
+                top = k;
+            } else {
+                pathv[++top] = w;
+                pos[w] = top;
             }
-            st->holes_filled++;
+            uint32_t next = ACD_HE_NONE, at = pathv[top];
+            for (uint32_t j = start[at]; j < start[at + 1] && next == ACD_HE_NONE; j++)
+                if (!used[list[j]]) next = list[j];
+            if (next == ACD_HE_NONE) break; /* closed (top 0) or an open chain: stop the walk */
+            cur = next;
         }
-    if (nadded) {
-        uint32_t *t2 = realloc(m->triangles, (m->ntriangles + nadded) * 3 * sizeof *t2);
+        for (size_t q = 0; q <= top; q++) pos[pathv[q]] = SIZE_MAX;
+    }
+    if (out.ntri) {
+        uint32_t *t2 = realloc(m->triangles, (m->ntriangles + out.ntri) * 3 * sizeof *t2);
         if (!t2) {
             s = acd_fail(err, ACD_ERR_NOMEM, "out of memory filling holes");
             goto done;
         }
         m->triangles = t2;
-        memcpy(m->triangles + 3 * m->ntriangles, added, nadded * 3 * sizeof *added);
-        m->ntriangles += nadded;
-        st->hole_faces_added += nadded;
+        memcpy(m->triangles + 3 * m->ntriangles, out.tri, out.ntri * 3 * sizeof *out.tri);
+        m->ntriangles += out.ntri;
+        st->hole_faces_added += out.ntri;
+    }
+    if (out.nvert) {
+        double *v2 = realloc(m->vertices, (nv + out.nvert) * 3 * sizeof *v2);
+        if (!v2) {
+            s = acd_fail(err, ACD_ERR_NOMEM, "out of memory filling holes");
+            goto done;
+        }
+        m->vertices = v2;
+        memcpy(m->vertices + 3 * nv, out.vert, out.nvert * 3 * sizeof *out.vert);
+        m->nvertices += out.nvert;
+        st->hole_vertices_added += out.nvert;
     }
 done:
     free(start);
     free(list);
     free(used);
-    free(loop);
-    free(loopv);
-    free(added);
+    free(pathv);
+    free(pos);
+    free(fillp);
+    free(edges.slot);
+    free(out.tri);
+    free(out.vert);
     acd_halfedges_free(&he);
     return s;
 }

@@ -55,11 +55,21 @@ PY
 for f in decomposition.obj summary.json lprism.urdf lprism.xml; do [ -s "$T/x/$f" ] || fail "export: $f missing"; done
 [ "$(grep -c '<collision' "$T/x/lprism.urdf")" = 2 ] || fail "urdf collisions"
 python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/x/summary.json" || fail "summary json"
-# bad input: an open mesh in solid mode -> exit 2 with a message naming the problem
+# an open mesh in solid mode: its hole is closed (notice on stderr) and the closed L decomposed,
+# volume 12 conserved; with --no-close-holes: exit 2 with a message naming the problem
 head -n 31 "$T/l.obj" > "$T/open.obj"
-"$ACD" 3d "$T/open.obj" 2> "$T/err.txt"; rc=$?
-[ $rc = 2 ] || fail "open mesh exit $rc"
+"$ACD" 3d "$T/open.obj" -t 0 --tau-abs --verify --json "$T/o.json" > "$T/o.txt" 2> "$T/err.txt" || fail "open mesh exit $?"
+grep -q "^2 parts" "$T/o.txt" || fail "closed L should give 2 parts: $(cat "$T/o.txt")"
+grep -q "1 holes closed with 1 faces" "$T/err.txt" || fail "repair notice: $(cat "$T/err.txt")"
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert abs(d['input_volume']-12)<1e-12, d['input_volume']" "$T/o.json" || fail "closed volume"
+"$ACD" 3d "$T/open.obj" --no-close-holes 2> "$T/err.txt"; rc=$?
+[ $rc = 2 ] || fail "open mesh with --no-close-holes exit $rc"
 grep -q "closed" "$T/err.txt" || fail "open mesh message: $(cat "$T/err.txt")"
+# a third face on an edge cannot be repaired: exit 2, saying so
+{ cat "$T/l.obj"; echo "f 1 2 11"; } > "$T/nm.obj"
+"$ACD" 3d "$T/nm.obj" 2> "$T/err.txt"; rc=$?
+[ $rc = 2 ] || fail "non-manifold exit $rc"
+grep -q "could not be closed" "$T/err.txt" || fail "non-manifold message: $(cat "$T/err.txt")"
 # missing file -> 4, bad option -> 1, garbage -> 2
 "$ACD" 3d "$T/nope.obj" 2>/dev/null; [ $? = 4 ] || fail "missing file"
 "$ACD" 3d "$T/l.obj" -t abc 2>/dev/null; [ $? = 1 ] || fail "bad tau"
