@@ -1,10 +1,12 @@
 /* acd segment: nearly convex segmentation of a triangle mesh (CoRiSe, acd/segment.h): labels per
  * face (.seg), the parts and their convex hulls as OBJ groups, a JSON summary, and --verify. */
 #include <cjson/cJSON.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd/cage.h"
 #include "acd/mesh.h"
 #include "acd/segment.h"
 #include "cli.h"
@@ -16,6 +18,7 @@ static void usage(FILE *f) {
     fprintf(f,
             "usage: acd segment MESH [-t TAU] [--seg LABELS.seg] [--parts PARTS.obj] [-o HULLS.obj]\n"
             "                        [--json FILE] [--clamp-hull-depth 0|1] [--verify] [-v]\n"
+            "                        [--cage CAGE.obj [--cage-offset D] [--cage-vertices N]]\n"
             "\n"
             "Segments MESH (OBJ, OFF, PLY or STL) into nearly convex parts by convex ridge separation\n"
             "(CoRiSe; docs/corise.md).\n"
@@ -29,6 +32,12 @@ static void usage(FILE *f) {
             "  --clamp-hull-depth B cap valley concavity by the depth below the hull (default 1)\n"
             "  --verify             check: every face labelled, every part connected, no part has a\n"
             "                       valley deeper than tau (exit 3 naming the part otherwise)\n"
+            "  --cage FILE          a cage for deformation (paper, section 7.2): the parts' hulls expanded,\n"
+            "                       simplified and unioned into one closed mesh (docs/corise.md, Cages)\n"
+            "  --cage-offset D      outward offset of the hulls, relative to the bounding-box diagonal\n"
+            "                       (default 0.01)\n"
+            "  --cage-vertices N    simplify each hull to at most N vertices (>= 4; 0: no simplification;\n"
+            "                       default 32)\n"
             "  -v, --verbose        progress and details on stderr\n");
 }
 
@@ -209,8 +218,10 @@ static cJSON *result_json(const char *input, const acd_segment_result *r, const 
 
 int acd_cmd_segment(int argc, char **argv) {
     const char *input = NULL, *seg_path = NULL, *parts_path = NULL, *hulls_path = NULL, *json_path = NULL;
+    const char *cage_path = NULL;
     int do_verify = 0, verbose = 0;
     acd_segment_params p = acd_segment_default_params();
+    acd_cage_params cp = acd_cage_default_params();
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -231,14 +242,33 @@ int acd_cmd_segment(int argc, char **argv) {
             }
             p.clamp_hull_depth = val[0] == '1';
             i++;
-        } else if (!strcmp(a, "--seg") || !strcmp(a, "--parts") || !strcmp(a, "-o") || !strcmp(a, "--json")) {
+        } else if (!strcmp(a, "--cage-offset")) {
+            if (!acd_cli_parse_double("segment", a, val, &cp.offset)) return ACD_EXIT_USAGE;
+            if (!(cp.offset >= 0)) {
+                fprintf(stderr, "acd segment: %s needs a number >= 0\n", a);
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--cage-vertices")) {
+            double nv;
+            if (!acd_cli_parse_double("segment", a, val, &nv)) return ACD_EXIT_USAGE;
+            if (!(nv == 0 || (nv >= 4 && nv <= 1e6 && nv == floor(nv)))) {
+                fprintf(stderr, "acd segment: %s needs 0 or a whole number >= 4\n", a);
+                return ACD_EXIT_USAGE;
+            }
+            cp.max_vertices = (size_t)nv;
+            i++;
+        } else if (!strcmp(a, "--seg") || !strcmp(a, "--parts") || !strcmp(a, "-o") || !strcmp(a, "--json") ||
+                   !strcmp(a, "--cage")) {
             if (!val) {
                 fprintf(stderr, "acd segment: option %s needs a file name\n", a);
                 return ACD_EXIT_USAGE;
             }
-            const char **dst = !strcmp(a, "--seg") ? &seg_path : !strcmp(a, "--parts") ? &parts_path
-                               : !strcmp(a, "-o")  ? &hulls_path
-                                                   : &json_path;
+            const char **dst = !strcmp(a, "--seg")     ? &seg_path
+                               : !strcmp(a, "--parts") ? &parts_path
+                               : !strcmp(a, "-o")      ? &hulls_path
+                               : !strcmp(a, "--cage")  ? &cage_path
+                                                       : &json_path;
             *dst = argv[++i];
         } else if (!strcmp(a, "--verify")) {
             do_verify = 1;
@@ -292,6 +322,25 @@ int acd_cmd_segment(int argc, char **argv) {
         code = acd_cli_report("segment", &err);
     if (!code && hulls_path && write_groups(hulls_path, &mesh, &r, 1, &err) != ACD_OK)
         code = acd_cli_report("segment", &err);
+    if (!code && cage_path) {
+        acd_cage_result cr;
+        if (acd_cage_from_segment(&mesh, &r, &cp, &cr, &err) != ACD_OK) {
+            code = acd_cli_report("segment", &err);
+        } else {
+            printf("cage: %zu hulls (%zu corners), %zu vertices, %zu triangles, volume/mesh %.6g, "
+                   "%zu of %zu vertices outside, %.3f s\n",
+                   cr.hulls, cr.corners, cr.cage.nvertices, cr.cage.ntriangles,
+                   r.mesh_volume > 0 ? cr.volume / r.mesh_volume : 0.0, cr.outside_vertices, cr.checked_vertices,
+                   cr.seconds);
+            if (acd_mesh_write(cage_path, &cr.cage, acd_mesh_format_from_path(cage_path), &err) != ACD_OK)
+                code = acd_cli_report("segment", &err);
+            else if (cr.outside_vertices) {
+                acd_fail(&err, ACD_ERR_VERIFY, "cage: %zu mesh vertices lie outside the cage", cr.outside_vertices);
+                code = acd_cli_report("segment", &err);
+            }
+            acd_cage_result_free(&cr);
+        }
+    }
     if (!code && json_path) {
         cJSON *j = result_json(input, &r, &p);
         char *txt = j ? cJSON_Print(j) : NULL;

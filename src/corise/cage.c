@@ -1,0 +1,286 @@
+/* corise/cage: cages from a decomposition's hulls (acd/cage.h; CoRiSe paper §7.2, spec corise.md
+ * §5): each hull is expanded (Minkowski sum with a polytope holding a ball), simplified to a vertex
+ * budget by an enclosing polytope (geom3/hull_simplify), and the results are unioned exactly into
+ * one closed mesh (geom3/polyunion). Enclosure of the mesh is checked with exact ray winding
+ * numbers (geom3/spatial). */
+#define _POSIX_C_SOURCE 200809L
+#include "acd/cage.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "acd/hull.h"
+#include "core/error.h"
+#include "geom3/hull_simplify.h"
+#include "geom3/polyunion.h"
+#include "geom3/spatial.h"
+
+/* Directions of the expansion polytope: the 26 unit vectors of {-1, 0, 1}^3 \ 0. */
+#define CAGE_NDIRS 26
+/* A flat part's point set is thickened by this many offsets before its planes are pushed. */
+#define CAGE_FLAT_THICKEN 0.1
+
+acd_cage_params acd_cage_default_params(void) {
+    acd_cage_params p;
+    memset(&p, 0, sizeof p);
+    p.cookie = ACD_CAGE_PARAMS_COOKIE;
+    p.offset = 0.01;
+    p.max_vertices = 32;
+    p.check_enclosure = 1;
+    return p;
+}
+
+void acd_cage_result_free(acd_cage_result *r) {
+    if (!r) return;
+    acd_mesh_free(&r->cage);
+    memset(r, 0, sizeof *r);
+}
+
+static double now_seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The 26 directions scaled so that their hull holds the unit ball (divided by its inradius). */
+static acd_status expansion_dirs(double *dirs, acd_error *err) {
+    size_t n = 0;
+    for (int x = -1; x <= 1; x++)
+        for (int y = -1; y <= 1; y++)
+            for (int z = -1; z <= 1; z++) {
+                if (!x && !y && !z) continue;
+                double l = sqrt((double)(x * x + y * y + z * z));
+                dirs[3 * n] = x / l;
+                dirs[3 * n + 1] = y / l;
+                dirs[3 * n + 2] = z / l;
+                n++;
+            }
+    acd_hull h;
+    acd_status st = acd_hull_compute(dirs, CAGE_NDIRS, &h, err);
+    if (st != ACD_OK) return st;
+    double rin = INFINITY;
+    for (size_t f = 0; f < h.ntriangles; f++)
+        if (-h.planes[4 * f + 3] < rin) rin = -h.planes[4 * f + 3];
+    acd_hull_free(&h);
+    if (!(rin > 0.5)) return acd_fail(err, ACD_ERR_INTERNAL, "cage: expansion polytope inradius %g", rin);
+    /* a hair more than 1 / inradius, so that rounding never leaves the ball poking out */
+    double s = (1.0 + 1e-9) / rin;
+    for (size_t i = 0; i < 3 * CAGE_NDIRS; i++) dirs[i] *= s;
+    return ACD_OK;
+}
+
+/* Simplified hull of n points, made solid when flat (offset > 0): a flat set is first thickened
+ * by a Minkowski sum with the direction polytope scaled to CAGE_FLAT_THICKEN offsets; the offset
+ * itself is applied by pushing the facet planes (acd_polyunion). out->dim < 3: nothing solid. */
+static acd_status expand_hull(const double *pts, size_t n, double off, const double *dirs, size_t max_vertices,
+                              acd_hull *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    out->dim = -1;
+    if (!n) return ACD_OK;
+    acd_hull h0;
+    acd_status st = acd_hull_compute(pts, n, &h0, err);
+    if (st != ACD_OK) return st;
+    if (h0.dim == 3) {
+        if (!max_vertices) {
+            *out = h0;
+            return ACD_OK;
+        }
+        st = acd_hull_simplify(h0.vertices, h0.nvertices, max_vertices, out, err);
+        acd_hull_free(&h0);
+        return st;
+    }
+    if (h0.dim < 0 || off <= 0) {
+        acd_hull_free(&h0);
+        return ACD_OK;
+    }
+    size_t nb = h0.nvertices, m = nb * CAGE_NDIRS;
+    double *ex = malloc(3 * m * sizeof *ex);
+    if (!ex) {
+        acd_hull_free(&h0);
+        return acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
+    }
+    for (size_t v = 0; v < nb; v++)
+        for (size_t d = 0; d < CAGE_NDIRS; d++)
+            for (int k = 0; k < 3; k++)
+                ex[3 * (v * CAGE_NDIRS + d) + k] = h0.vertices[3 * v + k] + CAGE_FLAT_THICKEN * off * dirs[3 * d + k];
+    acd_hull_free(&h0);
+    st = max_vertices ? acd_hull_simplify(ex, m, max_vertices, out, err) : acd_hull_compute(ex, m, out, err);
+    free(ex);
+    return st;
+}
+
+acd_status acd_cage_build(const acd_mesh *mesh, const acd_mesh *hulls, size_t nhulls, const acd_cage_params *params,
+                          acd_cage_result *out, acd_error *err) {
+    if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!mesh || !params || (nhulls && !hulls))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: mesh, params or hulls is NULL");
+    if (params->cookie != ACD_CAGE_PARAMS_COOKIE)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: params not initialized (use acd_cage_default_params)");
+    if (!(params->offset >= 0) || !isfinite(params->offset))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: offset %g must be finite and >= 0", params->offset);
+    if (params->max_vertices && params->max_vertices < 4)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: max_vertices %zu must be 0 or >= 4", params->max_vertices);
+    double t0 = now_seconds();
+
+    /* scale: bounding box of the vertices the mesh's faces use (all vertices if it has none) */
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t t = 0; t < 3 * mesh->ntriangles; t++)
+        if (mesh->triangles[t] >= mesh->nvertices)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "cage: face %zu uses vertex %u of %zu", t / 3, mesh->triangles[t],
+                            mesh->nvertices);
+    for (size_t v = 0; v < mesh->nvertices; v++)
+        for (int k = 0; k < 3; k++) {
+            double x = mesh->vertices[3 * v + k];
+            if (!isfinite(x)) return acd_fail(err, ACD_ERR_INVALID_INPUT, "cage: mesh vertex %zu is not finite", v);
+            if (x < lo[k]) lo[k] = x;
+            if (x > hi[k]) hi[k] = x;
+        }
+    double diag = 0;
+    if (mesh->nvertices)
+        diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    out->diagonal = diag;
+    out->offset = params->offset * diag;
+
+    double dirs[3 * CAGE_NDIRS];
+    acd_status st = expansion_dirs(dirs, err);
+    if (st != ACD_OK) return st;
+    acd_hull *ex = calloc(nhulls ? nhulls : 1, sizeof *ex);
+    if (!ex) return acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
+    for (size_t h = 0; h < nhulls && st == ACD_OK; h++) {
+        for (size_t v = 0; v < 3 * hulls[h].nvertices; v++)
+            if (!isfinite(hulls[h].vertices[v])) {
+                st = acd_fail(err, ACD_ERR_INVALID_INPUT, "cage: hull %zu vertex %zu is not finite", h, v / 3);
+                break;
+            }
+        if (st != ACD_OK) break;
+        st = expand_hull(hulls[h].vertices, hulls[h].nvertices, out->offset, dirs, params->max_vertices, &ex[h], err);
+        if (st == ACD_OK) {
+            if (ex[h].dim == 3) out->hulls++;
+            else out->skipped++;
+        }
+    }
+    acd_polyunion_stats ps;
+    if (st == ACD_OK) st = acd_polyunion(ex, nhulls, out->offset, &out->cage, &ps, err);
+    for (size_t h = 0; h < nhulls; h++) acd_hull_free(&ex[h]);
+    free(ex);
+    if (st != ACD_OK) {
+        acd_cage_result_free(out);
+        return st;
+    }
+    out->corners = ps.corners;
+    const acd_mesh *cg = &out->cage;
+    double vol = 0;
+    for (size_t t = 0; t < cg->ntriangles; t++) {
+        const double *a = cg->vertices + 3 * (size_t)cg->triangles[3 * t], *b = cg->vertices + 3 * (size_t)cg->triangles[3 * t + 1],
+                     *c = cg->vertices + 3 * (size_t)cg->triangles[3 * t + 2];
+        vol += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    out->volume = vol / 6;
+
+    if (params->check_enclosure) {
+        acd_spatial sp;
+        st = acd_spatial_build(&sp, cg->vertices, cg->nvertices, cg->triangles, cg->ntriangles, err);
+        if (st != ACD_OK) {
+            acd_cage_result_free(out);
+            return st;
+        }
+        unsigned char *used = calloc(mesh->nvertices ? mesh->nvertices : 1, 1);
+        if (!used) {
+            acd_spatial_free(&sp);
+            acd_cage_result_free(out);
+            return acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
+        }
+        for (size_t t = 0; t < 3 * mesh->ntriangles; t++) used[mesh->triangles[t]] = 1;
+        for (size_t v = 0; v < mesh->nvertices; v++) {
+            if (!used[v]) continue;
+            out->checked_vertices++;
+            int c = acd_spatial_classify(&sp, mesh->vertices + 3 * v);
+            if (c == ACD_SPATIAL_OUTSIDE) out->outside_vertices++;
+            else if (c == ACD_SPATIAL_ON_SURFACE) out->surface_vertices++;
+        }
+        free(used);
+        acd_spatial_free(&sp);
+    }
+    out->seconds = now_seconds() - t0;
+    return ACD_OK;
+}
+
+acd_status acd_cage_from_segment(const acd_mesh *mesh, const acd_segment_result *seg, const acd_cage_params *params,
+                                 acd_cage_result *out, acd_error *err) {
+    if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!mesh || !seg) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: mesh or segmentation is NULL");
+    if (seg->nfaces != mesh->ntriangles)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: %zu labels for %zu faces", seg->nfaces, mesh->ntriangles);
+    size_t np = seg->nparts, nt = mesh->ntriangles;
+    size_t *count = calloc(np + 1, sizeof *count);
+    uint32_t *stamp = malloc((mesh->nvertices ? mesh->nvertices : 1) * sizeof *stamp);
+    acd_mesh *sets = calloc(np ? np : 1, sizeof *sets);
+    double *pool = NULL;
+    acd_status st = ACD_OK;
+    if (!count || !stamp || !sets) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
+        goto done;
+    }
+    for (size_t f = 0; f < nt; f++)
+        if (seg->labels[f] >= np) {
+            st = acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "cage: face %zu has label %u of %zu parts", f, seg->labels[f], np);
+            goto done;
+        }
+    /* distinct vertices per part (stamped), counted then filled */
+    for (size_t v = 0; v < mesh->nvertices; v++) stamp[v] = UINT32_MAX;
+    for (size_t f = 0; f < nt; f++)
+        for (int c = 0; c < 3; c++) {
+            uint32_t v = mesh->triangles[3 * f + c];
+            if (v >= mesh->nvertices) {
+                st = acd_fail(err, ACD_ERR_INVALID_INPUT, "cage: face %zu uses vertex %u of %zu", f, v, mesh->nvertices);
+                goto done;
+            }
+            (void)v;
+        }
+    size_t total = 0;
+    for (size_t k = 0; k < np; k++) {
+        for (size_t f = 0; f < nt; f++) {
+            if (seg->labels[f] != k) continue;
+            for (int c = 0; c < 3; c++) {
+                uint32_t v = mesh->triangles[3 * f + c];
+                if (stamp[v] != (uint32_t)k) {
+                    stamp[v] = (uint32_t)k;
+                    count[k]++;
+                }
+            }
+        }
+        total += count[k];
+    }
+    pool = malloc(3 * (total ? total : 1) * sizeof *pool);
+    if (!pool) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
+        goto done;
+    }
+    for (size_t v = 0; v < mesh->nvertices; v++) stamp[v] = UINT32_MAX;
+    size_t at = 0;
+    for (size_t k = 0; k < np; k++) {
+        sets[k].vertices = pool + 3 * at;
+        for (size_t f = 0; f < nt; f++) {
+            if (seg->labels[f] != k) continue;
+            for (int c = 0; c < 3; c++) {
+                uint32_t v = mesh->triangles[3 * f + c];
+                if (stamp[v] != (uint32_t)k) {
+                    stamp[v] = (uint32_t)k;
+                    memcpy(pool + 3 * (at + sets[k].nvertices++), mesh->vertices + 3 * (size_t)v, 3 * sizeof *pool);
+                }
+            }
+        }
+        at += sets[k].nvertices;
+    }
+    st = acd_cage_build(mesh, sets, np, params, out, err);
+done:
+    free(pool);
+    free(sets);
+    free(stamp);
+    free(count);
+    return st;
+}
