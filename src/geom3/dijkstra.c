@@ -24,20 +24,39 @@ typedef struct edge_rec {
     double w;
 } edge_rec;
 
-static int cmp_edge(const void *x, const void *y) {
-    const edge_rec *p = x, *q = y;
-    if (p->a != q->a) return p->a < q->a ? -1 : 1;
-    if (p->b != q->b) return p->b < q->b ? -1 : 1;
-    if (p->w != q->w) return p->w < q->w ? -1 : 1;
-    return 0;
+/* Sorts the records by (a, b) with two stable counting sorts (by b, then by a; both < nv).
+ * Returns 0 when out of memory. */
+static int sort_edges(size_t nv, edge_rec *rec, size_t nrec) {
+    size_t *cnt = malloc((nv + 1) * sizeof *cnt);
+    edge_rec *tmp = malloc((nrec ? nrec : 1) * sizeof *tmp);
+    if (!cnt || !tmp) {
+        free(cnt);
+        free(tmp);
+        return 0;
+    }
+    for (int pass = 0; pass < 2; pass++) {
+        memset(cnt, 0, (nv + 1) * sizeof *cnt);
+        for (size_t i = 0; i < nrec; i++) cnt[(pass ? rec[i].a : rec[i].b) + 1]++;
+        for (size_t v = 0; v < nv; v++) cnt[v + 1] += cnt[v];
+        for (size_t i = 0; i < nrec; i++) tmp[cnt[pass ? rec[i].a : rec[i].b]++] = rec[i];
+        memcpy(rec, tmp, nrec * sizeof *rec);
+    }
+    free(cnt);
+    free(tmp);
+    return 1;
 }
 
-/* Builds the graph from edge records (sorted and merged here; rec is consumed). */
+/* Builds the graph from edge records (sorted and merged here, a repeated edge keeping its
+ * smallest length; rec is consumed). */
 static acd_status build_graph(size_t nv, edge_rec *rec, size_t nrec, acd_edge_graph *g, acd_error *err) {
-    qsort(rec, nrec, sizeof *rec, cmp_edge);
+    if (!sort_edges(nv, rec, nrec))
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory sorting %zu edges", nrec);
     size_t ne = 0;
     for (size_t i = 0; i < nrec; i++)
-        if (ne == 0 || rec[i].a != rec[ne - 1].a || rec[i].b != rec[ne - 1].b) rec[ne++] = rec[i];
+        if (ne == 0 || rec[i].a != rec[ne - 1].a || rec[i].b != rec[ne - 1].b)
+            rec[ne++] = rec[i];
+        else if (rec[i].w < rec[ne - 1].w)
+            rec[ne - 1].w = rec[i].w;
     g->nvertices = nv;
     g->nedges = ne;
     g->edge_v = malloc((ne ? ne : 1) * 2 * sizeof *g->edge_v);

@@ -1,4 +1,4 @@
-/* geom3/edge_map: directed-edge lookup for triangle meshes (sorted keys, binary search).
+/* geom3/edge_map: directed-edge lookup for triangle meshes (keys sorted by a stable radix sort, binary search).
  * Maps the half-edge (a, b) of triangle t, corner i (edge from corner i to i+1) to 3t + i. */
 #ifndef ACD_GEOM3_EDGE_MAP_H
 #define ACD_GEOM3_EDGE_MAP_H
@@ -25,6 +25,11 @@ void acd_edge_map_free(acd_edge_map *m);
 uint32_t acd_edge_map_find(const acd_edge_map *m, uint32_t a, uint32_t b);
 /* How many half-edges a -> b there are. */
 size_t acd_edge_map_count(const acd_edge_map *m, uint32_t a, uint32_t b);
+
+/* For every entry i of the map (key order), the half-edge b -> a opposite key[i] = (a, b) (the
+ * first if repeated, as acd_edge_map_find), or ACD_EDGE_NONE; *twin is malloc'd (m->n entries).
+ * Linear after one radix sort, instead of a binary search per half-edge. */
+acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error *err);
 
 /* Checks that the triangles form a closed, consistently oriented 2-manifold-with-pinches: every
  * half-edge (a, b) unique, its opposite (b, a) present, no triangle repeating a vertex. Fails with

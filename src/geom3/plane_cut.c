@@ -287,14 +287,23 @@ static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
         acd_edge_map_free(&pm);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the section boundary");
     }
+    uint32_t *ptw = NULL;
+    st = acd_edge_map_twins(&pm, &ptw, err);
+    if (st != ACD_OK) {
+        free(bfrom);
+        free(bto);
+        acd_edge_map_free(&pm);
+        return st;
+    }
     for (size_t i = 0; i < pm.n; i++) {
         uint32_t a = (uint32_t)(pm.key[i] >> 32), b = (uint32_t)pm.key[i];
-        if (acd_edge_map_find(&pm, b, a) == ACD_EDGE_NONE) {
+        if (ptw[i] == ACD_EDGE_NONE) {
             bfrom[nb] = a;
             bto[nb] = b;
             nb++;
         }
     }
+    free(ptw);
     acd_edge_map_free(&pm);
     if (nb == 0) {
         free(bfrom);
@@ -612,11 +621,11 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         acd_edge_map m;
         st = acd_edge_map_build(c->T, c->nt, keep, &m, err);
         if (st != ACD_OK) break;
-        for (size_t i = 0; i < m.n; i++) {
-            uint32_t a = (uint32_t)(m.key[i] >> 32), b = (uint32_t)m.key[i];
-            uint32_t h = acd_edge_map_find(&m, b, a);
-            if (h != ACD_EDGE_NONE) acd_uf_union(parent, m.half[i] / 3, h / 3);
-        }
+        uint32_t *tw = NULL;
+        st = acd_edge_map_twins(&m, &tw, err);
+        for (size_t i = 0; st == ACD_OK && i < m.n; i++)
+            if (tw[i] != ACD_EDGE_NONE) acd_uf_union(parent, m.half[i] / 3, tw[i] / 3);
+        free(tw);
         acd_edge_map_free(&m);
     }
     free(keep);
