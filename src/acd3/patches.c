@@ -150,10 +150,21 @@ static double l21_error(const facet_info *fi, size_t f, const double N[3]) {
 }
 
 /* One VSA partition: flood from the seeds. label[] gets the proxy of every facet. */
+/* An item that does not precede the best one already queued for its facet can never label it
+ * (the facet takes its first pop): it is not queued, which leaves the partition unchanged. */
+static int flood_push(heap *hp, heap_item *best, heap_item it) {
+    if (best[it.facet].facet != UINT32_MAX && !item_less(&it, &best[it.facet])) return 1;
+    best[it.facet] = it;
+    return heap_push(hp, it);
+}
+
 static int flood(const acd_hull *h, const facet_info *fi, const double *N, const uint32_t *seeds, size_t k,
-                 uint32_t *label, heap *hp) {
+                 uint32_t *label, heap *hp, heap_item *best) {
     size_t nf = h->ntriangles;
-    for (size_t f = 0; f < nf; f++) label[f] = UINT32_MAX;
+    for (size_t f = 0; f < nf; f++) {
+        label[f] = UINT32_MAX;
+        best[f].facet = UINT32_MAX;
+    }
     hp->n = 0;
     for (size_t i = 0; i < k; i++) label[seeds[i]] = (uint32_t)i;
     for (size_t i = 0; i < k; i++) {
@@ -161,7 +172,7 @@ static int flood(const acd_hull *h, const facet_info *fi, const double *N, const
         for (int e = 0; e < 3; e++) {
             uint32_t g = h->neighbors[3 * s + e];
             if (g < nf && label[g] == UINT32_MAX)
-                if (!heap_push(hp, (heap_item){l21_error(fi, g, N + 3 * i), g, (uint32_t)i})) return 0;
+                if (!flood_push(hp, best, (heap_item){l21_error(fi, g, N + 3 * i), g, (uint32_t)i})) return 0;
         }
     }
     while (hp->n) {
@@ -171,7 +182,7 @@ static int flood(const acd_hull *h, const facet_info *fi, const double *N, const
         for (int e = 0; e < 3; e++) {
             uint32_t g = h->neighbors[3 * it.facet + e];
             if (g < nf && label[g] == UINT32_MAX)
-                if (!heap_push(hp, (heap_item){l21_error(fi, g, N + 3 * it.proxy), g, it.proxy})) return 0;
+                if (!flood_push(hp, best, (heap_item){l21_error(fi, g, N + 3 * it.proxy), g, it.proxy})) return 0;
         }
     }
     return 1;
@@ -233,12 +244,13 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
     uint32_t *label = malloc(nf * sizeof *label), *prev = malloc(nf * sizeof *prev);
     uint32_t *seeds = malloc(nf * sizeof *seeds), *queue = malloc(nf * sizeof *queue);
     double *N = malloc(3 * nf * sizeof *N);
+    heap_item *fbest = malloc(nf * sizeof *fbest);
     heap hp = {0};
     vadj va = {0};
     uint32_t *label1 = NULL, *seeds1 = NULL; /* the step-1 grouping, kept as the fallback */
     double *N1 = NULL;
     acd_status st = ACD_OK;
-    if (!vadj_build(h, &va) || !fi || !order || !tmp || !label || !prev || !seeds || !queue || !N) {
+    if (!vadj_build(h, &va) || !fi || !order || !tmp || !label || !prev || !seeds || !queue || !N || !fbest) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping %zu hull facets", nf);
         goto done;
     }
@@ -297,7 +309,7 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
         int iters = round == 0 ? LLOYD_MAX_ITERATIONS : LLOYD_SPLIT_ITERATIONS;
         for (int it = 0; it < iters; it++) {
             memcpy(prev, label, nf * sizeof *label);
-            if (!flood(h, fi, N, seeds, k, label, &hp)) {
+            if (!flood(h, fi, N, seeds, k, label, &hp, fbest)) {
                 st = acd_fail(err, ACD_ERR_NOMEM, "out of memory in bridge clustering");
                 goto done;
             }
@@ -365,7 +377,7 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
         out->seed[i] = seeds[i];
     }
 done:
-    free(fi), free(order), free(tmp), free(label), free(prev), free(seeds), free(queue), free(N), free(hp.a);
+    free(fi), free(order), free(tmp), free(label), free(prev), free(seeds), free(queue), free(N), free(hp.a), free(fbest);
     free(va.row), free(va.adj);
     free(label1), free(seeds1), free(N1);
     return st;

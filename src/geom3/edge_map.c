@@ -11,11 +11,14 @@
  * keys keep their input order. tk, tv: scratch of n entries. */
 static void radix_sort(uint64_t *keys, uint32_t *vals, uint64_t *tk, uint32_t *tv, size_t n, int nbytes) {
     size_t cnt[256];
+    uint64_t *k0 = keys, *k1 = tk;
+    uint32_t *v0 = vals, *v1 = tv;
     for (int half = 0; half < 2; half++)
         for (int byte = 0; byte < nbytes; byte++) {
             int shift = 32 * half + 8 * byte;
             memset(cnt, 0, sizeof cnt);
-            for (size_t i = 0; i < n; i++) cnt[(keys[i] >> shift) & 0xff]++;
+            for (size_t i = 0; i < n; i++) cnt[(k0[i] >> shift) & 0xff]++;
+            if (n == 0 || cnt[(k0[0] >> shift) & 0xff] == n) continue; /* one digit: nothing moves */
             size_t sum = 0;
             for (int d = 0; d < 256; d++) {
                 size_t c = cnt[d];
@@ -23,13 +26,21 @@ static void radix_sort(uint64_t *keys, uint32_t *vals, uint64_t *tk, uint32_t *t
                 sum += c;
             }
             for (size_t i = 0; i < n; i++) {
-                size_t j = cnt[(keys[i] >> shift) & 0xff]++;
-                tk[j] = keys[i];
-                tv[j] = vals[i];
+                size_t j = cnt[(k0[i] >> shift) & 0xff]++;
+                k1[j] = k0[i];
+                v1[j] = v0[i];
             }
-            memcpy(keys, tk, n * sizeof *keys);
-            memcpy(vals, tv, n * sizeof *vals);
+            uint64_t *tk_ = k0;
+            k0 = k1;
+            k1 = tk_;
+            uint32_t *tv_ = v0;
+            v0 = v1;
+            v1 = tv_;
         }
+    if (k0 != keys) {
+        memcpy(keys, k0, n * sizeof *keys);
+        memcpy(vals, v0, n * sizeof *vals);
+    }
 }
 
 static int id_bytes(uint32_t maxid) {
