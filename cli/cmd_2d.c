@@ -23,7 +23,7 @@ static void usage(FILE *f) {
             "usage: acd 2d INPUT [options]\n"
             "\n"
             "Decomposes every polygon (with its holes) in INPUT (.poly, GeoJSON Polygon/MultiPolygon/\n"
-            "Feature/FeatureCollection, or WKT) into components whose concavity is at most TAU.\n"
+            "Feature/FeatureCollection, TopoJSON, or WKT) into components whose concavity is at most TAU.\n"
             "\n"
             "options:\n"
             "  -t, --tau F          concavity tolerance, model units (relative to R with --normalize;\n"
@@ -35,7 +35,10 @@ static void usage(FILE *f) {
             "      --normalize      tau is relative to R, the largest distance of an outer vertex from\n"
             "                       the outer vertices' mean\n"
             "      --notch-eps F    a vertex is a notch when (v-u)x(w-v) < -F (default 1e-5; 0 = exact)\n"
-            "      --format F       input format: auto, poly, geojson, wkt (default auto)\n"
+            "      --format F       input format: auto, poly, geojson, topojson, wkt (default auto)\n"
+            "      --feature SEL    GeoJSON/TopoJSON: only the features whose id or a property equals\n"
+            "                       SEL (e.g. \"South Africa\"), or with SEL = KEY=VALUE property KEY\n"
+            "      --object NAME    TopoJSON: only this member of \"objects\" (e.g. countries)\n"
             "      --json FILE      write the report (components, hulls, cuts, tree, stats) as JSON;\n"
             "                       FILE '-' is standard output\n"
             "  -o FILE              write the components as GeoJSON (.geojson, .json) or .poly\n"
@@ -233,6 +236,7 @@ int acd_cmd_2d(int argc, char **argv) {
     acd2d_params prm = acd2d_default_params();
     const char *input = NULL, *json_path = NULL, *out_path = NULL, *svg_path = NULL;
     acd_polygon_format fmt = ACD_POLY_FORMAT_AUTO;
+    const char *feature = NULL, *object = NULL; /* --feature, --object */
     int verify = 0, verbose = 0;
     double verify_tau = -1;
     const char *exact_name = NULL; /* --exact value */
@@ -302,10 +306,16 @@ int acd_cmd_2d(int argc, char **argv) {
                 fmt = ACD_POLY_FORMAT_GEOJSON;
             else if (!strcmp(val, "wkt"))
                 fmt = ACD_POLY_FORMAT_WKT;
+            else if (!strcmp(val, "topojson"))
+                fmt = ACD_POLY_FORMAT_TOPOJSON;
             else {
-                fprintf(stderr, "acd 2d: --format must be auto, poly, geojson or wkt, got '%s'\n", val);
+                fprintf(stderr, "acd 2d: --format must be auto, poly, geojson, topojson or wkt, got '%s'\n", val);
                 return ACD_EXIT_USAGE;
             }
+        } else if (is_opt(a, "--feature")) {
+            if (!(feature = opt_value(argc, argv, &i, "--feature"))) return ACD_EXIT_USAGE;
+        } else if (is_opt(a, "--object")) {
+            if (!(object = opt_value(argc, argv, &i, "--object"))) return ACD_EXIT_USAGE;
         } else if (!strcmp(a, "--normalize")) {
             prm.normalize = 1;
             if (!acd_only) acd_only = "--normalize";
@@ -368,7 +378,12 @@ int acd_cmd_2d(int argc, char **argv) {
     acd_polygon_set set = {NULL, 0};
     acd_polygon_fixes fixes;
     memset(&fixes, 0, sizeof fixes);
-    acd_status st = acd_polygon_set_read_file(&set, input, fmt, &fixes, &err);
+    acd_polygon_read_options ropt;
+    memset(&ropt, 0, sizeof ropt);
+    ropt.format = fmt;
+    ropt.feature = feature;
+    ropt.object = object;
+    acd_status st = acd_polygon_set_read_file_opts(&set, input, &ropt, &fixes, &err);
     if (st != ACD_OK) return acd_cli_report("2d", &err);
     if (set.count == 0) {
         fprintf(stderr, "acd 2d: %s: %s: no polygon in the file\n", acd_status_string(ACD_ERR_INVALID_INPUT), input);

@@ -1,4 +1,4 @@
-/* acd/polygon.h: polygons with holes; reading (.poly, GeoJSON, WKT), validation, writing.
+/* acd/polygon.h: polygons with holes; reading (.poly, GeoJSON, TopoJSON, WKT), validation, writing.
  *
  * A polygon is one outer ring followed by zero or more hole rings, stored as one point array
  * with ring offsets. After acd_polygon_normalize (done by every reader) the outer ring is
@@ -34,8 +34,22 @@ typedef enum acd_polygon_format {
     ACD_POLY_FORMAT_AUTO = 0,
     ACD_POLY_FORMAT_POLY,    /* Lien's .poly */
     ACD_POLY_FORMAT_GEOJSON, /* Polygon, MultiPolygon, Feature, FeatureCollection, GeometryCollection */
-    ACD_POLY_FORMAT_WKT      /* POLYGON, MULTIPOLYGON */
+    ACD_POLY_FORMAT_WKT,     /* POLYGON, MULTIPOLYGON */
+    ACD_POLY_FORMAT_TOPOJSON /* Topology: Polygon, MultiPolygon, GeometryCollection over shared arcs */
 } acd_polygon_format;
+
+/* Options of acd_polygon_set_parse_opts / acd_polygon_set_read_file_opts. Zero-initialized
+ * options read everything with format detection (what acd_polygon_set_parse does). */
+typedef struct acd_polygon_read_options {
+    acd_polygon_format format; /* ACD_POLY_FORMAT_AUTO: detected from the content */
+    /* GeoJSON Features / TopoJSON geometries to keep (NULL: all). "VALUE" keeps those whose "id"
+     * or any property equals VALUE (e.g. "South Africa"); "KEY=VALUE" those whose property KEY
+     * (or "id") equals VALUE (e.g. "name=Italy", "id=710"). Numbers compare as doubles. Nothing
+     * selected is an error (ACD_ERR_INVALID_INPUT); .poly and WKT refuse a selector. */
+    const char *feature;
+    /* TopoJSON: read only this member of "objects" (e.g. "countries"; NULL: all). */
+    const char *object;
+} acd_polygon_read_options;
 
 /* What normalization changed, so a verbose CLI can say so. */
 typedef struct acd_polygon_fixes {
@@ -74,6 +88,14 @@ acd_status acd_polygon_set_parse(acd_polygon_set *out, const char *text, size_t 
                                  const char *name, acd_polygon_fixes *fixes, acd_error *err);
 acd_status acd_polygon_set_read_file(acd_polygon_set *out, const char *path, acd_polygon_format fmt,
                                      acd_polygon_fixes *fixes, acd_error *err);
+/* The same with options (opts may be NULL: defaults). With detection, JSON whose top-level
+ * "type" is "Topology" is read as TopoJSON, other JSON as GeoJSON. */
+acd_status acd_polygon_set_parse_opts(acd_polygon_set *out, const char *text, size_t len,
+                                      const acd_polygon_read_options *opts, const char *name,
+                                      acd_polygon_fixes *fixes, acd_error *err);
+acd_status acd_polygon_set_read_file_opts(acd_polygon_set *out, const char *path,
+                                          const acd_polygon_read_options *opts, acd_polygon_fixes *fixes,
+                                          acd_error *err);
 
 /* Normalizes in place: drops consecutive repeated vertices and closing repeats of the first
  * vertex, makes the outer ring CCW and holes CW (exact orientation test). Idempotent. Changes are

@@ -31,7 +31,7 @@ expect 1 "> 0" "$ACD" 2d "$T/L.poly" --sd 0
 expect 1 ">= 0" "$ACD" 2d "$T/L.poly" --sc -0.5
 expect 1 ".geojson, .json or .poly" "$ACD" 2d "$T/L.poly" -o "$T/x.txt"
 expect 1 "one input file" "$ACD" 2d "$T/L.poly" "$T/L.poly"
-expect 1 "auto, poly, geojson or wkt" "$ACD" 2d "$T/L.poly" --format xml
+expect 1 "auto, poly, geojson, topojson or wkt" "$ACD" 2d "$T/L.poly" --format xml
 
 for m in sl sp h1 h2; do
   for form in "-m $m" "--measure=$m"; do
