@@ -30,8 +30,9 @@ fi
 
 # --- build ---
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build build -j2 --target bench_2d_experiments >/dev/null
+cmake --build build -j2 --target bench_2d_experiments bench_2d_real acd_cli >/dev/null
 BENCH=$ROOT/build/bench/bench_2d_experiments
+ACD=$ROOT/build/acd
 CGAL_BIN=$OUT/cgal_partition
 if [ -d /usr/include/CGAL ]; then
   g++ -O2 -std=c++17 -o "$CGAL_BIN" "$PEERS/cgal_partition.cpp" -lgmp -lmpfr || CGAL_BIN=
@@ -42,22 +43,39 @@ fi
 # --- acd sweeps, MCD, HM ---
 "$BENCH" --data "$DATA" --out "$OUT"
 
+# --- real-world polygons (data/2d from scripts/fetch-data.sh): ACD, HM, MCD, pictures ---
+D2=${D2:-$ROOT/data/2d}
+if [ -d "$D2" ]; then
+  "$ROOT/build/bench/bench_2d_real" --data "$D2" --out "$OUT" || echo "bench_2d_real reported a failure" >&2
+  rm -f "$ROOT"/docs/results/img/2d-real-*.svg
+  tail -n +2 "$OUT/real/models.csv" | while IFS=, read -r name source n holes notches; do
+    "$ACD" 2d "$OUT/real/$name.poly" -t 0.05 --normalize --verify \
+      --svg "$ROOT/docs/results/img/2d-real-$name-acd.svg" >/dev/null
+    if [ "$holes" = 0 ]; then ex=mcd; else ex=hm; fi
+    "$ACD" 2d "$OUT/real/$name.poly" --exact $ex --verify --svg "$ROOT/docs/results/img/2d-real-$name-$ex.svg" >/dev/null
+  done
+else
+  echo "no $D2 (run scripts/fetch-data.sh): real-world section skipped" >&2
+fi
+
 # --- peers on the same polygons ---
 echo "model,peer,status,pieces,cpu_s,covered,verify" > "$OUT/peers.csv"
+run_peer() { # name timeout command...; uses model, poly, checkpoly, peers_csv
+  local name=$1 to=$2; shift 2
+  local pieces=$OUT/pieces-$model-$(echo "$name" | tr ' /' '__').txt line rc=0
+  line=$(timeout "$to" "$@" "$poly" "$pieces" 2>/dev/null) || rc=$?
+  if [ $rc -eq 124 ]; then echo "$model,$name,timeout (>${to} s),,,," >> "$peers_csv"; return; fi
+  if [ $rc -ne 0 ]; then echo "$model,$name,error (exit $rc),,,," >> "$peers_csv"; return; fi
+  local cpu=${line##*,}
+  local chk
+  chk=$("$BENCH" --check "$checkpoly" "$pieces") || { echo "$model,$name,check failed,,,," >> "$peers_csv"; return; }
+  IFS=, read -r np ia pa cov ver <<< "$chk"
+  echo "$model,$name,ok,$np,$cpu,$cov,$ver" >> "$peers_csv"
+}
+peers_csv=$OUT/peers.csv
 tail -n +2 "$OUT/models.csv" | while IFS=, read -r model file n notches holes; do
   poly=$OUT/polys/$model.txt
-  run_peer() { # name timeout command...
-    local name=$1 to=$2; shift 2
-    local pieces=$OUT/pieces-$model-$(echo "$name" | tr ' /' '__').txt line rc=0
-    line=$(timeout "$to" "$@" "$poly" "$pieces" 2>/dev/null) || rc=$?
-    if [ $rc -eq 124 ]; then echo "$model,$name,timeout (>${to} s),,,," >> "$OUT/peers.csv"; return; fi
-    if [ $rc -ne 0 ]; then echo "$model,$name,error (exit $rc),,,," >> "$OUT/peers.csv"; return; fi
-    local cpu=${line##*,}
-    local chk
-    chk=$("$BENCH" --check "$DATA/$file.poly" "$pieces") || { echo "$model,$name,check failed,,,," >> "$OUT/peers.csv"; return; }
-    IFS=, read -r np ia pa cov ver <<< "$chk"
-    echo "$model,$name,ok,$np,$cpu,$cov,$ver" >> "$OUT/peers.csv"
-  }
+  checkpoly=$DATA/$file.poly
   if [ -d "$PEERS/node_modules/poly-decomp" ]; then
     run_peer "poly-decomp quickDecomp" 120 env NODE_PATH="$PEERS/node_modules" node "$PEERS/polydecomp.js" quick
     run_peer "poly-decomp decomp" "$PEER_TIMEOUT" env NODE_PATH="$PEERS/node_modules" node "$PEERS/polydecomp.js" exact
@@ -69,6 +87,25 @@ tail -n +2 "$OUT/models.csv" | while IFS=, read -r model file n notches holes; d
   fi
   echo "peers: $model done" >&2
 done
+# the real-world polygons without holes (the peers take simple polygons only)
+if [ -f "$OUT/real/models.csv" ]; then
+  peers_csv=$OUT/real/peers.csv
+  echo "model,peer,status,pieces,cpu_s,covered,verify" > "$peers_csv"
+  tail -n +2 "$OUT/real/models.csv" | while IFS=, read -r model source n holes notches; do
+    [ "$holes" = 0 ] || continue
+    poly=$OUT/polys/$model.txt
+    checkpoly=$OUT/real/$model.poly
+    if [ -d "$PEERS/node_modules/poly-decomp" ]; then
+      run_peer "poly-decomp quickDecomp" 120 env NODE_PATH="$PEERS/node_modules" node "$PEERS/polydecomp.js" quick
+    fi
+    if [ -n "$CGAL_BIN" ]; then
+      run_peer "CGAL approx (HM)" 120 "$CGAL_BIN" approx
+      run_peer "CGAL greene_approx" 120 "$CGAL_BIN" greene
+      run_peer "CGAL optimal" "$CGAL_OPTIMAL_TIMEOUT" "$CGAL_BIN" optimal
+    fi
+    echo "peers: $model done" >&2
+  done
+fi
 
 MODEL=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
 MACHINE="Machine: $(nproc) cores online, $MODEL; load average $(cut -d' ' -f1 /proc/loadavg) at the end of the run; $(date -u '+%Y-%m-%d %H:%M UTC'); g++ $(g++ -dumpversion), node $(node --version 2>/dev/null || echo none), CGAL $(grep -m1 'define CGAL_VERSION ' /usr/include/CGAL/version.h 2>/dev/null | awk '{print $3}'), poly-decomp $(node -p "require('$PEERS/node_modules/poly-decomp/package.json').version" 2>/dev/null || echo none)."
