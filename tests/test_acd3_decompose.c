@@ -243,6 +243,17 @@ static void test_surface_mode(void **state) {
     m.ntriangles = keep;
     assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
     check_surface(&m, &r, &p);
+    assert_int_equal(r.nparts, 1);
+    acd3d_result_free(&r);
+    /* the same bowl with its faces reversed shows its inner side to the hull (spec §3.4): still
+     * a convex surface patch, one part */
+    for (size_t t = 0; t < m.ntriangles; t++) {
+        uint32_t x = m.triangles[3 * t + 1];
+        m.triangles[3 * t + 1] = m.triangles[3 * t + 2], m.triangles[3 * t + 2] = x;
+    }
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    check_surface(&m, &r, &p);
+    assert_int_equal(r.nparts, 1);
     acd3d_result_free(&r);
     acd_mesh_free(&m);
     (void)hemi_r;
@@ -252,6 +263,12 @@ static void test_surface_mode(void **state) {
     assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
     assert_true(r.nparts >= 2);
     check_surface(&m, &r, &p);
+    /* the surface splits along section loops (spec §5.1): no part is a sliver of the jagged
+     * section (one or two faces cut off along a loop) */
+    size_t minfaces = SIZE_MAX;
+    for (size_t i = 0; i < r.nparts; i++)
+        if (r.parts[i].mesh.ntriangles < minfaces) minfaces = r.parts[i].mesh.ntriangles;
+    assert_true(r.nparts <= 4 && minfaces >= 48);
     acd3d_result r2;
     assert_int_equal(acd3d_decompose(&m, &p, &r2, &err), ACD_OK);
     assert_int_equal(r.nparts, r2.nparts);

@@ -129,6 +129,75 @@ static void test_l_shape_notch(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Keeps the faces whose centroid has z below zmax; flip reverses every face (the surface then
+ * shows its other side: its normals point into the hull). */
+static void open_up(acd_mesh *m, double zmax, int flip) {
+    size_t t = 0;
+    for (size_t f = 0; f < m->ntriangles; f++) {
+        uint32_t *q = m->triangles + 3 * f;
+        double z = 0;
+        for (int k = 0; k < 3; k++) z += m->vertices[3 * (size_t)q[k] + 2] / 3;
+        if (z >= zmax) continue;
+        uint32_t a = q[0], b = flip ? q[2] : q[1], c = flip ? q[1] : q[2];
+        uint32_t *o = m->triangles + 3 * t++;
+        o[0] = a, o[1] = b, o[2] = c;
+    }
+    m->ntriangles = t;
+}
+
+/* spec §3.4: a bowl (the sphere below z = 0.5) is a convex surface patch whichever way its faces
+ * point: its concavity is at most the bridge clustering eps (Obs. B.1), though its inner side
+ * faces the hull's cap over the opening when the faces are reversed (the hull vertices are then
+ * concave) */
+static void test_open_bowl_is_convex_either_side(void **state) {
+    (void)state;
+    const double eps = 0.02;
+    for (int flip = 0; flip < 2; flip++) {
+        acd_mesh m;
+        assert_true(mg_radial(&m, 48, 24, sphere_r, NULL));
+        open_up(&m, 0.5, flip);
+        acd3_measure ms;
+        measure(&m, eps, &ms);
+        assert_true(ms.concavity <= eps + 1e-9);
+        acd3_measure_free(&ms);
+        acd_mesh_free(&m);
+    }
+}
+
+/* a dimple of depth k at the south pole of that bowl: r = 1 - k exp(-((pi - theta)/w)^2) */
+static double dimple_r(double th, double ph, void *u) {
+    (void)ph;
+    double k = *(double *)u, x = (3.14159265358979323846 - th) / 0.45;
+    return 1.0 - k * exp(-x * x);
+}
+
+/* The dimple is a pocket under the hull's bottom bridge, far from the opening: both ways round
+ * it measures its depth below that bridge (within eps), and the witness is in it. */
+static void test_open_bowl_with_dimple(void **state) {
+    (void)state;
+    const double eps = 0.01;
+    for (int flip = 0; flip < 2; flip++) {
+        double k = 0.3;
+        acd_mesh m;
+        assert_true(mg_radial(&m, 64, 32, dimple_r, &k));
+        open_up(&m, 0.5, flip);
+        acd3_measure ms;
+        measure(&m, eps, &ms);
+        /* the bridge over the dimple is tangent to the sphere around it, just below z = -1 + k */
+        /* the dimple's bottom (the south pole, z = -(1 - k)) lies this far above the lowest ring
+         * of vertices, whose plane is the bridge over the dimple */
+        double zmin = 0;
+        for (size_t v = 0; v < m.nvertices; v++)
+            if (m.vertices[3 * v + 2] < zmin) zmin = m.vertices[3 * v + 2];
+        double expect = -(1.0 - k) - zmin;
+        assert_true(expect > 0.05);
+        assert_true(fabs(ms.concavity - expect) <= eps + 1e-9);
+        assert_true(m.vertices[3 * (size_t)ms.witness + 2] < -0.6);
+        acd3_measure_free(&ms);
+        acd_mesh_free(&m);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_patches_of_a_cube_are_its_faces),
@@ -136,6 +205,8 @@ int main(void) {
         cmocka_unit_test(test_convex_mesh_has_zero_concavity),
         cmocka_unit_test(test_waist_depth),
         cmocka_unit_test(test_l_shape_notch),
+        cmocka_unit_test(test_open_bowl_is_convex_either_side),
+        cmocka_unit_test(test_open_bowl_with_dimple),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -278,11 +278,13 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     int split = 0;
     if (reason == ACD3D_LEAF_NONE) {
         /* surface mode, and solid mode with region_cuts, cut along the section nearest the
-         * witness first; whole-plane cuts when that does not split the part */
+         * witness first; solid mode then whole-plane cuts when that does not split the part
+         * (surface mode does not: cutting a surface along every crossing of a plane leaves many
+         * slivers; its section cut already tries the strips nearest the witness in turn) */
         if (c->params->region_cuts || !c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1, &out->choice,
                               &out->err);
-        if (split == 0)
+        if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0, &out->choice,
                               &out->err);
         if (split < 0) {

@@ -47,6 +47,102 @@ void acd3_measure_free(acd3_measure *ms) {
     memset(ms, 0, sizeof *ms);
 }
 
+/* The open-surface rule (dissertation §V.B.1 "Polygonal surface ACD"; paper §4.1 Ext. 2; spec
+ * §3.4). A hull vertex is concave when its outward normal on the hull and its normal on the
+ * surface point in opposite directions (both area-weighted averages of the incident facets'
+ * normals): the surface shows its inner side to the hull there. Only meshes with boundary edges
+ * are concerned (on a closed outward surface every hull vertex is convex). */
+typedef struct open_rule {
+    uint8_t *concave;  /* per hull vertex; NULL: closed mesh (the rule does not apply) */
+    acd_sp_tree to_open; /* shortest paths from the boundary vertices */
+    int have_tree;
+    uint32_t *path;    /* the last path to an opening */
+} open_rule;
+
+static void open_rule_free(open_rule *os) {
+    free(os->concave);
+    if (os->have_tree) acd_sp_tree_free(&os->to_open);
+    free(os->path);
+    memset(os, 0, sizeof *os);
+}
+
+static void tri_cross(const double *a, const double *b, const double *c, double n[3]) {
+    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+static acd_status open_surface_rule(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of,
+                                    const acd_hull *h, open_rule *os, acd_error *err) {
+    size_t nv = m->nvertices, nb = 0;
+    uint32_t *bverts = NULL;
+    uint8_t *isb = NULL;
+    double *hn = NULL, *sn = NULL;
+    uint32_t *hidx = NULL;
+    acd_status st = ACD_OK;
+    for (size_t e = 0; e < g->nedges && !nb; e++) nb = face_of[2 * e] == UINT32_MAX || face_of[2 * e + 1] == UINT32_MAX;
+    if (!nb) return ACD_OK;
+    nb = 0;
+    os->concave = calloc(h->nvertices ? h->nvertices : 1, 1);
+    hn = calloc(3 * (h->nvertices ? h->nvertices : 1), sizeof *hn);
+    sn = calloc(3 * (h->nvertices ? h->nvertices : 1), sizeof *sn);
+    hidx = malloc((nv ? nv : 1) * sizeof *hidx);
+    isb = calloc(nv ? nv : 1, 1);
+    bverts = malloc((nv ? nv : 1) * sizeof *bverts);
+    os->path = malloc((nv ? nv : 1) * sizeof *os->path);
+    if (!os->concave || !hn || !sn || !hidx || !isb || !bverts || !os->path) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory measuring an open surface of %zu vertices", nv);
+        goto done;
+    }
+    for (size_t v = 0; v < nv; v++) hidx[v] = UINT32_MAX;
+    for (size_t k = 0; k < h->nvertices; k++) hidx[h->source[k]] = (uint32_t)k;
+    for (size_t t = 0; t < h->ntriangles; t++) {
+        const uint32_t *tr = h->triangles + 3 * t;
+        double n[3];
+        tri_cross(h->vertices + 3 * (size_t)tr[0], h->vertices + 3 * (size_t)tr[1], h->vertices + 3 * (size_t)tr[2], n);
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 3; j++) hn[3 * (size_t)tr[k] + j] += n[j];
+    }
+    for (size_t f = 0; f < m->ntriangles; f++) {
+        const uint32_t *tr = m->triangles + 3 * f;
+        double n[3];
+        tri_cross(m->vertices + 3 * (size_t)tr[0], m->vertices + 3 * (size_t)tr[1], m->vertices + 3 * (size_t)tr[2], n);
+        for (int k = 0; k < 3; k++) {
+            uint32_t hv = hidx[tr[k]];
+            if (hv != UINT32_MAX)
+                for (int j = 0; j < 3; j++) sn[3 * (size_t)hv + j] += n[j];
+        }
+    }
+    for (size_t k = 0; k < h->nvertices; k++)
+        os->concave[k] = hn[3 * k] * sn[3 * k] + hn[3 * k + 1] * sn[3 * k + 1] + hn[3 * k + 2] * sn[3 * k + 2] < 0;
+    for (size_t e = 0; e < g->nedges; e++)
+        if (face_of[2 * e] == UINT32_MAX || face_of[2 * e + 1] == UINT32_MAX)
+            isb[g->edge_v[2 * e]] = isb[g->edge_v[2 * e + 1]] = 1;
+    for (size_t v = 0; v < nv; v++)
+        if (isb[v]) bverts[nb++] = (uint32_t)v;
+    st = acd_dijkstra(g, bverts, nb, NULL, &os->to_open, err);
+    if (st == ACD_OK) os->have_tree = 1;
+done:
+    free(hn), free(sn), free(hidx), free(isb), free(bverts);
+    if (st != ACD_OK) open_rule_free(os);
+    return st;
+}
+
+/* The path from v to its nearest opening into os->path (v first; reversed: v last). Returns its
+ * vertex count (0 when no opening is reachable). */
+static size_t open_path(open_rule *os, uint32_t v, int reversed) {
+    if (!os->have_tree || os->to_open.pred == NULL || !isfinite(os->to_open.dist[v])) return 0;
+    size_t n = 0;
+    for (uint32_t x = v; x != ACD_NO_VERTEX && n < os->to_open.nvertices; x = os->to_open.pred[x]) os->path[n++] = x;
+    if (reversed)
+        for (size_t i = 0; i < n / 2; i++) {
+            uint32_t t = os->path[i];
+            os->path[i] = os->path[n - 1 - i], os->path[n - 1 - i] = t;
+        }
+    return n;
+}
+
 /* Regions: faces connected across non-barrier edges. Returns the count. */
 static size_t flood_regions(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of,
                             const uint8_t *barrier, uint32_t *face_region, uint32_t *queue) {
@@ -87,6 +183,8 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     uint32_t *face_of = NULL, *queue = NULL;
     acd3_pathfinder pf;
     memset(&pf, 0, sizeof pf);
+    open_rule os;
+    memset(&os, 0, sizeof os);
     out->vconc = calloc(nv ? nv : 1, sizeof *out->vconc);
     out->face_region = malloc((nf ? nf : 1) * sizeof *out->face_region);
     out->edge_barrier = calloc(g->nedges ? g->nedges : 1, 1);
@@ -110,8 +208,12 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
         goto fail;
     }
 
-    /* project the patch-boundary hull edges; collect votes (face, patch, weight) */
+    /* open surfaces (spec §3.4): which hull vertices are concave, and the way to the openings */
     const acd_hull *h = &out->hull;
+    st = open_surface_rule(m, g, face_of, h, &os, err);
+    if (st != ACD_OK) goto fail;
+
+    /* project the patch-boundary hull edges; collect votes (face, patch, weight) */
     const uint32_t *fp = out->patches.facet_patch;
     size_t nvote = 0, capvote = 0;
     vote *vl = NULL;
@@ -119,16 +221,31 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
         for (int i = 0; i < 3; i++) {
             uint32_t nb = h->neighbors[3 * t + i];
             if (nb == ACD_HULL_NO_NEIGHBOR || fp[nb] == fp[t] || nb < t) continue;
-            uint32_t a = h->source[h->triangles[3 * t + i]], b = h->source[h->triangles[3 * t + (i + 1) % 3]];
-            int found = acd3_shortest_path(&pf, a, b);
-            if (found < 0) {
-                free(vl);
-                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory projecting hull edges");
-                goto fail;
+            uint32_t ia = h->triangles[3 * t + i], ib = h->triangles[3 * t + (i + 1) % 3];
+            uint32_t a = h->source[ia], b = h->source[ib];
+            int ca = os.concave && os.concave[ia], cb = os.concave && os.concave[ib];
+            const uint32_t *path;
+            size_t len;
+            if (ca == cb) {
+                int found = acd3_shortest_path(&pf, a, b);
+                if (found < 0) {
+                    free(vl);
+                    st = acd_fail(err, ACD_ERR_NOMEM, "out of memory projecting hull edges");
+                    goto fail;
+                }
+                if (!found) continue; /* a and b on different connected components */
+                path = pf.path;
+                len = pf.path_len;
+            } else {
+                /* one end concave: the path from the convex end to the opening, directed like
+                 * a -> b (from a to the opening, or from the opening to b) */
+                len = open_path(&os, ca ? b : a, !ca);
+                if (len < 2) continue;
+                path = os.path;
             }
-            if (!found) continue; /* a and b on different connected components */
-            const uint32_t *path = pf.path;
-            size_t len = pf.path_len;
+            /* both ends concave: the surface shows its inner side to this bridge, so its faces
+             * are oriented against the hull there: the sides of the path swap */
+            int swap = ca && cb;
             out->nprojected++;
             for (size_t k = 0; k + 1 < len; k++) {
                 uint32_t u = path[k], v = path[k + 1];
@@ -137,6 +254,10 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
                 out->edge_barrier[e] = 1;
                 /* the face holding half-edge u->v lies left of the path: the left patch fp[t] */
                 uint32_t left = face_of[2 * (size_t)e + (u > v)], right = face_of[2 * (size_t)e + (v > u)];
+                if (swap) {
+                    uint32_t x = left;
+                    left = right, right = x;
+                }
                 double w = g->length[e];
                 if (nvote + 2 > capvote) {
                     capvote = capvote ? 2 * capvote : 1024;
@@ -239,6 +360,20 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
             if (d > out->vconc[v]) out->vconc[v] = d;
         }
     }
+    /* open surfaces: a vertex's concavity is at most its distance to the hull's boundary (the
+     * least depth below a patch plane). On an open piece both sides of the surface face hull
+     * facets (thin pieces, rims), and the bridge a region is given by the sides of its paths can
+     * be one it does not lie under; the bound keeps a patch that lies on its own hull (a convex
+     * surface patch, Chazelle et al.) at concavity 0, up to eps. */
+    if (os.concave)
+        for (size_t v = 0; v < nv; v++) {
+            double mn = INFINITY;
+            for (size_t p = 0; p < out->patches.npatches && mn > 0; p++) {
+                double d = acd3_patch_depth(&out->patches, p, m->vertices + 3 * v);
+                if (d < mn) mn = d;
+            }
+            if (mn < out->vconc[v]) out->vconc[v] = mn > 0 ? mn : 0;
+        }
     out->concavity = 0;
     for (size_t v = 0; v < nv; v++)
         if (out->vconc[v] > out->concavity) {
@@ -248,11 +383,13 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     free(face_of);
     free(queue);
     acd3_pathfinder_free(&pf);
+    open_rule_free(&os);
     return ACD_OK;
 fail:
     free(face_of);
     free(queue);
     acd3_pathfinder_free(&pf);
+    open_rule_free(&os);
     acd3_measure_free(out);
     return st;
 }

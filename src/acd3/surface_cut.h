@@ -2,10 +2,13 @@
  * spec acd3d.md §5.1).
  *
  * Surface ACD splits a surface along a closed loop of mesh edges and never caps. The loop used
- * here is the boundary between the faces whose centroid lies on the positive side of a cut plane
- * (exact side test, acd_cut_plane_side) and the others: the surface splits along the mesh edges
- * that separate the two classes, and every connected set of faces of one class (across shared
- * edges) is a piece. No new vertices are made; the pieces partition the input's faces. */
+ * here follows the section of the surface by a cut plane: every vertex gets its exact side of the
+ * plane (acd_cut_plane_side; on the plane counts as +), every face the side of two or three of its
+ * vertices. Faces meeting across an edge whose ends are on one side are then on one side, so the
+ * surface separates only along edges crossing the plane: the chain of crossing edges between
+ * faces of different sides, which follows the section loop (or an open chain from boundary to
+ * boundary on an open surface) one mesh edge at a time. Every connected set of faces across the
+ * other edges is a piece. No new vertices are made; the pieces partition the input's faces. */
 #ifndef ACD_ACD3_SURFACE_CUT_H
 #define ACD_ACD3_SURFACE_CUT_H
 
@@ -16,9 +19,10 @@
 
 /* Fills out (an acd_cut_result, so the driver treats solid and surface cuts alike: is_cap all 0,
  * source = input vertex ids) with the pieces, the + side first, each side by lowest face.
- * near != NULL: only the connected set of separating edges nearest to that point splits (the
- * cut loop at the feature being resolved, like the solid region cut); other crossings of the
- * plane leave the surface whole. */
+ * near != NULL: only the section strip (the faces crossed by the plane, joined across crossing
+ * edges: one per section loop) with the crossing edge nearest to that point splits -- the cut
+ * loop at the feature being resolved, like the solid region cut (spec §5.1); other crossings of
+ * the plane leave the surface whole. */
 acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const acd_cut_plane *pl, const double *near,
                             acd_cut_result *out, acd_error *err);
 
