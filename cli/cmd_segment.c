@@ -327,9 +327,9 @@ int acd_cmd_segment(int argc, char **argv) {
         if (acd_cage_from_segment(&mesh, &r, &cp, &cr, &err) != ACD_OK) {
             code = acd_cli_report("segment", &err);
         } else {
-            printf("cage: %zu hulls (%zu corners), %zu vertices, %zu triangles, volume/mesh %.6g, "
+            printf("cage: %zu hulls (%zu corners chosen, %zu after quantization), %zu vertices, %zu triangles, volume/mesh %.6g, "
                    "%zu of %zu vertices outside, %.3f s\n",
-                   cr.hulls, cr.corners, cr.cage.nvertices, cr.cage.ntriangles,
+                   cr.hulls, cr.chosen_corners, cr.corners, cr.cage.nvertices, cr.cage.ntriangles,
                    r.mesh_volume > 0 ? cr.volume / r.mesh_volume : 0.0, cr.outside_vertices, cr.checked_vertices,
                    cr.seconds);
             if (acd_mesh_write(cage_path, &cr.cage, acd_mesh_format_from_path(cage_path), &err) != ACD_OK)

@@ -24,13 +24,14 @@ extern "C" {
 typedef struct acd_cage_params {
     uint32_t cookie;        /* set by acd_cage_default_params */
     double offset;          /* outward offset of every hull, relative to the mesh's bounding-box
-                               diagonal (>= 0; default 0.01): each hull grows by at least this
-                               distance in every direction (Minkowski sum with a polytope holding
-                               the ball of that radius) */
-    size_t max_vertices;    /* simplify each expanded hull to at most this many vertices by an
-                               enclosing polytope (0: no simplification, else >= 4; default 32); the
-                               exact quantization of the union can split a corner, so the final
-                               count may exceed it by a few (reported in corners) */
+                               diagonal (>= 0; default 0.01): every facet plane (and the six axis
+                               support planes) moves out by it, so the polytope holds every point
+                               within that distance of the hull */
+    size_t max_vertices;    /* simplify each hull to at most this many corners by an enclosing
+                               polytope made of a subset of its support planes (0: no
+                               simplification, else >= 4; default 32). Pushing the planes and the
+                               exact quantization can split a corner, so the final count may exceed
+                               it by a few (reported in corners) */
     int check_enclosure;    /* count the mesh vertices not inside the cage (default 1) */
 } acd_cage_params;
 
@@ -38,9 +39,15 @@ acd_cage_params acd_cage_default_params(void);
 
 typedef struct acd_cage_result {
     acd_mesh cage;            /* closed, outward, no interior faces (docs/corise.md "Cages") */
-    size_t hulls;             /* hulls used (solid after expansion) */
+    size_t hulls;             /* hulls used (solid, or flat with a positive offset) */
     size_t skipped;           /* hulls left out: flat with offset 0, or empty */
-    size_t corners;           /* sum of the expanded, simplified hulls' corners */
+    size_t chosen_corners;    /* sum of the simplified hulls' corners as chosen (floating point, with
+                                 the planes pushed; a solid part's hull within the budget: its own
+                                 vertex count); <= max_vertices per solid part when simplifying */
+    size_t corners;           /* sum of the corners of the polytopes actually unioned: with the exact
+                                 plane quantization a corner where more than three planes meet
+                                 splits into nearby corners (about 1e-6 of the extent apart), and
+                                 the axis planes cap sharp pushed corners */
     double offset;            /* the offset in model units */
     double diagonal;          /* the mesh's bounding-box diagonal */
     double volume;            /* of the cage (divergence theorem) */

@@ -1,7 +1,7 @@
 /* corise/cage: cages from a decomposition's hulls (acd/cage.h; CoRiSe paper §7.2, spec corise.md
- * §5): each hull is expanded (Minkowski sum with a polytope holding a ball), simplified to a vertex
- * budget by an enclosing polytope (geom3/hull_simplify), and the results are unioned exactly into
- * one closed mesh (geom3/polyunion). Enclosure of the mesh is checked with exact ray winding
+ * §5): each hull is simplified to a corner budget by a subset of its own support planes
+ * (geom3/hull_outer, enclosing by construction), its planes are pushed outward by the offset, and
+ * the polytopes are unioned exactly into one closed mesh (geom3/polyunion). Enclosure of the mesh is checked with exact ray winding
  * numbers (geom3/spatial). */
 #define _POSIX_C_SOURCE 200809L
 #include "acd/cage.h"
@@ -13,14 +13,12 @@
 
 #include "acd/hull.h"
 #include "core/error.h"
-#include "geom3/hull_simplify.h"
+#include "geom3/hull_outer.h"
 #include "geom3/polyunion.h"
 #include "geom3/spatial.h"
 
-/* Directions of the expansion polytope: the 26 unit vectors of {-1, 0, 1}^3 \ 0. */
+/* Support directions of a flat part: the 26 unit vectors of {-1, 0, 1}^3 \ 0. */
 #define CAGE_NDIRS 26
-/* A flat part's point set is thickened by this many offsets before its planes are pushed. */
-#define CAGE_FLAT_THICKEN 0.1
 
 acd_cage_params acd_cage_default_params(void) {
     acd_cage_params p;
@@ -44,71 +42,69 @@ static double now_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The 26 directions scaled so that their hull holds the unit ball (divided by its inradius). */
-static acd_status expansion_dirs(double *dirs, acd_error *err) {
+/* The 26 unit directions of {-1, 0, 1}^3 \ 0, as planes (d unused): the support planes that make
+ * a flat part's polytope solid once pushed by the offset. */
+static void direction_planes(double *pl) {
     size_t n = 0;
     for (int x = -1; x <= 1; x++)
         for (int y = -1; y <= 1; y++)
             for (int z = -1; z <= 1; z++) {
                 if (!x && !y && !z) continue;
                 double l = sqrt((double)(x * x + y * y + z * z));
-                dirs[3 * n] = x / l;
-                dirs[3 * n + 1] = y / l;
-                dirs[3 * n + 2] = z / l;
+                pl[4 * n] = x / l;
+                pl[4 * n + 1] = y / l;
+                pl[4 * n + 2] = z / l;
+                pl[4 * n + 3] = 0;
                 n++;
             }
-    acd_hull h;
-    acd_status st = acd_hull_compute(dirs, CAGE_NDIRS, &h, err);
-    if (st != ACD_OK) return st;
-    double rin = INFINITY;
-    for (size_t f = 0; f < h.ntriangles; f++)
-        if (-h.planes[4 * f + 3] < rin) rin = -h.planes[4 * f + 3];
-    acd_hull_free(&h);
-    if (!(rin > 0.5)) return acd_fail(err, ACD_ERR_INTERNAL, "cage: expansion polytope inradius %g", rin);
-    /* a hair more than 1 / inradius, so that rounding never leaves the ball poking out */
-    double s = (1.0 + 1e-9) / rin;
-    for (size_t i = 0; i < 3 * CAGE_NDIRS; i++) dirs[i] *= s;
-    return ACD_OK;
 }
 
-/* Simplified hull of n points, made solid when flat (offset > 0): a flat set is first thickened
- * by a Minkowski sum with the direction polytope scaled to CAGE_FLAT_THICKEN offsets; the offset
- * itself is applied by pushing the facet planes (acd_polyunion). out->dim < 3: nothing solid. */
-static acd_status expand_hull(const double *pts, size_t n, double off, const double *dirs, size_t max_vertices,
-                              acd_hull *out, acd_error *err) {
-    memset(out, 0, sizeof *out);
-    out->dim = -1;
+/* One part's polytope: hull of its points; solid: the hull's planes, or with a budget a subset
+ * of them (geom3/hull_outer); flat (offset > 0 only): the 26 directions and the plane's normals.
+ * *planes is malloc'd when *owned. poly->npoints = 0: nothing (empty, or flat with offset 0). */
+static acd_status part_polytope(const double *pts, size_t n, double off, size_t max_vertices, acd_hull *h0,
+                                acd_polyunion_polytope *poly, double **owned, size_t *corners, acd_error *err) {
+    memset(poly, 0, sizeof *poly);
+    *corners = 0;
+    *owned = NULL;
+    memset(h0, 0, sizeof *h0);
     if (!n) return ACD_OK;
-    acd_hull h0;
-    acd_status st = acd_hull_compute(pts, n, &h0, err);
+    acd_status st = acd_hull_compute(pts, n, h0, err);
     if (st != ACD_OK) return st;
-    if (h0.dim == 3) {
-        if (!max_vertices) {
-            *out = h0;
-            return ACD_OK;
+    if (h0->dim == 3) {
+        if (max_vertices && h0->nvertices > max_vertices) {
+            size_t np, nc;
+            st = acd_hull_outer(h0, max_vertices, off, owned, &np, &nc, err);
+            if (st != ACD_OK) return st;
+            poly->planes = *owned;
+            poly->nplanes = np;
+            *corners = nc;
+        } else {
+            poly->planes = h0->planes;
+            poly->nplanes = h0->ntriangles;
+            *corners = h0->nvertices;
         }
-        st = acd_hull_simplify(h0.vertices, h0.nvertices, max_vertices, out, err);
-        acd_hull_free(&h0);
-        return st;
-    }
-    if (h0.dim < 0 || off <= 0) {
-        acd_hull_free(&h0);
+    } else if (h0->dim >= 0 && off > 0) {
+        double *pl = malloc(4 * (CAGE_NDIRS + 2) * sizeof *pl);
+        if (!pl) return acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
+        direction_planes(pl);
+        size_t np = CAGE_NDIRS;
+        if (h0->dim == 2 && h0->ntriangles) {
+            for (int j = 0; j < 4; j++) {
+                pl[4 * np + j] = h0->planes[j];
+                pl[4 * (np + 1) + j] = -h0->planes[j];
+            }
+            np += 2;
+        }
+        *owned = pl;
+        poly->planes = pl;
+        poly->nplanes = np;
+    } else {
         return ACD_OK;
     }
-    size_t nb = h0.nvertices, m = nb * CAGE_NDIRS;
-    double *ex = malloc(3 * m * sizeof *ex);
-    if (!ex) {
-        acd_hull_free(&h0);
-        return acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
-    }
-    for (size_t v = 0; v < nb; v++)
-        for (size_t d = 0; d < CAGE_NDIRS; d++)
-            for (int k = 0; k < 3; k++)
-                ex[3 * (v * CAGE_NDIRS + d) + k] = h0.vertices[3 * v + k] + CAGE_FLAT_THICKEN * off * dirs[3 * d + k];
-    acd_hull_free(&h0);
-    st = max_vertices ? acd_hull_simplify(ex, m, max_vertices, out, err) : acd_hull_compute(ex, m, out, err);
-    free(ex);
-    return st;
+    poly->points = h0->vertices;
+    poly->npoints = h0->nvertices;
+    return ACD_OK;
 }
 
 acd_status acd_cage_build(const acd_mesh *mesh, const acd_mesh *hulls, size_t nhulls, const acd_cage_params *params,
@@ -144,11 +140,11 @@ acd_status acd_cage_build(const acd_mesh *mesh, const acd_mesh *hulls, size_t nh
     out->diagonal = diag;
     out->offset = params->offset * diag;
 
-    double dirs[3 * CAGE_NDIRS];
-    acd_status st = expansion_dirs(dirs, err);
-    if (st != ACD_OK) return st;
-    acd_hull *ex = calloc(nhulls ? nhulls : 1, sizeof *ex);
-    if (!ex) return acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
+    acd_hull *h0 = calloc(nhulls ? nhulls : 1, sizeof *h0);
+    acd_polyunion_polytope *pp = calloc(nhulls ? nhulls : 1, sizeof *pp);
+    double **owned = calloc(nhulls ? nhulls : 1, sizeof *owned);
+    acd_status st = ACD_OK;
+    if (!h0 || !pp || !owned) st = acd_fail(err, ACD_ERR_NOMEM, "cage: out of memory");
     for (size_t h = 0; h < nhulls && st == ACD_OK; h++) {
         for (size_t v = 0; v < 3 * hulls[h].nvertices; v++)
             if (!isfinite(hulls[h].vertices[v])) {
@@ -156,16 +152,24 @@ acd_status acd_cage_build(const acd_mesh *mesh, const acd_mesh *hulls, size_t nh
                 break;
             }
         if (st != ACD_OK) break;
-        st = expand_hull(hulls[h].vertices, hulls[h].nvertices, out->offset, dirs, params->max_vertices, &ex[h], err);
+        size_t nc = 0;
+        st = part_polytope(hulls[h].vertices, hulls[h].nvertices, out->offset, params->max_vertices, &h0[h], &pp[h],
+                           &owned[h], &nc, err);
         if (st == ACD_OK) {
-            if (ex[h].dim == 3) out->hulls++;
+            out->chosen_corners += nc;
+            if (pp[h].npoints) out->hulls++;
             else out->skipped++;
         }
     }
     acd_polyunion_stats ps;
-    if (st == ACD_OK) st = acd_polyunion(ex, nhulls, out->offset, &out->cage, &ps, err);
-    for (size_t h = 0; h < nhulls; h++) acd_hull_free(&ex[h]);
-    free(ex);
+    if (st == ACD_OK) st = acd_polyunion(pp, nhulls, out->offset, &out->cage, &ps, err);
+    for (size_t h = 0; h < nhulls && h0 && owned; h++) {
+        acd_hull_free(&h0[h]);
+        free(owned[h]);
+    }
+    free(h0);
+    free(pp);
+    free(owned);
     if (st != ACD_OK) {
         acd_cage_result_free(out);
         return st;

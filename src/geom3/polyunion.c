@@ -24,8 +24,8 @@ __extension__ typedef unsigned __int128 u128;
 #define PU_BOX_PLANES 6
 /* Candidate search for inserted vertices: a box this much wider (grid units) than the edge. */
 #define PU_SEARCH_MARGIN 1e-3
-/* Room of the grid around the hulls, in offsets (see acd_polyunion). */
-#define PU_OFFSET_ROOM 64.0
+/* Half extent of the grid over that of the points' box grown by the offset. */
+#define PU_GRID_ROOM 1.25
 
 typedef struct plane_t {
     int64_t c[4]; /* a x + b y + c z + d w; a polytope is where every plane is <= 0 */
@@ -452,21 +452,24 @@ static acd_status triangulate(bv *cyc, size_t m, tri_out *o, acd_error *err) {
 }
 
 /* Quantized planes of hull h appended to the table; returns the count through *np. */
-static acd_status quantize_hull(pu_ctx *c, const acd_hull *h, const double *o, double unit, double push, size_t *np) {
-    size_t nf = h->ntriangles, nv = h->nvertices;
-    double *q = malloc(3 * nv * sizeof *q);
-    plane_t *loc = malloc((nf ? nf : 1) * sizeof *loc);
+static acd_status quantize_hull(pu_ctx *c, const acd_polyunion_polytope *h, const double *o, double unit, double push,
+                                size_t *np) {
+    size_t nf = h->nplanes + PU_BOX_PLANES, nv = h->npoints;
+    double *q = malloc(3 * (nv ? nv : 1) * sizeof *q);
+    plane_t *loc = malloc(nf * sizeof *loc);
     if (!q || !loc) {
         free(q);
         free(loc);
         return acd_fail(c->err, ACD_ERR_NOMEM, "polytope union: out of memory");
     }
     for (size_t v = 0; v < nv; v++)
-        for (int k = 0; k < 3; k++) q[3 * v + k] = (h->vertices[3 * v + k] - o[k]) / unit;
+        for (int k = 0; k < 3; k++) q[3 * v + k] = (h->points[3 * v + k] - o[k]) / unit;
     const double nscale = ldexp(1.0, ACD_POLYUNION_NORMAL_BITS);
     size_t m = 0;
     for (size_t f = 0; f < nf; f++) {
-        const double *pl = h->planes + 4 * f;
+        double axis[3] = {0, 0, 0};
+        if (f >= h->nplanes) axis[(f - h->nplanes) / 2] = (f - h->nplanes) % 2 ? 1 : -1;
+        const double *pl = f < h->nplanes ? h->planes + 4 * f : axis;
         double len = sqrt(pl[0] * pl[0] + pl[1] * pl[1] + pl[2] * pl[2]);
         if (!(len > 0) || !isfinite(len)) continue;
         int64_t a[3];
@@ -513,7 +516,8 @@ static acd_status quantize_hull(pu_ctx *c, const acd_hull *h, const double *o, d
     return ACD_OK;
 }
 
-acd_status acd_polyunion(const acd_hull *hulls, size_t n, double offset, acd_mesh *out, acd_polyunion_stats *stats,
+acd_status acd_polyunion(const acd_polyunion_polytope *hulls, size_t n, double offset, acd_mesh *out,
+                         acd_polyunion_stats *stats,
                          acd_error *err) {
     memset(out, 0, sizeof *out);
     acd_polyunion_stats stl;
@@ -540,25 +544,28 @@ acd_status acd_polyunion(const acd_hull *hulls, size_t n, double offset, acd_mes
     /* grid: centre of the box of the solid hulls' vertices, 2^G units per half extent */
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t h = 0; h < n; h++) {
-        if (hulls[h].dim != 3) continue;
+        if (!hulls[h].npoints) continue;
         stl.polytopes++;
-        for (size_t v = 0; v < hulls[h].nvertices; v++)
+        for (size_t p = 0; p < 4 * hulls[h].nplanes; p++)
+            if (!isfinite(hulls[h].planes[p]))
+                return acd_fail(err, ACD_ERR_INVALID_INPUT, "polytope union: polytope %zu has a non-finite plane", h);
+        for (size_t v = 0; v < hulls[h].npoints; v++)
             for (int k = 0; k < 3; k++) {
-                double x = hulls[h].vertices[3 * v + k];
+                double x = hulls[h].points[3 * v + k];
                 if (!isfinite(x)) return acd_fail(err, ACD_ERR_INVALID_INPUT, "polytope union: hull %zu has a non-finite vertex", h);
                 if (x < lo[k]) lo[k] = x;
                 if (x > hi[k]) hi[k] = x;
             }
     }
-    if (!stl.polytopes) return acd_fail(err, ACD_ERR_DEGENERATE, "polytope union: no solid hull among %zu", n);
+    if (!stl.polytopes) return acd_fail(err, ACD_ERR_DEGENERATE, "polytope union: no polytope with points among %zu", n);
     double o[3], half = 0;
     for (int k = 0; k < 3; k++) {
         o[k] = 0.5 * (lo[k] + hi[k]);
         if (0.5 * (hi[k] - lo[k]) > half) half = 0.5 * (hi[k] - lo[k]);
     }
-    /* pushed planes reach farther than offset past sharp corners: the grid gets room for
-       PU_OFFSET_ROOM offsets, and a pushed polytope that leaves it is refused */
-    half += PU_OFFSET_ROOM * offset;
+    /* every polytope also has the six axis planes, so pushed, it stays within the box grown by the
+       offset; the grid gets twice that room (and the initial squares twice more) */
+    half = PU_GRID_ROOM * (half + offset);
     double unit = half / ldexp(1.0, ACD_POLYUNION_GRID_BITS) * (1 + 1e-9);
     const int64_t M = (int64_t)1 << (ACD_POLYUNION_GRID_BITS + 1);
 
@@ -580,7 +587,7 @@ acd_status acd_polyunion(const acd_hull *hulls, size_t n, double offset, acd_mes
 
     /* quantized polytopes and their facets */
     for (size_t h = 0; h < n && st == ACD_OK; h++) {
-        if (hulls[h].dim != 3) continue;
+        if (!hulls[h].npoints) continue;
         polytope *T = &c.pt[c.npt];
         T->first = c.npl;
         st = quantize_hull(&c, &hulls[h], o, unit, offset / unit, &T->nplanes);
@@ -628,10 +635,7 @@ acd_status acd_polyunion(const acd_hull *hulls, size_t n, double offset, acd_mes
             if (st == ACD_OK && !empty)
                 for (size_t i = 0; i < cur.n && st == ACD_OK; i++)
                     if (cur.v[i].tri[1] < PU_BOX_PLANES || cur.v[i].tri[2] < PU_BOX_PLANES)
-                        st = acd_fail(err, ACD_ERR_UNSUPPORTED,
-                                      "polytope union: hull %zu pushed by the offset reaches farther than %g offsets "
-                                      "(a very sharp corner); use a smaller offset",
-                                      t, PU_OFFSET_ROOM);
+                        st = acd_fail(err, ACD_ERR_INTERNAL, "polytope union: polytope %zu is not bounded", t);
             if (st == ACD_OK && !empty) {
                 poly_bbox(&cur);
                 for (int k = 0; k < 3; k++) {

@@ -2,7 +2,8 @@
  * with every decision exact (plane-based geometry on integer planes, 128-bit arithmetic).
  *
  * Method (docs/corise.md, "Cages"):
- *  - push: every facet plane moves outward by the offset (0: the hulls themselves);
+ *  - planes: the given directions plus the six axis directions, each supporting the polytope's
+ *    points, then pushed outward by the offset (the axis planes cap sharp pushed corners);
  *  - quantize: the polytopes are put on a grid of 2^ACD_POLYUNION_GRID_BITS units per half extent;
  *    each facet plane gets an integer normal (ACD_POLYUNION_NORMAL_BITS bits) and an integer offset
  *    rounded OUTWARD past every vertex of its polytope, so each quantized polytope (the
@@ -40,12 +41,23 @@ typedef struct acd_polyunion_stats {
     size_t inserted;   /* vertices inserted into piece edges to make the pieces conforming */
 } acd_polyunion_stats;
 
-/* Union of the dim-3 hulls among hulls[0..n) (others are skipped; at least one needed, else
- * ACD_ERR_DEGENERATE), each with its facet planes first pushed outward by `offset` (model units,
- * >= 0; the pushed polytope holds every point within offset of the hull). Only vertices and planes
- * of the hulls are read. out is caller-owned (freed with acd_mesh_free, also after a failure);
- * stats may be NULL. */
-acd_status acd_polyunion(const acd_hull *hulls, size_t n, double offset, acd_mesh *out, acd_polyunion_stats *stats,
-                         acd_error *err);
+/* One polytope: the intersection of half-spaces n.x + d <= 0 with the given normals (only the
+ * directions are read) and the six axis directions, each d chosen (outward, exactly) so that
+ * every point is inside, then pushed out by the offset. With the points of a convex hull and its
+ * facet planes this is the hull; with a subset of the planes, an enclosing polytope. The polytope
+ * must be solid: points spanning 3D, or a positive offset. */
+typedef struct acd_polyunion_polytope {
+    const double *planes; /* 4 per plane (normal, offset); the normal is normalised here */
+    size_t nplanes;
+    const double *points; /* 3 per point */
+    size_t npoints;       /* 0: the polytope is skipped */
+} acd_polyunion_polytope;
+
+/* Union of polytopes[0..n) (at least one with points, else ACD_ERR_DEGENERATE), each with its
+ * planes pushed outward by `offset` (model units, >= 0; the pushed polytope holds every point
+ * within offset of the points' polytope). out is caller-owned (freed with acd_mesh_free, also
+ * after a failure); stats may be NULL. */
+acd_status acd_polyunion(const acd_polyunion_polytope *polytopes, size_t n, double offset, acd_mesh *out,
+                         acd_polyunion_stats *stats, acd_error *err);
 
 #endif
