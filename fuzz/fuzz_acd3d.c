@@ -1,0 +1,174 @@
+/* fuzz/fuzz_acd3d: libFuzzer target for the 3D decomposition (solid and surface) and the hole
+ * filling that solid mode relies on for open input.
+ *
+ * The input shapes a small closed mesh instead of being parsed (the readers have their own
+ * targets): a UV sphere (FZ_RINGS latitude rings of FZ_SEGS vertices and two poles) whose vertices
+ * are moved along their directions to radii taken from the bytes, on a coarse grid (quarter units,
+ * 0 allowed), so coplanar faces, flat stretches, spikes and vertices pinched together at the
+ * centre are frequent. With positive radii the mesh is a star-shaped simple polyhedron; radius 0
+ * makes it touch itself at the centre. Header bytes pick the mode, tau, and optionally faces to
+ * delete (holes, closed again through acd_mesh_repair as `acd 3d` does in solid mode).
+ *
+ * Checked on every accepted run (any violation aborts):
+ *  - a failure carries a message;
+ *  - solid: every part closed and consistently oriented, part volumes add up to the input's,
+ *    every part meets tau unless its leaf reason says why not (no_cut, depth, merged by
+ *    max_hulls), every part inside
+ *    its hull's planes;
+ *  - surface: the parts' faces add up to the input's;
+ *  - the tree: every part's node is a leaf that points back to the part. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/acd3d.h"
+#include "acd/hull.h"
+#include "acd/mesh.h"
+#include "geom3/edge_map.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+#define FZ_RINGS 5
+#define FZ_SEGS 8
+#define FZ_NV (FZ_RINGS * FZ_SEGS + 2)
+#define FZ_HEADER 3
+
+static void build_sphere(const uint8_t *r, acd_mesh *m) {
+    const double pi = 3.14159265358979323846;
+    m->nvertices = FZ_NV;
+    m->ntriangles = 2 * FZ_SEGS * FZ_RINGS;
+    m->vertices = malloc(FZ_NV * 3 * sizeof(double));
+    m->triangles = malloc(m->ntriangles * 3 * sizeof(uint32_t));
+    if (!m->vertices || !m->triangles) abort();
+    for (int v = 0; v < FZ_NV; v++) {
+        double theta, phi;
+        if (v < FZ_RINGS * FZ_SEGS) {
+            theta = pi * (v / FZ_SEGS + 1) / (FZ_RINGS + 1);
+            phi = 2 * pi * (v % FZ_SEGS) / FZ_SEGS;
+        } else {
+            theta = v == FZ_NV - 2 ? 0 : pi;
+            phi = 0;
+        }
+        double rad = 0.25 * (r[v] % 16);
+        /* directions rounded to a 1/64 grid: exact coplanarities are common */
+        double d[3] = {sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta)};
+        for (int k = 0; k < 3; k++) m->vertices[3 * v + k] = rad * round(64 * d[k]) / 64;
+    }
+    size_t t = 0;
+    uint32_t north = FZ_NV - 2, south = FZ_NV - 1;
+    for (int s = 0; s < FZ_SEGS; s++) {
+        uint32_t a = (uint32_t)s, b = (uint32_t)((s + 1) % FZ_SEGS);
+        uint32_t tn[3] = {north, a, b};
+        memcpy(m->triangles + 3 * t++, tn, sizeof tn);
+        uint32_t la = (uint32_t)((FZ_RINGS - 1) * FZ_SEGS) + a, lb = (uint32_t)((FZ_RINGS - 1) * FZ_SEGS) + b;
+        uint32_t ts[3] = {south, lb, la};
+        memcpy(m->triangles + 3 * t++, ts, sizeof ts);
+    }
+    for (int i = 0; i + 1 < FZ_RINGS; i++)
+        for (int s = 0; s < FZ_SEGS; s++) {
+            uint32_t a = (uint32_t)(i * FZ_SEGS + s), b = (uint32_t)(i * FZ_SEGS + (s + 1) % FZ_SEGS);
+            uint32_t c = a + FZ_SEGS, d = b + FZ_SEGS;
+            uint32_t t1[3] = {a, c, d}, t2[3] = {a, d, b};
+            memcpy(m->triangles + 3 * t++, t1, sizeof t1);
+            memcpy(m->triangles + 3 * t++, t2, sizeof t2);
+        }
+    m->ntriangles = t;
+}
+
+static double mesh_volume(const acd_mesh *m) {
+    double v = 0;
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        const double *a = m->vertices + 3 * (size_t)m->triangles[3 * t];
+        const double *b = m->vertices + 3 * (size_t)m->triangles[3 * t + 1];
+        const double *c = m->vertices + 3 * (size_t)m->triangles[3 * t + 2];
+        v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    return v / 6;
+}
+
+static void check(const acd_mesh *in, const acd3d_params *p, const acd3d_result *r) {
+    int solid = p->mode == ACD3D_SOLID;
+    double sum = 0;
+    size_t faces = 0;
+    for (size_t i = 0; i < r->nparts; i++) {
+        const acd3d_part *q = &r->parts[i];
+        if (q->node < 0 || (size_t)q->node >= r->nnodes) abort();
+        const acd3d_node *nd = &r->nodes[q->node];
+        if (nd->part != (int)i || (nd->first_child != -1 && nd->leaf_reason != ACD3D_LEAF_MERGED)) abort();
+        if (q->concavity > r->tau * (1 + 1e-9) + 1e-12 * r->scale && nd->leaf_reason != ACD3D_LEAF_NO_CUT &&
+            nd->leaf_reason != ACD3D_LEAF_DEPTH && nd->leaf_reason != ACD3D_LEAF_MERGED)
+            abort();
+        faces += q->mesh.ntriangles;
+        if (!solid) continue;
+        sum += q->volume;
+        acd_edge_map em;
+        acd_error e;
+        if (acd_edge_map_build(q->mesh.triangles, q->mesh.ntriangles, NULL, &em, &e) != ACD_OK) abort();
+        if (q->mesh.ntriangles && acd_edge_map_check_closed(&em, q->mesh.triangles, q->mesh.ntriangles, &e) != ACD_OK)
+            abort();
+        acd_edge_map_free(&em);
+        /* positive volume, and inside its hull: the hull rebuilt from its vertices (qhull's own
+         * planes: a plane from a sliver triangle's cross product would be meaningless) */
+        if (!(q->volume > 0)) abort();
+        acd_hull h;
+        if (acd_hull_compute(q->hull.vertices, q->hull.nvertices, &h, &e) != ACD_OK) abort();
+        for (size_t v = 0; v < q->mesh.nvertices; v++)
+            if (acd_hull_plane_distance(&h, q->mesh.vertices + 3 * v) > 1e-9 * r->scale) abort();
+        acd_hull_free(&h);
+    }
+    if (solid && fabs(sum - r->input_volume) > 1e-9 * fabs(r->input_volume)) abort();
+    if (!solid && faces != in->ntriangles) abort();
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    if (size < FZ_HEADER + FZ_NV) return 0;
+    acd_mesh m;
+    build_sphere(data + FZ_HEADER, &m);
+    acd3d_params p = acd3d_default_params();
+    p.mode = (data[0] & 1) ? ACD3D_SURFACE : ACD3D_SOLID;
+    p.threads = 1;
+    static const double taus[8] = {0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1};
+    p.tau = taus[data[1] % 8];
+    p.max_depth = 6; /* bounds the work per input (at most 64 parts) */
+    if (data[0] & 2) p.max_hulls = 1 + data[2] % 4;
+    /* optional holes: the trailing bytes name faces to delete */
+    if ((data[0] & 4) && size > FZ_HEADER + FZ_NV) {
+        uint8_t *del = calloc(m.ntriangles, 1);
+        if (!del) abort();
+        for (size_t i = FZ_HEADER + FZ_NV; i < size; i++) del[data[i] % m.ntriangles] = 1;
+        size_t k = 0;
+        for (size_t t = 0; t < m.ntriangles; t++)
+            if (!del[t]) memmove(m.triangles + 3 * k++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
+        m.ntriangles = k;
+        free(del);
+    }
+    acd3d_result r;
+    acd_error err;
+    err.message[0] = '\0';
+    acd_status s = acd3d_decompose(&m, &p, &r, &err);
+    if (s == ACD_ERR_NON_MANIFOLD && p.mode == ACD3D_SOLID) {
+        /* as `acd 3d` does: weld, orient, close the holes, then decompose the closed mesh */
+        acd_repair_options ro = acd_repair_default_options();
+        ro.fill_holes_max_edges = SIZE_MAX;
+        acd_repair_stats rs;
+        if (acd_mesh_repair(&m, &ro, &rs, &err) != ACD_OK) {
+            if (!err.message[0]) abort();
+            acd_mesh_free(&m);
+            return 0;
+        }
+        err.message[0] = '\0';
+        s = acd3d_decompose(&m, &p, &r, &err);
+    }
+    if (s != ACD_OK) {
+        if (!err.message[0]) abort(); /* every failure must say why */
+        acd_mesh_free(&m);
+        return 0;
+    }
+    if (p.mode == ACD3D_SOLID && fabs(r.input_volume - mesh_volume(&m)) > 1e-9 * fabs(r.input_volume) + 1e-300)
+        abort();
+    check(&m, &p, &r);
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+    return 0;
+}
