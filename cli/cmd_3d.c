@@ -18,7 +18,7 @@ static void usage(FILE *f) {
     fprintf(f,
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
-            "              [--no-close-holes] [--verify] [-v]\n"
+            "              [--no-merge] [--no-close-holes] [--verify] [-v]\n"
             "\n"
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
@@ -35,6 +35,8 @@ static void usage(FILE *f) {
             "                      NAME.urdf (one collision per hull), NAME.xml (MuJoCo); --name NAME\n"
             "  --max-hulls N       merge the cheapest adjacent parts (undo the splits of least concavity)\n"
             "                      until at most N remain; the concavity reached is reported\n"
+            "  --no-merge          keep every part of the decomposition (by default adjacent parts are\n"
+            "                      joined while the joined hull stays within tau of the joined part)\n"
             "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
             "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
             "  --no-close-holes    solid mode refuses an open mesh instead of closing its holes (by default\n"
@@ -73,6 +75,7 @@ static const char *leaf_reason_name(acd3d_leaf_reason r) {
     case ACD3D_LEAF_NO_CUT: return "no_cut";
     case ACD3D_LEAF_DEPTH: return "depth";
     case ACD3D_LEAF_MERGED: return "merged";
+    case ACD3D_LEAF_JOINED: return "joined";
     }
     return "unknown";
 }
@@ -160,6 +163,7 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
             for (int k = 0; k < 4; k++) cJSON_AddItemToArray(pl, cJSON_CreateNumber(n->cut_plane[k]));
         }
         if (n->part >= 0) cJSON_AddNumberToObject(q, "part", n->part);
+        if (n->merged_into >= 0) cJSON_AddNumberToObject(q, "merged_into", n->merged_into);
         if (n->first_child < 0 || n->leaf_reason == ACD3D_LEAF_MERGED)
             cJSON_AddStringToObject(q, "leaf_reason", leaf_reason_name(n->leaf_reason));
         cJSON_AddItemToArray(tree, q);
@@ -303,6 +307,8 @@ int acd_cmd_3d(int argc, char **argv) {
             if (!acd_cli_parse_size("3d", a, val, &n)) return ACD_EXIT_USAGE;
             p.threads = (int)n; /* results never depend on it */
             i++;
+        } else if (!strcmp(a, "--no-merge")) {
+            p.merge = 0;
         } else if (!strcmp(a, "--region-cuts")) {
             p.region_cuts = 1;
         } else if (!strcmp(a, "--no-close-holes")) {

@@ -11,6 +11,7 @@
 #include "acd/acd3d.h"
 #include "acd/hull.h"
 #include "acd3/measure.h"
+#include "geom3/bvh.h"
 #include "geom3/dijkstra.h"
 #include "geom3/edge_map.h"
 #include "shapes.h"
@@ -34,6 +35,55 @@ static double remeasure(const acd_mesh *m, double eps) {
     return c;
 }
 
+/* Brute force: the largest distance from points of the part's hull (a barycentric grid on each
+ * facet) to the part's triangles. */
+static double hull_reach(const acd3d_part *pt) {
+    const acd_mesh *h = &pt->hull, *m = &pt->mesh;
+    double worst = 0;
+    enum { GRID = 6 };
+    for (size_t t = 0; t < h->ntriangles; t++) {
+        const double *a = h->vertices + 3 * h->triangles[3 * t], *b = h->vertices + 3 * h->triangles[3 * t + 1],
+                     *c = h->vertices + 3 * h->triangles[3 * t + 2];
+        for (int i = 0; i <= GRID; i++)
+            for (int j = 0; i + j <= GRID; j++) {
+                double u = (double)i / GRID, v = (double)j / GRID, x[3];
+                for (int k = 0; k < 3; k++) x[k] = a[k] + u * (b[k] - a[k]) + v * (c[k] - a[k]);
+                double best = INFINITY;
+                for (size_t s = 0; s < m->ntriangles; s++) {
+                    double q[3];
+                    const uint32_t *tr = m->triangles + 3 * s;
+                    double d2 = acd_closest_point_triangle(x, m->vertices + 3 * tr[0], m->vertices + 3 * tr[1],
+                                                           m->vertices + 3 * tr[2], q);
+                    if (d2 < best) best = d2;
+                }
+                if (sqrt(best) > worst) worst = sqrt(best);
+            }
+    }
+    return worst;
+}
+
+/* A part made by the merge pass: a record after the tree, its members point at it, their volumes
+ * add up to its own, its bound meets tau, and its hull reaches out from it by at most tau. */
+static void check_joined(const acd3d_result *r, size_t i) {
+    const acd3d_part *pt = &r->parts[i];
+    const acd3d_node *nd = &r->nodes[pt->node];
+    assert_int_equal(nd->parent, -1);
+    assert_int_equal(nd->first_child, -1);
+    assert_true(pt->concavity <= r->tau);
+    double vol = 0;
+    int members = 0;
+    for (size_t n = 0; n < r->nnodes; n++)
+        if (r->nodes[n].merged_into == pt->node) {
+            assert_int_equal(r->nodes[n].part, -1);
+            vol += r->nodes[n].volume;
+            members++;
+        }
+    assert_true(members >= 2);
+    assert_true(fabs(vol - nd->volume) <= 1e-9 * vol);
+    assert_true(fabs(mg_volume(&pt->mesh) - vol) <= 1e-9 * vol);
+    assert_true(hull_reach(pt) <= r->tau * (1 + 1e-9));
+}
+
 /* The properties every solid decomposition must have. */
 static void check_solid(const acd_mesh *in, const acd3d_result *r, const acd3d_params *p) {
     double vin = mg_volume(in), sum = 0;
@@ -51,6 +101,12 @@ static void check_solid(const acd_mesh *in, const acd3d_result *r, const acd3d_p
         /* the hull encloses the part: hull volume >= part volume */
         assert_true(r->parts[i].hull_volume >= v * (1 - 1e-9));
         const acd3d_node *nd = &r->nodes[r->parts[i].node];
+        assert_int_equal(nd->part, (int)i);
+        assert_int_equal(nd->merged_into, -1);
+        if (nd->leaf_reason == ACD3D_LEAF_JOINED) {
+            check_joined(r, i);
+            continue;
+        }
         double c = remeasure(m, p->eps_ratio * r->tau);
         assert_true(fabs(c - r->parts[i].concavity) <= 1e-12 * (1 + c));
         if (nd->leaf_reason == ACD3D_LEAF_TAU) assert_true(c <= r->tau + 1e-9);
@@ -208,6 +264,58 @@ static double mesh_area(const acd_mesh *m) {
     return a;
 }
 
+/* The merge pass: it joins parts of the torus (fewer than without it, each joined part within tau
+ * of its hull, checked by brute force in check_solid), the same for 1 and 2 threads; it leaves the
+ * L-shape's two parts alone (their joined hull reaches sqrt(2) beyond the notch); --no-merge keeps
+ * every leaf. */
+static void test_merge_pass(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_torus(&m, 32, 16, 1.0, 0.35));
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.1;
+    acd3d_result on, on2, off;
+    acd_error err;
+    p.threads = 1;
+    assert_int_equal(acd3d_decompose(&m, &p, &on, &err), ACD_OK);
+    p.threads = 2;
+    assert_int_equal(acd3d_decompose(&m, &p, &on2, &err), ACD_OK);
+    p.merge = 0;
+    assert_int_equal(acd3d_decompose(&m, &p, &off, &err), ACD_OK);
+    int joined = 0;
+    for (size_t i = 0; i < on.nparts; i++) joined += on.nodes[on.parts[i].node].leaf_reason == ACD3D_LEAF_JOINED;
+    assert_true(joined >= 1);
+    assert_true(on.nparts < off.nparts);
+    assert_true(on.nparts >= 3); /* still a ring of pieces */
+    for (size_t i = 0; i < off.nparts; i++) assert_true(off.nodes[off.parts[i].node].leaf_reason != ACD3D_LEAF_JOINED);
+    assert_int_equal(on2.nparts, on.nparts);
+    for (size_t i = 0; i < on.nparts; i++) {
+        assert_int_equal(on2.parts[i].mesh.nvertices, on.parts[i].mesh.nvertices);
+        assert_memory_equal(on2.parts[i].mesh.vertices, on.parts[i].mesh.vertices,
+                            3 * on.parts[i].mesh.nvertices * sizeof(double));
+        assert_true(on2.parts[i].concavity == on.parts[i].concavity);
+    }
+    check_solid(&m, &on, &p);
+    check_solid(&m, &off, &p);
+    acd3d_result_free(&on);
+    acd3d_result_free(&on2);
+    acd3d_result_free(&off);
+    acd_mesh_free(&m);
+
+    unsigned char occ[16];
+    for (int y = 0; y < 4; y++)
+        for (int x = 0; x < 4; x++) occ[y * 4 + x] = !(x >= 2 && y >= 2);
+    assert_true(mg_voxels(&m, occ, 4, 4, 1));
+    p = acd3d_default_params();
+    p.tau = 0.3;
+    p.tau_absolute = 1;
+    assert_int_equal(acd3d_decompose(&m, &p, &on, &err), ACD_OK);
+    assert_int_equal(on.nparts, 2);
+    check_solid(&m, &on, &p);
+    acd3d_result_free(&on);
+    acd_mesh_free(&m);
+}
+
 static void check_surface(const acd_mesh *in, const acd3d_result *r, const acd3d_params *p) {
     size_t faces = 0;
     double area = 0;
@@ -309,6 +417,7 @@ int main(void) {
         cmocka_unit_test(test_waist_splits_and_is_deterministic),
         cmocka_unit_test(test_threads_and_hull_budget),
         cmocka_unit_test(test_torus_finishes),
+        cmocka_unit_test(test_merge_pass),
         cmocka_unit_test(test_surface_mode),
         cmocka_unit_test(test_bad_input),
     };

@@ -46,6 +46,10 @@ typedef struct acd3d_params {
                                  vertices, by an enclosing polytope with at most this many */
     int threads;              /* 0: as many as cores (OpenMP); results are identical for any count */
     size_t max_depth;         /* recursion guard (default 48) */
+    int merge;                /* non-zero (default 1, solid mode): after the decomposition, adjacent
+                                 parts are joined while the joined hull stays within tau of the joined
+                                 part and the input surface within tau of it (acd3/merge, docs/acd3d.md
+                                 "Merge pass"); the joined parts are ACD3D_LEAF_JOINED nodes */
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
                                  (spec decision A13), falling back to the whole plane; default 0,
                                  see docs/acd3d.md for the measurements behind the default */
@@ -62,8 +66,12 @@ typedef enum acd3d_leaf_reason {
     ACD3D_LEAF_FLAT,          /* no volume (solid) or flat (surface): convex by definition */
     ACD3D_LEAF_NO_CUT,        /* no cut could split it further (the concavity stays above tau) */
     ACD3D_LEAF_DEPTH,         /* max_depth reached */
-    ACD3D_LEAF_MERGED         /* a split node made a part again by max_hulls (its children are dropped:
+    ACD3D_LEAF_MERGED,        /* a split node made a part again by max_hulls (its children are dropped:
                                  leaf_reason NONE, part -1) */
+    ACD3D_LEAF_JOINED         /* a part made by the merge pass from adjacent parts: a node appended
+                                 after the tree (parent -1, no children); the parts it joins keep their
+                                 nodes and leaf reasons, with part -1 and merged_into set to it; its
+                                 concavity is the merge bound (<= tau, acd3/merge) */
 } acd3d_leaf_reason;
 
 typedef struct acd3d_node {
@@ -75,6 +83,7 @@ typedef struct acd3d_node {
     double cut_plane[4];      /* plane n.x + d = 0 used to split it (solid mode), zero for leaves */
     acd3d_leaf_reason leaf_reason;
     int part;                 /* index into parts for leaves, -1 otherwise */
+    int merged_into;          /* -1, or the ACD3D_LEAF_JOINED node this part was joined into */
 } acd3d_node;
 
 typedef struct acd3d_part {

@@ -21,6 +21,7 @@
 
 #include "acd/hull.h"
 #include "acd3/measure.h"
+#include "acd3/merge.h"
 #include "acd3/region_cut.h"
 #include "acd3/resolve.h"
 #include "acd3/surface_cut.h"
@@ -48,6 +49,7 @@ acd3d_params acd3d_default_params(void) {
     p.delta_ratio = 0.1;
     p.weight = ACD3D_WEIGHT_RATIO;
     p.max_depth = 48;
+    p.merge = 1;
     return p;
 }
 
@@ -104,6 +106,7 @@ static int tree_push(tree *t, int parent, acd_mesh *mesh, size_t depth, int soli
     w->node.parent = parent;
     w->node.first_child = -1;
     w->node.part = -1;
+    w->node.merged_into = -1;
     w->mesh = *mesh;
     w->depth = depth;
     w->node.volume = solid ? acd_geom3_signed_volume(mesh) : 0.0;
@@ -298,6 +301,84 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     out->split = split;
 }
 
+static int node_is_part(const acd3d_node *nd) {
+    return nd->merged_into < 0 &&
+           (nd->leaf_reason == ACD3D_LEAF_MERGED || (nd->first_child < 0 && nd->leaf_reason != ACD3D_LEAF_NONE));
+}
+
+/* The merge pass (acd3/merge): every group of adjacent parts it joins becomes a node appended
+ * after the tree (ACD3D_LEAF_JOINED, its mesh the members' meshes one after the other, so each
+ * component stays closed); the members keep their nodes, with merged_into set and no mesh. */
+static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, double tol, int threads, size_t *nparts,
+                                acd_error *err) {
+    size_t np = 0;
+    for (size_t n = 0; n < t->n; n++) np += (size_t)node_is_part(&t->a[n].node);
+    if (np < 2) return ACD_OK;
+    size_t *idx = malloc(np * sizeof *idx);
+    acd_mesh *meshes = malloc(np * sizeof *meshes);
+    if (!idx || !meshes) {
+        free(idx);
+        free(meshes);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    np = 0;
+    for (size_t n = 0; n < t->n; n++)
+        if (node_is_part(&t->a[n].node)) {
+            idx[np] = n;
+            meshes[np++] = t->a[n].mesh;
+        }
+    acd3_merge_result mr;
+    acd_status st = acd3_merge_adjacent(input, meshes, np, tau, tol, threads, &mr, err);
+    free(meshes);
+    for (size_t g = 0; st == ACD_OK && g < mr.ngroups; g++) {
+        if (mr.group_size[g] < 2) continue;
+        acd_mesh joined;
+        memset(&joined, 0, sizeof joined);
+        size_t nv = 0, ntr = 0;
+        double vol = 0;
+        for (size_t i = 0; i < np; i++)
+            if (mr.group_of[i] == g) {
+                nv += t->a[idx[i]].mesh.nvertices;
+                ntr += t->a[idx[i]].mesh.ntriangles;
+                vol += t->a[idx[i]].node.volume;
+            }
+        joined.vertices = malloc(3 * nv * sizeof(double));
+        joined.triangles = malloc(3 * ntr * sizeof(uint32_t));
+        if (!joined.vertices || !joined.triangles || nv >= UINT32_MAX) {
+            acd_mesh_free(&joined);
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory joining parts");
+            break;
+        }
+        for (size_t i = 0; i < np; i++) {
+            if (mr.group_of[i] != g) continue;
+            acd_mesh *m = &t->a[idx[i]].mesh;
+            memcpy(joined.vertices + 3 * joined.nvertices, m->vertices, 3 * m->nvertices * sizeof(double));
+            for (size_t k = 0; k < 3 * m->ntriangles; k++)
+                joined.triangles[3 * joined.ntriangles + k] = m->triangles[k] + (uint32_t)joined.nvertices;
+            joined.nvertices += m->nvertices;
+            joined.ntriangles += m->ntriangles;
+        }
+        if (!tree_push(t, -1, &joined, 0, 0)) {
+            acd_mesh_free(&joined);
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            break;
+        }
+        work_node *w = &t->a[t->n - 1];
+        w->node.volume = vol;
+        w->node.concavity = mr.bound[g];
+        w->node.leaf_reason = ACD3D_LEAF_JOINED;
+        for (size_t i = 0; i < np; i++)
+            if (mr.group_of[i] == g) {
+                t->a[idx[i]].node.merged_into = (int)(t->n - 1);
+                acd_mesh_free(&t->a[idx[i]].mesh);
+            }
+        *nparts -= mr.group_size[g] - 1;
+    }
+    acd3_merge_result_free(&mr);
+    free(idx);
+    return st;
+}
+
 acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!params || params->cookie != ACD3D_PARAMS_COOKIE)
@@ -451,7 +532,12 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     for (size_t n = 0; n < t.n; n++)
         if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
 
-    /* results: nodes, parts (leaves and merged nodes, in node order) with hulls */
+    if (params->merge && solid) {
+        st = join_adjacent(&t, mesh, tau, sc.dist, nthreads, &nleaves, err);
+        if (st != ACD_OK) goto fail;
+    }
+
+    /* results: nodes, parts (leaves, merged and joined nodes, in node order) with hulls */
     out->nodes = calloc(t.n, sizeof *out->nodes);
     out->parts = calloc(nleaves ? nleaves : 1, sizeof *out->parts);
     if (!out->nodes || !out->parts) {
@@ -461,8 +547,8 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     out->nnodes = t.n;
     for (size_t i = 0; i < t.n; i++) {
         out->nodes[i] = t.a[i].node;
-        int is_part = t.a[i].node.leaf_reason == ACD3D_LEAF_MERGED ||
-                      (t.a[i].node.first_child < 0 && t.a[i].node.leaf_reason != ACD3D_LEAF_NONE);
+        int is_part = t.a[i].node.merged_into < 0 && (t.a[i].node.leaf_reason == ACD3D_LEAF_MERGED ||
+                      (t.a[i].node.first_child < 0 && t.a[i].node.leaf_reason != ACD3D_LEAF_NONE));
         if (!is_part) continue;
         acd3d_part *p = &out->parts[out->nparts];
         p->mesh = t.a[i].mesh;

@@ -1,0 +1,52 @@
+/* acd3/merge: after the decomposition, adjacent parts whose union is still nearly convex are
+ * joined (issue 4 item 6: fewer parts at the same concavity). docs/acd3d.md, "Merge pass".
+ *
+ * Two parts are adjacent when they share at least three non-collinear vertex positions (the
+ * vertices of a section they were cut along: plane_cut gives both sides the same points). The
+ * union U = A u B of two adjacent groups is scored against its hull H = conv(A u B):
+ *
+ *   d_in  = max over the vertices of A and B that lie on the input surface of their distance to
+ *           the boundary of H (exact: min over H's facet planes, the vertices being inside H);
+ *   d_out = max over the points x of the boundary of H of dist(x, U), bounded from above: every
+ *           hull triangle is subdivided until, for each piece of centroid g and circumradius r,
+ *           dist(g, U) + r <= tau (dist is 1-Lipschitz, so the piece is within tau of U), or
+ *           refused as soon as one centroid is farther than tau.
+ *
+ * The pair is joinable when both are <= tau; its cost is max(d_in, d_out's bound). Cheapest
+ * first (ties: the lower group ids), greedily, until no adjacent pair is joinable; a joined group
+ * is a new group and its pairs with its neighbours are scored again. Deterministic for any
+ * thread count (pairs are scored independently, the choice is sequential).
+ *
+ * What the bound means: d_out is the directed Hausdorff distance from the joined hull to the
+ * joined part (an upper bound of it: how far the hull reaches out); d_in is the depth of the
+ * part's surface points inside the hull. The decomposition's own measure (acd3/measure) is the
+ * depth below the bridge patch covering each pocket, which is >= d_in (a patch plane supports
+ * H, so a point's depth below it is at least its distance to the boundary of H): d_in is not an
+ * upper bound of it, d_out is not comparable to it (a thin deep crack has a small d_out and a
+ * large depth). The pair of one-sided distances is the measure the evaluation uses (eval3d,
+ * CoACD's Hausdorff concavity), and the joined records carry it. Cap vertices off the input
+ * surface (on sections between parts) are left out of d_in: the caps are inside the input. */
+#ifndef ACD_ACD3_MERGE_H
+#define ACD_ACD3_MERGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "acd/base.h"
+#include "acd/mesh.h"
+
+typedef struct acd3_merge_result {
+    size_t ngroups;
+    uint32_t *group_of; /* per input part: its group; groups numbered by their lowest part */
+    size_t *group_size; /* per group: how many parts */
+    double *bound;      /* per group of >= 2 parts: max(d_in, bound of d_out) <= tau; 0 otherwise */
+    size_t merges;      /* joins made */
+} acd3_merge_result;
+
+/* Joins the adjacent parts of the closed input mesh `input` (all parts closed, together tiling
+ * it), tau and tol in model units. threads: OpenMP workers for the scoring (<= 1: one). */
+acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
+                               int threads, acd3_merge_result *out, acd_error *err);
+void acd3_merge_result_free(acd3_merge_result *r);
+
+#endif
