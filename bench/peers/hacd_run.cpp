@@ -45,7 +45,7 @@ int main(int argc, char **argv) {
     std::istringstream head(line);
     std::string magic;
     head >> magic;
-    if (magic.compare(0, 3, "OFF") != 0) {
+    if (magic.find("OFF") == std::string::npos) { // OFF, COFF, NOFF, ...
         std::fprintf(stderr, "hacd_run: %s is not an OFF file\n", argv[1]);
         return 1;
     }

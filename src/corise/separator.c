@@ -52,6 +52,23 @@ acd_status acd_corise_valley_split(const double *vertices, const uint32_t *chain
     if ((st = acd_corise_chain_concavity(vertices, chain, n, corig, NULL, NULL, NULL, err)) != ACD_OK) goto done;
     size_t argrc = SIZE_MAX, argmax = SIZE_MAX;
     double minrc = INFINITY;
+    for (size_t m = 1; m + 1 < n; m++)
+        if (argmax == SIZE_MAX || corig[m] > corig[argmax]) argmax = m;
+    /* shortcut, same result: when the deepest vertex already leaves both pieces shallow, min RC <= tau
+       (V-shaped) and the separator is that vertex, so the other RC values are not needed */
+    {
+        double ps, ss;
+        if ((st = piece(vertices, chain, 0, argmax, &ps, err)) != ACD_OK) goto done;
+        if ((st = piece(vertices, chain, argmax, n - 1, &ss, err)) != ACD_OK) goto done;
+        double rcs = ps > ss ? ps : ss;
+        if (rcs <= tau) {
+            out->ushaped = 0;
+            out->first = out->second = argmax;
+            out->residual = rcs;
+            goto done;
+        }
+    }
+    argmax = SIZE_MAX;
     for (size_t m = 1; m + 1 < n; m++) {
         if ((st = piece(vertices, chain, 0, m, &P[m], err)) != ACD_OK) goto done;
         if ((st = piece(vertices, chain, m, n - 1, &S[m], err)) != ACD_OK) goto done;

@@ -11,20 +11,69 @@
 #include "acd2/concavity_sp.h"
 #include "core/error.h"
 #include "core/predicates.h"
+#include "geom2/seg_sweep.h"
 
-/* The projected polygon p[0..m) (chain, closed by the lid p[m-1] -> p[0]) is simple: no two
- * non-adjacent edges meet, adjacent edges meet only at their shared vertex. O(m^2), exact. */
-static int polygon_is_simple(const acd_vec2 *p, size_t m) {
+/* Rings at least this long are tested for simplicity by a sweep instead of all pairs. */
+#define POLYGON_SWEEP_MIN 48
+
+/* Brute force, O(m^2), exact. */
+static int polygon_is_simple_brute(const acd_vec2 *p, size_t m) {
     for (size_t i = 0; i < m; i++) {
         double a0[2] = {p[i].x, p[i].y}, a1[2] = {p[(i + 1) % m].x, p[(i + 1) % m].y};
+        double axlo = fmin(a0[0], a1[0]), axhi = fmax(a0[0], a1[0]), aylo = fmin(a0[1], a1[1]), ayhi = fmax(a0[1], a1[1]);
         for (size_t j = i + 1; j < m; j++) {
             double b0[2] = {p[j].x, p[j].y}, b1[2] = {p[(j + 1) % m].x, p[(j + 1) % m].y};
             int adjacent = j == i + 1 || (i == 0 && j == m - 1);
+            /* strictly separated bounding boxes: no common point (exact comparisons), the
+               segments are disjoint; skips the predicates for most pairs */
+            if (!adjacent && (fmax(b0[0], b1[0]) < axlo || fmin(b0[0], b1[0]) > axhi || fmax(b0[1], b1[1]) < aylo ||
+                              fmin(b0[1], b1[1]) > ayhi))
+                continue;
             acd_seg_relation r = acd_segments_relation(a0, a1, b0, b1);
             if (adjacent ? r == ACD_SEG_OVERLAP || r == ACD_SEG_PROPER : r != ACD_SEG_DISJOINT) return 0;
         }
     }
     return 1;
+}
+
+/* Edges e and f of the ring of POLYGON_SWEEP_MIN or more vertices meet where they should not. */
+typedef struct simple_ctx {
+    const acd_vec2 *p;
+    size_t m;
+    int conflict;
+} simple_ctx;
+
+static acd_status sweep_pair(void *ctx, size_t e, size_t f) {
+    const simple_ctx *c = ctx;
+    size_t i = e < f ? e : f, j = e < f ? f : e, m = c->m;
+    const acd_vec2 *p = c->p;
+    double a0[2] = {p[i].x, p[i].y}, a1[2] = {p[(i + 1) % m].x, p[(i + 1) % m].y};
+    double b0[2] = {p[j].x, p[j].y}, b1[2] = {p[(j + 1) % m].x, p[(j + 1) % m].y};
+    int adjacent = j == i + 1 || (i == 0 && j == m - 1);
+    acd_seg_relation r = acd_segments_relation(a0, a1, b0, b1);
+    int bad = adjacent ? r == ACD_SEG_OVERLAP || r == ACD_SEG_PROPER : r != ACD_SEG_DISJOINT;
+    if (bad) ((simple_ctx *)ctx)->conflict = 1;
+    return bad ? ACD_ERR_INVALID_INPUT : ACD_OK;
+}
+
+/* The projected polygon p[0..m) (chain, closed by the lid p[m-1] -> p[0]) is simple: no two
+ * non-adjacent edges meet, adjacent edges meet only at their shared vertex. Exact; a Shamos-Hoey
+ * sweep (geom2/seg_sweep, which finds a conflicting pair iff the brute force does) for rings of
+ * POLYGON_SWEEP_MIN vertices or more without a zero-length edge, else the brute force. */
+static int polygon_is_simple(const acd_vec2 *p, size_t m) {
+    if (m < POLYGON_SWEEP_MIN) return polygon_is_simple_brute(p, m);
+    for (size_t i = 0; i < m; i++)
+        if (p[i].x == p[(i + 1) % m].x && p[i].y == p[(i + 1) % m].y) return polygon_is_simple_brute(p, m);
+    size_t *next = malloc(m * sizeof *next);
+    if (!next) return polygon_is_simple_brute(p, m);
+    for (size_t i = 0; i < m; i++) next[i] = (i + 1) % m;
+    simple_ctx c = {p, m, 0};
+    acd_error e;
+    acd_status st = acd_sweep_edges(p, next, m, sweep_pair, &c, NULL, NULL, &e);
+    free(next);
+    if (st == ACD_OK) return 1;
+    if (c.conflict) return 0;
+    return polygon_is_simple_brute(p, m); /* the sweep could not run (memory): same answer the slow way */
 }
 
 acd_status acd_corise_chain_concavity(const double *vertices, const uint32_t *chain, size_t m, double *conc,
