@@ -146,6 +146,8 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
         cJSON_AddNumberToObject(q, "vertices", (double)r->parts[i].mesh.nvertices);
         cJSON_AddNumberToObject(q, "hull_vertices", (double)r->parts[i].hull.nvertices);
         cJSON_AddNumberToObject(q, "node", r->parts[i].node);
+        cJSON_AddNumberToObject(q, "genus", (double)r->parts[i].genus);
+        cJSON_AddNumberToObject(q, "boundary_loops", (double)r->parts[i].boundary_loops);
         cJSON_AddStringToObject(q, "leaf_reason", leaf_reason_name(r->nodes[r->parts[i].node].leaf_reason));
         cJSON_AddItemToArray(parts, q);
     }
@@ -391,6 +393,18 @@ int acd_cmd_3d(int argc, char **argv) {
                                                    r.nodes[r.parts[i].node].leaf_reason == ACD3D_LEAF_DEPTH;
     printf("%zu parts, max concavity %.6g (tau %.6g = %.4g x radius %.6g), %.3f s\n", r.nparts, r.max_concavity, r.tau,
            r.scale > 0 ? r.tau / r.scale : 0.0, r.scale, r.seconds);
+    {
+        size_t handled = 0;
+        long gmax = 0;
+        for (size_t i = 0; i < r.nparts; i++) {
+            handled += r.parts[i].genus > 0;
+            if (r.parts[i].genus > gmax) gmax = r.parts[i].genus;
+        }
+        if (handled)
+            printf("genus of the parts: %zu of %zu have handles (at most %ld)\n", handled, r.nparts, gmax);
+        else
+            printf("genus of the parts: 0 (all %zu)\n", r.nparts);
+    }
     if (stuck)
         fprintf(stderr, "acd 3d: %zu part(s) stayed above tau: no cut could split them further (see leaf_reason)\n",
                 stuck);

@@ -93,6 +93,9 @@ typedef struct acd3d_part {
     double volume;            /* solid: part volume; surface: 0 */
     double hull_volume;
     int node;
+    long genus;               /* handles of the part (Euler characteristic with its boundary loops,
+                                 summed over its connected components) */
+    size_t boundary_loops;    /* openings of the part (0 for a closed solid) */
 } acd3d_part;
 
 typedef struct acd3d_result {

@@ -25,6 +25,7 @@
 #include "acd3/region_cut.h"
 #include "acd3/resolve.h"
 #include "acd3/surface_cut.h"
+#include "acd3/topology.h"
 #include "core/error.h"
 #include "core/tolerance.h"
 #include "geom3/dijkstra.h"
@@ -199,7 +200,10 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
             if (found) choice_free(best);
             return -(int)ACD_ERR_NOMEM;
         }
-        int ok = trial.cut.npieces >= 2;
+        /* two or more pieces; in surface mode also one piece cut open along a loop that does
+         * not separate it (around a handle: its genus drops) */
+        int ok = trial.cut.npieces >= 2 ||
+                 (!solid && trial.cut.npieces == 1 && trial.cut.pieces[0].mesh.nvertices > m->nvertices);
         for (size_t k = 0; ok && solid && k < trial.cut.npieces; k++) {
             const acd_mesh *pm = &trial.cut.pieces[k].mesh;
             if (acd_geom3_signed_volume(pm) < ACD3_MIN_PIECE_FRACTION * vol) ok = 0;
@@ -560,6 +564,11 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         out->nparts++;
         st = hull_mesh(&p->mesh, params->max_hull_vertices, &p->hull, &p->hull_volume, err);
         if (st != ACD_OK) goto fail;
+        acd3_topology topo;
+        st = acd3_topology_of(&p->mesh, &topo, err);
+        if (st != ACD_OK) goto fail;
+        p->genus = topo.genus;
+        p->boundary_loops = topo.boundary_loops;
         if (p->concavity > out->max_concavity) out->max_concavity = p->concavity;
     }
     free(t.a);

@@ -12,38 +12,84 @@
 /* How many section strips, nearest first, are tried before the surface is left whole. */
 #define ACD3_SURFACE_STRIPS 8
 
-/* Extracts the faces with piece label `label` into a new mesh with its own vertices. */
-static acd_status extract(const acd_mesh *m, const uint32_t *piece, uint32_t label, uint32_t *remap,
-                          acd_cut_piece *out) {
+/* Extracts the faces with piece label `label` into a new mesh with its own vertices: one per
+ * corner class (corner = 3 f + k; see corner_classes), so the piece is cut open along blocked
+ * edges even where they do not separate it. remap: 3 * ntriangles entries, all UINT32_MAX on
+ * entry and on return. */
+static acd_status extract(const acd_mesh *m, const uint32_t *piece, uint32_t label, const size_t *corner,
+                          uint32_t *remap, acd_cut_piece *out) {
     memset(out, 0, sizeof *out);
     size_t nt = 0, nv = 0;
-    for (size_t f = 0; f < m->ntriangles; f++) nt += piece[f] == label;
-    for (size_t v = 0; v < m->nvertices; v++) remap[v] = UINT32_MAX;
     for (size_t f = 0; f < m->ntriangles; f++)
-        if (piece[f] == label)
+        if (piece[f] == label) {
+            nt++;
             for (int k = 0; k < 3; k++) {
-                uint32_t v = m->triangles[3 * f + k];
-                if (remap[v] == UINT32_MAX) remap[v] = (uint32_t)nv++;
+                size_t c = corner[3 * f + k];
+                if (remap[c] == UINT32_MAX) remap[c] = (uint32_t)nv++;
             }
+        }
     out->mesh.vertices = malloc(3 * (nv ? nv : 1) * sizeof *out->mesh.vertices);
     out->mesh.triangles = malloc(3 * (nt ? nt : 1) * sizeof *out->mesh.triangles);
     out->source = malloc((nv ? nv : 1) * sizeof *out->source);
     out->is_cap = calloc(nt ? nt : 1, 1);
-    if (!out->mesh.vertices || !out->mesh.triangles || !out->source || !out->is_cap) return ACD_ERR_NOMEM;
-    for (size_t v = 0; v < m->nvertices; v++)
-        if (remap[v] != UINT32_MAX) {
-            memcpy(out->mesh.vertices + 3 * (size_t)remap[v], m->vertices + 3 * v, sizeof(double[3]));
-            out->source[remap[v]] = (uint32_t)v;
-        }
+    acd_status st = ACD_OK;
+    if (!out->mesh.vertices || !out->mesh.triangles || !out->source || !out->is_cap) st = ACD_ERR_NOMEM;
     size_t t = 0;
     for (size_t f = 0; f < m->ntriangles; f++)
         if (piece[f] == label) {
-            for (int k = 0; k < 3; k++) out->mesh.triangles[3 * t + k] = remap[m->triangles[3 * f + k]];
+            for (int k = 0; k < 3; k++) {
+                uint32_t v = m->triangles[3 * f + k], nvid = remap[corner[3 * f + k]];
+                if (st == ACD_OK) {
+                    memcpy(out->mesh.vertices + 3 * (size_t)nvid, m->vertices + 3 * (size_t)v, sizeof(double[3]));
+                    out->source[nvid] = v;
+                    out->mesh.triangles[3 * t + k] = nvid;
+                }
+            }
             t++;
         }
+    for (size_t f = 0; f < m->ntriangles; f++)
+        if (piece[f] == label)
+            for (int k = 0; k < 3; k++) remap[corner[3 * f + k]] = UINT32_MAX;
     out->mesh.nvertices = nv;
     out->mesh.ntriangles = nt;
-    return ACD_OK;
+    return st;
+}
+
+/* Corner classes: the corners of a vertex (corner 3 f + k holds triangles[3 f + k]) are one
+ * class unless the vertex is an end of a blocked edge; then its corners are grouped into the fans
+ * of faces joined across its edges that are not blocked, and each fan becomes its own vertex.
+ * corner[c] receives the class (a representative corner). Scratch: first (nv entries), cut (nv). */
+static void corner_classes(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of, const uint8_t *blocked,
+                           size_t *corner, size_t *first, uint8_t *cut) {
+    size_t nf = m->ntriangles, nv = m->nvertices;
+    for (size_t c = 0; c < 3 * nf; c++) corner[c] = c;
+    memset(cut, 0, nv ? nv : 1);
+    for (size_t e = 0; blocked && e < g->nedges; e++)
+        if (blocked[e]) cut[g->edge_v[2 * e]] = cut[g->edge_v[2 * e + 1]] = 1;
+    /* fans: at each end of an unblocked edge, the corners of its two faces */
+    for (size_t e = 0; e < g->nedges; e++) {
+        uint32_t f0 = face_of[2 * e], f1 = face_of[2 * e + 1];
+        if (f0 == UINT32_MAX || f1 == UINT32_MAX || (blocked && blocked[e])) continue;
+        for (int end = 0; end < 2; end++) {
+            uint32_t v = g->edge_v[2 * e + end];
+            if (!cut[v]) continue;
+            size_t c0 = SIZE_MAX, c1 = SIZE_MAX;
+            for (int k = 0; k < 3; k++) {
+                if (m->triangles[3 * (size_t)f0 + k] == v) c0 = 3 * (size_t)f0 + k;
+                if (m->triangles[3 * (size_t)f1 + k] == v) c1 = 3 * (size_t)f1 + k;
+            }
+            if (c0 != SIZE_MAX && c1 != SIZE_MAX) acd_uf_union_z(corner, c0, c1);
+        }
+    }
+    /* the other vertices: all their corners one class */
+    for (size_t v = 0; v < nv; v++) first[v] = SIZE_MAX;
+    for (size_t c = 0; c < 3 * nf; c++) {
+        uint32_t v = m->triangles[c];
+        if (cut[v]) continue;
+        if (first[v] == SIZE_MAX) first[v] = c;
+        else acd_uf_union_z(corner, first[v], c);
+    }
+    for (size_t c = 0; c < 3 * nf; c++) corner[c] = acd_uf_find_z(corner, c);
 }
 
 /* Labels the connected sets of faces across edges not blocked (blocked may be NULL): pieces
@@ -123,11 +169,14 @@ static acd_status split_blocked(const acd_mesh *m, const acd_edge_graph *g, cons
                                 acd_error *err) {
     memset(out, 0, sizeof *out);
     size_t nf = m->ntriangles;
+    size_t nv = m->nvertices;
     uint32_t *piece = malloc((nf ? nf : 1) * sizeof *piece), *queue = malloc((nf ? nf : 1) * sizeof *queue);
-    uint32_t *remap = malloc((m->nvertices ? m->nvertices : 1) * sizeof *remap);
+    uint32_t *remap = malloc(3 * (nf ? nf : 1) * sizeof *remap);
+    size_t *corner = malloc(3 * (nf ? nf : 1) * sizeof *corner), *first = malloc((nv ? nv : 1) * sizeof *first);
+    uint8_t *cut = malloc(nv ? nv : 1);
     double *shared = NULL;
     acd_status st = ACD_OK;
-    if (!piece || !queue || !remap) {
+    if (!piece || !queue || !remap || !corner || !first || !cut) {
         st = ACD_ERR_NOMEM;
         goto done;
     }
@@ -141,6 +190,8 @@ static acd_status split_blocked(const acd_mesh *m, const acd_edge_graph *g, cons
         if (join_strip_pieces(m, g, face_of, in_strip, np, piece, blocked, shared))
             np = flood(m, g, face_of, cls, blocked, piece, queue);
     }
+    corner_classes(m, g, face_of, blocked, corner, first, cut);
+    for (size_t c = 0; c < 3 * nf; c++) remap[c] = UINT32_MAX;
     out->pieces = calloc(np ? np : 1, sizeof *out->pieces);
     if (!out->pieces) {
         st = ACD_ERR_NOMEM;
@@ -148,7 +199,7 @@ static acd_status split_blocked(const acd_mesh *m, const acd_edge_graph *g, cons
     }
     for (uint32_t p = 0; p < np; p++) {
         out->npieces = p + 1;
-        st = extract(m, piece, p, remap, &out->pieces[p]);
+        st = extract(m, piece, p, corner, remap, &out->pieces[p]);
         if (st != ACD_OK) goto done;
         /* the side of the piece: the class of its first face */
         for (size_t f = 0; f < nf; f++)
@@ -158,12 +209,22 @@ static acd_status split_blocked(const acd_mesh *m, const acd_edge_graph *g, cons
             }
     }
 done:
-    free(piece), free(queue), free(remap), free(shared);
+    free(piece), free(queue), free(remap), free(shared), free(corner), free(first), free(cut);
     if (st != ACD_OK) {
         acd_cut_result_free(out);
         if (st == ACD_ERR_NOMEM) return acd_fail(err, st, "out of memory splitting a surface of %zu faces", nf);
     }
     return st;
+}
+
+/* The blocked edges and strip faces of the strip with union-find root `root`. */
+static void mark_strip(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of, const int8_t *cls,
+                       const uint8_t *in_strip, size_t *par, size_t root, uint8_t *blocked, uint8_t *strip) {
+    for (size_t e = 0; e < g->nedges; e++) {
+        uint32_t e0 = face_of[2 * e], e1 = face_of[2 * e + 1];
+        blocked[e] = e0 != UINT32_MAX && e1 != UINT32_MAX && cls[e0] != cls[e1] && acd_uf_find_z(par, e0) == root;
+    }
+    for (size_t f = 0; f < m->ntriangles; f++) strip[f] = in_strip[f] && acd_uf_find_z(par, f) == root;
 }
 
 acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const acd_cut_plane *pl, const double *near,
@@ -234,23 +295,27 @@ acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const ac
     /* the strips by distance (then lowest root): the nearest one whose chain separates the
      * surface is used (a section loop around a handle, or one the joined artefacts close,
      * leaves it whole) */
+    size_t slit = SIZE_MAX; /* the nearest strip that cuts without separating */
     for (int attempt = 0; attempt < ACD3_SURFACE_STRIPS; attempt++) {
         size_t root = SIZE_MAX;
         for (size_t f = 0; f < nf; f++)
             if (par[f] == f && sdist[f] < INFINITY && (root == SIZE_MAX || sdist[f] < sdist[root])) root = f;
         if (root == SIZE_MAX) break;
         sdist[root] = INFINITY; /* not again */
-        for (size_t e = 0; e < ne; e++) {
-            uint32_t e0 = face_of[2 * e], e1 = face_of[2 * e + 1];
-            blocked[e] = e0 != UINT32_MAX && e1 != UINT32_MAX && cls[e0] != cls[e1] && acd_uf_find_z(par, e0) == root;
-        }
-        for (size_t f = 0; f < nf; f++) strip[f] = in_strip[f] && acd_uf_find_z(par, f) == root;
+        mark_strip(m, g, face_of, cls, in_strip, par, root, blocked, strip);
         st = split_blocked(m, g, face_of, cls, blocked, strip, out, err);
         if (st != ACD_OK || out->npieces >= 2) goto done;
+        if (slit == SIZE_MAX && out->npieces == 1 && out->pieces[0].mesh.nvertices > nv) slit = root;
         acd_cut_result_free(out);
     }
-    /* no strip separates: the surface, whole */
-    st = split_blocked(m, g, face_of, cls, NULL, NULL, out, err);
+    /* no strip separates: the surface is cut open along the nearest strip that cuts at all (a
+     * loop around a handle: the genus drops, spec §5.3 step 6), or else left whole */
+    if (slit != SIZE_MAX) {
+        mark_strip(m, g, face_of, cls, in_strip, par, slit, blocked, strip);
+        st = split_blocked(m, g, face_of, cls, blocked, strip, out, err);
+    } else {
+        st = split_blocked(m, g, face_of, cls, NULL, NULL, out, err);
+    }
 done:
     free(cls), free(vs), free(blocked), free(in_strip), free(face_of), free(par), free(sdist), free(strip);
     return st;
