@@ -65,7 +65,7 @@ static void check_genus_run(const acd_mesh *m, acd3d_mode mode, double tau, long
     for (size_t i = 0; i < r1.nparts; i++) {
         const acd3d_part *q = &r1.parts[i];
         acd3d_leaf_reason why = r1.nodes[q->node].leaf_reason;
-        assert_true(why == ACD3D_LEAF_TAU || why == ACD3D_LEAF_FLAT);
+        assert_true(why == ACD3D_LEAF_TAU || why == ACD3D_LEAF_FLAT || why == ACD3D_LEAF_JOINED);
         assert_true(q->concavity <= r1.tau * (1 + 1e-12));
         assert_true(q->genus >= 0 && q->genus <= input_genus);
         if (mode == ACD3D_SOLID) assert_int_equal(q->boundary_loops, 0);
