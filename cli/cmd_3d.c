@@ -18,7 +18,8 @@ static void usage(FILE *f) {
     fprintf(f,
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
-            "              [--no-merge] [--no-close-holes] [--verify] [-v]\n"
+            "              [--no-merge] [--no-close-holes] [--resolver global|witness] [--cut-weight ratio|product]\n"
+            "              [--verify] [-v]\n"
             "\n"
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
@@ -29,6 +30,12 @@ static void usage(FILE *f) {
             "  --mode surface      parts are surface patches split along cut loops (open meshes welcome)\n"
             "  -o HULLS.obj        the convex hulls, one 'o hull_N' group each, full precision\n"
             "  --parts PARTS.obj   the parts themselves, one group each\n"
+            "  --resolver global   solid mode: cut first by the plane of the global cut (knots, pocket cuts,\n"
+            "                      minimum-weight cycle of the cut graph), then by planes through the most\n"
+            "                      concave vertex (default)\n"
+            "  --resolver witness  only the planes through the most concave vertex\n"
+            "  --cut-weight ratio  global cut weight W = omega/gamma (paper Eqn 4, default); 'product':\n"
+            "                      W = omega*gamma (dissertation Eqn 5.2)\n"
             "  --region-cuts       cut only the section region at the most concave vertex (spec A13)\n"
             "  --json FILE         summary: per part concavity, volume, hull volume; the tree\n"
             "  --export DIR        for other tools: decomposition.obj, hulls/, parts/, summary.json,\n"
@@ -276,6 +283,22 @@ int acd_cmd_3d(int argc, char **argv) {
             else if (val && !strcmp(val, "surface")) p.mode = ACD3D_SURFACE;
             else {
                 fprintf(stderr, "acd 3d: --mode takes solid or surface\n");
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--resolver")) {
+            if (val && !strcmp(val, "global")) p.resolver = ACD3D_RESOLVER_GLOBAL;
+            else if (val && !strcmp(val, "witness")) p.resolver = ACD3D_RESOLVER_WITNESS;
+            else {
+                fprintf(stderr, "acd 3d: --resolver takes global or witness\n");
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--cut-weight")) {
+            if (val && !strcmp(val, "ratio")) p.weight = ACD3D_WEIGHT_RATIO;
+            else if (val && !strcmp(val, "product")) p.weight = ACD3D_WEIGHT_PRODUCT;
+            else {
+                fprintf(stderr, "acd 3d: --cut-weight takes ratio or product\n");
                 return ACD_EXIT_USAGE;
             }
             i++;

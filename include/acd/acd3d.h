@@ -28,6 +28,13 @@ typedef enum acd3d_weight {
     ACD3D_WEIGHT_PRODUCT    /* W = omega * gamma (dissertation Eqn 5.2) */
 } acd3d_weight;
 
+typedef enum acd3d_resolver {
+    ACD3D_RESOLVER_GLOBAL = 0, /* solid mode: the global cut's plane first (knots, pocket cuts, the
+                                  minimum-weight cycle of the cut graph; dissertation §V.B.2-3),
+                                  then the planes through the most concave vertex */
+    ACD3D_RESOLVER_WITNESS     /* only the planes through the most concave vertex */
+} acd3d_resolver;
+
 #define ACD3D_PARAMS_COOKIE 0x41434433u
 
 typedef struct acd3d_params {
@@ -38,7 +45,8 @@ typedef struct acd3d_params {
     acd3d_mode mode;          /* default ACD3D_SOLID */
     double eps_ratio;         /* bridge clustering threshold eps = eps_ratio * tau (default 0.5) */
     double delta_ratio;       /* knot threshold delta = delta_ratio * tau (default 0.1) */
-    acd3d_weight weight;      /* cut weight (default ratio) */
+    acd3d_weight weight;      /* cut weight of the global cut (default ratio) */
+    acd3d_resolver resolver;  /* how solid mode chooses its cut planes (see docs/acd3d.md) */
     size_t max_hulls;         /* 0: no limit; else the cheapest adjacent parts are merged (a split is
                                  undone, smallest parent concavity first) until at most this many
                                  remain; result.max_concavity is the concavity reached */

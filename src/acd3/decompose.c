@@ -49,6 +49,7 @@ acd3d_params acd3d_default_params(void) {
     p.eps_ratio = 0.5;
     p.delta_ratio = 0.1;
     p.weight = ACD3D_WEIGHT_RATIO;
+    p.resolver = ACD3D_RESOLVER_GLOBAL;
     p.max_depth = 48;
     p.merge = 1;
     return p;
@@ -175,9 +176,10 @@ static void choice_free(split_choice *c) {
  * measures are kept for when they are processed. Returns 1 if split, 0 if no candidate splits,
  * or -(status) on failure. */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
-                     double tau, double tol, int solid, int restrict_cut, split_choice *best, acd_error *err) {
+                     double tau, double tol, int solid, int restrict_cut, const acd3_resolve_opts *ro,
+                     split_choice *best, acd_error *err) {
     acd3_plane_candidate cand[ACD3_MAX_CANDIDATES];
-    int nc = acd3_cut_candidates(m, g, ms, cand);
+    int nc = acd3_cut_candidates(m, g, ms, ro, cand);
     double vol = solid ? acd_geom3_signed_volume(m) : 0.0;
     int found = 0, compared = 0;
     memset(best, 0, sizeof *best);
@@ -284,15 +286,18 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     else if (w->depth >= c->params->max_depth || c->tree_full) reason = ACD3D_LEAF_DEPTH;
     int split = 0;
     if (reason == ACD3D_LEAF_NONE) {
+        /* solid mode: the global cut's plane first (acd3/resolve) */
+        const acd3_resolve_opts ro = {c->solid && c->params->resolver == ACD3D_RESOLVER_GLOBAL,
+                                      {c->tau, c->params->delta_ratio * c->tau, c->params->weight}};
         /* surface mode, and solid mode with region_cuts, cut along the section nearest the
          * witness first; solid mode then whole-plane cuts when that does not split the part
          * (surface mode does not: cutting a surface along every crossing of a plane leaves many
          * slivers; its section cut already tries the strips nearest the witness in turn) */
         if (c->params->region_cuts || !c->solid)
-            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1, &out->choice,
+            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1, &ro, &out->choice,
                               &out->err);
         if (split == 0 && c->solid)
-            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0, &out->choice,
+            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0, &ro, &out->choice,
                               &out->err);
         if (split < 0) {
             out->st = (acd_status)(-split);

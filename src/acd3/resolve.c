@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd3/global_cut.h"
 #include "geom3/pca.h"
 
 /* Fraction of the witness's concavity above which a vertex belongs to the valley. */
@@ -114,10 +115,29 @@ static int notch_plane(const acd_mesh *m, const acd3_measure *ms, acd3_plane_can
     return ok;
 }
 
+/* The global cut's plane (acd3/global_cut); 1 if found. */
+static int global_plane(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, const acd3_gc_opts *o,
+                        acd3_plane_candidate *c) {
+    acd3_cut_graph cg;
+    if (acd3_cut_graph_build(m, g, ms, o, &cg, NULL) != ACD_OK) return 0;
+    acd3_global_cut gc;
+    int ok = 0;
+    if (acd3_global_cut_find(m, g, ms, &cg, o, &gc, NULL) == ACD_OK) {
+        if (gc.n >= 2 && acd3_global_cut_plane(m, ms, &cg, &gc, o, c->point, c->normal)) {
+            c->kind = gc.cup ? "cup" : gc.closed ? "global" : "pocket";
+            ok = 1;
+        }
+        acd3_global_cut_free(&gc);
+    }
+    acd3_cut_graph_free(&cg);
+    return ok;
+}
+
 int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                        acd3_plane_candidate *out) {
+                        const acd3_resolve_opts *ro, acd3_plane_candidate *out) {
     if (ms->witness == UINT32_MAX) return 0;
     int n = 0;
+    if (ro && ro->global && global_plane(m, g, ms, &ro->gc, &out[n])) n++;
     if (valley_plane(m, g, ms, &out[n])) n++;
     n += notch_plane(m, ms, &out[n]);
     acd_pca pca;

@@ -2,6 +2,10 @@
  * (dissertation §V.B.3, Eqn 5.3; paper §4.3, Eqn 5; spec acd3d.md §5.2, §5.4).
  *
  * Candidates, tried in order until one splits the part into two or more solids:
+ * 0. The global cut's plane (solid mode, default resolver; acd3/global_cut): the concavity-
+ *    weighted best-fit plane of the minimum-weight cycle of pocket cuts through the witness's
+ *    pocket (kind "global"), of the root pocket cut alone when no cycle closes ("pocket"), or of
+ *    the cut through the witness of a cup-shaped pocket ("cup").
  * 1. The valley plane. The global cut of the dissertation is a loop of concave valleys through
  *    the witness; its plane is the concavity-weighted best-fit (PCA) plane of the loop. We take as
  *    the loop the vertices connected to the witness whose concavity is at least half of the
@@ -19,19 +23,26 @@
 
 #include "acd/mesh.h"
 #include "acd3/measure.h"
+#include "acd3/pocket_cut.h"
 #include "geom3/dijkstra.h"
 
-enum { ACD3_MAX_CANDIDATES = 10 };
+enum { ACD3_MAX_CANDIDATES = 11 };
 
 typedef struct acd3_plane_candidate {
     double point[3];
     double normal[3]; /* unit */
-    const char *kind; /* "valley", "notch", "face", "centroid", "axis" */
+    const char *kind; /* "global", "pocket", "cup", "valley", "notch", "face", "centroid", "axis" */
 } acd3_plane_candidate;
 
+typedef struct acd3_resolve_opts {
+    int global;       /* non-zero: the global cut's plane first */
+    acd3_gc_opts gc;  /* its parameters */
+} acd3_resolve_opts;
+
 /* Fills up to ACD3_MAX_CANDIDATES candidate planes for the measured part; returns their count
- * (0 only when the part has no witness or an allocation failed). */
+ * (0 only when the part has no witness or an allocation failed). ro may be NULL (no global
+ * cut). */
 int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                        acd3_plane_candidate *out);
+                        const acd3_resolve_opts *ro, acd3_plane_candidate *out);
 
 #endif
