@@ -2,6 +2,7 @@
 #include "acd3/pocket_cut.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,9 +11,11 @@
 
 /* Hungarian costs standing for "no path". */
 #define NO_PATH_COST 1e100
-/* Guards of the cut weight: sum concavity >= ETA_CONC * tau, gamma >= ETA_CURV (radians). */
+/* Guards of the cut weight: sum concavity + ETA_CONC * tau; gamma + ETA_CURV per edge (radians:
+ * an edge turning less than about 3 degrees counts as flat, so that W = omega / gamma stays
+ * finite on flat paths). */
 #define ETA_CONC 1e-3
-#define ETA_CURV 1e-3
+#define ETA_CURV 0.05
 /* Valley path cost: |uv| / (VALLEY_ETA * tau + mean concavity). */
 #define VALLEY_ETA 1e-3
 
@@ -46,9 +49,10 @@ double acd3_valley_cost(const acd_edge_graph *g, const double *vconc, uint32_t e
 
 double acd3_cut_weight(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of, const double *vconc,
                        const uint32_t *p, size_t n, const acd3_gc_opts *o) {
-    double sc = 0, gamma = ETA_CURV;
+    double sc = 0, gamma = 0;
     for (size_t i = 0; i < n; i++) sc += vconc[p[i]];
     for (size_t i = 0; i + 1 < n; i++) {
+        gamma += ETA_CURV;
         uint32_t e = acd_edge_graph_find(g, p[i], p[i + 1]);
         if (e == ACD_NO_VERTEX) continue;
         uint32_t f0 = face_of[2 * (size_t)e], f1 = face_of[2 * (size_t)e + 1];
@@ -124,7 +128,7 @@ typedef struct cand {
     uint32_t a, b; /* knot ids */
     size_t off, n; /* in the candidate pool */
     double w;
-    int keep;
+    int keep, crossed;
 } cand;
 
 typedef struct rk { /* (region, knot) */
@@ -425,7 +429,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                     cands = nc;
                 }
                 double w = acd3_cut_weight(m, g, out->face_of, ms->vconc, pool.a + off, n, o);
-                cands[ncand] = (cand){kr[i].knot, kr[j].knot, off, n, w, 0};
+                cands[ncand] = (cand){kr[i].knot, kr[j].knot, off, n, w, 0, 0};
                 wm[i * K + j] = wm[j * K + i] = w;
                 cid[i * K + j] = cid[j * K + i] = ncand;
                 ncand++;
@@ -520,20 +524,26 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
             }
         }
         for (;;) {
-            size_t worst = SIZE_MAX;
+            /* the cut crossing the most others goes first, the heavier on ties */
+            size_t worst = SIZE_MAX, wn = 0;
             for (size_t i = 0; i < nk; i++) {
                 if (!cands[kept.a[i]].keep) continue;
-                int any = 0;
-                for (size_t j = 0; j < nk && !any; j++) any = cross[i * nk + j] && cands[kept.a[j]].keep;
-                if (any && (worst == SIZE_MAX || cands[kept.a[i]].w > cands[kept.a[worst]].w)) worst = i;
+                size_t any = 0;
+                for (size_t j = 0; j < nk; j++) any += cross[i * nk + j] && cands[kept.a[j]].keep;
+                if (any && (worst == SIZE_MAX || any > wn || (any == wn && cands[kept.a[i]].w > cands[kept.a[worst]].w)))
+                    worst = i, wn = any;
             }
             if (worst == SIZE_MAX) break;
             cands[kept.a[worst]].keep = 0;
+            cands[kept.a[worst]].crossed = 1;
         }
+        if (getenv("PC_DEBUG"))
+            for (size_t c = 0; c < ncand; c++)
+                fprintf(stderr, "region %u cand %u-%u n %zu w %g keep %d\n", r, cands[c].a, cands[c].b, cands[c].n, cands[c].w, cands[c].keep);
         free(cross);
         /* the kept cuts of r */
         for (size_t c = 0; c < ncand && ok; c++) {
-            if (!cands[c].keep) continue;
+            if (!cands[c].keep && !cands[c].crossed) continue;
             if (ncuts == capcuts) {
                 capcuts = capcuts ? 2 * capcuts : 64;
                 acd3_pocket_cut *nc = realloc(cuts, capcuts * sizeof *nc);
@@ -543,7 +553,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                 }
                 cuts = nc;
             }
-            cuts[ncuts] = (acd3_pocket_cut){{cands[c].a, cands[c].b}, r, 0, cands[c].n, cands[c].w};
+            cuts[ncuts] = (acd3_pocket_cut){{cands[c].a, cands[c].b}, r, 0, cands[c].n, cands[c].w, cands[c].crossed};
             /* vertices appended to the output pool */
             size_t base = ncutv;
             uint32_t *nv2 = realloc(out->cut_v, (base + cands[c].n) * sizeof *nv2);

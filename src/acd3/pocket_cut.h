@@ -22,7 +22,11 @@
  *    the angle integrates the curvature across the edge along its length). W = omega / gamma
  *    (paper Eqn 4, default) or omega * gamma (dissertation Eqn 5.2).
  *
- * G_K has the knots as vertices and the kept cuts as edges. */
+ * G_K has the knots as vertices and the matched cuts as edges; those the crossing rule deletes
+ * stay in the graph flagged `crossed` (the non-crossed ones are K_rho, the set a surface split
+ * along several cuts at once needs): a cycle visits each pocket once, so it never uses two cuts
+ * of one pocket, and removing crossed cuts would only remove cycles (on a peanut's neck the
+ * ring's cut through one pocket crosses a cheaper cut to a far, shallow knot). */
 #ifndef ACD_ACD3_POCKET_CUT_H
 #define ACD_ACD3_POCKET_CUT_H
 
@@ -45,6 +49,8 @@ typedef struct acd3_pocket_cut {
     uint32_t region;  /* the pocket it lies in */
     size_t off, n;    /* its vertices: cut_v[off .. off+n) */
     double w;         /* cut weight W */
+    int crossed;      /* deleted from K_rho because it crosses a kept cut of its pocket; kept in the
+                         graph: a cycle uses one cut per pocket, so crossings never meet in a cycle */
 } acd3_pocket_cut;
 
 typedef struct acd3_cut_graph {
