@@ -256,6 +256,7 @@ static int cup_cut(const acd_mesh *m, const acd_edge_graph *g, const acd3_measur
     }
     gc->cup = 1;
     gc->ncuts = 1;
+    gc->root_n = gc->n;
     gc->weight = acd3_cut_weight(m, g, cg->face_of, ms->vconc, gc->v, gc->n, o);
     res = 1;
 done:
@@ -299,6 +300,7 @@ acd_status acd3_global_cut_find(const acd_mesh *m, const acd_edge_graph *g, cons
         r = cup_cut(m, g, ms, cg, o, x, rx, out, &cap);
     } else {
         r = append_cut(out, &cap, cg, root, cg->cuts[root].knot[0]) ? 1 : -1;
+        out->root_n = out->n;
         if (r > 0) {
             r = grow_cycle(cg, root, rx, out, &cap);
             if (r > 0) out->closed = 1;
@@ -336,7 +338,8 @@ static int fit_plane(const double *pts, const double *w, size_t n, const double 
 }
 
 int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_cut_graph *cg,
-                          const acd3_global_cut *gc, const acd3_gc_opts *o, double point[3], double normal[3]) {
+                          const acd3_global_cut *gc, const acd3_gc_opts *o, double point[3], double normal[3],
+                          double fitted[3]) {
     size_t n = gc->n;
     if (n < 2) return 0;
     size_t ns = 3 * (n - 1);
@@ -410,10 +413,14 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
         double l = sqrt(axes[2][0] * axes[2][0] + axes[2][1] * axes[2][1] + axes[2][2] * axes[2][2]);
         if (!(l > 0)) goto done;
         for (int k = 0; k < 3; k++) normal[k] = axes[2][k] / l;
+        /* the plane is moved parallel to itself through the witness: the cut must resolve the
+         * most concave vertex (a cycle or root cut near but not through it would leave it) */
         const double *x = ms->witness != UINT32_MAX ? m->vertices + 3 * (size_t)ms->witness : c;
-        double s = (x[0] - c[0]) * normal[0] + (x[1] - c[1]) * normal[1] + (x[2] - c[2]) * normal[2];
-        if (getenv("GC_THROUGH")) s = 0;
-        for (int k = 0; k < 3; k++) point[k] = x[k] - s * normal[k];
+        for (int k = 0; k < 3; k++) point[k] = x[k];
+        if (fitted) {
+            double s = (x[0] - c[0]) * normal[0] + (x[1] - c[1]) * normal[1] + (x[2] - c[2]) * normal[2];
+            for (int k = 0; k < 3; k++) fitted[k] = x[k] - s * normal[k];
+        }
         ok = 1;
     }
 done:

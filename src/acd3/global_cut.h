@@ -22,7 +22,9 @@
  * vertex farther than theta = max(tau, 2 x mean cut edge length) from the plane has its weight
  * doubled and the plane refitted, at most 10 times, then the plane is made to pass through the
  * worst vertex. A cut that does not spread in two dimensions (a straight valley) gives the plane
- * containing its direction and the mean surface normal along it (across the valley). */
+ * containing its direction and the mean surface normal along it (across the valley). Finally the
+ * plane is moved parallel to itself through the witness (our addition: the cut must resolve the
+ * most concave vertex; measured better than the fitted position on every Table 5 model). */
 #ifndef ACD_ACD3_GLOBAL_CUT_H
 #define ACD_ACD3_GLOBAL_CUT_H
 
@@ -31,6 +33,7 @@
 typedef struct acd3_global_cut {
     uint32_t *v;    /* the cut's vertices in order (a cycle repeats its first vertex last) */
     size_t n;
+    size_t root_n;  /* the root cut (or the cup cut) is v[0 .. root_n) */
     size_t ncuts;   /* pocket cuts in it */
     int closed;     /* a cycle of G_K */
     int cup;        /* a cut through the witness of a cup-shaped pocket */
@@ -44,9 +47,12 @@ acd_status acd3_global_cut_find(const acd_mesh *m, const acd_edge_graph *g, cons
                                 acd_error *err);
 void acd3_global_cut_free(acd3_global_cut *gc);
 
-/* The cut plane of gc: returns 1 and a point (the witness projected on it) and unit normal, or 0
+/* The cut plane of gc: returns 1 and a point (the witness: the fitted plane is moved parallel to
+ * itself through it) and unit normal, and (when fitted is not NULL) a point of the plane as
+ * fitted (the witness projected on it), or 0
  * when the cut is degenerate (fewer than two distinct points, or an allocation failed). */
 int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_cut_graph *cg,
-                          const acd3_global_cut *gc, const acd3_gc_opts *o, double point[3], double normal[3]);
+                          const acd3_global_cut *gc, const acd3_gc_opts *o, double point[3], double normal[3],
+                          double fitted[3]);
 
 #endif

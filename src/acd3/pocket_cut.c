@@ -2,7 +2,6 @@
 #include "acd3/pocket_cut.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -537,9 +536,6 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
             cands[kept.a[worst]].keep = 0;
             cands[kept.a[worst]].crossed = 1;
         }
-        if (getenv("PC_DEBUG"))
-            for (size_t c = 0; c < ncand; c++)
-                fprintf(stderr, "region %u cand %u-%u n %zu w %g keep %d\n", r, cands[c].a, cands[c].b, cands[c].n, cands[c].w, cands[c].keep);
         free(cross);
         /* the kept cuts of r */
         for (size_t c = 0; c < ncand && ok; c++) {

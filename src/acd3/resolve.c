@@ -123,7 +123,7 @@ static int global_plane(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
     acd3_global_cut gc;
     int ok = 0;
     if (acd3_global_cut_find(m, g, ms, &cg, o, &gc, NULL) == ACD_OK) {
-        if (gc.n >= 2 && acd3_global_cut_plane(m, ms, &cg, &gc, o, c->point, c->normal)) {
+        if (gc.n >= 2 && acd3_global_cut_plane(m, ms, &cg, &gc, o, c->point, c->normal, NULL)) {
             c->kind = gc.cup ? "cup" : gc.closed ? "global" : "pocket";
             ok = 1;
         }
@@ -137,7 +137,7 @@ int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
                         const acd3_resolve_opts *ro, acd3_plane_candidate *out) {
     if (ms->witness == UINT32_MAX) return 0;
     int n = 0;
-    if (ro && ro->global && global_plane(m, g, ms, &ro->gc, &out[n])) n++;
+    if (ro && ro->global) n += global_plane(m, g, ms, &ro->gc, &out[n]);
     if (valley_plane(m, g, ms, &out[n])) n++;
     n += notch_plane(m, ms, &out[n]);
     acd_pca pca;
