@@ -278,7 +278,8 @@ acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const ac
         if (vs[g->edge_v[2 * e]] != vs[g->edge_v[2 * e + 1]] && f0 != UINT32_MAX && f1 != UINT32_MAX)
             acd_uf_union_z(par, f0, f1);
     }
-    /* each strip's distance: its crossing edge nearest to `near` (by midpoint) */
+    /* each strip's distance: its crossing edge nearest to `near` (by midpoint); strips with no
+     * edge to cut along (a face whose crossing edges are on the mesh boundary) are not tried */
     for (size_t e = 0; e < ne; e++) {
         uint32_t a = g->edge_v[2 * e], b = g->edge_v[2 * e + 1];
         uint32_t f0 = face_of[2 * e] != UINT32_MAX ? face_of[2 * e] : face_of[2 * e + 1];
@@ -292,6 +293,13 @@ acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const ac
         size_t r = acd_uf_find_z(par, f0);
         if (d < sdist[r]) sdist[r] = d;
     }
+    for (size_t f = 0; f < nf; f++) strip[f] = 0; /* here: the strip has a chain */
+    for (size_t e = 0; e < ne; e++) {
+        uint32_t e0 = face_of[2 * e], e1 = face_of[2 * e + 1];
+        if (e0 != UINT32_MAX && e1 != UINT32_MAX && cls[e0] != cls[e1]) strip[acd_uf_find_z(par, e0)] = 1;
+    }
+    for (size_t f = 0; f < nf; f++)
+        if (par[f] == f && !strip[f]) sdist[f] = INFINITY;
     /* the strips by distance (then lowest root): the nearest one whose chain separates the
      * surface is used (a section loop around a handle, or one the joined artefacts close,
      * leaves it whole) */
