@@ -1,4 +1,4 @@
-/* geom3/edge_map: half-edge lookup by sorted 64-bit keys (deterministic, no hashing). */
+/* geom3/edge_map: half-edge lookup by sorted 64-bit keys (radix sorted; deterministic, no hashing). */
 #include "geom3/edge_map.h"
 
 #include <stdlib.h>
@@ -6,47 +6,58 @@
 
 #include "core/error.h"
 
-/* Stable LSD radix sort of keys[0..n) carrying vals, by bytes 0..nbytes-1 of the low word and
- * then of the high word (the key's halves are vertex ids below 2^(8 nbytes)). Stable: equal
- * keys keep their input order. tk, tv: scratch of n entries. */
-static void radix_sort(uint64_t *keys, uint32_t *vals, uint64_t *tk, uint32_t *tv, size_t n, int nbytes) {
-    size_t cnt[256];
-    uint64_t *k0 = keys, *k1 = tk;
-    uint32_t *v0 = vals, *v1 = tv;
-    for (int half = 0; half < 2; half++)
-        for (int byte = 0; byte < nbytes; byte++) {
-            int shift = 32 * half + 8 * byte;
-            memset(cnt, 0, sizeof cnt);
-            for (size_t i = 0; i < n; i++) cnt[(k0[i] >> shift) & 0xff]++;
-            if (n == 0 || cnt[(k0[0] >> shift) & 0xff] == n) continue; /* one digit: nothing moves */
-            size_t sum = 0;
-            for (int d = 0; d < 256; d++) {
-                size_t c = cnt[d];
-                cnt[d] = sum;
-                sum += c;
-            }
-            for (size_t i = 0; i < n; i++) {
-                size_t j = cnt[(k0[i] >> shift) & 0xff]++;
-                k1[j] = k0[i];
-                v1[j] = v0[i];
-            }
-            uint64_t *tk_ = k0;
-            k0 = k1;
-            k1 = tk_;
-            uint32_t *tv_ = v0;
-            v0 = v1;
-            v1 = tv_;
-        }
-    if (k0 != keys) {
-        memcpy(keys, k0, n * sizeof *keys);
-        memcpy(vals, v0, n * sizeof *vals);
-    }
-}
+#define RADIX_BITS 11
+#define RADIX_BUCKETS (1u << RADIX_BITS)
 
-static int id_bytes(uint32_t maxid) {
-    int b = 1;
-    while (b < 4 && (maxid >> (8 * b))) b++;
-    return b;
+/* Sorts keys[0..n) = (a << 32) | b (a, b <= maxid) carrying vals, stably (equal keys keep their
+ * input order). The pair is packed as a * (maxid + 1) + b, which orders the same, and sorted by
+ * an LSD radix sort on 11-bit digits of that (all digit counts taken in one read; a pass whose
+ * digits are all equal is skipped). tk, tv: scratch of n entries. Returns 0 when out of memory. */
+static int radix_sort(uint64_t *keys, uint32_t *vals, uint64_t *tk, uint32_t *tv, size_t n, uint32_t maxid) {
+    uint64_t n1 = (uint64_t)maxid + 1;
+    int bits = 64;
+    if (n1 <= (1ull << 31)) {
+        uint64_t top = n1 * n1 - 1;
+        bits = 1;
+        while (bits < 64 && (top >> bits)) bits++;
+    }
+    int passes = (bits + RADIX_BITS - 1) / RADIX_BITS;
+    size_t *cnt = calloc((size_t)passes * RADIX_BUCKETS, sizeof *cnt);
+    if (!cnt) return 0;
+    for (size_t i = 0; i < n; i++) {
+        uint64_t c = (keys[i] >> 32) * n1 + (keys[i] & 0xffffffffu);
+        tk[i] = c;
+        for (int p = 0; p < passes; p++) cnt[(size_t)p * RADIX_BUCKETS + ((c >> (RADIX_BITS * p)) & (RADIX_BUCKETS - 1))]++;
+    }
+    memcpy(tv, vals, n * sizeof *vals);
+    uint64_t *k0 = tk, *k1 = keys;
+    uint32_t *v0 = tv, *v1 = vals;
+    for (int p = 0; p < passes; p++) {
+        size_t *c = cnt + (size_t)p * RADIX_BUCKETS;
+        int shift = RADIX_BITS * p;
+        if (n == 0 || c[(k0[0] >> shift) & (RADIX_BUCKETS - 1)] == n) continue; /* one digit: nothing moves */
+        size_t sum = 0;
+        for (unsigned d = 0; d < RADIX_BUCKETS; d++) {
+            size_t x = c[d];
+            c[d] = sum;
+            sum += x;
+        }
+        for (size_t i = 0; i < n; i++) {
+            size_t j = c[(k0[i] >> shift) & (RADIX_BUCKETS - 1)]++;
+            k1[j] = k0[i];
+            v1[j] = v0[i];
+        }
+        uint64_t *tk_ = k0;
+        k0 = k1;
+        k1 = tk_;
+        uint32_t *tv_ = v0;
+        v0 = v1;
+        v1 = tv_;
+    }
+    free(cnt);
+    for (size_t i = 0; i < n; i++) keys[i] = ((k0[i] / n1) << 32) | (k0[i] % n1);
+    if (v0 != vals) memcpy(vals, v0, n * sizeof *vals);
+    return 1;
 }
 
 acd_status acd_edge_map_build(const uint32_t *triangles, size_t ntriangles, const uint8_t *keep, acd_edge_map *m,
@@ -74,16 +85,21 @@ acd_status acd_edge_map_build(const uint32_t *triangles, size_t ntriangles, cons
         for (int i = 0; i < 3; i++) {
             uint32_t a = triangles[3 * t + i], b = triangles[3 * t + (i + 1) % 3];
             if (a > maxid) maxid = a;
+            if (b > maxid) maxid = b;
             m->key[k] = ((uint64_t)a << 32) | b;
             m->half[k] = (uint32_t)(3 * t + (size_t)i);
             k++;
         }
     }
     /* sorted by (key, half): half increases with k, and the sort is stable */
-    radix_sort(m->key, m->half, tk, tv, n, id_bytes(maxid));
+    int ok = radix_sort(m->key, m->half, tk, tv, n, maxid);
     m->n = n;
     free(tk);
     free(tv);
+    if (!ok) {
+        acd_edge_map_free(m);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory sorting the half-edges of %zu triangles", ntriangles);
+    }
     return ACD_OK;
 }
 
@@ -104,10 +120,18 @@ acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error 
     for (size_t i = 0; i < n; i++) {
         uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
         if (a > maxid) maxid = a;
+        if (b > maxid) maxid = b;
         rk[i] = ((uint64_t)b << 32) | a;
         ri[i] = (uint32_t)i;
     }
-    radix_sort(rk, ri, tk, tv, n, id_bytes(maxid));
+    if (!radix_sort(rk, ri, tk, tv, n, maxid)) {
+        free(rk);
+        free(tk);
+        free(ri);
+        free(tv);
+        free(tw);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the twins of %zu half-edges", n);
+    }
     /* merge walk: the first index p with key[p] == rk[j] */
     size_t p = 0;
     for (size_t j = 0; j < n; j++) {
