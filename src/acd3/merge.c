@@ -27,8 +27,7 @@ typedef struct group {
     size_t nhv;
     double *sv; /* vertices on the input surface */
     size_t nsv;
-    acd_mesh mesh; /* the members' meshes, concatenated */
-    acd_bvh bvh;
+    const acd_bvh *pbvh; /* the trees of all parts (shared), indexed by members[] */
     uint32_t *adj; /* adjacent live groups, increasing */
     size_t nadj;
     uint32_t *members;
@@ -58,8 +57,6 @@ static void pair_free(pair *p) {
 static void group_free(group *g) {
     free(g->hv);
     free(g->sv);
-    acd_mesh_free(&g->mesh);
-    acd_bvh_free(&g->bvh);
     free(g->adj);
     free(g->members);
     free(g->ft);
@@ -75,13 +72,21 @@ void acd3_merge_result_free(acd3_merge_result *r) {
     memset(r, 0, sizeof *r);
 }
 
-static double dist_groups(const group *A, const group *B, const double p[3], double lim) {
-    acd_bvh_closest_result q;
+/* Distance from p to the members' triangles, if below lim (else lim or more). */
+static double dist_group(const group *g, const double p[3], double lim) {
     double d = INFINITY;
-    if (acd_bvh_closest(&A->bvh, p, lim * lim, &q)) d = sqrt(q.dist2);
-    double l2 = d < lim ? d : lim;
-    if (B && acd_bvh_closest(&B->bvh, p, l2 * l2, &q)) {
-        double e = sqrt(q.dist2);
+    for (size_t m = 0; m < g->nmembers; m++) {
+        acd_bvh_closest_result q;
+        double l = d < lim ? d : lim;
+        if (acd_bvh_closest(&g->pbvh[g->members[m]], p, l * l, &q) && sqrt(q.dist2) < d) d = sqrt(q.dist2);
+    }
+    return d;
+}
+
+static double dist_groups(const group *A, const group *B, const double p[3], double lim) {
+    double d = dist_group(A, p, lim);
+    if (B) {
+        double e = dist_group(B, p, d < lim ? d : lim);
         if (e < d) d = e;
     }
     return d;
@@ -464,26 +469,6 @@ static acd_status group_init_hull(group *g, const double *pts, size_t n, double 
     return ACD_OK;
 }
 
-static acd_status concat_mesh(const acd_mesh *a, const acd_mesh *b, acd_mesh *out, acd_error *err) {
-    memset(out, 0, sizeof *out);
-    size_t nv = a->nvertices + b->nvertices, nt = a->ntriangles + b->ntriangles;
-    if (nv >= UINT32_MAX) return acd_fail(err, ACD_ERR_INVALID_INPUT, "merge: %zu vertices too many", nv);
-    out->vertices = malloc((nv ? nv : 1) * 3 * sizeof(double));
-    out->triangles = malloc((nt ? nt : 1) * 3 * sizeof(uint32_t));
-    if (!out->vertices || !out->triangles) {
-        acd_mesh_free(out);
-        return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory joining parts");
-    }
-    memcpy(out->vertices, a->vertices, 3 * a->nvertices * sizeof(double));
-    memcpy(out->vertices + 3 * a->nvertices, b->vertices, 3 * b->nvertices * sizeof(double));
-    memcpy(out->triangles, a->triangles, 3 * a->ntriangles * sizeof(uint32_t));
-    for (size_t i = 0; i < 3 * b->ntriangles; i++)
-        out->triangles[3 * a->ntriangles + i] = b->triangles[i] + (uint32_t)a->nvertices;
-    out->nvertices = nv;
-    out->ntriangles = nt;
-    return ACD_OK;
-}
-
 /* G[c] = G[a] u G[b]. */
 static acd_status join(group *G, pair *pr, uint32_t c, acd_error *err) {
     uint32_t a = pr->a, b = pr->b;
@@ -510,10 +495,7 @@ static acd_status join(group *G, pair *pr, uint32_t c, acd_error *err) {
     memcpy(C->sv + 3 * A->nsv, B->sv, 3 * B->nsv * sizeof(double));
     memcpy(C->members, A->members, A->nmembers * sizeof *C->members);
     memcpy(C->members + A->nmembers, B->members, B->nmembers * sizeof *C->members);
-    acd_status st = concat_mesh(&A->mesh, &B->mesh, &C->mesh, err);
-    if (st != ACD_OK) return st;
-    st = acd_bvh_build(&C->bvh, C->mesh.vertices, C->mesh.nvertices, C->mesh.triangles, C->mesh.ntriangles, err);
-    if (st != ACD_OK) return st;
+    C->pbvh = A->pbvh;
     for (int s = 0; s < 2; s++) {
         group *S = s ? B : A;
         for (size_t i = 0; i < S->nadj; i++) {
@@ -573,9 +555,11 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     size_t np = 0, capp = 0;
     acd_bvh in_bvh;
     memset(&in_bvh, 0, sizeof in_bvh);
+    acd_bvh *pbvh = calloc(nparts, sizeof *pbvh);
     out->group_of = malloc((nparts ? nparts : 1) * sizeof *out->group_of);
-    if (!G || !out->group_of) {
+    if (!G || !out->group_of || !pbvh) {
         free(G);
+        free(pbvh);
         acd3_merge_result_free(out);
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for %zu parts", nparts);
     }
@@ -613,10 +597,9 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
                 const double *p = parts[i].vertices + 3 * v;
                 if (acd_bvh_closest(&in_bvh, p, on_tol * on_tol, &q)) memcpy(g->sv + 3 * g->nsv++, p, sizeof(double[3]));
             }
-            acd_status s2 = acd_mesh_copy(&g->mesh, &parts[i], &gerr[i]);
-            if (s2 == ACD_OK)
-                s2 = acd_bvh_build(&g->bvh, g->mesh.vertices, g->mesh.nvertices, g->mesh.triangles, g->mesh.ntriangles,
-                                   &gerr[i]);
+            g->pbvh = pbvh;
+            acd_status s2 = acd_bvh_build(&pbvh[i], parts[i].vertices, parts[i].nvertices, parts[i].triangles,
+                                          parts[i].ntriangles, &gerr[i]);
             if (s2 == ACD_OK) s2 = group_init_hull(g, parts[i].vertices, parts[i].nvertices, tau, &gerr[i]);
             gst[i] = s2;
         }
@@ -685,6 +668,8 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         free(owner);
     }
     for (size_t g = 0; g < ng; g++) group_free(&G[g]);
+    for (size_t i = 0; i < nparts; i++) acd_bvh_free(&pbvh[i]);
+    free(pbvh);
     for (size_t i = 0; i < np; i++) pair_free(&P[i]);
     free(G);
     free(P);
