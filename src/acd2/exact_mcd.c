@@ -82,6 +82,7 @@ typedef struct mcd {
     size_t words;
     size_t *vstart, *vlist; /* visibility lists per row, sorted */
     mcd_entry *ent;
+    uint32_t *rank; /* per row and bit word: set bits of the row before the word (NULL: use hkey) */
     uint64_t *hkey; /* (i, k) -> entry index, open addressing; key i * n + k + 1, 0 = empty */
     size_t *hval, hmask;
     mcd_entry root;
@@ -132,8 +133,26 @@ static size_t hslot(const mcd *m, uint64_t key) {
     return (size_t)((key * 0x9E3779B97F4A7C15ull) >> 17) & m->hmask;
 }
 
-/* The table entry of the reflex diagonal (i, k), i < k; NULL if it is not one. */
+static unsigned popcount64(uint64_t x) {
+    x = x - ((x >> 1) & 0x5555555555555555ull);
+    x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+    x = (x + (x >> 4)) & 0x0F0F0F0F0F0F0F0Full;
+    return (unsigned)((x * 0x0101010101010101ull) >> 56);
+}
+
+/* The table entry of the reflex diagonal (i, k), i < k; NULL if it is not one. The entry of
+ * (i, k) sits at the position of the other end in the owner's visibility list (owner i if
+ * reflex, else k), which is the rank of that bit in the owner's bit row: a prefix count per
+ * 64-bit word plus a popcount, next to the bit just tested (the hash is the fallback). */
 static mcd_entry *entry_of(mcd *m, size_t i, size_t k) {
+    if (m->rank) {
+        size_t a = m->reflex[i] ? i : k, b = a == i ? k : i, r = m->row[a];
+        if (r == NONE) return NULL;
+        size_t w = r * m->words + b / 64;
+        uint64_t word = m->bits[w], mask = (uint64_t)1 << (b % 64);
+        if (!(word & mask)) return NULL;
+        return &m->ent[m->vstart[r] + m->rank[w] + popcount64(word & (mask - 1))];
+    }
     uint64_t key = (uint64_t)i * m->n + k + 1;
     for (size_t h = hslot(m, key);; h = (h + 1) & m->hmask) {
         if (m->hkey[h] == key) return &m->ent[m->hval[h]];
@@ -141,8 +160,32 @@ static mcd_entry *entry_of(mcd *m, size_t i, size_t k) {
     }
 }
 
+/* The rank index of the bit rows; left NULL (the hash is used) when a row's list does not match
+ * its bits one to one or the counts do not fit 32 bits. Returns 0 on out of memory. */
+static int build_rank(mcd *m) {
+    size_t nw = m->nrows * m->words;
+    if (m->n > UINT32_MAX) return 1;
+    uint32_t *rank = malloc((nw ? nw : 1) * sizeof *rank);
+    if (!rank) return 0;
+    for (size_t r = 0; r < m->nrows; r++) {
+        uint32_t c = 0;
+        for (size_t w = 0; w < m->words; w++) {
+            rank[r * m->words + w] = c;
+            c += popcount64(m->bits[r * m->words + w]);
+        }
+        if (c != m->vstart[r + 1] - m->vstart[r]) {
+            free(rank);
+            return 1;
+        }
+    }
+    m->rank = rank;
+    return 1;
+}
+
 /* Fills the entry hash from the visibility rows (owner of (i, k): i if reflex, else k). */
 static int build_entry_hash(mcd *m) {
+    if (!build_rank(m)) return 0;
+    if (m->rank) return 1;
     size_t nv = m->vstart[m->nrows], cap = 16;
     while (cap < 2 * nv + 2) cap *= 2;
     m->hkey = calloc(cap, sizeof *m->hkey);
@@ -877,6 +920,7 @@ static void mcd_free(mcd *m) {
     free(m->vstart);
     free(m->vlist);
     free(m->ent);
+    free(m->rank);
     free(m->hkey);
     free(m->hval);
     free(m->pool);
