@@ -397,7 +397,7 @@ star = rows("star.csv")
 if star:
     w("## Exact partition of the 10240-vertex star (star_star6) against CGAL's optimal partition")
     w("")
-    w("Both under the same timeout in this run (process CPU seconds; `timeout` kills at the wall-clock limit).")
+    w("Both started together in this run, each under the same limits (`ulimit -t`: the CPU-time limit, `ulimit -v` 8 GB; CPU seconds of the whole process, reading and checking included). A limit hit means the method did not finish within it.")
     w("")
     w("| polygon | vertices | method | status | pieces | CPU s |")
     w("|---|---:|---|---|---:|---:|")

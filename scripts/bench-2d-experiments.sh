@@ -6,7 +6,9 @@
 # docs/results/2d-experiments.md with the SVG plots under docs/results/img/.
 # Environment: DATA (default ../shared/data/polygons-lien), PEER_TIMEOUT seconds for poly-decomp's
 # exhaustive decomp (default 20), CGAL_OPTIMAL_TIMEOUT for CGAL's optimal partition (default 60),
-# OUT (default build/exper2d). See docs/experiments-2d.md.
+# OUT (default build/exper2d), D2 (real-world polygons, default data/2d from scripts/fetch-data.sh),
+# STAR_CPU_LIMIT (default 1500 s of CPU, for MCD and CGAL's optimal partition on the star series), STARS
+# (default "star_star5 star_star6"). See docs/experiments-2d.md.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 cd "$ROOT"
@@ -40,6 +42,52 @@ else
   CGAL_BIN=
 fi
 
+# --- the star target, started in the background now (they take longest): exact partition of the
+# star series by our MCD and by CGAL's optimal partition, each under the same CPU-time limit
+# (ulimit -t STAR_CPU_LIMIT; the wall-clock guard is 3 times that) and memory limit (8 GB) ---
+STAR_CPU_LIMIT=${STAR_CPU_LIMIT:-1500}
+STAR_JOBS=
+star_job() { # label csv command...: runs under the limits, writes "status,pieces,cpu" to csv
+  local label=$1 csv=$2; shift 2
+  local rc=0 out
+  out=$( { /usr/bin/time -f "cpu %U %S" bash -c 'ulimit -t '"$STAR_CPU_LIMIT"'; ulimit -v 8000000; exec "$@"' _ \
+          timeout $((3 * STAR_CPU_LIMIT)) "$@"; } 2>&1 ) || rc=$?
+  local cpu pieces st
+  cpu=$(echo "$out" | awk '/^cpu /{printf "%.2f", $2 + $3}')
+  pieces=$(echo "$out" | sed -n -e 's/.*exact mcd: \([0-9]*\) components.*/\1/p' -e 's/^optimal,\([0-9]*\),.*/\1/p' | head -n 1)
+  case $rc in
+    0) st=ok ;;
+    124) st="wall-clock guard (>$((3 * STAR_CPU_LIMIT)) s)"; pieces= ;;
+    137|152) st="CPU limit (>${STAR_CPU_LIMIT} s)"; pieces= ;;
+    *) st="error (exit $rc)"; pieces= ;;
+  esac
+  echo "$label,$st,$pieces,$cpu" > "$csv"
+}
+for s in ${STARS:-star_star5 star_star6}; do
+  f=$DATA/$s.poly
+  [ -f "$f" ] || continue
+  mkdir -p "$OUT/polys"
+  python3 - "$f" "$OUT/polys/$s.txt" <<'PY'
+import sys
+t = " ".join(l.split("#")[0] for l in open(sys.argv[1])).split()
+n = int(t[1])  # "1", "n out", n points, the order line
+pts = [(t[3 + 2 * i], t[4 + 2 * i]) for i in range(n)]
+order = [int(x) for x in t[3 + 2 * n:3 + 3 * n]]
+with open(sys.argv[2], "w") as f:
+    f.write("%d\n" % n)
+    for o in order:
+        f.write("%s %s\n" % pts[o - 1])
+PY
+  n=$(head -n 1 "$OUT/polys/$s.txt")
+  star_job "$s,$n,acd MCD (Keil-Snoeyink)" "$OUT/star-$s-acd.csv" "$ACD" 2d "$f" --exact mcd --verify &
+  STAR_JOBS="$STAR_JOBS $!"
+  if [ -n "$CGAL_BIN" ]; then
+    star_job "$s,$n,CGAL optimal_convex_partition_2" "$OUT/star-$s-cgal.csv" \
+      "$CGAL_BIN" optimal "$OUT/polys/$s.txt" "$OUT/pieces-$s-cgal-optimal.txt" &
+    STAR_JOBS="$STAR_JOBS $!"
+  fi
+done
+
 # --- acd sweeps, MCD, HM ---
 "$BENCH" --data "$DATA" --out "$OUT"
 
@@ -49,10 +97,12 @@ if [ -d "$D2" ]; then
   "$ROOT/build/bench/bench_2d_real" --data "$D2" --out "$OUT" || echo "bench_2d_real reported a failure" >&2
   rm -f "$ROOT"/docs/results/img/2d-real-*.svg
   tail -n +2 "$OUT/real/models.csv" | while IFS=, read -r name source n holes notches; do
-    "$ACD" 2d "$OUT/real/$name.poly" -t 0.05 --normalize --verify \
-      --svg "$ROOT/docs/results/img/2d-real-$name-acd.svg" >/dev/null
+    # run from OUT/real so that the pictures' captions name the file without a local path
+    (cd "$OUT/real" && "$ACD" 2d "$name.poly" -t 0.05 --normalize --verify \
+      --svg "$ROOT/docs/results/img/2d-real-$name-acd.svg" >/dev/null)
     if [ "$holes" = 0 ]; then ex=mcd; else ex=hm; fi
-    "$ACD" 2d "$OUT/real/$name.poly" --exact $ex --verify --svg "$ROOT/docs/results/img/2d-real-$name-$ex.svg" >/dev/null
+    (cd "$OUT/real" && "$ACD" 2d "$name.poly" --exact $ex --verify \
+      --svg "$ROOT/docs/results/img/2d-real-$name-$ex.svg" >/dev/null)
   done
 else
   echo "no $D2 (run scripts/fetch-data.sh): real-world section skipped" >&2
@@ -106,6 +156,13 @@ if [ -f "$OUT/real/models.csv" ]; then
     echo "peers: $model done" >&2
   done
 fi
+
+# --- the star target: collect the jobs started after the build ---
+wait $STAR_JOBS 2>/dev/null || true
+echo "polygon,vertices,method,status,pieces,cpu_s" > "$OUT/star.csv"
+for s in ${STARS:-star_star5 star_star6}; do
+  cat "$OUT/star-$s-acd.csv" "$OUT/star-$s-cgal.csv" 2>/dev/null >> "$OUT/star.csv" || true
+done
 
 MODEL=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
 MACHINE="Machine: $(nproc) cores online, $MODEL; load average $(cut -d' ' -f1 /proc/loadavg) at the end of the run; $(date -u '+%Y-%m-%d %H:%M UTC'); g++ $(g++ -dumpversion), node $(node --version 2>/dev/null || echo none), CGAL $(grep -m1 'define CGAL_VERSION ' /usr/include/CGAL/version.h 2>/dev/null | awk '{print $3}'), poly-decomp $(node -p "require('$PEERS/node_modules/poly-decomp/package.json').version" 2>/dev/null || echo none)."

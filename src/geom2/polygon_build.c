@@ -59,7 +59,7 @@ acd_status acd_pbuild_add_point(acd_pbuild *b, double x, double y, acd_error *er
 }
 
 acd_vec2 *acd_pbuild_ring(acd_pbuild *b, size_t *n) {
-    if (!b->open || b->nrings == 0) {
+    if (!b->open || b->nrings == 0 || !b->pts) { /* no point stored yet */
         *n = 0;
         return NULL;
     }
