@@ -404,5 +404,13 @@ if star:
     for r in star:
         w(f"| {r['polygon']} | {r['vertices']} | {r['method']} | {r['status']} | {r['pieces'] or '-'} | {r['cpu_s'] or '-'} |")
     w("")
+# ---- notes written by hand for this run (OUT/notes.md), e.g. reruns after the run ----
+notes_path = os.path.join(out, "notes.md")
+if os.path.exists(notes_path):
+    w("## Notes on this run")
+    w("")
+    for line in open(notes_path).read().rstrip("\n").split("\n"):
+        w(line)
+    w("")
 with open(md_path, "w") as f:
     f.write("\n".join(L_) + "\n")

@@ -59,7 +59,7 @@ star_job() { # label csv command...: runs under the limits, writes "status,piece
     0) st=ok ;;
     124) st="wall-clock guard (>$((3 * STAR_CPU_LIMIT)) s)"; pieces= ;;
     137|152) st="CPU limit (>${STAR_CPU_LIMIT} s)"; pieces= ;;
-    *) st="error (exit $rc)"; pieces= ;;
+    *) st="error (exit $rc: $(echo "$out" | grep -v '^cpu ' | tail -n 1 | tr ',' ';' | cut -c1-120))"; pieces= ;;
   esac
   echo "$label,$st,$pieces,$cpu" > "$csv"
 }
