@@ -53,7 +53,8 @@ typedef struct acd3d_params {
     size_t max_hull_vertices; /* 0: no limit; else (>= 4) each hull is replaced, when it has more
                                  vertices, by an enclosing polytope with at most this many */
     int threads;              /* 0: as many as cores (OpenMP); results are identical for any count */
-    size_t max_depth;         /* recursion guard (default 48) */
+    size_t max_depth;         /* recursion guard (default 48), raised by twice the input's genus
+                                 (a handle may take a cut that only opens it) */
     int merge;                /* non-zero (default 1, solid mode): after the decomposition, adjacent
                                  parts are joined while the joined hull stays within tau of the joined
                                  part and the input surface within tau of it (acd3/merge, docs/acd3d.md

@@ -260,6 +260,7 @@ typedef struct run_ctx {
     int solid;
     double tau, eps, tol, extent;
     int tree_full; /* the node budget is spent: no more splits */
+    size_t max_depth; /* params->max_depth + 2 x the input's genus */
 } run_ctx;
 
 typedef struct node_work {
@@ -283,7 +284,7 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     acd3d_leaf_reason reason = ACD3D_LEAF_NONE;
     if (cur.ms.hull.dim < 3) reason = ACD3D_LEAF_FLAT;
     else if (cur.ms.concavity <= c->tau + c->tol) reason = ACD3D_LEAF_TAU; /* tau = 0: up to rounding */
-    else if (w->depth >= c->params->max_depth || c->tree_full) reason = ACD3D_LEAF_DEPTH;
+    else if (w->depth >= c->max_depth || c->tree_full) reason = ACD3D_LEAF_DEPTH;
     int split = 0;
     if (reason == ACD3D_LEAF_NONE) {
         /* solid mode: the global cut's plane first (acd3/resolve) */
@@ -432,6 +433,16 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     out->input_volume = vol;
     double tau = out->tau, eps = params->eps_ratio * tau;
 
+    /* every handle may take a cut that only opens it (surface mode cuts a non-separating loop
+     * open, spec §5.3 step 6; the spec's genus rounds are 2g + 2): the depth guard grows by
+     * twice the input's genus */
+    size_t max_depth = params->max_depth;
+    {
+        acd3_topology topo;
+        st = acd3_topology_of(mesh, &topo, err);
+        if (st != ACD_OK) return st;
+        if (topo.genus > 0) max_depth += 2 * (size_t)topo.genus;
+    }
     tree t = {0};
     acd_mesh root;
     st = acd_mesh_copy(&root, mesh, err);
@@ -462,7 +473,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
             goto fail;
         }
-        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full};
+        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, max_depth};
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) if (nthreads > 1 && b1 - b0 > 1)
 #endif
