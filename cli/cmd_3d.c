@@ -18,7 +18,7 @@ static void usage(FILE *f) {
     fprintf(f,
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
-            "              [--no-merge] [--no-close-holes] [--resolver global|witness] [--cut-weight ratio|product]\n"
+            "              [--no-merge] [--merge-tau T] [--no-close-holes] [--resolver global|witness] [--cut-weight ratio|product]\n"
             "              [--verify] [-v]\n"
             "\n"
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
@@ -44,6 +44,7 @@ static void usage(FILE *f) {
             "                      until at most N remain; the concavity reached is reported\n"
             "  --no-merge          keep every part of the decomposition (by default adjacent parts are\n"
             "                      joined while the joined hull stays within tau of the joined part)\n"
+            "  --merge-tau T       the merge pass's tolerance, in the units of TAU (default: TAU)\n"
             "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
             "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
             "  --no-close-holes    solid mode refuses an open mesh instead of closing its holes (by default\n"
@@ -235,8 +236,11 @@ static int verify(const acd3d_result *r, acd_error *err) {
         sum += v;
         if (n->leaf_reason == ACD3D_LEAF_TAU && p->concavity > r->tau * (1 + 1e-12) + 1e-12 * r->scale)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g", i, p->concavity, r->tau);
+        if (n->leaf_reason == ACD3D_LEAF_JOINED && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
+            return acd_fail(err, ACD_ERR_VERIFY, "joined part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
+                            p->concavity, r->merge_tau);
         if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT &&
-            n->leaf_reason != ACD3D_LEAF_MERGED && p->concavity > r->tau)
+            n->leaf_reason != ACD3D_LEAF_MERGED && n->leaf_reason != ACD3D_LEAF_JOINED && p->concavity > r->tau)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g (%s)", i, p->concavity,
                             r->tau, leaf_reason_name(n->leaf_reason));
         /* inside its hull: every part vertex on the inner side of every hull facet plane */
@@ -331,6 +335,12 @@ int acd_cmd_3d(int argc, char **argv) {
             size_t n;
             if (!acd_cli_parse_size("3d", a, val, &n)) return ACD_EXIT_USAGE;
             p.threads = (int)n; /* results never depend on it */
+            i++;
+        } else if (!strcmp(a, "--merge-tau")) {
+            if (!acd_cli_parse_double("3d", a, val, &p.merge_tau) || p.merge_tau < 0) {
+                fprintf(stderr, "acd 3d: %s needs a number >= 0\n", a);
+                return ACD_EXIT_USAGE;
+            }
             i++;
         } else if (!strcmp(a, "--no-merge")) {
             p.merge = 0;

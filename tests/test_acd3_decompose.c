@@ -297,6 +297,19 @@ static void test_merge_pass(void **state) {
     }
     check_solid(&m, &on, &p);
     check_solid(&m, &off, &p);
+    /* a larger merge tolerance joins at least as much; the joined bounds meet it, not tau */
+    acd3d_result wide;
+    p.merge = 1;
+    p.merge_tau = 0.2;
+    assert_int_equal(acd3d_decompose(&m, &p, &wide, &err), ACD_OK);
+    assert_true(wide.nparts <= on.nparts);
+    assert_true(fabs(wide.merge_tau - 2 * wide.tau) <= 1e-12 * wide.tau);
+    for (size_t i = 0; i < wide.nparts; i++)
+        if (wide.nodes[wide.parts[i].node].leaf_reason == ACD3D_LEAF_JOINED) {
+            assert_true(wide.parts[i].concavity <= wide.merge_tau);
+            assert_true(hull_reach(&wide.parts[i]) <= wide.merge_tau * (1 + 1e-9));
+        }
+    acd3d_result_free(&wide);
     acd3d_result_free(&on);
     acd3d_result_free(&on2);
     acd3d_result_free(&off);

@@ -59,6 +59,8 @@ typedef struct acd3d_params {
                                  parts are joined while the joined hull stays within tau of the joined
                                  part and the input surface within tau of it (acd3/merge, docs/acd3d.md
                                  "Merge pass"); the joined parts are ACD3D_LEAF_JOINED nodes */
+    double merge_tau;         /* the merge pass's tolerance, in the units of tau (relative, or absolute
+                                 with tau_absolute); 0 (default): tau */
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
                                  (spec decision A13), falling back to the whole plane; default 0,
                                  see docs/acd3d.md for the measurements behind the default */
@@ -80,7 +82,7 @@ typedef enum acd3d_leaf_reason {
     ACD3D_LEAF_JOINED         /* a part made by the merge pass from adjacent parts: a node appended
                                  after the tree (parent -1, no children); the parts it joins keep their
                                  nodes and leaf reasons, with part -1 and merged_into set to it; its
-                                 concavity is the merge bound (<= tau, acd3/merge) */
+                                 concavity is the merge bound (<= merge_tau, acd3/merge) */
 } acd3d_leaf_reason;
 
 typedef struct acd3d_node {
@@ -109,6 +111,7 @@ typedef struct acd3d_part {
 
 typedef struct acd3d_result {
     double tau;               /* in model units */
+    double merge_tau;         /* the merge pass's tolerance in model units (joined parts meet it) */
     double scale;             /* minimum enclosing sphere radius of the input */
     acd3d_part *parts;
     size_t nparts;

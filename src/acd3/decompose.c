@@ -395,6 +395,8 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd3d_params not initialised by acd3d_default_params");
     if (!(params->tau >= 0) || !isfinite(params->tau))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "tau must be a finite number >= 0");
+    if (!(params->merge_tau >= 0) || !isfinite(params->merge_tau))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "merge_tau must be a finite number >= 0");
     if (params->max_hull_vertices > 0 && params->max_hull_vertices < 4)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "max_hull_vertices must be 0 (no limit) or at least 4");
     if (params->mode != ACD3D_SOLID && params->mode != ACD3D_SURFACE)
@@ -430,6 +432,8 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     acd_scale sc = acd_scale_of_points(mesh->vertices, mesh->nvertices, 3);
     out->scale = sph.radius;
     out->tau = params->tau_absolute ? params->tau : params->tau * sph.radius;
+    out->merge_tau = params->merge_tau > 0 ? (params->tau_absolute ? params->merge_tau : params->merge_tau * sph.radius)
+                                           : out->tau;
     out->input_volume = vol;
     double tau = out->tau, eps = params->eps_ratio * tau;
 
@@ -553,7 +557,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
 
     if (params->merge && solid) {
-        st = join_adjacent(&t, mesh, tau, sc.dist, nthreads, &nleaves, err);
+        st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     }
 
