@@ -198,6 +198,24 @@ static void test_open_bowl_with_dimple(void **state) {
     }
 }
 
+/* spec §6: the hole of a torus is bridged by two hull patches (its top and bottom caps), and the
+ * hole's wall is one pocket enclosed by both caps' paths, an annulus: a handle pocket. Split
+ * between its caps, the wall is measured against the nearer cap: the deepest points are on the
+ * inner equator, r below both caps; one cap for the whole wall would give 2 r at the far rim. */
+static void test_torus_hole_is_a_handle_pocket(void **state) {
+    (void)state;
+    const double r = 0.35, eps = 0.01;
+    acd_mesh m;
+    assert_true(mg_torus(&m, 64, 32, 1.0, r));
+    acd3_measure ms;
+    measure(&m, eps, &ms);
+    print_message("torus: concavity %g, handle pockets %zu\n", ms.concavity, ms.nhandle_pockets);
+    assert_true(ms.nhandle_pockets >= 1);
+    assert_true(ms.concavity > r - 0.02 && ms.concavity < r + eps + 0.02);
+    acd3_measure_free(&ms);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_patches_of_a_cube_are_its_faces),
@@ -207,6 +225,7 @@ int main(void) {
         cmocka_unit_test(test_l_shape_notch),
         cmocka_unit_test(test_open_bowl_is_convex_either_side),
         cmocka_unit_test(test_open_bowl_with_dimple),
+        cmocka_unit_test(test_torus_hole_is_a_handle_pocket),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -37,6 +37,7 @@ typedef struct acd3_measure {
     uint32_t *region_patch; /* per region */
     uint8_t *edge_barrier;  /* per graph edge: on a projected path */
     size_t nprojected;      /* projected hull edges */
+    size_t nhandle_pockets; /* regions split between their handle caps (spec §6) */
 } acd3_measure;
 
 /* Measures m (whose edge graph g was built from it). eps: bridge clustering threshold; tol: a
