@@ -416,6 +416,10 @@ static void test_bad_input(void **state) {
     m.vertices[4] = NAN;
     assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
     assert_non_null(strstr(err.message, "vertex 1"));
+    /* a coordinate too large for the exact predicates: refused, naming the vertex */
+    m.vertices[4] = 1e200;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+    assert_non_null(strstr(err.message, "vertex 1 has coordinate 1e+200, beyond"));
     m.vertices[4] = 0;
     acd3d_params bad = p;
     bad.cookie = 0;

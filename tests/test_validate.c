@@ -124,6 +124,11 @@ static void test_invalid_cases(void **state) {
         const size_t sz[] = {3};
         expect_invalid(xy, sz, 1, 0, ACD_ERR_INVALID_INPUT, "chain 0 vertex 2", "non-finite");
     }
+    { /* a coordinate beyond ACD_COORD_MAX: the exact predicates would overflow (a fuzz find) */
+        const double xy[] = {0, 0, 1e180, 0, 6, 99};
+        const size_t sz[] = {3};
+        expect_invalid(xy, sz, 1, 0, ACD_ERR_INVALID_INPUT, "chain 0 vertex 1", "beyond the supported coordinate magnitude");
+    }
     { /* too few vertices after normalization */
         const double xy[] = {0, 0, 1, 0, 1, 0, 0, 0};
         const size_t sz[] = {4};

@@ -21,3 +21,17 @@ acd_scale acd_scale_of_points(const double *pts, size_t n, int dim) {
     s.dist = ACD_TOL_REL_DIST * s.extent;
     return s;
 }
+
+acd_status acd_check_coordinates(const double *pts, size_t n, int dim, acd_error *err) {
+    for (size_t i = 0; i < n * (size_t)dim; i++) {
+        double v = pts[i];
+        if (!isfinite(v))
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "vertex %zu has a non-finite coordinate", i / (size_t)dim);
+        if (fabs(v) > ACD_COORD_MAX)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT,
+                            "vertex %zu has coordinate %g, beyond the supported magnitude %g (the exact predicates "
+                            "would overflow); scale the input down",
+                            i / (size_t)dim, v, ACD_COORD_MAX);
+    }
+    return ACD_OK;
+}

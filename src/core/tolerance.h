@@ -9,6 +9,8 @@
 
 #include <stddef.h>
 
+#include "core/error.h"
+
 /* Relative length below which two computed points are the same point. */
 #define ACD_TOL_REL_WELD 1e-12
 /* Relative length under which a computed distance counts as zero (concavity, hull distance). */
@@ -16,11 +18,21 @@
 /* Relative tolerance for areas and volumes that must add up (partition checks). */
 #define ACD_TOL_REL_MEASURE 1e-9
 
+/* Largest coordinate magnitude accepted for geometry (2D polygons, 3D meshes). The exact
+ * predicates are exact only while their products do not overflow: orient3d multiplies three
+ * coordinate differences and insphere five, so 1e60 keeps every product below 1e301. Real data
+ * is many orders of magnitude below; larger input is refused with a message naming the vertex. */
+#define ACD_COORD_MAX 1e60
+
 typedef struct acd_scale {
     double extent;  /* bounding-box diagonal of the input (>= tiny positive) */
     double weld;    /* ACD_TOL_REL_WELD * extent */
     double dist;    /* ACD_TOL_REL_DIST * extent */
 } acd_scale;
+
+/* Checks that every coordinate of n points of dimension dim is finite and at most ACD_COORD_MAX
+ * in magnitude; fails with ACD_ERR_INVALID_INPUT naming the first offending vertex. */
+acd_status acd_check_coordinates(const double *pts, size_t n, int dim, acd_error *err);
 
 /* Scale of n points of dimension dim (2 or 3) stored contiguously. */
 acd_scale acd_scale_of_points(const double *pts, size_t n, int dim);

@@ -20,6 +20,7 @@
 
 #include "core/error.h"
 #include "core/predicates.h"
+#include "core/tolerance.h"
 #include "geom2/seg_sweep.h"
 
 /* min/max without the NaN rules of fmin/fmax (coordinates are finite here), so they inline */
@@ -531,6 +532,11 @@ static acd_status check_rings(const acd_polygon *p, size_t index, acd_error *err
                 return acd_fail(err, ACD_ERR_INVALID_INPUT,
                                 "polygon %zu: chain %zu vertex %zu has a non-finite coordinate (%g, %g)", index, r, i,
                                 v[i].x, v[i].y);
+            else if (fabs(v[i].x) > ACD_COORD_MAX || fabs(v[i].y) > ACD_COORD_MAX)
+                return acd_fail(err, ACD_ERR_INVALID_INPUT,
+                                "polygon %zu: chain %zu vertex %zu (%g, %g) is beyond the supported coordinate "
+                                "magnitude %g (the exact predicates would overflow); scale the input down",
+                                index, r, i, v[i].x, v[i].y, ACD_COORD_MAX);
         if (n < 3)
             return acd_fail(err, ACD_ERR_DEGENERATE,
                             "polygon %zu: chain %zu has %zu distinct vertices; a ring needs at least 3", index, r, n);

@@ -542,9 +542,7 @@ acd_status acd_mesh_repair(acd_mesh *m, const acd_repair_options *opt, acd_repai
     memset(st, 0, sizeof *st);
     if (!m || !opt || (m->nvertices && !m->vertices) || (m->ntriangles && !m->triangles))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_repair: NULL argument");
-    for (size_t i = 0; i < 3 * m->nvertices; i++)
-        if (!isfinite(m->vertices[i]))
-            return acd_fail(err, ACD_ERR_INVALID_INPUT, "vertex %zu has a non-finite coordinate", i / 3);
+    if (acd_check_coordinates(m->vertices, m->nvertices, 3, err) != ACD_OK) return ACD_ERR_INVALID_INPUT;
     for (size_t i = 0; i < 3 * m->ntriangles; i++)
         if (m->triangles[i] >= m->nvertices)
             return acd_fail(err, ACD_ERR_INVALID_INPUT, "triangle %zu refers to vertex %u of %zu", i / 3, m->triangles[i],

@@ -23,6 +23,7 @@
 
 #include "acd/mesh.h"
 #include "core/error.h"
+#include "core/tolerance.h"
 #include "core/union_find.h"
 #include "core/predicates.h"
 #include "mesh/halfedge.h"
@@ -66,9 +67,7 @@ acd_status acd_mesh_validate(const acd_mesh *m, int check_self_intersections, ac
     if (!m || !r || (m->nvertices && !m->vertices) || (m->ntriangles && !m->triangles))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_validate: NULL argument");
     memset(r, 0, sizeof *r);
-    for (size_t i = 0; i < 3 * m->nvertices; i++)
-        if (!isfinite(m->vertices[i]))
-            return acd_fail(err, ACD_ERR_INVALID_INPUT, "vertex %zu has a non-finite coordinate", i / 3);
+    if (acd_check_coordinates(m->vertices, m->nvertices, 3, err) != ACD_OK) return ACD_ERR_INVALID_INPUT;
     const size_t nt = m->ntriangles, nv = m->nvertices;
     r->vertices = nv;
     r->faces = nt;
