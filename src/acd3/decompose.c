@@ -167,6 +167,48 @@ static void choice_free(split_choice *c) {
     memset(c, 0, sizeof *c);
 }
 
+/* Surface mode's progress rule. A surface cut may leave the most concave vertex (the witness)
+ * as deep as before: a plane through a witness already on the part's boundary (an earlier cut
+ * through it) re-cuts along that boundary and chips off the teeth of its jagged chain, one or two
+ * faces each, while the rest keeps the witness's concavity (cheese, genus 133: ~300 such cuts in a
+ * row until the depth guard). A cut makes progress when it opens the part without separating it
+ * (a handle: its genus drops, which happens at most genus times), or when every copy of the
+ * witness in the pieces is measured shallower than the witness was by more than tol, i.e. the cut
+ * separated the witness from (part of) the bridge it lay under. */
+static int surface_progress(const acd_mesh *m, const acd3_measure *ms, const split_choice *trial, double tol) {
+    (void)m;
+    if (trial->cut.npieces == 1) return 1; /* cut open (acd3_surface_cut: more vertices, one piece) */
+    double wc = ms->vconc[ms->witness], worst = -1;
+    for (size_t k = 0; k < trial->cut.npieces; k++) {
+        const acd_cut_piece *pc = &trial->cut.pieces[k];
+        for (size_t v = 0; v < pc->mesh.nvertices; v++)
+            if (pc->source[v] == ms->witness && trial->pieces[k].ms.vconc[v] > worst) worst = trial->pieces[k].ms.vconc[v];
+    }
+    return worst < wc - tol;
+}
+
+/* Surface mode's bridge plane: parallel to the patch the witness lies under, halfway between the
+ * witness and that patch (the patch whose depth at the witness is its concavity). Cutting there
+ * (the section strip nearest the witness) separates the witness from its bridge or opens the
+ * handle the witness lies in; 1 if found. */
+static int surface_bridge_plane(const acd_mesh *m, const acd3_measure *ms, acd3_plane_candidate *c) {
+    const double *x = m->vertices + 3 * (size_t)ms->witness;
+    double wc = ms->vconc[ms->witness], bestd = INFINITY;
+    size_t bp = SIZE_MAX;
+    for (size_t p = 0; p < ms->patches.npatches; p++) {
+        double d = fabs(acd3_patch_depth(&ms->patches, p, x) - wc);
+        if (d < bestd) bestd = d, bp = p;
+    }
+    if (bp == SIZE_MAX || !(wc > 0)) return 0;
+    const double *q = ms->patches.planes + 4 * bp;
+    for (int k = 0; k < 3; k++) {
+        c->normal[k] = q[k];
+        c->point[k] = x[k] + 0.5 * wc * q[k];
+    }
+    c->kind = "bridge";
+    return 1;
+}
+
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
  * piece concavity (up to tol), then the fewest pieces, then the candidates' order. A cut whose
  * pieces all meet tau, or that at least halves the concavity, is taken at once. With
@@ -176,12 +218,18 @@ static void choice_free(split_choice *c) {
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, const acd3_resolve_opts *ro,
                      split_choice *best, acd_error *err) {
-    acd3_plane_candidate cand[ACD3_MAX_CANDIDATES];
+    acd3_plane_candidate cand[ACD3_MAX_CANDIDATES + 1];
     int nc = acd3_cut_candidates(m, g, ms, ro, cand);
+    /* surface mode: the bridge plane last (tried when no candidate before it makes progress) */
+    int nbridge = nc;
+    if (!solid && nc > 0 && surface_bridge_plane(m, ms, &cand[nc])) nc++;
     double vol = solid ? acd_geom3_signed_volume(m) : 0.0;
-    int found = 0, compared = 0;
+    int found = 0, compared = 0, best_progress = 0;
     memset(best, 0, sizeof *best);
-    for (int i = 0; i < nc && compared < ACD3_COMPARED_CANDIDATES; i++) {
+    for (int i = 0; i < nc; i++) {
+        /* the bridge plane is tried even when the compared budget is spent, unless a cut that
+         * makes progress was found */
+        if (compared >= ACD3_COMPARED_CANDIDATES && (i < nbridge || best_progress)) continue;
         acd_cut_plane pl;
         if (acd_cut_plane_from_normal(cand[i].point, cand[i].normal, extent, &pl, NULL) != ACD_OK) continue;
         split_choice trial;
@@ -239,16 +287,20 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
             }
             if (trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
         }
-        int better = !found || trial.concavity < best->concavity - tol ||
-                     (trial.concavity <= best->concavity + tol && trial.cut.npieces < best->cut.npieces);
+        int progress = solid || surface_progress(m, ms, &trial, tol);
+        int better = !found || (progress && !best_progress) ||
+                     (progress == best_progress &&
+                      (trial.concavity < best->concavity - tol ||
+                       (trial.concavity <= best->concavity + tol && trial.cut.npieces < best->cut.npieces)));
         if (better) {
             if (found) choice_free(best);
             *best = trial;
             found = 1;
+            best_progress = progress;
         } else {
             choice_free(&trial);
         }
-        if (best->concavity <= tau + tol || best->concavity <= 0.5 * ms->concavity) break;
+        if (best_progress && (best->concavity <= tau + tol || best->concavity <= 0.5 * ms->concavity)) break;
     }
     return found;
 }
