@@ -8,7 +8,9 @@
  *  - random convex hulls: closed and oriented, volume within 4 standard errors of a Monte Carlo
  *    estimate of the union (exact point-in-hull tests), bitwise deterministic;
  *  - enclosure: every vertex of a segmented mesh strictly inside the cage (exact ray winding
- *    numbers), every expanded simplified hull within its vertex budget plus quantization splits;
+ *    numbers), the cage closed and oriented, its volume at least that of the exact union of the
+ *    parts' hulls (which is at most their sum), every expanded simplified hull within its vertex
+ *    budget plus quantization splits;
  *  - bad parameters are refused. */
 #include "testutil.h"
 
@@ -225,6 +227,17 @@ static void test_segmented_mesh_enclosed(void **state) {
     acd_segment_params sp = acd_segment_default_params();
     acd_segment_result seg;
     assert_int_equal(acd_segment(&m, &sp, &seg, &err), ACD_OK);
+    /* the exact union of the parts' own hulls (no offset, no simplification): every cage holds it,
+       so its volume is a lower bound of theirs; the union itself holds every mesh vertex (on its
+       surface or inside: offset 0) */
+    acd_cage_params ep = exact_params();
+    acd_cage_result u;
+    assert_int_equal(acd_cage_from_segment(&m, &seg, &ep, &u, &err), ACD_OK);
+    assert_int_equal(u.outside_vertices, 0);
+    assert_true(u.volume > 0);
+    double hsum = 0;
+    for (size_t k = 0; k < seg.nparts; k++) hsum += seg.parts[k].hull_volume;
+    assert_true(u.volume <= hsum * (1 + 1e-6)); /* a union is at most the sum */
     size_t budgets[2] = {32, 12};
     for (int t = 0; t < 2; t++) {
         acd_cage_params cp = acd_cage_default_params();
@@ -242,6 +255,7 @@ static void test_segmented_mesh_enclosed(void **state) {
         assert_true(r.chosen_corners <= r.hulls * budgets[t]);
         assert_true(r.corners >= r.chosen_corners);
         assert_true(r.volume > seg.mesh_volume);
+        assert_true(r.volume >= u.volume); /* the cage holds the union of the hulls */
         acd_mesh_report rep;
         assert_int_equal(acd_mesh_validate(&r.cage, 0, &rep, &err), ACD_OK);
         assert_int_equal(rep.boundary_edges, 0);
@@ -251,6 +265,9 @@ static void test_segmented_mesh_enclosed(void **state) {
         acd_mesh_report_free(&rep);
         acd_cage_result_free(&r);
     }
+    print_message("elephant: union of the part hulls %.6f, sum of their volumes %.6f, mesh %.6f\n", u.volume, hsum,
+                  seg.mesh_volume);
+    acd_cage_result_free(&u);
     acd_segment_result_free(&seg);
     acd_mesh_free(&m);
 }

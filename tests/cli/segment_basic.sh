@@ -3,7 +3,8 @@
 # keeps this coarse torus whole, docs/corise.md) the outputs exist and parse (.seg has one
 # label per face, labels 0..parts-1; PARTS.obj re-read has all faces; HULLS.obj one group per
 # part; JSON has parts and seconds), --verify passes, the run is deterministic; exit codes for
-# bad input (2), bad command lines (1). With the fetched meshes: elephant verifies.
+# bad input (2), bad command lines (1); --cage gives a closed genus-1 cage around the 5 parts.
+# With the fetched meshes: elephant verifies.
 set -u
 ACD=$1
 SRC=$2
@@ -35,6 +36,18 @@ cmp -s "$T/t.seg" "$T/t2.seg" || fail "not deterministic"
 "$ACD" segment "$M" -t 0.05 --clamp-hull-depth 0 --verify > /dev/null 2> "$T/v.txt"; rc=$?
 [ $rc = 3 ] || fail "--verify on unresolved parts: exit $rc"
 grep -q "part [0-9]*" "$T/v.txt" || fail "--verify message: $(cat "$T/v.txt")"
+
+# --cage: the 5 hulls of the literal split expanded and unioned: one closed, oriented surface
+# without self-intersections that keeps the torus's hole (genus 1), every mesh vertex inside
+"$ACD" segment "$M" -t 0.2 --clamp-hull-depth 0 --cage "$T/cage.obj" > "$T/cage.txt" 2>&1 || fail "--cage exit $?"
+grep -q "cage: .* 0 of 72 vertices outside" "$T/cage.txt" || fail "--cage report: $(grep cage: "$T/cage.txt")"
+"$ACD" info "$T/cage.obj" --json > "$T/cage.json" || fail "cage does not read back"
+for k in '"closed":[[:space:]]*true' '"oriented":[[:space:]]*true' '"boundary_edges":[[:space:]]*0,' \
+         '"self_intersections":[[:space:]]*0,' '"genus":[[:space:]]*1,' '"components":[[:space:]]*1,'; do
+  grep -q "$k" "$T/cage.json" || fail "cage: no $k in acd info"
+done
+"$ACD" segment "$M" --cage "$T/c2.obj" --cage-vertices 3 2> /dev/null; [ $? = 1 ] || fail "--cage-vertices 3 accepted"
+"$ACD" segment "$M" --cage "$T/c2.obj" --cage-offset -1 2> /dev/null; [ $? = 1 ] || fail "negative --cage-offset accepted"
 
 # exit codes
 printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n' > "$T/bad.off"
