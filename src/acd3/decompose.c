@@ -278,14 +278,40 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
             acd_fail(err, ACD_ERR_NOMEM, "out of memory");
             return -(int)ACD_ERR_NOMEM;
         }
+        /* pieces largest first (most often the most concave); once one is above the best
+         * choice's concavity (+ tol) this candidate cannot win: its other pieces are not measured */
+        size_t order[2] = {0, 1}, *ord = trial.cut.npieces <= 2 ? order : malloc(trial.cut.npieces * sizeof *ord);
+        if (!ord) {
+            choice_free(&trial);
+            if (found) choice_free(best);
+            acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            return -(int)ACD_ERR_NOMEM;
+        }
         for (size_t k = 0; k < trial.cut.npieces; k++) {
+            size_t j = k, nv = trial.cut.pieces[k].mesh.nvertices;
+            while (j > 0 && trial.cut.pieces[ord[j - 1]].mesh.nvertices < nv) {
+                ord[j] = ord[j - 1];
+                j--;
+            }
+            ord[j] = k;
+        }
+        int lost = 0;
+        for (size_t i2 = 0; i2 < trial.cut.npieces && !lost; i2++) {
+            size_t k = ord[i2];
             acd_status st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, &trial.pieces[k], err);
             if (st != ACD_OK) {
+                if (ord != order) free(ord);
                 choice_free(&trial);
                 if (found) choice_free(best);
                 return -(int)st;
             }
             if (trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
+            if (found && trial.concavity > best->concavity + tol) lost = 1;
+        }
+        if (ord != order) free(ord);
+        if (lost) {
+            choice_free(&trial);
+            continue;
         }
         int progress = solid || surface_progress(m, ms, &trial, tol);
         int better = !found || (progress && !best_progress) ||

@@ -397,6 +397,14 @@ int acd_bvh_closest_filtered(const acd_bvh *bvh, const double p[3], double max_d
         if (box_dist2(n, p) > best) continue;
         if (n->count) {
             for (uint32_t i = 0; i < n->count; i++) {
+                /* a triangle whose box is farther than the best cannot be closer (nor tie) */
+                const double *bx = bvh->boxes + 6 * ((size_t)n->first + i);
+                double e2 = 0;
+                for (int k = 0; k < 3; k++) {
+                    double e = p[k] < bx[k] ? bx[k] - p[k] : p[k] > bx[3 + k] ? p[k] - bx[3 + k] : 0;
+                    e2 += e * e;
+                }
+                if (e2 > best) continue;
                 uint32_t t = bvh->order[n->first + i];
                 const uint32_t *tr = bvh->triangles + 3 * (size_t)t;
                 double q[3];
