@@ -72,21 +72,25 @@ void acd3_merge_result_free(acd3_merge_result *r) {
     memset(r, 0, sizeof *r);
 }
 
-/* Distance from p to the members' triangles, if below lim (else lim or more). */
-static double dist_group(const group *g, const double p[3], double lim) {
+/* Distance from p to the members' triangles, if below lim (else lim or more); q: the closest point
+ * found (untouched when none within lim). */
+static double dist_group(const group *g, const double p[3], double lim, double q[3]) {
     double d = INFINITY;
     for (size_t m = 0; m < g->nmembers; m++) {
-        acd_bvh_closest_result q;
+        acd_bvh_closest_result r;
         double l = d < lim ? d : lim;
-        if (acd_bvh_closest(&g->pbvh[g->members[m]], p, l * l, &q) && sqrt(q.dist2) < d) d = sqrt(q.dist2);
+        if (acd_bvh_closest(&g->pbvh[g->members[m]], p, l * l, &r) && sqrt(r.dist2) < d) {
+            d = sqrt(r.dist2);
+            memcpy(q, r.point, sizeof r.point);
+        }
     }
     return d;
 }
 
-static double dist_groups(const group *A, const group *B, const double p[3], double lim) {
-    double d = dist_group(A, p, lim);
+static double dist_groups(const group *A, const group *B, const double p[3], double lim, double q[3]) {
+    double d = dist_group(A, p, lim, q);
     if (B) {
-        double e = dist_group(B, p, d < lim ? d : lim);
+        double e = dist_group(B, p, d < lim ? d : lim, q);
         if (e < d) d = e;
     }
     return d;
@@ -183,38 +187,69 @@ static double cached_ub(const group *g, const double key[9]) {
     return INFINITY;
 }
 
-/* An upper bound of the distance from the points of triangle tri to A u B (B may be NULL): the
- * triangle is subdivided until every piece of centroid g and circumradius r has
- * dist(g) + r <= tau. Returns INFINITY when a centroid is farther
- * than tau, the query budget runs out or pieces get too small. */
+static double max_corner_dist(const double tri[9], const double q[3]) {
+    return fmax(len3(tri, q), fmax(len3(tri + 3, q), len3(tri + 6, q)));
+}
+
+/* An upper bound of the distance from the points of triangle tri to A u B (B may be NULL). For a
+ * point q of A u B, every point of a triangle is within max_k |v_k - q| of q (|x - q| is convex,
+ * its maximum on the triangle is at a corner). The triangle is subdivided (midpoints, 4 children)
+ * until every piece has such a point within tau of all its corners: first the point its parent
+ * found (no query), else the closest point q of A u B to its centroid g. Since
+ * max_k |v_k - q| <= dist(g) + r (r: the piece's circumradius), this bound is never looser than
+ * the Lipschitz one. Returns INFINITY when a centroid is farther than tau, the query budget runs
+ * out or pieces get too small. Stack items: the piece's corners (9) and the parent's point (3; NaN
+ * for none). */
 #define MERGE_WARM_SLACK_REL 1e-9
+#define MERGE_ITEM 12
 static double facet_ub(const group *A, const group *B, const double tri0[9], double tau, size_t *queries,
                        double **stackp, size_t *capp) {
     double *stack = *stackp;
     size_t n = 1, cap = *capp;
     memcpy(stack, tri0, 9 * sizeof *stack);
+    stack[9] = stack[10] = stack[11] = NAN;
     double ub = 0, prev_d = INFINITY, prev_g[3] = {0, 0, 0};
     while (n) {
-        double tri[9];
-        memcpy(tri, stack + 9 * (--n), sizeof tri);
+        double it[MERGE_ITEM];
+        memcpy(it, stack + MERGE_ITEM * (--n), sizeof it);
+        const double *tri = it, *pq = it + 9;
+        int has_pq = !isnan(pq[0]);
+        if (has_pq) {
+            double b = max_corner_dist(tri, pq);
+            if (b <= tau) {
+                if (b > ub) ub = b;
+                continue;
+            }
+        }
         double g[3];
         for (int k = 0; k < 3; k++) g[k] = (tri[k] + tri[3 + k] + tri[6 + k]) / 3.0;
-        double r = fmax(len3(g, tri), fmax(len3(g, tri + 3), len3(g, tri + 6)));
         if (++*queries > MERGE_MAX_QUERIES) return INFINITY;
-        /* warm start: the distance is 1-Lipschitz, so the previous piece's bounds this one's (with a
-         * margin far above the rounding of the closest-point computation) */
+        /* search limit: the distance is 1-Lipschitz, so the previous piece's distance bounds this
+         * one's, and so does the parent's point (margins far above the rounding of the
+         * closest-point computation) */
         double lim = fmin(tau, (prev_d + len3(g, prev_g)) * (1 + 1e-9) + MERGE_WARM_SLACK_REL * tau);
-        double d = dist_groups(A, B, g, lim);
+        double q[3], dq = INFINITY;
+        if (has_pq) {
+            dq = len3(g, pq);
+            lim = fmin(lim, dq * (1 + 1e-9) + MERGE_WARM_SLACK_REL * tau);
+        }
+        double d = dist_groups(A, B, g, lim, q);
+        if (!(d <= dq) && has_pq) { /* nothing nearer than the parent's point was found */
+            d = dq;
+            memcpy(q, pq, sizeof q);
+        }
         if (!(d <= tau)) return INFINITY;
         prev_d = d;
         memcpy(prev_g, g, sizeof prev_g);
-        if (d + r <= tau) {
-            if (d + r > ub) ub = d + r;
+        double b = max_corner_dist(tri, q);
+        if (b <= tau) {
+            if (b > ub) ub = b;
             continue;
         }
+        double r = fmax(len3(g, tri), fmax(len3(g, tri + 3), len3(g, tri + 6)));
         if (r < MERGE_MIN_RADIUS_REL * tau) return INFINITY;
         if (n + 4 > cap) {
-            double *ns = realloc(stack, 2 * cap * 9 * sizeof *ns);
+            double *ns = realloc(stack, 2 * cap * MERGE_ITEM * sizeof *ns);
             if (!ns) return INFINITY;
             stack = *stackp = ns;
             cap = *capp = 2 * cap;
@@ -227,7 +262,8 @@ static double facet_ub(const group *A, const group *B, const double tri0[9], dou
         }
         const double *sub[4][3] = {{tri, m, m + 6}, {m, tri + 3, m + 3}, {m + 6, m + 3, tri + 6}, {m, m + 3, m + 6}};
         for (int s = 0; s < 4; s++) {
-            for (int k = 0; k < 3; k++) memcpy(stack + 9 * n + 3 * k, sub[s][k], sizeof(double[3]));
+            for (int k = 0; k < 3; k++) memcpy(stack + MERGE_ITEM * n + 3 * k, sub[s][k], sizeof(double[3]));
+            memcpy(stack + MERGE_ITEM * n + 9, q, sizeof q);
             n++;
         }
     }
@@ -241,7 +277,7 @@ static double facet_ub(const group *A, const group *B, const double tri0[9], dou
 static double hull_facets_ub(const group *A, const group *B, const acd_hull *H, double tau, int stop_early, double *key,
                              double *ub) {
     size_t cap = 256, queries = 0;
-    double *stack = malloc(cap * 9 * sizeof *stack);
+    double *stack = malloc(cap * MERGE_ITEM * sizeof *stack);
     if (!stack) return INFINITY;
     double worst = 0;
     for (size_t t = 0; t < H->ntriangles; t++) {

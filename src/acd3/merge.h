@@ -8,8 +8,9 @@
  *   d_in  = max over the vertices of A and B that lie on the input surface of their distance to
  *           the boundary of H (exact: min over H's facet planes, the vertices being inside H);
  *   d_out = max over the points x of the boundary of H of dist(x, U), bounded from above: every
- *           hull triangle is subdivided until, for each piece of centroid g and circumradius r,
- *           dist(g, U) + r <= tau (dist is 1-Lipschitz, so the piece is within tau of U), or
+ *           hull triangle is subdivided until each piece has a point q of U within tau of all
+ *           its corners (then of all its points: |x - q| is convex), q being the point of U
+ *           closest to the piece's centroid or, without a query, the one its parent found; or
  *           refused as soon as one centroid is farther than tau.
  *
  * The pair is joinable when both are <= tau; its cost is max(d_in, d_out's bound). Cheapest
