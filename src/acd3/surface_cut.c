@@ -129,15 +129,9 @@ static uint32_t flood(const acd_mesh *m, const acd_edge_graph *g, const uint32_t
  * side of the cut: it is joined to the neighbouring piece with which it shares the longest
  * blocked length (lowest piece on ties) by unblocking the edges between them. Returns the number
  * of pieces joined. */
-static size_t join_strip_pieces(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of,
-                                const uint8_t *in_strip, uint32_t np, const uint32_t *piece, uint8_t *blocked,
-                                double *shared) {
-    size_t nf = m->ntriangles, ne = g->nedges, joined = 0;
-    uint8_t *only = malloc(np ? np : 1);
-    if (!only) return 0;
-    memset(only, 1, np);
-    for (size_t f = 0; f < nf; f++)
-        if (!in_strip[f]) only[piece[f]] = 0;
+static size_t join_pieces(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of, const uint8_t *only,
+                          uint32_t np, const uint32_t *piece, uint8_t *blocked, double *shared) {
+    size_t ne = g->nedges, joined = 0;
     for (uint32_t p = 0; p < np; p++) {
         if (!only[p]) continue;
         for (uint32_t q = 0; q < np; q++) shared[q] = 0;
@@ -158,6 +152,52 @@ static size_t join_strip_pieces(const acd_mesh *m, const acd_edge_graph *g, cons
         }
         joined++;
     }
+    return joined;
+}
+
+static size_t join_strip_pieces(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of,
+                                const uint8_t *in_strip, uint32_t np, const uint32_t *piece, uint8_t *blocked,
+                                double *shared) {
+    uint8_t *only = malloc(np ? np : 1);
+    if (!only) return 0;
+    memset(only, 1, np);
+    for (size_t f = 0; f < m->ntriangles; f++)
+        if (!in_strip[f]) only[piece[f]] = 0;
+    size_t joined = join_pieces(m, g, face_of, only, np, piece, blocked, shared);
+    free(only);
+    return joined;
+}
+
+static double face_area(const acd_mesh *m, size_t f) {
+    const double *a = m->vertices + 3 * (size_t)m->triangles[3 * f], *b = m->vertices + 3 * (size_t)m->triangles[3 * f + 1],
+                 *c = m->vertices + 3 * (size_t)m->triangles[3 * f + 2];
+    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/* One strip's chain is one loop (or one chain from boundary to boundary): it has two sides. Where
+ * it runs along the mesh boundary it crosses it again and again and cuts off teeth between itself
+ * and the boundary (one or two faces each); those are not sides of the cut. All pieces but the
+ * two of largest area (lowest piece on ties) are joined to the neighbour they share most chain
+ * length with (join_pieces). Returns the number joined. */
+static size_t join_teeth(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of, uint32_t np,
+                         const uint32_t *piece, uint8_t *blocked, double *shared) {
+    if (np <= 2) return 0;
+    double *area = calloc(np, sizeof *area);
+    uint8_t *only = malloc(np);
+    size_t joined = 0;
+    if (area && only) {
+        for (size_t f = 0; f < m->ntriangles; f++) area[piece[f]] += face_area(m, f);
+        uint32_t a = UINT32_MAX, b = UINT32_MAX;
+        for (uint32_t p = 0; p < np; p++) {
+            if (a == UINT32_MAX || area[p] > area[a]) b = a, a = p;
+            else if (b == UINT32_MAX || area[p] > area[b]) b = p;
+        }
+        for (uint32_t p = 0; p < np; p++) only[p] = p != a && p != b;
+        joined = join_pieces(m, g, face_of, only, np, piece, blocked, shared);
+    }
+    free(area);
     free(only);
     return joined;
 }
@@ -188,6 +228,10 @@ static acd_status split_blocked(const acd_mesh *m, const acd_edge_graph *g, cons
             goto done;
         }
         if (join_strip_pieces(m, g, face_of, in_strip, np, piece, blocked, shared))
+            np = flood(m, g, face_of, cls, blocked, piece, queue);
+        /* teeth: joined until two pieces are left (each round joins every tooth to a neighbour,
+         * so the count falls every round) */
+        while (np > 2 && join_teeth(m, g, face_of, np, piece, blocked, shared))
             np = flood(m, g, face_of, cls, blocked, piece, queue);
     }
     corner_classes(m, g, face_of, blocked, corner, first, cut);

@@ -22,7 +22,9 @@
  * near != NULL: only the section strip (the faces crossed by the plane, joined across crossing
  * edges: one per section loop) with the crossing edge nearest to that point splits -- the cut
  * loop at the feature being resolved, like the solid region cut (spec §5.1); other crossings of
- * the plane leave the surface whole. */
+ * the plane leave the surface whole. One strip's chain has two sides: pieces it cuts off between
+ * itself and the mesh boundary (where it runs along the boundary) are joined back to the
+ * neighbour they share most chain length with until two pieces are left. */
 acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const acd_cut_plane *pl, const double *near,
                             acd_cut_result *out, acd_error *err);
 

@@ -1,0 +1,100 @@
+/* Tests of acd3/surface_cut: one section strip's chain has two sides. An open piece of a bumpy
+ * sphere (cut off by a first plane) is cut again by planes close to that first one, through a
+ * vertex of the piece's jagged boundary: the cut follows the boundary and, without the joining
+ * of teeth, cuts off faces between its chain and the boundary. Every such cut must give at most
+ * two pieces, and the pieces must partition the faces. */
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd3/surface_cut.h"
+#include "core/rng.h"
+#include "geom3/dijkstra.h"
+#include "geom3/plane_cut.h"
+#include "shapes.h"
+
+static double bumpy(double theta, double phi, void *user) {
+    (void)user;
+    return 1.0 + 0.15 * sin(5 * theta) * cos(3 * phi) + 0.05 * cos(11 * phi) * sin(7 * theta);
+}
+
+static void cut(const acd_mesh *m, const double point[3], const double normal[3], const double *near,
+                acd_cut_result *out) {
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(m->vertices, m->nvertices, m->triangles, m->ntriangles, &g, &err), ACD_OK);
+    acd_cut_plane pl;
+    assert_int_equal(acd_cut_plane_from_normal(point, normal, 4.0, &pl, &err), ACD_OK);
+    assert_int_equal(acd3_surface_cut(m, &g, &pl, near, out, &err), ACD_OK);
+    acd_edge_graph_free(&g);
+}
+
+static void test_strip_cut_two_sides(void **state) {
+    (void)state;
+    acd_mesh sphere;
+    assert_true(mg_radial(&sphere, 64, 40, bumpy, NULL));
+    /* the first cut: a tilted plane through the origin, whole section; the larger piece */
+    const double n1[3] = {0.3, 0.2, 0.933}, o[3] = {0, 0, 0.05};
+    acd_cut_result first;
+    cut(&sphere, o, n1, NULL, &first);
+    assert_int_equal(first.npieces, 2);
+    size_t big = first.pieces[0].mesh.ntriangles >= first.pieces[1].mesh.ntriangles ? 0 : 1;
+    const acd_mesh *a = &first.pieces[big].mesh;
+    /* its boundary vertices: on an edge of one face */
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(a->vertices, a->nvertices, a->triangles, a->ntriangles, &g, &err), ACD_OK);
+    unsigned *nface = calloc(g.nedges, sizeof *nface);
+    uint8_t *onb = calloc(a->nvertices, 1);
+    assert_non_null(nface);
+    assert_non_null(onb);
+    for (size_t f = 0; f < a->ntriangles; f++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t e = acd_edge_graph_find(&g, a->triangles[3 * f + k], a->triangles[3 * f + (k + 1) % 3]);
+            assert_true(e != ACD_NO_VERTEX);
+            nface[e]++;
+        }
+    size_t nb = 0;
+    for (size_t e = 0; e < g.nedges; e++)
+        if (nface[e] == 1) onb[g.edge_v[2 * e]] = onb[g.edge_v[2 * e + 1]] = 1, nb++;
+    assert_true(nb > 20);
+    acd_rng rng;
+    acd_rng_seed(&rng, 4);
+    size_t tried = 0, many = 0;
+    for (int trial = 0; trial < 200; trial++) {
+        uint32_t v = (uint32_t)acd_rng_below(&rng, a->nvertices);
+        if (!onb[v]) continue;
+        double n2[3];
+        for (int k = 0; k < 3; k++) n2[k] = n1[k] + 0.08 * (acd_rng_uniform(&rng) - 0.5);
+        const double *p = a->vertices + 3 * (size_t)v;
+        double q[3];
+        for (int k = 0; k < 3; k++) q[k] = p[k] - 0.01 * acd_rng_uniform(&rng) * n1[k];
+        acd_cut_result r;
+        cut(a, q, n2, p, &r);
+        tried++;
+        size_t faces = 0;
+        for (size_t i = 0; i < r.npieces; i++) {
+            assert_true(r.pieces[i].mesh.ntriangles > 0);
+            faces += r.pieces[i].mesh.ntriangles;
+        }
+        assert_int_equal(faces, a->ntriangles);
+        if (r.npieces > 2) many++;
+        acd_cut_result_free(&r);
+    }
+    assert_true(tried >= 10);
+    assert_int_equal(many, 0);
+    free(nface);
+    free(onb);
+    acd_edge_graph_free(&g);
+    acd_cut_result_free(&first);
+    acd_mesh_free(&sphere);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_strip_cut_two_sides),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
