@@ -50,6 +50,7 @@
  * O(n r^2) candidates as in the paper; memory O(r n) bits plus the staircases. */
 #include "acd2/exact_mcd.h"
 
+#include <limits.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,15 +62,29 @@
 #define NONE ((size_t)-1)
 #define V2(p) ((const double *)(const void *)(p))
 
+/* Compact records (32-bit vertex and pool indices; the polygon is refused above UINT32_MAX - 1
+ * vertices): the staircases are the bulk of the memory on polygons with many notches. */
+#define PNONE UINT32_MAX
+
 typedef struct mcd_pair {
-    size_t s, t, j, child;
-    int type; /* 'A' or 'B' */
+    uint32_t s, t, j, child; /* child: pool index of the merged pair, PNONE if none */
+    char type;               /* 'A' .. 'G' */
 } mcd_pair;
 
 typedef struct mcd_entry {
-    long w; /* -1: not computed */
-    size_t first, count;
+    int32_t w;              /* -1: not computed or no decomposition, -2: weak entry in progress */
+    uint32_t first, count;  /* the staircase: pool[first .. first + count) */
+    uint32_t s1, t1;        /* count == 1: the pair's s and t (read without touching the pool) */
 } mcd_entry;
+
+static mcd_pair mkpair(size_t s, size_t t, size_t j, size_t child, char type) {
+    mcd_pair p = {(uint32_t)s, (uint32_t)t, (uint32_t)j, child == NONE ? PNONE : (uint32_t)child, type};
+    return p;
+}
+
+static size_t child_of(const mcd_pair *p) {
+    return p->child == PNONE ? NONE : p->child;
+}
 
 typedef struct mcd_opt {
     long cost;
@@ -94,6 +109,7 @@ typedef struct mcd {
     size_t npool, cpool;
     mcd_opt *opt;
     size_t nopt, copt;
+    long bound; /* the smallest option cost of the subproblem being computed, so far */
     /* straight composites: chains i = x0 < x1 < .. < xm = j of collinear vertices, each hop an edge
      * or a reflex diagonal; cont maps a hop (a, b) to the next vertex c of its line */
     size_t *tstart, *ta, *tc;        /* per b: (a, c) sorted by a: a-b-c collinear, b between */
@@ -211,7 +227,11 @@ static int build_entry_hash(mcd *m) {
     return 1;
 }
 
+/* Adds an option of the subproblem being computed; one costing more than an option already
+ * found cannot be in its staircase and is dropped. */
 static int push_opt(mcd *m, long cost, mcd_pair pr) {
+    if (cost > m->bound) return 1;
+    m->bound = cost;
     if (m->nopt == m->copt) {
         size_t c = m->copt ? 2 * m->copt : 64;
         mcd_opt *o = realloc(m->opt, c * sizeof *o);
@@ -291,7 +311,7 @@ static int composite_options(mcd *m, size_t i, size_t k) {
                 if (!e || e->w < 0) continue;
                 wjk = e->w;
             }
-            mcd_pair pr = {c[2], j, j, NONE, 'C'};
+            mcd_pair pr = mkpair(c[2], j, j, NONE, 'C');
             if (!push_opt(m, wc + wjk + 1, pr)) return 0;
         }
     if (m->reflex[k])
@@ -307,7 +327,7 @@ static int composite_options(mcd *m, size_t i, size_t k) {
                 if (!e || e->w < 0) continue;
                 wij = e->w;
             }
-            mcd_pair pr = {j, c[3], j, c[2], 'D'};
+            mcd_pair pr = mkpair(j, c[3], j, c[2], 'D');
             if (!push_opt(m, wij + wc + 1, pr)) return 0;
         }
     return 1;
@@ -317,6 +337,11 @@ static int composite_options(mcd *m, size_t i, size_t k) {
  * orient(t, j, k) >= 0 (a prefix of the staircase, t grows with s) and orient(k, i, s) >= 0 (a suffix).
  * Binary search for the prefix end, checked; a linear scan if the check fails. NONE if none. */
 static size_t merge_a(const mcd *m, const mcd_entry *e, size_t i, size_t j, size_t k) {
+    if (e->count == 1) /* the condition at j holds when j is convex (see the pruning above) */
+        return (!m->reflex[j] || acd_orient2d_sign(W(m, e->t1), W(m, j), W(m, k)) >= 0) &&
+                       acd_orient2d_sign(W(m, k), W(m, i), W(m, e->s1)) >= 0
+                   ? e->first
+                   : NONE;
     size_t lo = e->first, hi = e->first + e->count;
     while (lo < hi) {
         size_t mid = lo + (hi - lo) / 2;
@@ -340,6 +365,11 @@ static size_t merge_a(const mcd *m, const mcd_entry *e, size_t i, size_t j, size
 
 /* Type B: the smallest t with orient(i, j, s) >= 0 (a suffix) and orient(t, k, i) >= 0 (a prefix). */
 static size_t merge_b(const mcd *m, const mcd_entry *e, size_t i, size_t j, size_t k) {
+    if (e->count == 1)
+        return (!m->reflex[j] || acd_orient2d_sign(W(m, i), W(m, j), W(m, e->s1)) >= 0) &&
+                       acd_orient2d_sign(W(m, e->t1), W(m, k), W(m, i)) >= 0
+                   ? e->first
+                   : NONE;
     size_t lo = e->first, hi = e->first + e->count;
     while (lo < hi) {
         size_t mid = lo + (hi - lo) / 2;
@@ -370,14 +400,14 @@ static int option_a(mcd *m, size_t i, size_t j, size_t k, const mcd_entry *eij, 
         if (!e || e->w < 0) return 1;
         wjk = e->w;
     }
-    mcd_pair pr = {j, j, j, NONE, 'A'};
+    mcd_pair pr = mkpair(j, j, j, NONE, 'A');
     if (j <= m->fwd[i]) return push_opt(m, wjk + 1, pr);
     const mcd_entry *e = eij ? eij : entry_of(m, i, j);
-    if (!e || e->w < 0) return 1;
+    if (!e || e->w < 0 || wjk + e->w > m->bound) return 1; /* costs more than an option found */
     size_t best = merge_a(m, e, i, j, k);
     if (best != NONE) {
-        pr.s = m->pool[best].s;
-        pr.child = best;
+        pr.s = e->count == 1 ? e->s1 : m->pool[best].s;
+        pr.child = (uint32_t)best;
         return push_opt(m, wjk + e->w, pr);
     }
     return push_opt(m, wjk + e->w + 1, pr);
@@ -390,14 +420,14 @@ static int option_b(mcd *m, size_t i, size_t j, size_t k, const mcd_entry *eij, 
         if (!e || e->w < 0) return 1;
         wij = e->w;
     }
-    mcd_pair pr = {j, j, j, NONE, 'B'};
+    mcd_pair pr = mkpair(j, j, j, NONE, 'B');
     if (j >= m->bwd[k]) return push_opt(m, wij + 1, pr);
     const mcd_entry *e = ejk ? ejk : entry_of(m, j, k);
-    if (!e || e->w < 0) return 1;
+    if (!e || e->w < 0 || wij + e->w > m->bound) return 1;
     size_t best = merge_b(m, e, i, j, k);
     if (best != NONE) {
-        pr.t = m->pool[best].t;
-        pr.child = best;
+        pr.t = e->count == 1 ? e->t1 : m->pool[best].t;
+        pr.child = (uint32_t)best;
         return push_opt(m, wij + e->w, pr);
     }
     return push_opt(m, wij + e->w + 1, pr);
@@ -428,7 +458,18 @@ static void list_range(const mcd *m, size_t r, size_t lo, size_t hi, const size_
 
 static int flat_options(mcd *m, size_t i, size_t k);
 
+static int compute_options(mcd *m, size_t i, size_t k, mcd_entry *out, int prune);
+
+/* Computes the entry of subproblem (i, k) (re-entered for weak entries: the bound is saved). */
 static int compute(mcd *m, size_t i, size_t k, mcd_entry *out, int prune) {
+    long saved = m->bound;
+    m->bound = LONG_MAX;
+    int ok = compute_options(m, i, k, out, prune);
+    m->bound = saved;
+    return ok;
+}
+
+static int compute_options(mcd *m, size_t i, size_t k, mcd_entry *out, int prune) {
     size_t base = m->nopt; /* options stack: a weak entry may be computed inside (flat_options) */
     const size_t *va, *vb;
     size_t a0, a1, b0, b1;
@@ -481,7 +522,7 @@ static int compute(mcd *m, size_t i, size_t k, mcd_entry *out, int prune) {
     if (m->ncomp && !composite_options(m, i, k)) return 0;
     if (m->cang && !flat_options(m, i, k)) return 0;
     out->w = -1;
-    out->first = m->npool;
+    out->first = (uint32_t)m->npool;
     out->count = 0;
     mcd_opt *opt = m->opt + base;
     size_t nopt = m->nopt - base;
@@ -511,6 +552,7 @@ static int compute(mcd *m, size_t i, size_t k, mcd_entry *out, int prune) {
         else nk = top + 1;
         keep = 1;
     }
+    if (m->npool + keep >= PNONE) return 0; /* 32-bit pool indices */
     if (m->npool + keep > m->cpool) {
         size_t c = m->cpool ? m->cpool : 1024;
         while (c < m->npool + keep) c *= 2;
@@ -520,8 +562,10 @@ static int compute(mcd *m, size_t i, size_t k, mcd_entry *out, int prune) {
         m->cpool = c;
     }
     for (size_t q = top; q < nk; q++) m->pool[m->npool++] = opt[q].pr;
-    out->w = best;
-    out->count = keep;
+    out->w = (int32_t)best;
+    out->count = (uint32_t)keep;
+    out->s1 = m->pool[out->first].s;
+    out->t1 = m->pool[out->first].t;
     return 1;
 }
 
@@ -602,7 +646,7 @@ static int flat_options(mcd *m, size_t i, size_t k) {
                 size_t best = we->first; /* the largest s: the last of the staircase */
                 for (size_t q = we->first; q < we->first + we->count; q++)
                     if (m->pool[q].s > m->pool[best].s) best = q;
-                mcd_pair pr = {m->pool[best].s, j, j, best, 'F'};
+                mcd_pair pr = mkpair(m->pool[best].s, j, j, best, 'F');
                 if (!push_opt(m, we->w + sep, pr)) return 0;
             }
         }
@@ -621,7 +665,7 @@ static int flat_options(mcd *m, size_t i, size_t k) {
             size_t best = we->first;
             for (size_t q = we->first; q < we->first + we->count; q++)
                 if (m->pool[q].t < m->pool[best].t) best = q;
-            mcd_pair pr = {j, m->pool[best].t, j, best, 'G'};
+            mcd_pair pr = mkpair(j, m->pool[best].t, j, best, 'G');
             if (!push_opt(m, we->w + sep, pr)) return 0;
         }
     }
@@ -907,16 +951,6 @@ done:
     return st;
 }
 
-typedef struct diag_item {
-    size_t i, k;
-} diag_item;
-
-static int cmp_diag(const void *x, const void *y) {
-    const diag_item *a = x, *b = y;
-    if (a->i != b->i) return a->i > b->i ? -1 : 1;
-    return (a->k > b->k) - (a->k < b->k);
-}
-
 typedef struct task {
     size_t i, k, pair;
 } task;
@@ -964,12 +998,12 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
                         p->nrings - 1, p->nrings == 2 ? "" : "s");
     size_t n = acd_polygon_ring_size(p, 0);
     if (n < 3) return acd_fail(err, ACD_ERR_DEGENERATE, "MCD: the polygon has %zu vertices (needs 3)", n);
+    if (n >= PNONE) return acd_fail(err, ACD_ERR_UNSUPPORTED, "MCD: %zu vertices (at most %u)", n, PNONE - 1);
     const acd_vec2 *ring = acd_polygon_ring(p, 0);
     mcd m;
     memset(&m, 0, sizeof m);
     m.n = n;
     size_t *perm = malloc(n * sizeof *perm);
-    diag_item *dl = NULL;
     task *stack = NULL;
     acd_status st = ACD_OK;
     m.wp = malloc(n * sizeof *m.wp);
@@ -1046,33 +1080,37 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
     if (st != ACD_OK) goto done;
     size_t nv = m.vstart[m.nrows];
     m.ent = malloc((nv ? nv : 1) * sizeof *m.ent);
-    dl = malloc((nv ? nv : 1) * sizeof *dl);
-    if (!m.ent || !dl || !build_entry_hash(&m)) {
+    if (!m.ent || !build_entry_hash(&m)) {
         st = acd_fail(err, ACD_ERR_NOMEM, "MCD: out of memory for %zu diagonals", nv);
         goto done;
     }
-    size_t nd = 0;
-    for (size_t r = 0; r < m.nrows; r++) {
-        size_t a = m.rl[r];
-        for (size_t q = m.vstart[r]; q < m.vstart[r + 1]; q++) {
-            size_t b = m.vlist[q];
-            m.ent[q].w = -1;
-            m.ent[q].first = m.ent[q].count = 0;
-            if (b > a) dl[nd++] = (diag_item){a, b};
-            else if (!m.reflex[b]) dl[nd++] = (diag_item){b, a};
-        }
+    for (size_t q = 0; q < nv; q++) {
+        m.ent[q].w = -1;
+        m.ent[q].first = m.ent[q].count = m.ent[q].s1 = m.ent[q].t1 = 0;
     }
-    /* 3. dynamic programming */
-    qsort(dl, nd, sizeof *dl, cmp_diag);
-    for (size_t q = 0; q < nd; q++) {
-        mcd_entry *e = entry_of(&m, dl[q].i, dl[q].k);
-        if (!e || !compute(&m, dl[q].i, dl[q].k, e, 1)) {
-            st = e ? acd_fail(err, ACD_ERR_NOMEM, "MCD: out of memory in the dynamic program")
-                   : acd_fail(err, ACD_ERR_INTERNAL, "MCD: diagonal (%zu, %zu) has no table entry", dl[q].i, dl[q].k);
-            goto done;
+    /* 3. dynamic programming over the reflex diagonals (i, k), i decreasing, k increasing: for a
+     * reflex i its visibility list beyond i; for a convex i the reflex k > i that see it */
+    for (size_t i = n; i-- > 0;) {
+        size_t r = m.row[i];
+        if (r != NONE) {
+            size_t q0 = lower(m.vlist, m.vstart[r], m.vstart[r + 1], i + 1);
+            for (size_t q = q0; q < m.vstart[r + 1]; q++)
+                if (!compute(&m, i, m.vlist[q], &m.ent[q], 1)) goto dp_nomem;
+        } else {
+            for (size_t z = lower(m.rl, 0, m.nrows, i + 1); z < m.nrows; z++) {
+                size_t k = m.rl[z];
+                if (!bit(&m, k, i)) continue;
+                mcd_entry *e = entry_of(&m, i, k);
+                if (!e) {
+                    st = acd_fail(err, ACD_ERR_INTERNAL, "MCD: diagonal (%zu, %zu) has no table entry", i, k);
+                    goto done;
+                }
+                if (!compute(&m, i, k, e, 1)) goto dp_nomem;
+            }
         }
     }
     if (!compute(&m, 0, n - 1, &m.root, 0)) {
+    dp_nomem:
         st = acd_fail(err, ACD_ERR_NOMEM, "MCD: out of memory in the dynamic program");
         goto done;
     }
@@ -1121,27 +1159,27 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
                 if (b > m.fwd[j]) { sep[nsep][0] = j; sep[nsep][1] = b; nsep++; }
                 else { run[nrun][0] = j; run[nrun][1] = b; nrun++; }
             } else if (pr->type == 'D') {
-                hop_a = j; hop_first = pr->child; hop_end = b;
+                hop_a = j; hop_first = child_of(pr); hop_end = b;
                 if (j > m.fwd[a]) { sep[nsep][0] = a; sep[nsep][1] = j; nsep++; }
                 else { run[nrun][0] = a; run[nrun][1] = j; nrun++; }
             } else if (pr->type == 'F') {
                 if (b > m.fwd[j]) { sep[nsep][0] = j; sep[nsep][1] = b; nsep++; }
                 else { run[nrun][0] = j; run[nrun][1] = b; nrun++; }
-                next_a = a; next_b = j; next_q = pr->child;
+                next_a = a; next_b = j; next_q = child_of(pr);
             } else if (pr->type == 'G') {
                 if (j > m.fwd[a]) { sep[nsep][0] = a; sep[nsep][1] = j; nsep++; }
                 else { run[nrun][0] = a; run[nrun][1] = j; nrun++; }
-                next_a = j; next_b = b; next_q = pr->child;
+                next_a = j; next_b = b; next_q = child_of(pr);
             } else if (pr->type == 'A') {
                 if (b > m.fwd[j]) { sep[nsep][0] = j; sep[nsep][1] = b; nsep++; }
                 else { run[nrun][0] = j; run[nrun][1] = b; nrun++; }
-                if (pr->child != NONE) { next_a = a; next_b = j; next_q = pr->child; }
+                if (pr->child != PNONE) { next_a = a; next_b = j; next_q = pr->child; }
                 else if (j > m.fwd[a]) { sep[nsep][0] = a; sep[nsep][1] = j; nsep++; }
                 else { run[nrun][0] = a; run[nrun][1] = j; nrun++; }
             } else {
                 if (j > m.fwd[a]) { sep[nsep][0] = a; sep[nsep][1] = j; nsep++; }
                 else { run[nrun][0] = a; run[nrun][1] = j; nrun++; }
-                if (pr->child != NONE) { next_a = j; next_b = b; next_q = pr->child; }
+                if (pr->child != PNONE) { next_a = j; next_b = b; next_q = pr->child; }
                 else if (b > m.fwd[j]) { sep[nsep][0] = j; sep[nsep][1] = b; nsep++; }
                 else { run[nrun][0] = j; run[nrun][1] = b; nrun++; }
             }
@@ -1210,7 +1248,6 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
 done:
     if (st != ACD_OK) acd_index_pieces_free(out);
     free(perm);
-    free(dl);
     free(stack);
     mcd_free(&m);
     return st;
