@@ -276,7 +276,7 @@ static int find_all_knots(const acd_mesh *m, const acd3_measure *ms, const acd3_
 
 /* Flood-fills the faces of region r (listed in rf[0..nrf)) without crossing the edges marked in
  * cut_edge; label[f] = component (faces outside r keep UINT32_MAX). */
-static void flood_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, const acd3_cut_graph *cg,
+static void flood_split(const uint32_t *fe, const acd3_measure *ms, const acd3_cut_graph *cg,
                         uint32_t r, const uint32_t *rf, size_t nrf, const uint8_t *cut_edge, uint32_t *label,
                         uint32_t *queue) {
     for (size_t i = 0; i < nrf; i++) label[rf[i]] = UINT32_MAX;
@@ -289,7 +289,7 @@ static void flood_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
         while (qh < qt) {
             uint32_t f = queue[qh++];
             for (int k = 0; k < 3; k++) {
-                uint32_t e = acd_edge_graph_find(g, m->triangles[3 * f + k], m->triangles[3 * f + (k + 1) % 3]);
+                uint32_t e = fe[3 * (size_t)f + k];
                 if (e == ACD_NO_VERTEX || cut_edge[e]) continue;
                 for (int s = 0; s < 2; s++) {
                     uint32_t h = cg->face_of[2 * (size_t)e + s];
@@ -333,7 +333,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     /* faces by region */
     size_t *rrow = calloc(nr + 1, sizeof *rrow);
     uint32_t *rface = malloc((nf ? nf : 1) * sizeof *rface), *label = malloc((nf ? nf : 1) * sizeof *label),
-             *queue = malloc((nf ? nf : 1) * sizeof *queue);
+             *queue = malloc((nf ? nf : 1) * sizeof *queue), *fe = malloc((nf ? 3 * nf : 1) * sizeof *fe);
     double *wcost = malloc((ne ? ne : 1) * sizeof *wcost);
     uint8_t *allowed = calloc(nv ? nv : 1, 1), *cut_edge = calloc(ne ? ne : 1, 1);
     u32vec pool = {0}, kept = {0};
@@ -341,8 +341,10 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     size_t ncand = 0, capcand = 0;
     acd3_pocket_cut *cuts = NULL;
     size_t ncuts = 0, capcuts = 0, ncutv = 0;
-    int ok = rks && rrow && rface && label && queue && wcost && allowed && cut_edge;
+    int ok = rks && rrow && rface && label && queue && fe && wcost && allowed && cut_edge;
     if (!ok) goto build_done;
+    int fe_ready = 0; /* fe: the edge of each face side, found once when first needed (the floods
+                         below visit a region's faces per kept cut) */
     for (size_t k = 0; k < out->nknots; k++) {
         uint32_t c = out->knot_chain[k];
         rks[2 * k] = (rk){out->chain_region[2 * c], (uint32_t)k};
@@ -496,7 +498,13 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                 uint32_t e = acd_edge_graph_find(g, p[k], p[k + 1]);
                 if (e != ACD_NO_VERTEX) cut_edge[e] = 1;
             }
-            flood_split(m, g, ms, out, r, rf, nrf, cut_edge, label, queue);
+            if (!fe_ready) {
+                for (size_t f = 0; f < nf; f++)
+                    for (int k = 0; k < 3; k++)
+                        fe[3 * f + k] = acd_edge_graph_find(g, m->triangles[3 * f + k], m->triangles[3 * f + (k + 1) % 3]);
+                fe_ready = 1;
+            }
+            flood_split(fe, ms, out, r, rf, nrf, cut_edge, label, queue);
             for (size_t k = 0; k + 1 < ci->n; k++) {
                 uint32_t e = acd_edge_graph_find(g, p[k], p[k + 1]);
                 if (e != ACD_NO_VERTEX) cut_edge[e] = 0;
@@ -565,7 +573,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
         }
     }
 build_done:
-    free(rks), free(rrow), free(rface), free(label), free(queue), free(wcost), free(allowed), free(cut_edge);
+    free(rks), free(rrow), free(rface), free(label), free(queue), free(fe), free(wcost), free(allowed), free(cut_edge);
     free(pool.a), free(kept.a), free(cands);
     out->cuts = cuts;
     out->ncuts = ncuts;
