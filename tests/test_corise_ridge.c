@@ -10,6 +10,7 @@
 #include "core/rng.h"
 #include "corise/ridge.h"
 #include "corise/separator.h"
+#include "corise/valley.h"
 #include "corise_meshes.h"
 
 /* A bridge set over hull vertices 0..nh-1 (mesh ids = hull indices) with given lengths and
@@ -175,6 +176,143 @@ static void test_split_u(void **state) {
     assert_true(fabs(s.residual - 6 / sqrt(13.0)) < 1e-12);
 }
 
+/* The separator evaluated exhaustively, as specified (every RC(m), every candidate of the U
+ * splits), with the same tie-breaks: the reference the pruned acd_corise_valley_split must match
+ * bit for bit. */
+static double ref_piece(const double *V, const uint32_t *chain, size_t s, size_t t) {
+    double c;
+    acd_error err;
+    assert_int_equal(acd_corise_chain_concavity(V, chain + s, t - s + 1, NULL, &c, NULL, NULL, &err), ACD_OK);
+    return c;
+}
+
+static int ref_better(double val, double corig, size_t m, double bval, double bcorig, size_t bm) {
+    if (val != bval) return val < bval;
+    if (corig != bcorig) return corig > bcorig;
+    return m < bm;
+}
+
+static void ref_best(const double *V, const uint32_t *chain, size_t lo, size_t hi, const double *corig, size_t *arg) {
+    size_t bm = SIZE_MAX;
+    double bv = INFINITY;
+    for (size_t m = lo + 1; m < hi; m++) {
+        double p = ref_piece(V, chain, lo, m), q = ref_piece(V, chain, m, hi), v = p > q ? p : q;
+        if (bm == SIZE_MAX || ref_better(v, corig[m], m, bv, corig[bm], bm)) bm = m, bv = v;
+    }
+    *arg = bm;
+}
+
+static acd_corise_split ref_split(const double *V, const uint32_t *chain, size_t n, double tau) {
+    acd_corise_split out = {0, 0, 0, 0};
+    double *corig = malloc(n * sizeof *corig), *P = malloc(n * sizeof *P), *S = malloc(n * sizeof *S);
+    acd_error err;
+    assert_int_equal(acd_corise_chain_concavity(V, chain, n, corig, NULL, NULL, NULL, &err), ACD_OK);
+    size_t argrc = SIZE_MAX, argmax = SIZE_MAX;
+    double minrc = INFINITY;
+    for (size_t m = 1; m + 1 < n; m++) {
+        P[m] = ref_piece(V, chain, 0, m);
+        S[m] = ref_piece(V, chain, m, n - 1);
+        double rc = P[m] > S[m] ? P[m] : S[m];
+        if (argrc == SIZE_MAX || ref_better(rc, corig[m], m, minrc, corig[argrc], argrc)) argrc = m, minrc = rc;
+        if (argmax == SIZE_MAX || corig[m] > corig[argmax]) argmax = m;
+    }
+    double rcmax = P[argmax] > S[argmax] ? P[argmax] : S[argmax];
+    size_t i = 0, j = SIZE_MAX;
+    for (size_t m = 1; m + 1 < n; m++) {
+        if (P[m] <= tau) i = m;
+        if (S[m] <= tau && j == SIZE_MAX) j = m;
+    }
+    if (rcmax <= tau) {
+        out.first = out.second = argmax;
+        out.residual = rcmax;
+    } else if (minrc <= tau || i == 0 || j == SIZE_MAX || i >= j) {
+        out.first = out.second = argrc;
+        out.residual = minrc;
+    } else {
+        size_t k = i, g = j;
+        if (i > 1) ref_best(V, chain, 0, i, corig, &k);
+        if (j + 2 < n) ref_best(V, chain, j, n - 1, corig, &g);
+        double pk = ref_piece(V, chain, 0, k), sg = ref_piece(V, chain, g, n - 1);
+        out.ushaped = 1;
+        out.first = k;
+        out.second = g;
+        out.residual = pk > sg ? pk : sg;
+    }
+    free(corig);
+    free(P);
+    free(S);
+    return out;
+}
+
+/* Random valleys (a dip with noise, overhangs and zig-zags, so that pieces are monotone, simple
+ * non-monotone (shortest paths) and self-intersecting): the split equals the exhaustive reference
+ * for several tau (V, U and degenerate cases), and the cheap bound of every piece is certified:
+ * exact when it says so, else at most the concavity (with its slack). */
+static void test_split_matches_exhaustive(void **state) {
+    (void)state;
+    acd_rng rng;
+    acd_rng_seed(&rng, 4242);
+    size_t kinds[4] = {0, 0, 0, 0}, ushaped = 0, vshaped = 0;
+    for (int trial = 0; trial < 300; trial++) {
+        size_t n = 3 + (size_t)(acd_rng_uniform(&rng) * 40);
+        double *V = malloc(3 * n * sizeof *V);
+        uint32_t *chain = malloc(n * sizeof *chain);
+        double depth = 0.2 + 2 * acd_rng_uniform(&rng), noise = 0.5 * acd_rng_uniform(&rng),
+               back = acd_rng_uniform(&rng) < 0.5 ? 0.6 * acd_rng_uniform(&rng) : 0;
+        for (size_t t = 0; t < n; t++) {
+            double x = (double)t / (double)(n - 1);
+            double flat = acd_rng_uniform(&rng) < 0.5 ? 0.3 : 0; /* U-like bottoms */
+            double dip = depth * fmin(1.0, sin(3.14159265358979 * x) + flat);
+            V[3 * t] = 4 * x + noise * (acd_rng_uniform(&rng) - 0.5) - back * sin(6.28318530717959 * x);
+            V[3 * t + 1] = -dip + noise * (acd_rng_uniform(&rng) - 0.5);
+            V[3 * t + 2] = 0.3 * noise * (acd_rng_uniform(&rng) - 0.5);
+            chain[t] = (uint32_t)(n - 1 - t); /* not in vertex order */
+        }
+        /* chain[t] indexes V reversed: reverse the coordinates to keep the shape */
+        for (size_t t = 0; t < n / 2; t++)
+            for (int k = 0; k < 3; k++) {
+                double tmp = V[3 * t + k];
+                V[3 * t + k] = V[3 * (n - 1 - t) + k];
+                V[3 * (n - 1 - t) + k] = tmp;
+            }
+        for (size_t s = 0; s + 2 < n; s += 3)
+            for (size_t e = s + 2; e < n; e += 2) {
+                double b, c;
+                int exact;
+                acd_corise_conc_kind kind;
+                acd_error err;
+                acd_corise_chain_bound(V, chain + s, e - s + 1, &b, &exact);
+                assert_int_equal(acd_corise_chain_concavity(V, chain + s, e - s + 1, NULL, &c, NULL, &kind, &err), ACD_OK);
+                kinds[kind]++;
+                if (exact) {
+                    assert_true(kind == ACD_CORISE_CONC_MONOTONE || kind == ACD_CORISE_CONC_TRIVIAL);
+                    assert_true(c == b);
+                } else {
+                    assert_true(c >= b * (1 - ACD_CORISE_CHAIN_BOUND_REL));
+                    if (kind == ACD_CORISE_CONC_FALLBACK) assert_true(c == b);
+                }
+            }
+        double taus[4] = {0.05, 0.2 * depth, 0.5 * depth, 2 * depth};
+        for (int k = 0; k < 4; k++) {
+            acd_corise_split s, r = ref_split(V, chain, n, taus[k]);
+            acd_error err;
+            assert_int_equal(acd_corise_valley_split(V, chain, n, taus[k], &s, &err), ACD_OK);
+            assert_int_equal(s.ushaped, r.ushaped);
+            assert_int_equal(s.first, r.first);
+            assert_int_equal(s.second, r.second);
+            assert_true(s.residual == r.residual);
+            if (s.ushaped) ushaped++;
+            else vshaped++;
+        }
+        free(V);
+        free(chain);
+    }
+    print_message("pieces: %zu trivial, %zu monotone, %zu shortest path, %zu fallback; splits: %zu V, %zu U\n", kinds[0],
+                  kinds[1], kinds[2], kinds[3], vshaped, ushaped);
+    assert_true(kinds[ACD_CORISE_CONC_SP] > 100 && kinds[ACD_CORISE_CONC_MONOTONE] > 100);
+    assert_true(ushaped > 20 && vshaped > 20);
+}
+
 typedef struct trench {
     double h, depth, xc, halfwidth;
 } trench;
@@ -239,6 +377,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ridges_by_hand), cmocka_unit_test(test_ridges_random_properties),
         cmocka_unit_test(test_split_v),        cmocka_unit_test(test_split_u),
+        cmocka_unit_test(test_split_matches_exhaustive),
         cmocka_unit_test(test_trench_box_ridges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -76,6 +76,47 @@ static int polygon_is_simple(const acd_vec2 *p, size_t m) {
     return polygon_is_simple_brute(p, m); /* the sweep could not run (memory): same answer the slow way */
 }
 
+/* Eq. 1 projection of q against the bridge from a along the unit direction u, of length L:
+ * (abscissa along u, distance to the segment). The one place it is computed, so that the bound
+ * below and the concavity agree bit for bit. */
+static inline void project(const double *q, const double *a, const double *u, double L, acd_vec2 *out) {
+    double d[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+    double x = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    double s = x < 0 ? 0 : x > L ? L : x;
+    double e[3] = {d[0] - s * u[0], d[1] - s * u[1], d[2] - s * u[2]};
+    out->x = x;
+    out->y = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+}
+
+/* The bridge's direction and length, as acd_corise_chain_concavity computes them. */
+static inline double bridge_dir(const double *a, const double *b, double u[3]) {
+    double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double L = sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]);
+    u[0] = u[1] = u[2] = 0;
+    if (L > 0)
+        for (int k = 0; k < 3; k++) u[k] = ab[k] / L;
+    return L;
+}
+
+void acd_corise_chain_bound(const double *vertices, const uint32_t *chain, size_t m, double *bound, int *exact) {
+    *bound = 0;
+    *exact = 1;
+    if (m < 3) return;
+    const double *a = vertices + 3 * (size_t)chain[0], *b = vertices + 3 * (size_t)chain[m - 1];
+    double u[3];
+    double L = bridge_dir(a, b, u);
+    double best = 0, prev = 0;
+    for (size_t t = 1; t + 1 < m; t++) {
+        acd_vec2 q;
+        project(vertices + 3 * (size_t)chain[t], a, u, L, &q);
+        if (q.x < prev) *exact = 0;
+        prev = q.x;
+        if (q.y > best) best = q.y;
+    }
+    if (L < prev) *exact = 0;
+    *bound = best;
+}
+
 acd_status acd_corise_chain_concavity(const double *vertices, const uint32_t *chain, size_t m, double *conc,
                                       double *max, size_t *argmax, acd_corise_conc_kind *kind, acd_error *err) {
     if (!vertices || (!chain && m)) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL chain");
@@ -95,25 +136,15 @@ acd_status acd_corise_chain_concavity(const double *vertices, const uint32_t *ch
         return acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for a valley of %zu vertices", m);
     }
     const double *a = vertices + 3 * (size_t)chain[0], *b = vertices + 3 * (size_t)chain[m - 1];
-    double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    double L = sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]);
-    double u[3] = {0, 0, 0};
-    if (L > 0)
-        for (int k = 0; k < 3; k++) u[k] = ab[k] / L;
+    double u[3];
+    double L = bridge_dir(a, b, u);
     int monotone = 1;
     for (size_t t = 0; t < m; t++) {
-        const double *q = vertices + 3 * (size_t)chain[t];
-        double d[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
-        double x = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
-        double s = x < 0 ? 0 : x > L ? L : x;
-        double e[3] = {d[0] - s * u[0], d[1] - s * u[1], d[2] - s * u[2]};
-        double y = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-        if (t == 0) x = 0, y = 0;
-        if (t == m - 1) x = L, y = 0;
-        p[t].x = x;
-        p[t].y = y;
-        c[t] = y;
-        if (t > 0 && x < p[t - 1].x) monotone = 0;
+        project(vertices + 3 * (size_t)chain[t], a, u, L, &p[t]);
+        if (t == 0) p[t].x = 0, p[t].y = 0;
+        if (t == m - 1) p[t].x = L, p[t].y = 0;
+        c[t] = p[t].y;
+        if (t > 0 && p[t].x < p[t - 1].x) monotone = 0;
     }
     acd_corise_conc_kind how = ACD_CORISE_CONC_MONOTONE;
     if (!monotone) {

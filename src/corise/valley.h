@@ -45,6 +45,18 @@ typedef enum acd_corise_conc_kind {
 acd_status acd_corise_chain_concavity(const double *vertices, const uint32_t *chain, size_t m, double *conc,
                                       double *max, size_t *argmax, acd_corise_conc_kind *kind, acd_error *err);
 
+/* A cheap lower bound of the chain's concavity (the max of acd_corise_chain_concavity): the
+ * largest vertical drop of the projected chain, O(m), no allocation. *exact = 1 when the chain is
+ * x-monotone (or has fewer than 3 vertices): then *bound is the concavity, bit for bit. Otherwise
+ * the concavity is a shortest path inside the polygon (at least the drop, up to the rounding of
+ * its path sums: ACD_CORISE_CHAIN_BOUND_REL) or the drop itself (self-intersecting projection). */
+void acd_corise_chain_bound(const double *vertices, const uint32_t *chain, size_t m, double *bound, int *exact);
+
+/* Relative slack of that bound: a computed shortest-path concavity is a sum of at most m rounded
+ * distances, each at least the drop's share, so concavity >= bound * (1 - ACD_CORISE_CHAIN_BOUND_REL)
+ * for chains far below 1e6 vertices (each sum loses at most m ulps, 1e6 x 1.1e-16 = 1.1e-10). */
+#define ACD_CORISE_CHAIN_BOUND_REL 1e-9
+
 typedef struct acd_corise_bridge {
     uint32_t a, b;        /* mesh vertex ids of the hull edge, a < b */
     size_t first, count;  /* valley vertices: path[first .. first + count) of the set, a first */
