@@ -219,7 +219,20 @@ static int verify_surface(const acd_mesh *in, const acd3d_result *r, acd_error *
 
 /* --verify: checks computed here from the result, independently of the driver's bookkeeping. */
 static int verify(const acd3d_result *r, acd_error *err) {
-    double sum = 0;
+    /* Rounding in the volume sums grows with the sum of the tetrahedra's absolute volumes (not
+     * with the net volume: a thin or tiny solid far from the origin cancels a lot), so the
+     * tolerances are relative to that sum. */
+    double sum = 0, abs_sum = 0;
+    for (size_t i = 0; i < r->nparts; i++) {
+        const acd_mesh *m = &r->parts[i].mesh;
+        for (size_t t = 0; t < m->ntriangles; t++) {
+            const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
+                         *c = m->vertices + 3 * m->triangles[3 * t + 2];
+            abs_sum += fabs(a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                            a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+        }
+    }
+    const double vtol = 1e-9 * fabs(r->input_volume) + 1e-12 * abs_sum;
     for (size_t i = 0; i < r->nparts; i++) {
         const acd3d_part *p = &r->parts[i];
         const acd3d_node *n = &r->nodes[p->node];
@@ -232,7 +245,9 @@ static int verify(const acd3d_result *r, acd_error *err) {
                  a[2] * (b[0] * c[1] - b[1] * c[0]);
         }
         v /= 6.0;
-        if (!(v > 0)) return acd_fail(err, ACD_ERR_VERIFY, "part %zu has no positive volume (%g)", i, v);
+        /* a flat part (its hull has no volume) may round to a tiny negative volume */
+        if (n->leaf_reason == ACD3D_LEAF_FLAT ? !(v >= -vtol) : !(v > 0))
+            return acd_fail(err, ACD_ERR_VERIFY, "part %zu has no positive volume (%g)", i, v);
         sum += v;
         if (n->leaf_reason == ACD3D_LEAF_TAU && p->concavity > r->tau * (1 + 1e-12) + 1e-12 * r->scale)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g", i, p->concavity, r->tau);
@@ -257,7 +272,7 @@ static int verify(const acd3d_result *r, acd_error *err) {
         if (worst > 1e-9 * r->scale)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu sticks out of its hull by %g", i, worst);
     }
-    if (fabs(sum - r->input_volume) > 1e-9 * fabs(r->input_volume))
+    if (fabs(sum - r->input_volume) > vtol)
         return acd_fail(err, ACD_ERR_VERIFY, "part volumes add up to %.17g, the input's is %.17g", sum,
                         r->input_volume);
     return ACD_OK;
@@ -388,8 +403,10 @@ int acd_cmd_3d(int argc, char **argv) {
     p.progress = on_progress;
     p.progress_user = &ps;
     acd3d_result r;
+    int repaired = 0;
     acd_status st = acd3d_decompose(&mesh, &p, &r, &err);
     if (st == ACD_ERR_NON_MANIFOLD && p.mode == ACD3D_SOLID && close_holes) {
+        repaired = 1;
         /* solid mode on an open or unoriented mesh: weld, orient and close every hole, then
          * decompose the closed mesh (the parts' volumes then add up to the closed volume) */
         acd_error first = err;
@@ -438,9 +455,21 @@ int acd_cmd_3d(int argc, char **argv) {
         else
             printf("genus of the parts: 0 (all %zu)\n", r.nparts);
     }
-    if (stuck)
+    if (stuck) {
         fprintf(stderr, "acd 3d: %zu part(s) stayed above tau: no cut could split them further (see leaf_reason)\n",
                 stuck);
+        /* the usual cause in solid mode: the surface crosses itself, so a plane cut cannot give
+         * closed, outward pieces (often a scan whose holes were closed by caps that cross it) */
+        size_t npairs = 0;
+        uint32_t pair[2];
+        acd_error serr;
+        if (p.mode == ACD3D_SOLID && acd_mesh_self_intersections(&mesh, &npairs, pair, 1, &serr) == ACD_OK &&
+            npairs > 0)
+            fprintf(stderr,
+                    "acd 3d: the %smesh intersects itself (%zu face pairs, first: faces %u and %u): solid mode "
+                    "cannot cut through crossing sheets; fix the mesh or use --mode surface\n",
+                    repaired ? "repaired " : "", npairs, pair[0], pair[1]);
+    }
     if (hulls_path && (st = write_parts(hulls_path, &r, 1, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
     if (!code && parts_path && (st = write_parts(parts_path, &r, 0, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
     if (!code && export_path && (st = export_dir(export_path, model_name, &r, &err)) != ACD_OK)

@@ -37,6 +37,12 @@
 /* A piece whose volume is below this fraction of its parent's is a sliver: the cut that made it
  * is rejected. */
 #define ACD3_MIN_PIECE_FRACTION 1e-6
+/* When every candidate leaves such a sliver (the part already carries one, left by an earlier cut
+ * at a thin wedge, and every plane separates it again), the candidates are tried once more
+ * accepting pieces down to this fraction of the part's hull volume (not of its own volume: a
+ * part that is itself nearly flat inside a big hull gets no such retry): the part is split
+ * rather than left above tau. */
+#define ACD3_MIN_PIECE_FRACTION_RETRY 1e-12
 /* Safety net on the number of nodes of the tree. */
 #define ACD3_MAX_NODES 20000
 
@@ -216,14 +222,13 @@ static int surface_bridge_plane(const acd_mesh *m, const acd3_measure *ms, acd3_
  * measures are kept for when they are processed. Returns 1 if split, 0 if no candidate splits,
  * or -(status) on failure. */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
-                     double tau, double tol, int solid, int restrict_cut, const acd3_resolve_opts *ro,
-                     split_choice *best, acd_error *err) {
+                     double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
+                     const acd3_resolve_opts *ro, split_choice *best, acd_error *err) {
     acd3_plane_candidate cand[ACD3_MAX_CANDIDATES + 1];
     int nc = acd3_cut_candidates(m, g, ms, ro, cand);
     /* surface mode: the bridge plane last (tried when no candidate before it makes progress) */
     int nbridge = nc;
     if (!solid && nc > 0 && surface_bridge_plane(m, ms, &cand[nc])) nc++;
-    double vol = solid ? acd_geom3_signed_volume(m) : 0.0;
     int found = 0, compared = 0, best_progress = 0;
     memset(best, 0, sizeof *best);
     for (int i = 0; i < nc; i++) {
@@ -254,7 +259,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
                  (!solid && trial.cut.npieces == 1 && trial.cut.pieces[0].mesh.nvertices > m->nvertices);
         for (size_t k = 0; ok && solid && k < trial.cut.npieces; k++) {
             const acd_mesh *pm = &trial.cut.pieces[k].mesh;
-            if (acd_geom3_signed_volume(pm) < ACD3_MIN_PIECE_FRACTION * vol) ok = 0;
+            if (acd_geom3_signed_volume(pm) < min_piece_volume) ok = 0;
             /* every piece must be a closed, consistently oriented surface; a cut that rounding
              * left otherwise is not used */
             acd_edge_map em;
@@ -370,12 +375,17 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
          * witness first; solid mode then whole-plane cuts when that does not split the part
          * (surface mode does not: cutting a surface along every crossing of a plane leaves many
          * slivers; its section cut already tries the strips nearest the witness in turn) */
+        /* surface parts have no volume: every piece passes the sliver test */
+        const double vol = c->solid ? acd_geom3_signed_volume(&w->mesh) : -INFINITY;
         if (c->params->region_cuts || !c->solid)
-            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1, &ro, &out->choice,
-                              &out->err);
+            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
+                              ACD3_MIN_PIECE_FRACTION * vol, &ro, &out->choice, &out->err);
         if (split == 0 && c->solid)
-            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0, &ro, &out->choice,
-                              &out->err);
+            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
+                              ACD3_MIN_PIECE_FRACTION * vol, &ro, &out->choice, &out->err);
+        if (split == 0 && c->solid)
+            split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
+                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, &ro, &out->choice, &out->err);
         if (split < 0) {
             out->st = (acd_status)(-split);
             split = 0;

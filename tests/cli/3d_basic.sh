@@ -78,4 +78,8 @@ printf 'v 0 0 0\nf 1 2 3\n' > "$T/bad.obj"
 # surface mode takes the open mesh, and the parts tile it
 "$ACD" 3d "$T/open.obj" --mode surface -t 0 --tau-abs --verify --parts "$T/sp.obj" > "$T/s.txt" || fail "surface mode exit $?"
 [ "$(grep -c '^f ' "$T/sp.obj")" = 19 ] || fail "surface parts should hold the 19 faces"
+# a closed part carrying a sliver that every plane separates again is still split within tau
+"$ACD" 3d "$SRC/tests/data/meshes/sliver_part.off" -t 0.5 --tau-abs --verify --json "$T/s.json" >"$T/s.out" 2>"$T/s.err" ||
+  fail "sliver part: exit $? $(cat "$T/s.err")"
+grep -q '"no_cut"' "$T/s.json" && fail "sliver part: a part stayed above tau"
 echo ok
