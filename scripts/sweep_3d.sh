@@ -39,7 +39,7 @@ while IFS= read -r f; do
     start=$(date +%s.%N)
     timeout -s KILL "$LIMIT" "$ACD" 3d "$f" --mode "$mode" -t "$TAU" --verify --json "$T/r.json" >"$T/out" 2>"$T/err"
     rc=$?
-    secs=$(echo "$(date +%s.%N) - $start" | bc)
+    secs=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
     parts=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["stats"]["parts"])' "$T/r.json" 2>/dev/null || echo "")
     rm -f "$T/r.json"
     note=""
