@@ -324,6 +324,42 @@ static void test_off_features(void **state) {
     acd_mesh_free(&m);
 }
 
+/* A non-convex polygon face is ear-clipped, not fanned (a fan from its first corner would cover
+ * area outside it and overlap itself): an L-shaped prism written with two 6-gon caps whose first
+ * corner sees not all of the L, read as OFF and OBJ: 20 triangles, closed, volume 3, no
+ * self-intersection; a convex quad is still fanned from its first corner. */
+static void test_nonconvex_polygon_faces(void **state) {
+    (void)state;
+    const char *off = "OFF 12 8 0\n"
+                      "2 0 0\n2 1 0\n1 1 0\n1 2 0\n0 2 0\n0 0 0\n"
+                      "2 0 1\n2 1 1\n1 1 1\n1 2 1\n0 2 1\n0 0 1\n"
+                      "6 0 5 4 3 2 1\n6 6 7 8 9 10 11\n"
+                      "4 0 1 7 6\n4 1 2 8 7\n4 2 3 9 8\n4 3 4 10 9\n4 4 5 11 10\n4 5 0 6 11\n";
+    const char *obj = "v 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\n"
+                      "v 2 0 1\nv 2 1 1\nv 1 1 1\nv 1 2 1\nv 0 2 1\nv 0 0 1\n"
+                      "f 1 6 5 4 3 2\nf 7 8 9 10 11 12\n"
+                      "f 1 2 8 7\nf 2 3 9 8\nf 3 4 10 9\nf 4 5 11 10\nf 5 6 12 11\nf 6 1 7 12\n";
+    const char *texts[] = {off, obj};
+    for (int i = 0; i < 2; i++) {
+        acd_mesh m;
+        acd_error err;
+        acd_status s = read_str(texts[i], ACD_MESH_FORMAT_AUTO, &m, &err);
+        if (s != ACD_OK) fail_msg("%s", err.message);
+        assert_int_equal(m.ntriangles, 20);
+        acd_mesh_report r;
+        assert_int_equal(acd_mesh_validate(&m, 1, &r, &err), ACD_OK);
+        assert_true(r.closed);
+        assert_int_equal(r.self_intersections, 0);
+        assert_true(fabs(r.volume - 3.0) < 1e-12);
+        /* the side quads (convex) are fanned from their first corner: triangles (0 1 7), (0 7 6) */
+        int found = 0;
+        for (size_t t = 0; t < m.ntriangles; t++)
+            found += m.triangles[3 * t] == 0 && m.triangles[3 * t + 1] == 1 && m.triangles[3 * t + 2] == 7;
+        assert_int_equal(found, 1);
+        acd_mesh_free(&m);
+    }
+}
+
 static void test_stl_ascii_and_weld(void **state) {
     (void)state;
     const char *text = "solid t\n"
@@ -570,6 +606,7 @@ int main(void) {
         cmocka_unit_test(test_obj_features),
         cmocka_unit_test(test_obj_groups),
         cmocka_unit_test(test_off_features),
+        cmocka_unit_test(test_nonconvex_polygon_faces),
         cmocka_unit_test(test_stl_ascii_and_weld),
         cmocka_unit_test(test_malformed),
         cmocka_unit_test(test_text_encodings),

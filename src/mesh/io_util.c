@@ -1,10 +1,14 @@
 /* mesh/io_util: mesh builder, text cursor with fast number parsing, output buffer. */
 #include "mesh/io_util.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "core/predicates.h"
+#include "geom2/triangulate.h"
 
 int acd_grow(void **p, size_t *cap, size_t need, size_t elem) {
     if (need <= *cap) return 1;
@@ -68,7 +72,72 @@ int acd_builder_poly_push(acd_mesh_builder *b, uint32_t i) {
     return 1;
 }
 
+/* A polygon of more than three corners that is not convex in its own plane cannot be fanned:
+ * the fan's triangles would overlap (a self-intersecting mesh from a valid file, as in CGAL's
+ * corner_poly.off and mpi.off). It is projected on the coordinate plane its Newell normal is
+ * most perpendicular to and ear-clipped (geom2/triangulate, exact predicates); each triangle
+ * keeps the polygon's orientation. Returns 1 if emitted that way, 0 to fan instead (convex, or
+ * not a simple polygon in projection: the fan is then as good as anything), -1 out of memory. */
+static int builder_ear_clip(acd_mesh_builder *b) {
+    const size_t n = b->npoly;
+    for (size_t i = 0; i < n; i++)
+        if (b->poly[i] >= b->nv) return 0; /* indices are checked by the reader */
+    double N[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; i++) {
+        const double *p = b->v + 3 * (size_t)b->poly[i], *q = b->v + 3 * (size_t)b->poly[(i + 1) % n];
+        N[0] += (p[1] - q[1]) * (p[2] + q[2]);
+        N[1] += (p[2] - q[2]) * (p[0] + q[0]);
+        N[2] += (p[0] - q[0]) * (p[1] + q[1]);
+    }
+    int k = fabs(N[0]) >= fabs(N[1]) && fabs(N[0]) >= fabs(N[2]) ? 0 : fabs(N[1]) >= fabs(N[2]) ? 1 : 2;
+    if (!(N[k] != 0)) return 0;
+    const int ax = (k + 1) % 3, ay = (k + 2) % 3;
+    acd_vec2 *pts = malloc(n * sizeof *pts);
+    if (!pts) return -1;
+    for (size_t i = 0; i < n; i++) {
+        pts[i].x = b->v[3 * (size_t)b->poly[i] + ax];
+        pts[i].y = b->v[3 * (size_t)b->poly[i] + ay];
+    }
+    /* convex (every turn the same way or straight): the fan is right */
+    int pos = 0, neg = 0;
+    for (size_t i = 0; i < n; i++) {
+        const acd_vec2 *a = &pts[(i + n - 1) % n], *c = &pts[i], *d = &pts[(i + 1) % n];
+        int o = acd_orient2d_sign((const double[2]){a->x, a->y}, (const double[2]){c->x, c->y},
+                                  (const double[2]){d->x, d->y});
+        pos += o > 0;
+        neg += o < 0;
+    }
+    if (!pos || !neg) {
+        free(pts);
+        return 0;
+    }
+    const size_t ring[2] = {0, n};
+    size_t *tris = NULL, ntris = 0;
+    acd_status st = acd_triangulate_rings(pts, ring, 1, 0, &tris, &ntris, NULL, NULL, NULL);
+    int ccw = st == ACD_OK ? acd_ring_is_ccw(pts, n) : 0;
+    free(pts);
+    if (st == ACD_ERR_NOMEM) return -1;
+    if (st != ACD_OK) return 0;
+    for (size_t t = 0; t < ntris; t++) {
+        uint32_t i0 = b->poly[tris[3 * t]], i1 = b->poly[tris[3 * t + 1]], i2 = b->poly[tris[3 * t + 2]];
+        if (!(ccw ? acd_builder_triangle(b, i0, i1, i2) : acd_builder_triangle(b, i0, i2, i1))) {
+            free(tris);
+            return -1;
+        }
+    }
+    free(tris);
+    return 1;
+}
+
 int acd_builder_fan(acd_mesh_builder *b) {
+    if (b->npoly > 3) {
+        int r = builder_ear_clip(b);
+        if (r < 0) return 0;
+        if (r > 0) {
+            b->npoly = 0;
+            return 1;
+        }
+    }
     for (size_t i = 1; i + 1 < b->npoly; i++)
         if (!acd_builder_triangle(b, b->poly[0], b->poly[i], b->poly[i + 1])) return 0;
     b->npoly = 0;

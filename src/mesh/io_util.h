@@ -31,8 +31,10 @@ void acd_builder_free(acd_mesh_builder *b);
 int acd_builder_vertex(acd_mesh_builder *b, double x, double y, double z);
 int acd_builder_triangle(acd_mesh_builder *b, uint32_t a, uint32_t c, uint32_t d);
 int acd_builder_group(acd_mesh_builder *b, const char *name, size_t len);
-/* Pushes one polygon index to the scratch polygon; acd_builder_fan emits it as a fan
- * (v0, vi, vi+1) and clears it. */
+/* Pushes one polygon index to the scratch polygon; acd_builder_fan emits it as triangles and
+ * clears it: a fan (v0, vi, vi+1) when the polygon is convex in its plane (or its vertices are
+ * not read yet, or it is not simple in projection), ear clipping otherwise (no overlapping
+ * triangles from a non-convex face). */
 int acd_builder_poly_push(acd_mesh_builder *b, uint32_t i);
 int acd_builder_fan(acd_mesh_builder *b);
 /* Moves the arrays into out (shrinks them); b is left empty except for groups. */
