@@ -75,6 +75,7 @@ typedef struct part {
     uint32_t *faces;
     size_t n;
     size_t depth;
+    double conc; /* final parts: the largest valley concavity the loop measured on it */
 } part;
 
 typedef struct part_list {
@@ -90,7 +91,7 @@ static int push_part(part_list *l, uint32_t *faces, size_t n, size_t depth) {
         l->p = q;
         l->cap = nc;
     }
-    l->p[l->n++] = (part){faces, n, depth};
+    l->p[l->n++] = (part){faces, n, depth, 0};
     return 1;
 }
 
@@ -310,10 +311,12 @@ static void normalise(const acd_mesh *m, acd_mesh *w, double *scale) {
 }
 
 /* One CoRiSe step on the submesh s: *nparts = 0 when s is final (no deep valley or flat hull),
- * else part[] holds the cut result. */
-static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t *part, size_t *nparts,
+ * else part[] holds the cut result. *maxc: the largest valley concavity of s (0 when its hull is
+ * flat), as max_valley_concavity computes it. */
+static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t *part, size_t *nparts, double *maxc,
                        acd_corise_stats *stats, acd_error *err) {
     *nparts = 0;
+    *maxc = 0;
     acd_edge_graph g;
     acd_corise_bridges b;
     acd_corise_ridges r;
@@ -329,7 +332,10 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t
     if (b.hull_dim < 3) goto done;
     int deep = 0;
     for (size_t i = 0; i < b.nbridges; i++)
-        if (isfinite(b.bridge[i].length) && b.bridge[i].concavity > prm->tau) deep = 1;
+        if (isfinite(b.bridge[i].length)) {
+            if (b.bridge[i].concavity > prm->tau) deep = 1;
+            if (b.bridge[i].concavity > *maxc) *maxc = b.bridge[i].concavity;
+        }
     if (!deep) goto done;
     if ((st = acd_corise_ridges_compute(&b, prm->tau, &r, err)) != ACD_OK) goto done;
     ml = malloc(s->ntriangles * sizeof *ml);
@@ -359,6 +365,12 @@ static int cmp_final(const void *x, const void *y) {
 
 acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params, uint32_t *labels,
                               acd_corise_stats *stats, acd_error *err) {
+    return acd_corise_segment_ex(m, params, labels, NULL, stats, err);
+}
+
+acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *params, uint32_t *labels,
+                                 double **part_conc, acd_corise_stats *stats, acd_error *err) {
+    if (part_conc) *part_conc = NULL;
     if (!m || !labels) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
     acd_corise_params prm = params ? *params : acd_corise_default_params();
     acd_corise_stats local;
@@ -418,7 +430,8 @@ acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params
         }
         cutpart = cp;
         size_t np = 0;
-        st = step(&aug, &prm, cutpart, &np, S, err);
+        double maxc = 0;
+        st = step(&aug, &prm, cutpart, &np, &maxc, S, err);
         acd_mesh_free(&aug);
         if (st != ACD_OK) {
             free(cur.faces);
@@ -437,6 +450,7 @@ acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params
                 free(cur.faces);
                 goto nomem;
             }
+            fin.p[fin.n - 1].conc = maxc;
             done_faces += cur.n;
             if (prm.progress && prm.progress(prm.progress_user, (double)done_faces / (double)m->ntriangles, "corise")) {
                 st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback after %zu of %zu facets",
@@ -475,10 +489,17 @@ acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params
         fp[i] = (final_part){mn, i};
     }
     qsort(fp, fin.n, sizeof *fp, cmp_final);
+    double *pc = NULL;
+    if (part_conc && !(pc = malloc((fin.n ? fin.n : 1) * sizeof *pc))) {
+        free(fp);
+        goto nomem;
+    }
     for (size_t r = 0; r < fin.n; r++) {
         const part *p = &fin.p[fp[r].index];
         for (size_t k = 0; k < p->n; k++) labels[p->faces[k]] = (uint32_t)r;
+        if (pc) pc[r] = p->conc;
     }
+    if (part_conc) *part_conc = pc;
     free(fp);
     S->parts = fin.n;
     goto done;

@@ -48,6 +48,14 @@ typedef struct acd_corise_stats {
 acd_status acd_corise_segment(const acd_mesh *m, const acd_corise_params *params, uint32_t *labels,
                               acd_corise_stats *stats, acd_error *err);
 
+/* The same, and *part_conc (when part_conc is not NULL; malloc'd, stats->parts entries, indexed
+ * by label, freed by the caller) receives each final part's largest valley concavity as the loop
+ * measured it on that part: bit for bit what acd_corise_parts_concavity returns for the labels
+ * (the loop's parts are extracted in facet order, capped and measured the same way), without
+ * measuring them again. */
+acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *params, uint32_t *labels,
+                                 double **part_conc, acd_corise_stats *stats, acd_error *err);
+
 /* The valley test of the loop, re-run on a labelling: for each part k < nparts (the facets with
  * labels[f] == k, in facet order) the part is extracted, the holes that separate it from the rest
  * of the mesh are capped (as in the loop), and conc[k] receives the largest valley concavity of

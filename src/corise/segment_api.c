@@ -1,6 +1,6 @@
 /* corise/segment_api: the public segmentation API (acd/segment.h) over the CoRiSe loop of
  * corise/corise (Liu, Xi, Lien, CAD 2016, §3 and §5.2; spec corise.md §2.1, §2.10): parameters,
- * per-part concavity (the loop's valley test re-run per part), per-part convex hulls
+ * per-part concavity (the loop's own valley test of each final part), per-part convex hulls
  * (acd_hull_compute) and volumes. */
 #define _POSIX_C_SOURCE 200809L
 #include "acd/segment.h"
@@ -99,7 +99,7 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
     double *conc = NULL, *pts = NULL;
     out->labels = malloc((mesh->ntriangles ? mesh->ntriangles : 1) * sizeof *out->labels);
     if (!out->labels) goto nomem;
-    acd_status st = acd_corise_segment(mesh, &c, out->labels, &stats, err);
+    acd_status st = acd_corise_segment_ex(mesh, &c, out->labels, &conc, &stats, err);
     if (st != ACD_OK) goto fail;
     out->nfaces = mesh->ntriangles;
     out->tau = params->tau;
@@ -108,11 +108,11 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
     out->depth = stats.depth;
     out->unresolved = stats.unresolved;
     out->parts = calloc(stats.parts ? stats.parts : 1, sizeof *out->parts);
-    conc = malloc((stats.parts ? stats.parts : 1) * sizeof *conc);
     pts = malloc(9 * mesh->ntriangles * sizeof *pts);
-    if (!out->parts || !conc || !pts) goto nomem;
+    if (!out->parts || !pts) goto nomem;
     out->nparts = stats.parts;
-    if ((st = acd_corise_parts_concavity(mesh, &c, out->labels, out->nparts, conc, err)) != ACD_OK) goto fail;
+    /* conc: the loop's own valley test of each final part (acd_corise_segment_ex), the value
+       acd_corise_parts_concavity would re-measure */
     for (size_t f = 0; f < mesh->ntriangles; f++) {
         acd_segment_part *p = &out->parts[out->labels[f]];
         const uint32_t *T = mesh->triangles + 3 * f;

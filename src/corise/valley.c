@@ -195,7 +195,9 @@ typedef struct valley_search {
     size_t nv;
     double *cost;
     uint32_t *pred;
-    uint32_t *stamp; /* cost/pred valid when stamp == run */
+    uint32_t *stamp; /* cost/pred/dev/h valid when stamp == run */
+    double *dev;     /* distance to the bridge segment */
+    double *h;       /* A* heuristic: distance to b */
     uint8_t *done;   /* settled in run `stamp` when done == 1 */
     uint32_t run;
     vs_item *heap;
@@ -206,6 +208,8 @@ typedef struct valley_search {
 
 static void vs_free(valley_search *s) {
     free(s->cost);
+    free(s->dev);
+    free(s->h);
     free(s->pred);
     free(s->stamp);
     free(s->done);
@@ -219,10 +223,12 @@ static int vs_init(valley_search *s, size_t nv) {
     s->nv = nv;
     size_t n = nv ? nv : 1;
     s->cost = malloc(n * sizeof *s->cost);
+    s->dev = malloc(n * sizeof *s->dev);
+    s->h = malloc(n * sizeof *s->h);
     s->pred = malloc(n * sizeof *s->pred);
     s->stamp = calloc(n, sizeof *s->stamp);
     s->done = calloc(n, 1);
-    return s->cost && s->pred && s->stamp && s->done;
+    return s->cost && s->dev && s->h && s->pred && s->stamp && s->done;
 }
 
 static int vs_less(vs_item x, vs_item y) { return x.cost < y.cost || (x.cost == y.cost && x.v < y.v); }
@@ -289,6 +295,7 @@ static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V,
     s->done[a] = 0;
     s->cost[a] = 0;
     s->pred[a] = ACD_NO_VERTEX;
+    s->dev[a] = seg_dist(pa, pa, u, L);
     if (!vs_push(s, L, 0, a)) return -1;
     int found = 0;
     while (s->nheap) {
@@ -300,21 +307,24 @@ static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V,
             found = 1;
             break;
         }
-        double dx = seg_dist(V + 3 * (size_t)x, pa, u, L);
+        double dx = s->dev[x];
         for (size_t k = g->row[x]; k < g->row[x + 1]; k++) {
             uint32_t y = g->adj[k];
-            if (s->stamp[y] == run && s->done[y]) continue;
-            double dy = seg_dist(V + 3 * (size_t)y, pa, u, L);
-            double c = it.g + g->length[g->adj_edge[k]] * (1 + kappa * (dx + dy));
-            if (s->stamp[y] != run || c < s->cost[y]) {
+            int seen = s->stamp[y] == run;
+            if (seen && s->done[y]) continue;
+            if (!seen) { /* first touch in this run: its distances, once */
                 const double *py = V + 3 * (size_t)y;
-                double hy = sqrt((py[0] - pb[0]) * (py[0] - pb[0]) + (py[1] - pb[1]) * (py[1] - pb[1]) +
-                                 (py[2] - pb[2]) * (py[2] - pb[2]));
+                s->dev[y] = seg_dist(py, pa, u, L);
+                s->h[y] = sqrt((py[0] - pb[0]) * (py[0] - pb[0]) + (py[1] - pb[1]) * (py[1] - pb[1]) +
+                               (py[2] - pb[2]) * (py[2] - pb[2]));
+            }
+            double c = it.g + g->length[g->adj_edge[k]] * (1 + kappa * (dx + s->dev[y]));
+            if (!seen || c < s->cost[y]) {
                 s->stamp[y] = run;
                 s->done[y] = 0;
                 s->cost[y] = c;
                 s->pred[y] = x;
-                if (!vs_push(s, c + hy, c, y)) return -1;
+                if (!vs_push(s, c + s->h[y], c, y)) return -1;
             }
         }
     }
@@ -388,7 +398,7 @@ acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph
     memset(&h, 0, sizeof h);
     valley_search vs;
     memset(&vs, 0, sizeof vs);
-    double *conc = NULL;
+    double *conc = NULL, *depth = NULL;
     size_t cap_conc = 0;
     if (!used || !ids || !pts) goto nomem;
     for (size_t t = 0; t < 3 * m->ntriangles; t++) {
@@ -431,6 +441,11 @@ acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph
     if (!out->bridge) goto nomem;
     size_t cap_path = 0;
     if (!vs_init(&vs, m->nvertices)) goto nomem;
+    if (clamp_depth && h.dim == 3) { /* depth below the hull per vertex, computed on first use */
+        depth = malloc(m->nvertices * sizeof *depth);
+        if (!depth) goto nomem;
+        for (size_t v = 0; v < m->nvertices; v++) depth[v] = NAN;
+    }
     for (size_t i = 0; i < nb; i++) {
         acd_corise_bridge *br = &out->bridge[i];
         br->a = pairs[i].a;
@@ -470,9 +485,10 @@ acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph
         br->deepest = 0;
         for (size_t k = 0; k < len; k++) {
             double c = conc[k];
-            if (clamp_depth && h.dim == 3) {
-                double depth = -acd_hull_plane_distance(&h, m->vertices + 3 * (size_t)out->path[br->first + k]);
-                if (depth < c) c = depth > 0 ? depth : 0;
+            if (clamp_depth && h.dim == 3 && c != 0) { /* c = 0 stays 0 whatever the depth */
+                uint32_t v = out->path[br->first + k];
+                if (isnan(depth[v])) depth[v] = -acd_hull_plane_distance(&h, m->vertices + 3 * (size_t)v);
+                if (depth[v] < c) c = depth[v] > 0 ? depth[v] : 0;
             }
             if (c > br->concavity) br->concavity = c, br->deepest = k;
         }
@@ -490,6 +506,7 @@ done:
     acd_hull_free(&h);
     vs_free(&vs);
     free(conc);
+    free(depth);
     if (st != ACD_OK) acd_corise_bridges_free(out);
     return st;
 }
