@@ -25,6 +25,7 @@
 #include "acd3/region_cut.h"
 #include "acd3/resolve.h"
 #include "acd3/surface_cut.h"
+#include "acd3/surface_merge.h"
 #include "acd3/topology.h"
 #include "core/error.h"
 #include "core/tolerance.h"
@@ -475,6 +476,51 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
     return st;
 }
 
+/* Surface mode's merge pass (acd3/surface_merge): like join_adjacent, the joined node's mesh the
+ * members welded along their shared chains, its concavity measured as the leaves'. */
+static acd_status join_surface(tree *t, double eps, double tau, double tol, int threads, size_t *nparts,
+                               acd_error *err) {
+    size_t np = 0;
+    for (size_t n = 0; n < t->n; n++) np += (size_t)node_is_part(&t->a[n].node);
+    if (np < 2) return ACD_OK;
+    size_t *idx = malloc(np * sizeof *idx);
+    acd_mesh *meshes = malloc(np * sizeof *meshes);
+    if (!idx || !meshes) {
+        free(idx);
+        free(meshes);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    np = 0;
+    for (size_t n = 0; n < t->n; n++)
+        if (node_is_part(&t->a[n].node)) {
+            idx[np] = n;
+            meshes[np++] = t->a[n].mesh;
+        }
+    acd3_surface_merge_result mr;
+    acd_status st = acd3_surface_merge(meshes, np, eps, tau, tol, threads, &mr, err);
+    free(meshes);
+    for (size_t g = 0; st == ACD_OK && g < mr.ngroups; g++) {
+        if (mr.group_size[g] < 2) continue;
+        if (!tree_push(t, -1, &mr.meshes[g], 0, 0)) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            break;
+        }
+        memset(&mr.meshes[g], 0, sizeof mr.meshes[g]);
+        work_node *w = &t->a[t->n - 1];
+        w->node.concavity = mr.concavity[g];
+        w->node.leaf_reason = ACD3D_LEAF_JOINED;
+        for (size_t i = 0; i < np; i++)
+            if (mr.group_of[i] == g) {
+                t->a[idx[i]].node.merged_into = (int)(t->n - 1);
+                acd_mesh_free(&t->a[idx[i]].mesh);
+            }
+        *nparts -= mr.group_size[g] - 1;
+    }
+    acd3_surface_merge_result_free(&mr);
+    free(idx);
+    return st;
+}
+
 acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!params || params->cookie != ACD3D_PARAMS_COOKIE)
@@ -644,6 +690,9 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
 
     if (params->merge && solid) {
         st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, nthreads, &nleaves, err);
+        if (st != ACD_OK) goto fail;
+    } else if (params->merge) {
+        st = join_surface(&t, eps, out->merge_tau, sc.dist, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     }
 
