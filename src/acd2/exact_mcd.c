@@ -534,23 +534,33 @@ static int compute_options(mcd *m, size_t i, size_t k, mcd_entry *out, int prune
     size_t nk = 0;
     for (size_t q = 0; q < nopt; q++)
         if (opt[q].cost == best) opt[nk++] = opt[q];
-    qsort(opt, nk, sizeof *opt, cmp_pair_s);
-    /* non-dominated: scanning s downwards, keep strictly decreasing t; the kept ones are packed at
-     * the top (positions already visited), ending as opt[nk - keep .. nk) in staircase order */
-    size_t keep = 0, mint = NONE, top = nk;
-    for (size_t q = nk; q-- > 0;)
-        if (mint == NONE || opt[q].pr.t < mint) {
-            mint = opt[q].pr.t;
-            opt[--top] = opt[q];
-            keep++;
-        }
+    size_t keep = 0, top = nk;
     if (prune && m->reflex[i] != m->reflex[k]) {
         /* one reflex end: the angle condition at the convex end always holds (the merged piece
          * stays inside the polygon's angle there), so only the narrowest pair at the reflex end is
-         * ever chosen: the last (largest s) when i is reflex, the first (smallest t) when k is */
-        if (m->reflex[i]) top = nk - 1;
-        else nk = top + 1;
-        keep = 1;
+         * ever chosen: the staircase's last (largest s) when i is reflex, its first (smallest t)
+         * when k is; picked in one pass, ties as the stable sort below would leave them */
+        size_t b = 0;
+        for (size_t q = 1; q < nk; q++) {
+            const mcd_pair *x = &opt[q].pr, *y = &opt[b].pr;
+            if (m->reflex[i] ? cmp_pair_s(&opt[q], &opt[b]) >= 0
+                             : x->t < y->t || (x->t == y->t && (x->s > y->s || (x->s == y->s && x->type >= y->type))))
+                b = q;
+        }
+        opt[0] = opt[b];
+        top = 0;
+        nk = keep = 1;
+    } else {
+        qsort(opt, nk, sizeof *opt, cmp_pair_s);
+        /* non-dominated: scanning s downwards, keep strictly decreasing t; the kept ones are packed
+         * at the top (positions already visited), ending as opt[nk - keep .. nk) in staircase order */
+        size_t mint = NONE;
+        for (size_t q = nk; q-- > 0;)
+            if (mint == NONE || opt[q].pr.t < mint) {
+                mint = opt[q].pr.t;
+                opt[--top] = opt[q];
+                keep++;
+            }
     }
     if (m->npool + keep >= PNONE) return 0; /* 32-bit pool indices */
     if (m->npool + keep > m->cpool) {
