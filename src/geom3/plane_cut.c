@@ -502,14 +502,28 @@ done:
     return st;
 }
 
+/* A shell whose mean thickness (signed volume over half its area) is below this fraction of the
+ * mesh's bounding-box diagonal encloses nothing but rounding: a flattened sheet, two coincident
+ * layers, left where the plane runs through coplanar faces or exactly through vertices of a part
+ * that was already cut there. It is neither a piece nor a cavity: it is dropped (its
+ * volume is zero, so the pieces' volumes still add up). Taken as a cavity, such a sheet of
+ * volume -1e-20 used to join a real piece, which then self-intersected and could not be cut
+ * again (a part left above tau). */
+#define ACD_PLANE_CUT_FLAT_REL 1e-12
+
 /* Shells of negative volume (cavities: inward-facing surfaces) join the smallest shell of positive
  * volume on the same side that contains them (exact ray winding number of one of their vertices
- * not on that shell's surface). */
-static acd_status group_cavities(cut_ctx *c, uint32_t *parent) {
+ * not on that shell's surface). flat[root] is set for the flat shells (ACD_PLANE_CUT_FLAT_REL),
+ * which join nothing. */
+static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
     acd_error *err = c->err;
     size_t nt = c->nt;
-    double *vol = calloc(nt ? nt : 1, sizeof *vol);
-    if (!vol) return acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping cavities");
+    double *vol = calloc(nt ? nt : 1, sizeof *vol), *area = calloc(nt ? nt : 1, sizeof *area);
+    if (!vol || !area) {
+        free(vol);
+        free(area);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping cavities");
+    }
     double lo[3], hi[3], o[3];
     for (size_t v = 0; v < c->nv; v++)
         for (int k = 0; k < 3; k++) {
@@ -525,8 +539,22 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent) {
         double a[3], b[3], d[3], bd[3];
         for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], d[k] = p[2][k] - o[k];
         cross3(b, d, bd);
-        vol[acd_uf_find(parent, (uint32_t)t)] += (a[0] * bd[0] + a[1] * bd[1] + a[2] * bd[2]) / 6.0;
+        double tv = (a[0] * bd[0] + a[1] * bd[1] + a[2] * bd[2]) / 6.0;
+        uint32_t r = acd_uf_find(parent, (uint32_t)t);
+        vol[r] += tv;
+        double e1[3], e2[3], nn[3];
+        for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
+        cross3(e1, e2, nn);
+        area[r] += 0.5 * sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
     }
+    double diag = 0;
+    for (int k = 0; k < 3; k++) diag += c->nv ? (hi[k] - lo[k]) * (hi[k] - lo[k]) : 0;
+    diag = sqrt(diag);
+    for (size_t t = 0; t < nt; t++) {
+        flat[t] = parent[t] == t && !(fabs(vol[t]) > ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t]);
+        if (flat[t]) vol[t] = 0; /* neither a piece nor a cavity */
+    }
+    free(area);
     for (size_t t = 0; t < nt; t++)
         if (parent[t] == t && vol[t] < 0) nneg++;
     if (nneg == 0) {
@@ -608,10 +636,11 @@ out:
 static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     acd_error *err = c->err;
     uint32_t *parent = malloc((c->nt ? c->nt : 1) * sizeof *parent);
-    uint8_t *keep = malloc(c->nt ? c->nt : 1);
-    if (!parent || !keep) {
+    uint8_t *keep = malloc(c->nt ? c->nt : 1), *flat = calloc(c->nt ? c->nt : 1, 1);
+    if (!parent || !keep || !flat) {
         free(parent);
         free(keep);
+        free(flat);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the cut pieces");
     }
     for (size_t t = 0; t < c->nt; t++) parent[t] = (uint32_t)t;
@@ -629,9 +658,10 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         acd_edge_map_free(&m);
     }
     free(keep);
-    if (st == ACD_OK) st = group_cavities(c, parent);
+    if (st == ACD_OK) st = group_cavities(c, parent, flat);
     if (st != ACD_OK) {
         free(parent);
+        free(flat);
         return st;
     }
     /* pieces: roots in order, + side first */
@@ -641,12 +671,15 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         free(parent);
         free(pidx);
         free(vmap);
+        free(flat);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the cut pieces");
     }
     size_t np = 0;
     for (int side = 1; side >= -1; side -= 2)
         for (size_t t = 0; t < c->nt; t++)
-            if (c->tside[t] == side && acd_uf_find(parent, (uint32_t)t) == t) pidx[t] = (uint32_t)np++;
+            if (c->tside[t] == side && acd_uf_find(parent, (uint32_t)t) == t) pidx[t] = flat[t] ? NONE : (uint32_t)np++;
+    for (size_t t = 0; t < c->nt; t++) res->ndropped += pidx[acd_uf_find(parent, (uint32_t)t)] == NONE;
+    free(flat);
     res->pieces = calloc(np ? np : 1, sizeof *res->pieces);
     if (!res->pieces) {
         free(parent);
@@ -657,7 +690,10 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     res->npieces = np;
     size_t *ntri = calloc(np ? np : 1, sizeof *ntri);
     if (!ntri) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu cut pieces", np);
-    for (size_t t = 0; t < c->nt && st == ACD_OK; t++) ntri[pidx[acd_uf_find(parent, (uint32_t)t)]]++;
+    for (size_t t = 0; t < c->nt && st == ACD_OK; t++) {
+        uint32_t q = pidx[acd_uf_find(parent, (uint32_t)t)];
+        if (q != NONE) ntri[q]++;
+    }
     for (size_t p = 0; p < np && st == ACD_OK; p++) {
         acd_cut_piece *pc = &res->pieces[p];
         pc->mesh.triangles = malloc(ntri[p] * 3 * sizeof *pc->mesh.triangles);

@@ -50,6 +50,7 @@ typedef struct acd_cut_result {
     size_t nregions;       /* section regions (an outer loop with its holes) */
     double section_area;   /* area of the cross-section (the cap) */
     size_t nforced;        /* triangulation steps forced on loops that rounding made self-touching */
+    size_t ndropped;       /* faces of flat shells dropped (enclosing no volume: plane_cut.c) */
 } acd_cut_result;
 
 /* Splits the closed mesh m (every edge used once in each direction; ACD_ERR_NON_MANIFOLD otherwise)
