@@ -285,7 +285,8 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
             return -(int)ACD_ERR_NOMEM;
         }
         /* pieces largest first (most often the most concave); once one is above the best
-         * choice's concavity (+ tol) this candidate cannot win: its other pieces are not measured */
+         * choice's concavity (+ tol) this candidate cannot win (unless the best makes no
+         * progress): its other pieces are not measured */
         size_t order[2] = {0, 1}, *ord = trial.cut.npieces <= 2 ? order : malloc(trial.cut.npieces * sizeof *ord);
         if (!ord) {
             choice_free(&trial);
@@ -312,7 +313,9 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
                 return -(int)st;
             }
             if (trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
-            if (found && trial.concavity > best->concavity + tol) lost = 1;
+            /* (a cut that makes progress beats one that does not, surface mode: only against a
+             * best that makes progress is a higher concavity a loss) */
+            if (found && best_progress && trial.concavity > best->concavity + tol) lost = 1;
         }
         if (ord != order) free(ord);
         if (lost) {
