@@ -17,7 +17,7 @@
 static void usage(FILE *f) {
     fprintf(f,
             "usage: acd segment MESH [-t TAU] [--seg LABELS.seg] [--parts PARTS.obj] [-o HULLS.obj]\n"
-            "                        [--json FILE] [--clamp-hull-depth 0|1] [--verify] [-v]\n"
+            "                        [--json FILE] [--clamp-hull-depth 0|1] [--threads N] [--verify] [-v]\n"
             "                        [--cage CAGE.obj [--cage-offset D] [--cage-vertices N]]\n"
             "\n"
             "Segments MESH (OBJ, OFF, PLY or STL) into nearly convex parts by convex ridge separation\n"
@@ -30,6 +30,7 @@ static void usage(FILE *f) {
             "  -o FILE              the parts' convex hulls as OBJ groups (o hull_K; flat parts have none)\n"
             "  --json FILE          summary: parts, seconds, per-part concavity, hull/mesh volume ratio\n"
             "  --clamp-hull-depth B cap valley concavity by the depth below the hull (default 1)\n"
+            "  --threads N          worker threads (default: all cores); the output is the same for any N\n"
             "  --verify             check: every face labelled, every part connected, no part has a\n"
             "                       valley deeper than tau (exit 3 naming the part otherwise)\n"
             "  --cage FILE          a cage for deformation (paper, section 7.2): the parts' hulls expanded,\n"
@@ -241,6 +242,15 @@ int acd_cmd_segment(int argc, char **argv) {
                 return ACD_EXIT_USAGE;
             }
             p.clamp_hull_depth = val[0] == '1';
+            i++;
+        } else if (!strcmp(a, "--threads")) {
+            size_t n;
+            if (!acd_cli_parse_size("segment", a, val, &n)) return ACD_EXIT_USAGE;
+            if (n > 1024) {
+                fprintf(stderr, "acd segment: %s takes 0 (all cores) to 1024\n", a);
+                return ACD_EXIT_USAGE;
+            }
+            p.threads = (int)n; /* the output never depends on it */
             i++;
         } else if (!strcmp(a, "--cage-offset")) {
             if (!acd_cli_parse_double("segment", a, val, &cp.offset)) return ACD_EXIT_USAGE;

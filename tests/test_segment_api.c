@@ -1,7 +1,7 @@
 /* Tests of the public segmentation API (acd/segment.h, src/corise/segment_api.c): a dumbbell
  * splits into its two bulbs, a convex shape stays one part, every face is labelled and the
  * parts cover the faces, per-part hulls enclose their faces, parts meet tau, output is bitwise
- * deterministic, bad params are refused. */
+ * deterministic and the same for 1-4 threads, bad params are refused. */
 // ctest: TIMEOUT 600
 #include "testutil.h"
 
@@ -158,6 +158,88 @@ static void test_cross_deterministic(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Results bit for bit equal: labels, counts, per-part concavity, volumes and hulls. */
+static void assert_same(const acd_mesh *m, const acd_segment_result *a, const acd_segment_result *b) {
+    assert_int_equal(a->nparts, b->nparts);
+    assert_int_equal(a->cuts, b->cuts);
+    assert_int_equal(a->depth, b->depth);
+    assert_int_equal(a->unresolved, b->unresolved);
+    assert_memory_equal(a->labels, b->labels, m->ntriangles * sizeof *a->labels);
+    assert_memory_equal(&a->hull_volume, &b->hull_volume, sizeof(double));
+    for (size_t k = 0; k < a->nparts; k++) {
+        assert_memory_equal(&a->parts[k].concavity_rel, &b->parts[k].concavity_rel, sizeof(double));
+        assert_memory_equal(&a->parts[k].hull_volume, &b->parts[k].hull_volume, sizeof(double));
+        assert_int_equal(a->parts[k].hull.nvertices, b->parts[k].hull.nvertices);
+        assert_int_equal(a->parts[k].hull.ntriangles, b->parts[k].hull.ntriangles);
+        assert_memory_equal(a->parts[k].hull.vertices, b->parts[k].hull.vertices,
+                            3 * a->parts[k].hull.nvertices * sizeof(double));
+        assert_memory_equal(a->parts[k].hull.triangles, b->parts[k].hull.triangles,
+                            3 * a->parts[k].hull.ntriangles * sizeof(uint32_t));
+    }
+}
+
+typedef struct progress_log {
+    double f[4096];
+    size_t n;
+} progress_log;
+
+static int log_cb(void *u, double f, const char *s) {
+    (void)s;
+    progress_log *l = u;
+    if (l->n < 4096) l->f[l->n++] = f;
+    return 0;
+}
+
+/* The same result, and the same sequence of progress calls, for 1, 2, 3 and 4 threads: on a noisy
+ * sphere with two bulbs (many bridges: the first part's valleys are shared among the threads) and,
+ * when fetched, the elephant (20 parts in waves of several parts). */
+static void test_threads_identical(void **state) {
+    (void)state;
+    for (int mesh = 0; mesh < 2; mesh++) {
+        acd_mesh m;
+        if (mesh == 0) {
+            double k = 0.6;
+            assert_true(mg_radial(&m, 48, 24, waist_r, &k));
+            for (size_t v = 0; v < m.nvertices; v++) /* deterministic wobble: bridges of every length */
+                for (int c = 0; c < 3; c++) m.vertices[3 * v + c] *= 1 + 0.05 * sin(7.0 * (double)v + c);
+        } else {
+            char path[1024];
+            acd_error err;
+            if (!tu_mesh_data(path, sizeof path, "elephant.off")) {
+                print_message("elephant.off missing (scripts/fetch-data.sh): only the synthetic mesh\n");
+                break;
+            }
+            assert_int_equal(acd_mesh_read(path, &m, &err), ACD_OK);
+        }
+        acd_segment_result ref;
+        static progress_log lref, lrun;
+        for (int t = 1; t <= 4; t++) {
+            acd_segment_params p = acd_segment_default_params();
+            p.threads = t;
+            p.progress = log_cb;
+            acd_segment_result r;
+            acd_error err;
+            progress_log *l = t == 1 ? &lref : &lrun;
+            l->n = 0;
+            p.progress_user = l;
+            assert_int_equal(acd_segment(&m, &p, t == 1 ? &ref : &r, &err), ACD_OK);
+            if (t == 1) {
+                check_result(&m, &ref, p.tau);
+                print_message("mesh %d: %zu faces, %zu parts, %zu cuts, %zu progress calls\n", mesh, m.ntriangles,
+                              ref.nparts, ref.cuts, lref.n);
+                assert_true(ref.nparts >= 2);
+                continue;
+            }
+            assert_same(&m, &ref, &r);
+            assert_int_equal(lrun.n, lref.n);
+            assert_memory_equal(lrun.f, lref.f, lref.n * sizeof(double));
+            acd_segment_result_free(&r);
+        }
+        acd_segment_result_free(&ref);
+        acd_mesh_free(&m);
+    }
+}
+
 static int cancel_cb(void *u, double f, const char *s) {
     (void)f, (void)s;
     ++*(int *)u;
@@ -224,6 +306,7 @@ int main(void) {
         cmocka_unit_test(test_dumbbell_splits_in_two),
         cmocka_unit_test(test_convex_stays_one),
         cmocka_unit_test(test_cross_deterministic),
+        cmocka_unit_test(test_threads_identical),
         cmocka_unit_test(test_bad_params),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

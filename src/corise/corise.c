@@ -11,6 +11,9 @@
 #include "corise/ridge.h"
 #include "corise/valley.h"
 #include "geom3/dijkstra.h"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 acd_corise_params acd_corise_default_params(void) {
     acd_corise_params p;
@@ -19,6 +22,7 @@ acd_corise_params acd_corise_default_params(void) {
     p.normalize = 1;
     p.cut = acd_corise_cut_default_params();
     p.max_depth = 64;
+    p.threads = 1;
     return p;
 }
 
@@ -325,7 +329,7 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t
     memset(&r, 0, sizeof r);
     uint32_t *ml = NULL;
     acd_status st = acd_edge_graph_from_mesh(s->vertices, s->nvertices, s->triangles, s->ntriangles, &g, err);
-    if (st == ACD_OK) st = acd_corise_bridges_compute_ex(s, &g, prm->clamp_hull_depth, &b, err);
+    if (st == ACD_OK) st = acd_corise_bridges_compute_mt(s, &g, prm->clamp_hull_depth, prm->threads, &b, err);
     if (st != ACD_OK) goto done;
     stats->fallbacks += b.fallbacks;
     stats->unreachable += b.unreachable;
@@ -343,7 +347,7 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t
         st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu facets", s->ntriangles);
         goto done;
     }
-    if ((st = acd_corise_regions(s, &g, &b, &r, prm->tau, ml, NULL, err)) != ACD_OK) goto done;
+    if ((st = acd_corise_regions_mt(s, &g, &b, &r, prm->tau, prm->threads, ml, NULL, err)) != ACD_OK) goto done;
     st = acd_corise_cut(s, &b, &r, ml, &prm->cut, part, nparts, err);
 done:
     free(ml);
@@ -351,6 +355,46 @@ done:
     acd_corise_bridges_free(&b);
     acd_edge_graph_free(&g);
     return st;
+}
+
+/* One part of a wave, processed on its own (any thread): extracted, capped, stepped. */
+typedef struct part_work {
+    acd_status st;
+    acd_error err;
+    uint32_t *cutpart; /* step's labels of the capped part's facets (the part's first) */
+    size_t np;         /* pieces (0: final) */
+    double maxc;       /* the part's largest valley concavity */
+    size_t fallbacks, unreachable;
+} part_work;
+
+static void free_work(part_work *wk, size_t n) {
+    if (!wk) return;
+    for (size_t i = 0; i < n; i++) free(wk[i].cutpart);
+    free(wk);
+}
+
+static void process_part(const acd_mesh *w, const part *cur, const edge_count *ge, size_t nge,
+                         const acd_corise_params *prm, uint32_t *map, uint32_t *l2g, part_work *out) {
+    acd_mesh sub, aug;
+    out->st = ACD_OK;
+    if (!extract(w, cur->faces, cur->n, map, l2g, &sub)) {
+        out->st = acd_fail(&out->err, ACD_ERR_NOMEM, "corise: out of memory extracting a part of %zu facets", cur->n);
+        return;
+    }
+    int capped = cap_cut_holes(&sub, l2g, ge, nge, &aug);
+    acd_mesh_free(&sub);
+    out->cutpart = capped ? malloc((aug.ntriangles ? aug.ntriangles : 1) * sizeof *out->cutpart) : NULL;
+    if (!out->cutpart) {
+        acd_mesh_free(&aug);
+        out->st = acd_fail(&out->err, ACD_ERR_NOMEM, "corise: out of memory capping a part of %zu facets", cur->n);
+        return;
+    }
+    acd_corise_stats st;
+    memset(&st, 0, sizeof st);
+    out->st = step(&aug, prm, out->cutpart, &out->np, &out->maxc, &st, &out->err);
+    out->fallbacks = st.fallbacks;
+    out->unreachable = st.unreachable;
+    acd_mesh_free(&aug);
 }
 
 typedef struct final_part {
@@ -391,19 +435,33 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
     /* normalised copy (A1) */
     acd_mesh w = *m;
     w.vertices = malloc(3 * (m->nvertices ? m->nvertices : 1) * sizeof *w.vertices);
-    uint32_t *map = malloc((m->nvertices ? m->nvertices : 1) * sizeof *map);
+    int nthreads = prm.threads;
+#ifdef _OPENMP
+    if (nthreads <= 0) nthreads = omp_get_num_procs();
+#else
+    nthreads = 1;
+#endif
+    if (nthreads < 1) nthreads = 1;
+    prm.threads = nthreads;
     part_list q = {0};
     part_list fin = {0};
     uint32_t *all = malloc(m->ntriangles * sizeof *all);
-    uint32_t *cutpart = NULL;
-    uint32_t *l2g = malloc(3 * m->ntriangles * sizeof *l2g);
+    /* per-thread scratch of extract (vertex map, reset after each use; local-to-global ids) */
+    uint32_t **maps = calloc((size_t)nthreads, sizeof *maps), **l2gs = calloc((size_t)nthreads, sizeof *l2gs);
+    part_work *work = NULL;
+    size_t nwork = 0;
     size_t nge = 0;
     edge_count *ge = NULL;
     acd_status st = ACD_OK;
     size_t done_faces = 0;
-    if (!w.vertices || !map || !all || !l2g) goto nomem;
+    if (!w.vertices || !all || !maps || !l2gs) goto nomem;
+    for (int t = 0; t < nthreads; t++) {
+        maps[t] = malloc((m->nvertices ? m->nvertices : 1) * sizeof **maps);
+        l2gs[t] = malloc(3 * m->ntriangles * sizeof **l2gs);
+        if (!maps[t] || !l2gs[t]) goto nomem;
+        for (size_t v = 0; v < m->nvertices; v++) maps[t][v] = UINT32_MAX;
+    }
     memcpy(w.vertices, m->vertices, 3 * m->nvertices * sizeof *w.vertices);
-    for (size_t v = 0; v < m->nvertices; v++) map[v] = UINT32_MAX;
     S->scale = 1.0;
     if (prm.normalize) normalise(m, &w, &S->scale);
     if (!(ge = global_edges(&w, &nge))) goto nomem;
@@ -412,72 +470,91 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
     if (!first) goto nomem;
     memcpy(first, all, m->ntriangles * sizeof *first);
     if (!push_components(&w, &q, first, m->ntriangles, 0)) goto nomem;
+    /* Parts are processed in waves: every part waiting when a wave starts is extracted, capped and
+       stepped independently (in parallel when there are several), then the results are taken in
+       queue order exactly as one part at a time would: the same pieces pushed in the same order,
+       the same final parts, statistics and progress calls, for any number of threads. */
     while (q.head < q.n) {
-        part cur = q.p[q.head];
-        q.p[q.head++].faces = NULL;
-        acd_mesh sub, aug;
-        if (!extract(&w, cur.faces, cur.n, map, l2g, &sub)) {
-            free(cur.faces);
-            goto nomem;
+        size_t b0 = q.head, b1 = q.n, nw = b1 - b0;
+        work = calloc(nw, sizeof *work);
+        if (!work) goto nomem;
+        nwork = nw;
+        int nt = 1;
+#ifdef _OPENMP
+        if (nthreads > 1 && nw > 1) nt = nthreads < (int)nw ? nthreads : (int)nw;
+#endif
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1)
+#endif
+        for (long j = 0; j < (long)nw; j++) {
+            int t = 0;
+#ifdef _OPENMP
+            t = omp_get_thread_num();
+#endif
+            process_part(&w, &q.p[b0 + (size_t)j], ge, nge, &prm, maps[t], l2gs[t], &work[j]);
         }
-        int capped = cap_cut_holes(&sub, l2g, ge, nge, &aug);
-        acd_mesh_free(&sub);
-        uint32_t *cp = capped ? realloc(cutpart, (aug.ntriangles ? aug.ntriangles : 1) * sizeof *cutpart) : NULL;
-        if (!cp) {
-            acd_mesh_free(&aug);
-            free(cur.faces);
-            goto nomem;
-        }
-        cutpart = cp;
-        size_t np = 0;
-        double maxc = 0;
-        st = step(&aug, &prm, cutpart, &np, &maxc, S, err);
-        acd_mesh_free(&aug);
-        if (st != ACD_OK) {
-            free(cur.faces);
-            goto done;
-        }
-        size_t real = 0; /* pieces holding facets of the part (not only caps) */
-        for (uint32_t k = 0; k < np; k++) {
-            size_t i = 0;
-            while (i < cur.n && cutpart[i] != k) i++;
-            real += i < cur.n;
-        }
-        if (np > 1 && real < 2) np = 1;
-        if (np == 0 || np == 1 || cur.depth >= prm.max_depth) {
-            if (np == 1 || (np > 1 && cur.depth >= prm.max_depth)) S->unresolved++;
-            if (!push_part(&fin, cur.faces, cur.n, cur.depth)) {
+        for (size_t j = 0; j < nw; j++) {
+            part cur = q.p[b0 + j];
+            q.p[b0 + j].faces = NULL;
+            q.head = b0 + j + 1;
+            part_work *pw = &work[j];
+            if (pw->st != ACD_OK) {
+                st = pw->st;
+                if (err) *err = pw->err;
                 free(cur.faces);
-                goto nomem;
-            }
-            fin.p[fin.n - 1].conc = maxc;
-            done_faces += cur.n;
-            if (prm.progress && prm.progress(prm.progress_user, (double)done_faces / (double)m->ntriangles, "corise")) {
-                st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback after %zu of %zu facets",
-                              done_faces, m->ntriangles);
                 goto done;
             }
-            continue;
-        }
-        S->cuts++;
-        if (cur.depth + 1 > S->depth) S->depth = cur.depth + 1;
-        int ok = 1;
-        for (uint32_t k = 0; k < np && ok; k++) {
-            size_t cnt = 0;
-            for (size_t i = 0; i < cur.n; i++) cnt += cutpart[i] == k;
-            if (!cnt) continue;
-            uint32_t *f = malloc(cnt * sizeof *f);
-            if (!f) {
-                ok = 0;
-                break;
+            S->fallbacks += pw->fallbacks;
+            S->unreachable += pw->unreachable;
+            uint32_t *cutpart = pw->cutpart;
+            size_t np = pw->np;
+            size_t real = 0; /* pieces holding facets of the part (not only caps) */
+            for (uint32_t k = 0; k < np; k++) {
+                size_t i = 0;
+                while (i < cur.n && cutpart[i] != k) i++;
+                real += i < cur.n;
             }
-            cnt = 0;
-            for (size_t i = 0; i < cur.n; i++)
-                if (cutpart[i] == k) f[cnt++] = cur.faces[i];
-            ok = push_components(&w, &q, f, cnt, cur.depth + 1);
+            if (np > 1 && real < 2) np = 1;
+            if (np == 0 || np == 1 || cur.depth >= prm.max_depth) {
+                if (np == 1 || (np > 1 && cur.depth >= prm.max_depth)) S->unresolved++;
+                if (!push_part(&fin, cur.faces, cur.n, cur.depth)) {
+                    free(cur.faces);
+                    goto nomem;
+                }
+                fin.p[fin.n - 1].conc = pw->maxc;
+                done_faces += cur.n;
+                if (prm.progress &&
+                    prm.progress(prm.progress_user, (double)done_faces / (double)m->ntriangles, "corise")) {
+                    st = acd_fail(err, ACD_ERR_CANCELLED,
+                                  "corise: cancelled by the progress callback after %zu of %zu facets", done_faces,
+                                  m->ntriangles);
+                    goto done;
+                }
+                continue;
+            }
+            S->cuts++;
+            if (cur.depth + 1 > S->depth) S->depth = cur.depth + 1;
+            int ok = 1;
+            for (uint32_t k = 0; k < np && ok; k++) {
+                size_t cnt = 0;
+                for (size_t i = 0; i < cur.n; i++) cnt += cutpart[i] == k;
+                if (!cnt) continue;
+                uint32_t *f = malloc(cnt * sizeof *f);
+                if (!f) {
+                    ok = 0;
+                    break;
+                }
+                cnt = 0;
+                for (size_t i = 0; i < cur.n; i++)
+                    if (cutpart[i] == k) f[cnt++] = cur.faces[i];
+                ok = push_components(&w, &q, f, cnt, cur.depth + 1);
+            }
+            free(cur.faces);
+            if (!ok) goto nomem;
         }
-        free(cur.faces);
-        if (!ok) goto nomem;
+        free_work(work, nwork);
+        work = NULL;
+        nwork = 0;
     }
     /* number the final parts by their smallest facet */
     final_part *fp = malloc((fin.n ? fin.n : 1) * sizeof *fp);
@@ -511,10 +588,14 @@ done:
     free(q.p);
     free(fin.p);
     free(w.vertices);
-    free(map);
+    free_work(work, nwork);
+    for (int t = 0; maps && l2gs && t < nthreads; t++) {
+        free(maps[t]);
+        free(l2gs[t]);
+    }
+    free(maps);
+    free(l2gs);
     free(all);
-    free(cutpart);
-    free(l2g);
     free(ge);
     return st;
 }

@@ -26,6 +26,9 @@ typedef struct acd_corise_params {
     size_t max_depth;           /* safety cap on nested cuts (default 64) */
     int clamp_hull_depth;       /* not in the paper: cap valley concavity by the depth below the
                                    hull (acd_corise_bridges_compute_ex; default 0 = literal) */
+    int threads;                /* OpenMP threads (parts of a wave, then the bridges of a lone
+                                   part); <= 0: all cores; default 1. The output is the same
+                                   for any count */
     acd_progress_fn progress;   /* optional: called after each part; fraction = facets in final
                                    parts / all facets; non-zero return cancels */
     void *progress_user;

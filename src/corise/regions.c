@@ -8,6 +8,9 @@
 
 #include "core/error.h"
 #include "corise/separator.h"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #define MULTI (UINT32_MAX - 1) /* claimed by two or more ridges */
 
@@ -20,65 +23,177 @@ static double piece_length(const double *V, const uint32_t *p, size_t s, size_t 
     return sum;
 }
 
-/* Claims for ridge k the facets within len of vertex r. */
-static acd_status claim(const acd_mesh *m, const acd_edge_graph *g, uint32_t r, double len, uint32_t k,
-                        uint32_t *owner, acd_error *err) {
-    if (!(len > 0)) return ACD_OK;
+/* A ball claim: the facets whose three vertices are at edge-graph distance < len from r. */
+typedef struct claim_req {
+    uint32_t r, ridge;
+    double len;
+} claim_req;
+
+/* Per-claim output: the claimed facets. */
+typedef struct ball_work {
+    uint32_t *faces;
+    size_t nfaces, cap_faces;
+} ball_work;
+
+static int grow(uint32_t **a, size_t *cap, size_t n) {
+    if (n < *cap) return 1;
+    size_t nc = *cap ? 2 * *cap : 256;
+    uint32_t *p = realloc(*a, nc * sizeof *p);
+    if (!p) return 0;
+    *a = p;
+    *cap = nc;
+    return 1;
+}
+
+/* w->faces[0..w->nfaces) = the facets whose three vertices are at distance < len from r (len > 0),
+ * in facet order (acd_dijkstra truncated at len). 0: out of memory. */
+static int ball(const acd_mesh *m, const acd_edge_graph *g, uint32_t r, double len, ball_work *w) {
+    w->nfaces = 0;
     acd_dijkstra_opts o;
     memset(&o, 0, sizeof o);
     o.target = ACD_NO_VERTEX;
     o.max_distance = len;
     acd_sp_tree t;
     memset(&t, 0, sizeof t);
-    acd_status st = acd_dijkstra(g, &r, 1, &o, &t, err);
-    if (st != ACD_OK) {
+    acd_error e;
+    if (acd_dijkstra(g, &r, 1, &o, &t, &e) != ACD_OK) {
         acd_sp_tree_free(&t);
-        return st;
+        return 0;
     }
-    for (size_t f = 0; f < m->ntriangles; f++) {
+    int ok = 1;
+    for (size_t f = 0; f < m->ntriangles && ok; f++) {
         const uint32_t *T = m->triangles + 3 * f;
         double d = t.dist[T[0]];
         if (t.dist[T[1]] > d) d = t.dist[T[1]];
         if (t.dist[T[2]] > d) d = t.dist[T[2]];
         if (!(d < len)) continue;
+        if (!(ok = grow(&w->faces, &w->cap_faces, w->nfaces))) break;
+        w->faces[w->nfaces++] = (uint32_t)f;
+    }
+    acd_sp_tree_free(&t);
+    return ok;
+}
+
+/* Claims the facets of a ball for ridge k (a facet claimed by two ridges becomes MULTI; the final
+ * owner of a facet depends only on the set of ridges that claim it, not on the order). */
+static void apply_claim(const ball_work *w, uint32_t k, uint32_t *owner) {
+    for (size_t i = 0; i < w->nfaces; i++) {
+        uint32_t f = w->faces[i];
         if (owner[f] == ACD_CORISE_FUZZY)
             owner[f] = k;
         else if (owner[f] != k)
             owner[f] = MULTI;
     }
-    acd_sp_tree_free(&t);
-    return ACD_OK;
 }
 
 acd_status acd_corise_regions(const acd_mesh *m, const acd_edge_graph *g, const acd_corise_bridges *b,
                               const acd_corise_ridges *r, double tau, uint32_t *must_link, size_t *nsub,
                               acd_error *err) {
+    return acd_corise_regions_mt(m, g, b, r, tau, 1, must_link, nsub, err);
+}
+
+acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, const acd_corise_bridges *b,
+                                 const acd_corise_ridges *r, double tau, int nthreads, uint32_t *must_link,
+                                 size_t *nsub, acd_error *err) {
     if (!m || !g || !b || !r || !must_link) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
     if (nsub) *nsub = 0;
     size_t nf = m->ntriangles;
     for (size_t f = 0; f < nf; f++) must_link[f] = ACD_CORISE_FUZZY;
     acd_status st = ACD_OK;
     size_t count = 0;
+    /* the deep valleys, each split at its separators independently (in parallel) */
+    size_t ndeep = 0;
     for (size_t i = 0; i < b->nbridges; i++) {
         const acd_corise_bridge *br = &b->bridge[i];
-        if (!isfinite(br->length) || !(br->concavity > tau) || br->count < 3) continue;
+        ndeep += isfinite(br->length) && br->concavity > tau && br->count >= 3;
+    }
+    size_t *deep = malloc((ndeep ? ndeep : 1) * sizeof *deep);
+    acd_corise_split *sp = malloc((ndeep ? ndeep : 1) * sizeof *sp);
+    acd_status *sst = malloc((ndeep ? ndeep : 1) * sizeof *sst);
+    claim_req *cl = malloc((ndeep ? 2 * ndeep : 1) * sizeof *cl);
+    int nt = 1;
+#ifdef _OPENMP
+    if (nthreads > 1 && !omp_in_parallel()) nt = nthreads < ACD_CORISE_MAX_THREADS ? nthreads : ACD_CORISE_MAX_THREADS;
+#endif
+    ball_work *bw = calloc((size_t)nt, sizeof *bw);
+    if (!deep || !sp || !sst || !cl || !bw) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu deep valleys", ndeep);
+        goto done;
+    }
+    ndeep = 0;
+    for (size_t i = 0; i < b->nbridges; i++) {
+        const acd_corise_bridge *br = &b->bridge[i];
+        if (isfinite(br->length) && br->concavity > tau && br->count >= 3) deep[ndeep++] = i;
+    }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1 && ndeep > 1)
+#endif
+    for (long d = 0; d < (long)ndeep; d++) {
+        const acd_corise_bridge *br = &b->bridge[deep[d]];
+        acd_error e;
+        sst[d] = acd_corise_valley_split(m->vertices, b->path + br->first, br->count, tau, &sp[d], &e);
+    }
+    size_t ncl = 0;
+    for (size_t d = 0; d < ndeep; d++) {
+        const acd_corise_bridge *br = &b->bridge[deep[d]];
+        if (sst[d] != ACD_OK) {
+            st = acd_fail(err, sst[d], "corise: splitting the valley of bridge (%u, %u) (out of memory)", br->a, br->b);
+            goto done;
+        }
         const uint32_t *p = b->path + br->first;
-        acd_corise_split s;
-        if ((st = acd_corise_valley_split(m->vertices, p, br->count, tau, &s, err)) != ACD_OK) return st;
         size_t ha = acd_corise_hull_index(b, br->a), hb = acd_corise_hull_index(b, br->b);
-        if (ha == SIZE_MAX || hb == SIZE_MAX)
-            return acd_fail(err, ACD_ERR_INTERNAL, "corise: bridge (%u, %u) ends off the hull", br->a, br->b);
+        if (ha == SIZE_MAX || hb == SIZE_MAX) {
+            st = acd_fail(err, ACD_ERR_INTERNAL, "corise: bridge (%u, %u) ends off the hull", br->a, br->b);
+            goto done;
+        }
         /* the valley runs from a (p[0]) to b (p[count-1]) */
-        double l0 = piece_length(m->vertices, p, 0, s.first), l1 = piece_length(m->vertices, p, s.second, br->count - 1);
-        if ((st = claim(m, g, p[0], l0, r->ridge_of[ha], must_link, err)) != ACD_OK) return st;
-        if ((st = claim(m, g, p[br->count - 1], l1, r->ridge_of[hb], must_link, err)) != ACD_OK) return st;
+        double l0 = piece_length(m->vertices, p, 0, sp[d].first),
+               l1 = piece_length(m->vertices, p, sp[d].second, br->count - 1);
+        cl[ncl++] = (claim_req){p[0], r->ridge_of[ha], l0};
+        cl[ncl++] = (claim_req){p[br->count - 1], r->ridge_of[hb], l1};
         count += 2;
+    }
+    /* the balls, a chunk at a time in parallel, each applied in claim order */
+    if (ncl) {
+        int ok = 1;
+        if (nt == 1) {
+            for (size_t c = 0; c < ncl && ok; c++) {
+                if (!(cl[c].len > 0)) continue;
+                ok = ball(m, g, cl[c].r, cl[c].len, &bw[0]);
+                if (ok) apply_claim(&bw[0], cl[c].ridge, must_link);
+            }
+        } else {
+#ifdef _OPENMP
+            /* one claim per thread at a time; applied in claim order after each round */
+            for (size_t c0 = 0; c0 < ncl && ok; c0 += (size_t)nt) {
+                size_t c1 = c0 + (size_t)nt < ncl ? c0 + (size_t)nt : ncl;
+                int rok[ACD_CORISE_MAX_THREADS];
+#pragma omp parallel for schedule(static, 1) num_threads(nt)
+                for (long c = (long)c0; c < (long)c1; c++) {
+                    ball_work *w = &bw[c - (long)c0]; /* one workspace per claim of the round */
+                    w->nfaces = 0;
+                    rok[c - (long)c0] = cl[c].len > 0 ? ball(m, g, cl[c].r, cl[c].len, w) : 1;
+                }
+                for (size_t c = c0; c < c1; c++) {
+                    ok &= rok[c - c0];
+                    if (ok && cl[c].len > 0) apply_claim(&bw[c - c0], cl[c].ridge, must_link);
+                }
+            }
+#endif
+        }
+        if (!ok) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory growing a region of %zu vertices", m->nvertices);
+            goto done;
+        }
     }
     for (size_t f = 0; f < nf; f++)
         if (must_link[f] == MULTI) must_link[f] = ACD_CORISE_FUZZY;
     /* safety net: ridges without must-link facets get their hull vertices' unclaimed facets */
     uint8_t *has = calloc(r->nridges ? r->nridges : 1, 1);
-    if (!has) return acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu ridges", r->nridges);
+    if (!has) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu ridges", r->nridges);
+        goto done;
+    }
     for (size_t f = 0; f < nf; f++)
         if (must_link[f] != ACD_CORISE_FUZZY) has[must_link[f]] = 1;
     for (size_t f = 0; f < nf; f++) {
@@ -97,5 +212,13 @@ acd_status acd_corise_regions(const acd_mesh *m, const acd_edge_graph *g, const 
     }
     free(has);
     if (nsub) *nsub = count;
-    return ACD_OK;
+done:
+    free(deep);
+    free(sp);
+    free(sst);
+    free(cl);
+    if (bw)
+        for (int t = 0; t < nt; t++) free(bw[t].faces);
+    free(bw);
+    return st;
 }

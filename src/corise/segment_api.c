@@ -13,6 +13,9 @@
 #include "acd/hull.h"
 #include "core/error.h"
 #include "corise/corise.h"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 acd_segment_params acd_segment_default_params(void) {
     acd_segment_params p;
@@ -42,15 +45,16 @@ static double now_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Hull of the vertices used by the faces labelled k into part->hull. pts: scratch of 9 n doubles. */
-static acd_status part_hull(const acd_mesh *m, const uint32_t *labels, uint32_t k, double *pts, acd_segment_part *part,
+/* Hull of the corners of the faces face[0..n) (increasing; three points per face, in face order,
+ * as before: the same point list, so the same hull) into part->hull. pts: scratch of 9 n doubles. */
+static acd_status part_hull(const acd_mesh *m, const uint32_t *face, size_t n, double *pts, acd_segment_part *part,
                             acd_error *err) {
-    size_t n = 0;
-    for (size_t f = 0; f < m->ntriangles; f++)
-        if (labels[f] == k)
-            for (int c = 0; c < 3; c++) memcpy(pts + 3 * n++, m->vertices + 3 * (size_t)m->triangles[3 * f + c], 3 * sizeof *pts);
+    size_t np = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++)
+            memcpy(pts + 3 * np++, m->vertices + 3 * (size_t)m->triangles[3 * (size_t)face[i] + c], 3 * sizeof *pts);
     acd_hull h;
-    acd_status st = acd_hull_compute(pts, n, &h, err);
+    acd_status st = acd_hull_compute(pts, np, &h, err);
     if (st != ACD_OK) {
         acd_hull_free(&h);
         return st;
@@ -93,10 +97,15 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
     c.cut.concave_weight = params->concave_weight;
     c.clamp_hull_depth = params->clamp_hull_depth;
     c.max_depth = params->max_depth;
+    c.threads = params->threads;
     c.progress = params->progress;
     c.progress_user = params->progress_user;
     acd_corise_stats stats;
     double *conc = NULL, *pts = NULL;
+    size_t *start = NULL;
+    uint32_t *byface = NULL;
+    acd_status *hst = NULL;
+    acd_error *herr = NULL;
     out->labels = malloc((mesh->ntriangles ? mesh->ntriangles : 1) * sizeof *out->labels);
     if (!out->labels) goto nomem;
     acd_status st = acd_corise_segment_ex(mesh, &c, out->labels, &conc, &stats, err);
@@ -125,13 +134,45 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
         out->mesh_volume += (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
                              a[2] * (b[0] * d[1] - b[1] * d[0])) / 6.0;
     }
-    for (size_t k = 0; k < out->nparts; k++) {
+    /* the faces of each part in increasing order (counting sort), then the parts' hulls, in
+       parallel: each depends on its part alone; the first failure in part order is reported */
+    size_t np = out->nparts;
+    start = calloc(np + 1, sizeof *start);
+    byface = malloc((mesh->ntriangles ? mesh->ntriangles : 1) * sizeof *byface);
+    hst = calloc(np ? np : 1, sizeof *hst);
+    herr = calloc(np ? np : 1, sizeof *herr);
+    if (!start || !byface || !hst || !herr) goto nomem;
+    for (size_t f = 0; f < mesh->ntriangles; f++) start[out->labels[f] + 1]++;
+    for (size_t k = 0; k < np; k++) start[k + 1] += start[k];
+    for (size_t f = 0; f < mesh->ntriangles; f++) byface[start[out->labels[f]]++] = (uint32_t)f;
+    for (size_t k = np; k > 0; k--) start[k] = start[k - 1];
+    start[0] = 0;
+    int nt = 1;
+#ifdef _OPENMP
+    nt = params->threads > 0 ? params->threads : omp_get_num_procs();
+    if (nt < 1) nt = 1;
+#endif
+    /* pts: 9 doubles per face, each part's faces in their own range of it */
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1 && np > 1)
+#endif
+    for (long k = 0; k < (long)np; k++)
+        hst[k] = part_hull(mesh, byface + start[k], start[k + 1] - start[k], pts + 9 * start[k], &out->parts[k], &herr[k]);
+    for (size_t k = 0; k < np; k++) {
         acd_segment_part *p = &out->parts[k];
+        if (hst[k] != ACD_OK) {
+            st = hst[k];
+            if (err) *err = herr[k];
+            goto fail;
+        }
         p->concavity_rel = conc[k];
         p->concavity = conc[k] * out->scale;
-        if ((st = part_hull(mesh, out->labels, (uint32_t)k, pts, p, err)) != ACD_OK) goto fail;
         out->hull_volume += p->hull_volume;
     }
+    free(start);
+    free(byface);
+    free(hst);
+    free(herr);
     free(conc);
     free(pts);
     out->seconds = now_seconds() - t0;
@@ -141,6 +182,10 @@ nomem:
 fail:
     free(conc);
     free(pts);
+    free(start);
+    free(byface);
+    free(hst);
+    free(herr);
     acd_segment_result_free(out);
     return st;
 }

@@ -12,6 +12,9 @@
 #include "core/error.h"
 #include "core/predicates.h"
 #include "geom2/seg_sweep.h"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* Rings at least this long are tested for simplicity by a sweep instead of all pairs. */
 #define POLYGON_SWEEP_MIN 48
@@ -383,6 +386,61 @@ acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g
 
 acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth,
                                          acd_corise_bridges *out, acd_error *err) {
+    return acd_corise_bridges_compute_mt(m, g, clamp_depth, 1, out, err);
+}
+
+/* Per-thread workspace of the bridge loop. */
+typedef struct bridge_worker {
+    valley_search vs;
+    double *conc;
+    size_t cap_conc;
+    double *depth; /* depth below the hull per vertex (NAN: not yet), with the clamp */
+} bridge_worker;
+
+/* The valley of br (a, b set) and its concavity: br->count, length (INFINITY when b is
+ * unreachable), concavity, deepest, kind; *path (malloc'd) the valley's vertices. */
+static acd_status one_bridge(bridge_worker *w, const acd_mesh *m, const acd_edge_graph *g, const acd_hull *h,
+                             int clamp_depth, acd_corise_bridge *br, uint32_t **path) {
+    size_t len = 0;
+    double length = 0;
+    int r = vs_valley(&w->vs, g, m->vertices, br->a, br->b, &len, &length);
+    if (r < 0) return ACD_ERR_NOMEM;
+    if (r == 0) {
+        br->length = INFINITY;
+        return ACD_OK;
+    }
+    uint32_t *p = malloc(len * sizeof *p);
+    if (!p) return ACD_ERR_NOMEM;
+    memcpy(p, w->vs.path, len * sizeof *p);
+    *path = p;
+    br->count = len;
+    br->length = length;
+    if (len > w->cap_conc) {
+        double *nc = realloc(w->conc, len * sizeof *nc);
+        if (!nc) return ACD_ERR_NOMEM;
+        w->conc = nc;
+        w->cap_conc = len;
+    }
+    acd_error e;
+    acd_status st = acd_corise_chain_concavity(m->vertices, p, len, w->conc, NULL, NULL, &br->kind, &e);
+    if (st != ACD_OK) return st;
+    /* a valley point on the hull's surface is not concave: clamp by its depth below it */
+    br->concavity = 0;
+    br->deepest = 0;
+    for (size_t k = 0; k < len; k++) {
+        double c = w->conc[k];
+        if (clamp_depth && h->dim == 3 && c != 0) { /* c = 0 stays 0 whatever the depth */
+            uint32_t v = p[k];
+            if (isnan(w->depth[v])) w->depth[v] = -acd_hull_plane_distance(h, m->vertices + 3 * (size_t)v);
+            if (w->depth[v] < c) c = w->depth[v] > 0 ? w->depth[v] : 0;
+        }
+        if (c > br->concavity) br->concavity = c, br->deepest = k;
+    }
+    return ACD_OK;
+}
+
+acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth, int nthreads,
+                                         acd_corise_bridges *out, acd_error *err) {
     if (!m || !g || !out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
     memset(out, 0, sizeof *out);
     out->hull_dim = -1;
@@ -396,10 +454,11 @@ acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph
     vpair *pairs = NULL;
     acd_hull h;
     memset(&h, 0, sizeof h);
-    valley_search vs;
-    memset(&vs, 0, sizeof vs);
-    double *conc = NULL, *depth = NULL;
-    size_t cap_conc = 0;
+    bridge_worker *wk = NULL;
+    uint32_t **bpath = NULL;
+    acd_status *bst = NULL;
+    size_t nb = 0;
+    int nt = 1;
     if (!used || !ids || !pts) goto nomem;
     for (size_t t = 0; t < 3 * m->ntriangles; t++) {
         if (m->triangles[t] >= m->nvertices) {
@@ -434,32 +493,54 @@ acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph
             pairs[ne++] = (vpair){x < y ? x : y, x < y ? y : x};
         }
     qsort(pairs, ne, sizeof *pairs, cmp_vpair);
-    size_t nb = 0;
     for (size_t i = 0; i < ne; i++)
         if (i == 0 || cmp_vpair(&pairs[i], &pairs[i - 1]) != 0) pairs[nb++] = pairs[i];
     out->bridge = calloc(nb ? nb : 1, sizeof *out->bridge);
     if (!out->bridge) goto nomem;
-    size_t cap_path = 0;
-    if (!vs_init(&vs, m->nvertices)) goto nomem;
-    if (clamp_depth && h.dim == 3) { /* depth below the hull per vertex, computed on first use */
-        depth = malloc(m->nvertices * sizeof *depth);
-        if (!depth) goto nomem;
-        for (size_t v = 0; v < m->nvertices; v++) depth[v] = NAN;
+    /* every bridge's valley and concavity depend on that bridge alone (each worker's search
+       stamps and depth memo give the same values whatever it ran before), so the bridges are
+       shared among the threads and their valleys concatenated in bridge order afterwards */
+#ifdef _OPENMP
+    if (nthreads > 1 && nb >= ACD_CORISE_PARALLEL_MIN_BRIDGES && !omp_in_parallel()) nt = nthreads;
+#endif
+    wk = calloc((size_t)nt, sizeof *wk);
+    bpath = calloc(nb ? nb : 1, sizeof *bpath);
+    bst = calloc(nb ? nb : 1, sizeof *bst);
+    if (!wk || !bpath || !bst) goto nomem;
+    for (int t = 0; t < nt; t++) {
+        if (!vs_init(&wk[t].vs, m->nvertices)) goto nomem;
+        if (clamp_depth && h.dim == 3) { /* depth below the hull per vertex, computed on first use */
+            wk[t].depth = malloc(m->nvertices * sizeof *wk[t].depth);
+            if (!wk[t].depth) goto nomem;
+            for (size_t v = 0; v < m->nvertices; v++) wk[t].depth[v] = NAN;
+        }
     }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 4) num_threads(nt) if (nt > 1)
+#endif
+    for (long i = 0; i < (long)nb; i++) {
+        int t = 0;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+#endif
+        out->bridge[i].a = pairs[i].a;
+        out->bridge[i].b = pairs[i].b;
+        bst[i] = one_bridge(&wk[t], m, g, &h, clamp_depth, &out->bridge[i], &bpath[i]);
+    }
+    size_t cap_path = 0;
     for (size_t i = 0; i < nb; i++) {
         acd_corise_bridge *br = &out->bridge[i];
-        br->a = pairs[i].a;
-        br->b = pairs[i].b;
+        if (bst[i] != ACD_OK) {
+            st = acd_fail(err, bst[i], "corise: the valley of bridge (%u, %u) of a %zu-vertex mesh (out of memory)", br->a,
+                          br->b, m->nvertices);
+            goto done;
+        }
         br->first = out->npath;
-        size_t len = 0;
-        double length = 0;
-        int r = vs_valley(&vs, g, m->vertices, br->a, br->b, &len, &length);
-        if (r < 0) goto nomem;
-        if (r == 0) {
-            br->length = INFINITY;
+        if (!isfinite(br->length)) {
             out->unreachable++;
             continue;
         }
+        size_t len = br->count;
         if (out->npath + len > cap_path) {
             size_t nc = cap_path ? 2 * cap_path : 1024;
             while (nc < out->npath + len) nc *= 2;
@@ -468,30 +549,8 @@ acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph
             out->path = np2;
             cap_path = nc;
         }
-        memcpy(out->path + out->npath, vs.path, len * sizeof *vs.path);
-        br->count = len;
-        br->length = length;
+        memcpy(out->path + out->npath, bpath[i], len * sizeof *out->path);
         out->npath += len;
-        if (len > cap_conc) {
-            double *nc = realloc(conc, len * sizeof *nc);
-            if (!nc) goto nomem;
-            conc = nc;
-            cap_conc = len;
-        }
-        st = acd_corise_chain_concavity(m->vertices, out->path + br->first, len, conc, NULL, NULL, &br->kind, err);
-        if (st != ACD_OK) goto done;
-        /* a valley point on the hull's surface is not concave: clamp by its depth below it */
-        br->concavity = 0;
-        br->deepest = 0;
-        for (size_t k = 0; k < len; k++) {
-            double c = conc[k];
-            if (clamp_depth && h.dim == 3 && c != 0) { /* c = 0 stays 0 whatever the depth */
-                uint32_t v = out->path[br->first + k];
-                if (isnan(depth[v])) depth[v] = -acd_hull_plane_distance(&h, m->vertices + 3 * (size_t)v);
-                if (depth[v] < c) c = depth[v] > 0 ? depth[v] : 0;
-            }
-            if (c > br->concavity) br->concavity = c, br->deepest = k;
-        }
         if (br->kind == ACD_CORISE_CONC_FALLBACK) out->fallbacks++;
     }
     out->nbridges = nb;
@@ -504,9 +563,17 @@ done:
     free(pts);
     free(pairs);
     acd_hull_free(&h);
-    vs_free(&vs);
-    free(conc);
-    free(depth);
+    if (wk)
+        for (int t = 0; t < nt; t++) {
+            vs_free(&wk[t].vs);
+            free(wk[t].conc);
+            free(wk[t].depth);
+        }
+    free(wk);
+    if (bpath)
+        for (size_t i = 0; i < nb; i++) free(bpath[i]);
+    free(bpath);
+    free(bst);
     if (st != ACD_OK) acd_corise_bridges_free(out);
     return st;
 }

@@ -91,4 +91,11 @@ void acd_corise_bridges_free(acd_corise_bridges *b);
 acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth,
                                          acd_corise_bridges *out, acd_error *err);
 
+/* Same, with the bridges shared among nthreads OpenMP threads when there are at least
+ * ACD_CORISE_PARALLEL_MIN_BRIDGES of them and the caller is not already in a parallel region;
+ * the result is the same for any nthreads. */
+#define ACD_CORISE_PARALLEL_MIN_BRIDGES 32
+acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth, int nthreads,
+                                         acd_corise_bridges *out, acd_error *err);
+
 #endif

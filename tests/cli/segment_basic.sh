@@ -32,6 +32,12 @@ MAXL=$(sort -n "$T/t.seg" | tail -1); MINL=$(sort -n "$T/t.seg" | head -1)
 "$ACD" info "$T/h.obj" --json > /dev/null || fail "HULLS.obj does not read back"
 "$ACD" segment "$M" -t 0.2 --clamp-hull-depth 0 --seg "$T/t2.seg" > /dev/null || fail "second run"
 cmp -s "$T/t.seg" "$T/t2.seg" || fail "not deterministic"
+for th in 1 2 3; do
+  "$ACD" segment "$M" -t 0.2 --clamp-hull-depth 0 --threads $th --seg "$T/t$th.seg" -o "$T/h$th.obj" > /dev/null || fail "--threads $th"
+  cmp -s "$T/t.seg" "$T/t$th.seg" || fail "--threads $th: other labels"
+  cmp -s "$T/h.obj" "$T/h$th.obj" || fail "--threads $th: other hulls"
+done
+"$ACD" segment "$M" --threads -1 2> /dev/null; [ $? = 1 ] || fail "--threads -1 accepted"
 # --verify names a part that stays deeper than tau (literal valleys at tau 0.05 leave unresolved parts)
 "$ACD" segment "$M" -t 0.05 --clamp-hull-depth 0 --verify > /dev/null 2> "$T/v.txt"; rc=$?
 [ $rc = 3 ] || fail "--verify on unresolved parts: exit $rc"
