@@ -545,13 +545,17 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         double e1[3], e2[3], nn[3];
         for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
         cross3(e1, e2, nn);
-        area[r] += 0.5 * sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+        double big = fmax(fabs(nn[0]), fmax(fabs(nn[1]), fabs(nn[2]))); /* no overflow in the squares */
+        if (big > 0) area[r] += 0.5 * big * sqrt((nn[0] / big) * (nn[0] / big) + (nn[1] / big) * (nn[1] / big) +
+                                                 (nn[2] / big) * (nn[2] / big));
     }
     double diag = 0;
     for (int k = 0; k < 3; k++) diag += c->nv ? (hi[k] - lo[k]) * (hi[k] - lo[k]) : 0;
     diag = sqrt(diag);
     for (size_t t = 0; t < nt; t++) {
-        flat[t] = parent[t] == t && !(fabs(vol[t]) > ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t]);
+        /* (a threshold that overflows decides nothing: such a shell is kept) */
+        double thr = ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t];
+        flat[t] = parent[t] == t && isfinite(thr) && !(fabs(vol[t]) > thr);
         if (flat[t]) vol[t] = 0; /* neither a piece nor a cavity */
     }
     free(area);
