@@ -337,6 +337,53 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
         }
         if (best_progress && (best->concavity <= tau + tol || best->concavity <= 0.5 * ms->concavity)) break;
     }
+    /* surface mode, no cut made progress: the pocket of the witness, cut along the level line of
+     * half its concavity (acd3_surface_cut_deep), apart from its bridge */
+    if (!solid && !best_progress && ms->witness != UINT32_MAX && ms->concavity > 0) {
+        split_choice trial;
+        memset(&trial, 0, sizeof trial);
+        acd_error cerr;
+        acd_status cst = acd3_surface_cut_deep(m, g, ms->vconc, 0.5 * ms->concavity, ms->witness, &trial.cut, &cerr);
+        if (cst == ACD_ERR_NOMEM) {
+            if (found) choice_free(best);
+            *err = cerr;
+            return -(int)ACD_ERR_NOMEM;
+        }
+        int ok = cst == ACD_OK && trial.cut.npieces >= 2;
+        if (ok) {
+            if (nc > nbridge) {
+                trial.plane = cand[nbridge];
+            } else { /* recorded only: through the witness */
+                memcpy(trial.plane.point, m->vertices + 3 * (size_t)ms->witness, sizeof(double[3]));
+                trial.plane.normal[0] = trial.plane.normal[1] = 0, trial.plane.normal[2] = 1;
+            }
+            trial.plane.kind = "deep";
+            trial.pieces = calloc(trial.cut.npieces, sizeof *trial.pieces);
+            if (!trial.pieces) {
+                choice_free(&trial);
+                if (found) choice_free(best);
+                acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+                return -(int)ACD_ERR_NOMEM;
+            }
+            for (size_t k = 0; k < trial.cut.npieces; k++) {
+                acd_status st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, &trial.pieces[k], err);
+                if (st != ACD_OK) {
+                    choice_free(&trial);
+                    if (found) choice_free(best);
+                    return -(int)st;
+                }
+                if (trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
+            }
+            ok = surface_progress(m, ms, &trial, tol);
+        }
+        if (ok) {
+            if (found) choice_free(best);
+            *best = trial;
+            found = 1;
+        } else {
+            choice_free(&trial);
+        }
+    }
     return found;
 }
 
@@ -373,7 +420,7 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     int split = 0;
     if (reason == ACD3D_LEAF_NONE) {
         /* solid mode: the global cut's plane first (acd3/resolve) */
-        const acd3_resolve_opts ro = {c->solid && c->params->resolver == ACD3D_RESOLVER_GLOBAL,
+        const acd3_resolve_opts ro = {c->params->resolver == ACD3D_RESOLVER_GLOBAL,
                                       {c->tau, c->params->delta_ratio * c->tau, c->params->weight}};
         /* surface mode, and solid mode with region_cuts, cut along the section nearest the
          * witness first; solid mode then whole-plane cuts when that does not split the part

@@ -373,6 +373,51 @@ done:
     return st;
 }
 
+acd_status acd3_surface_cut_deep(const acd_mesh *m, const acd_edge_graph *g, const double *level, double thr,
+                                 uint32_t seed, acd_cut_result *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    size_t nf = m->ntriangles, ne = g->nedges;
+    int8_t *cls = malloc(nf ? nf : 1);
+    uint8_t *deep = malloc(nf ? nf : 1), *blocked = calloc(ne ? ne : 1, 1);
+    uint32_t *queue = malloc((nf ? nf : 1) * sizeof *queue), *face_of = NULL;
+    acd_status st = ACD_OK;
+    if (!cls || !deep || !blocked || !queue) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting a surface of %zu faces", nf);
+        goto done;
+    }
+    st = acd3_edge_faces(m, g, &face_of, err);
+    if (st != ACD_OK) goto done;
+    /* the faces with a deep vertex; the component of the seed's faces across edges between two
+     * of them (then every vertex on its border with the rest is not deep) */
+    size_t qt = 0;
+    for (size_t f = 0; f < nf; f++) {
+        deep[f] = 0;
+        cls[f] = -1;
+        for (int k = 0; k < 3; k++) deep[f] |= level[m->triangles[3 * f + k]] >= thr;
+        int at_seed = m->triangles[3 * f] == seed || m->triangles[3 * f + 1] == seed || m->triangles[3 * f + 2] == seed;
+        if (at_seed && deep[f]) cls[f] = 1, queue[qt++] = (uint32_t)f;
+    }
+    for (size_t qh = 0; qh < qt; qh++) {
+        uint32_t f = queue[qh];
+        for (int k = 0; k < 3; k++) {
+            uint32_t e = acd_edge_graph_find(g, m->triangles[3 * f + k], m->triangles[3 * f + (k + 1) % 3]);
+            if (e == ACD_NO_VERTEX) continue;
+            for (int side = 0; side < 2; side++) {
+                uint32_t h = face_of[2 * (size_t)e + side];
+                if (h != UINT32_MAX && deep[h] && cls[h] != 1) cls[h] = 1, queue[qt++] = h;
+            }
+        }
+    }
+    for (size_t e = 0; e < ne; e++) {
+        uint32_t f0 = face_of[2 * e], f1 = face_of[2 * e + 1];
+        blocked[e] = f0 != UINT32_MAX && f1 != UINT32_MAX && cls[f0] != cls[f1];
+    }
+    st = split_blocked(m, g, face_of, cls, blocked, NULL, out, err);
+done:
+    free(cls), free(deep), free(blocked), free(queue), free(face_of);
+    return st;
+}
+
 acd_status acd3_surface_components(const acd_mesh *m, const acd_edge_graph *g, acd_cut_result *out, acd_error *err) {
     size_t nf = m->ntriangles;
     int8_t *cls = malloc(nf ? nf : 1);

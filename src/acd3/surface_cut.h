@@ -28,6 +28,13 @@
 acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const acd_cut_plane *pl, const double *near,
                             acd_cut_result *out, acd_error *err);
 
+/* Splits m into the faces around vertex `seed` that have a vertex v with level[v] >= thr (joined
+ * across edges between two such faces) and the rest: a cut along a level line of `level` (the
+ * measure's per-vertex concavity: the pocket around the witness apart from its bridge). No
+ * vertex with level >= thr lies on the cut, so the seed is in one piece only. Same output form. */
+acd_status acd3_surface_cut_deep(const acd_mesh *m, const acd_edge_graph *g, const double *level, double thr,
+                                 uint32_t seed, acd_cut_result *out, acd_error *err);
+
 /* Splits m into its connected components (faces across shared edges), same output form. */
 acd_status acd3_surface_components(const acd_mesh *m, const acd_edge_graph *g, acd_cut_result *out, acd_error *err);
 
