@@ -30,7 +30,7 @@ static void usage(FILE *f) {
             "  -o FILE              the parts' convex hulls as OBJ groups (o hull_K; flat parts have none)\n"
             "  --json FILE          summary: parts, seconds, per-part concavity, hull/mesh volume ratio\n"
             "  --clamp-hull-depth B cap valley concavity by the depth below the hull (default 1)\n"
-            "  --threads N          worker threads (default: all cores); the output is the same for any N\n"
+            "  --threads N          worker threads (default 1; 0: all cores); the output is the same for any N\n"
             "  --verify             check: every face labelled, every part connected, no part has a\n"
             "                       valley deeper than tau (exit 3 naming the part otherwise)\n"
             "  --cage FILE          a cage for deformation (paper, section 7.2): the parts' hulls expanded,\n"

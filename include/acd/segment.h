@@ -94,7 +94,9 @@ typedef struct acd_segment_params {
     int clamp_hull_depth;     /* not in the paper: cap each valley point's concavity by its depth
                                  below the hull (docs/corise.md, default and why) */
     size_t max_depth;         /* safety cap on nested cuts (default 64) */
-    int threads;              /* 0: as many as cores (OpenMP); the output is the same for any count */
+    int threads;              /* OpenMP threads, 0: as many as cores; default 1 (on the shared 2-core
+                                 machine 2 threads were slower: docs/corise.md, "Speed"); the
+                                 output is the same for any count */
     acd_progress_fn progress; /* optional; may cancel */
     void *progress_user;
 } acd_segment_params;

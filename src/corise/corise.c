@@ -481,7 +481,10 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
         nwork = nw;
         int nt = 1;
 #ifdef _OPENMP
-        if (nthreads > 1 && nw > 1) nt = nthreads < (int)nw ? nthreads : (int)nw;
+        size_t wave_faces = 0;
+        for (size_t j = b0; j < b1; j++) wave_faces += q.p[j].n;
+        if (nthreads > 1 && nw > 1 && wave_faces >= ACD_CORISE_PARALLEL_MIN_FACES)
+            nt = nthreads < (int)nw ? nthreads : (int)nw;
 #endif
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1)

@@ -13,6 +13,7 @@
 #endif
 
 #define MULTI (UINT32_MAX - 1) /* claimed by two or more ridges */
+#define CLAIM_ROUND 64         /* balls grown in one parallel loop */
 
 static double piece_length(const double *V, const uint32_t *p, size_t s, size_t t) {
     double sum = 0;
@@ -113,9 +114,11 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
     claim_req *cl = malloc((ndeep ? 2 * ndeep : 1) * sizeof *cl);
     int nt = 1;
 #ifdef _OPENMP
-    if (nthreads > 1 && !omp_in_parallel()) nt = nthreads < ACD_CORISE_MAX_THREADS ? nthreads : ACD_CORISE_MAX_THREADS;
+    if (nthreads > 1 && !omp_in_parallel() && m->ntriangles >= ACD_CORISE_PARALLEL_MIN_FACES)
+        nt = nthreads < ACD_CORISE_MAX_THREADS ? nthreads : ACD_CORISE_MAX_THREADS;
 #endif
-    ball_work *bw = calloc((size_t)nt, sizeof *bw);
+    size_t nbw = nt > 1 ? CLAIM_ROUND : 1;
+    ball_work *bw = calloc(nbw, sizeof *bw);
     if (!deep || !sp || !sst || !cl || !bw) {
         st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu deep valleys", ndeep);
         goto done;
@@ -164,11 +167,12 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
             }
         } else {
 #ifdef _OPENMP
-            /* one claim per thread at a time; applied in claim order after each round */
-            for (size_t c0 = 0; c0 < ncl && ok; c0 += (size_t)nt) {
-                size_t c1 = c0 + (size_t)nt < ncl ? c0 + (size_t)nt : ncl;
-                int rok[ACD_CORISE_MAX_THREADS];
-#pragma omp parallel for schedule(static, 1) num_threads(nt)
+            /* rounds of up to CLAIM_ROUND claims in one parallel loop each (few parallel regions:
+               their fork and join cost more than a small ball), applied in claim order */
+            for (size_t c0 = 0; c0 < ncl && ok; c0 += CLAIM_ROUND) {
+                size_t c1 = c0 + CLAIM_ROUND < ncl ? c0 + CLAIM_ROUND : ncl;
+                int rok[CLAIM_ROUND];
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
                 for (long c = (long)c0; c < (long)c1; c++) {
                     ball_work *w = &bw[c - (long)c0]; /* one workspace per claim of the round */
                     w->nfaces = 0;
@@ -218,7 +222,7 @@ done:
     free(sst);
     free(cl);
     if (bw)
-        for (int t = 0; t < nt; t++) free(bw[t].faces);
+        for (size_t t = 0; t < nbw; t++) free(bw[t].faces);
     free(bw);
     return st;
 }

@@ -28,8 +28,9 @@ acd_status acd_corise_regions(const acd_mesh *m, const acd_edge_graph *g, const 
                               acd_error *err);
 
 /* Same, with the valley splits and the balls shared among nthreads OpenMP threads (when the
- * caller is not already in a parallel region, and nthreads <= ACD_CORISE_MAX_THREADS); the
- * result is the same for any nthreads. */
+ * caller is not already in a parallel region and the mesh has at least
+ * ACD_CORISE_PARALLEL_MIN_FACES facets: below, a parallel region costs more than it saves; at most
+ * ACD_CORISE_MAX_THREADS); the result is the same for any nthreads. */
 #define ACD_CORISE_MAX_THREADS 256
 acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, const acd_corise_bridges *b,
                                  const acd_corise_ridges *r, double tau, int nthreads, uint32_t *must_link,

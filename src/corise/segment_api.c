@@ -13,6 +13,7 @@
 #include "acd/hull.h"
 #include "core/error.h"
 #include "corise/corise.h"
+#include "corise/valley.h"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -27,6 +28,7 @@ acd_segment_params acd_segment_default_params(void) {
     p.concave_weight = c.cut.concave_weight;
     p.clamp_hull_depth = 1; /* docs/corise.md, "Default of clamp_hull_depth" */
     p.max_depth = c.max_depth;
+    p.threads = 1; /* docs/corise.md, "Speed": 2 threads measured slower on the shared machine */
     return p;
 }
 
@@ -154,7 +156,7 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
 #endif
     /* pts: 9 doubles per face, each part's faces in their own range of it */
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1 && np > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1 && np > 1 && mesh->ntriangles >= ACD_CORISE_PARALLEL_MIN_FACES)
 #endif
     for (long k = 0; k < (long)np; k++)
         hst[k] = part_hull(mesh, byface + start[k], start[k + 1] - start[k], pts + 9 * start[k], &out->parts[k], &herr[k]);

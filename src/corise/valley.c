@@ -501,7 +501,9 @@ acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph
        stamps and depth memo give the same values whatever it ran before), so the bridges are
        shared among the threads and their valleys concatenated in bridge order afterwards */
 #ifdef _OPENMP
-    if (nthreads > 1 && nb >= ACD_CORISE_PARALLEL_MIN_BRIDGES && !omp_in_parallel()) nt = nthreads;
+    if (nthreads > 1 && nb >= ACD_CORISE_PARALLEL_MIN_BRIDGES && m->ntriangles >= ACD_CORISE_PARALLEL_MIN_FACES &&
+        !omp_in_parallel())
+        nt = nthreads;
 #endif
     wk = calloc((size_t)nt, sizeof *wk);
     bpath = calloc(nb ? nb : 1, sizeof *bpath);

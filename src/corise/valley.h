@@ -92,9 +92,12 @@ acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph
                                          acd_corise_bridges *out, acd_error *err);
 
 /* Same, with the bridges shared among nthreads OpenMP threads when there are at least
- * ACD_CORISE_PARALLEL_MIN_BRIDGES of them and the caller is not already in a parallel region;
- * the result is the same for any nthreads. */
+ * ACD_CORISE_PARALLEL_MIN_BRIDGES of them, the mesh has at least ACD_CORISE_PARALLEL_MIN_FACES
+ * facets and the caller is not already in a parallel region; the result is the same for any
+ * nthreads. Below these sizes a parallel region (fork, join, and idle threads spinning between
+ * regions) costs more than the work it shares. */
 #define ACD_CORISE_PARALLEL_MIN_BRIDGES 32
+#define ACD_CORISE_PARALLEL_MIN_FACES 4000
 acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth, int nthreads,
                                          acd_corise_bridges *out, acd_error *err);
 
