@@ -110,6 +110,10 @@ typedef struct mcd {
     mcd_opt *opt;
     size_t nopt, copt;
     long bound; /* the smallest option cost of the subproblem being computed, so far */
+    /* row cache of the DP's current i: crow[j] = index of the entry (i, j), j > i, PNONE if (i, j)
+     * is not a reflex diagonal; cset lists the j set */
+    size_t ci, ncset;
+    uint32_t *crow, *cset;
     /* straight composites: chains i = x0 < x1 < .. < xm = j of collinear vertices, each hop an edge
      * or a reflex diagonal; cont maps a hop (a, b) to the next vertex c of its line */
     size_t *tstart, *ta, *tc;        /* per b: (a, c) sorted by a: a-b-c collinear, b between */
@@ -177,6 +181,39 @@ static mcd_entry *entry_of(mcd *m, size_t i, size_t k) {
     for (size_t h = hslot(m, key);; h = (h + 1) & m->hmask) {
         if (m->hkey[h] == key) return &m->ent[m->hval[h]];
         if (m->hkey[h] == 0) return NULL;
+    }
+}
+
+/* The entry of (i, j), i < j, through the row cache when i is the DP's current row. */
+static mcd_entry *eij_of(mcd *m, size_t i, size_t j) {
+    if (i == m->ci) return m->crow[j] == PNONE ? NULL : &m->ent[m->crow[j]];
+    return entry_of(m, i, j);
+}
+
+/* reflex_diag(m, i, j), i < j, through the row cache when it applies. */
+static int rdiag_i(const mcd *m, size_t i, size_t j) {
+    return i == m->ci ? m->crow[j] != PNONE : reflex_diag(m, i, j);
+}
+
+/* Points the row cache at row i (the entries (i, j), j > i). */
+static void set_row(mcd *m, size_t i) {
+    for (size_t z = 0; z < m->ncset; z++) m->crow[m->cset[z]] = PNONE;
+    m->ncset = 0;
+    m->ci = i;
+    size_t r = m->row[i];
+    if (r != NONE) {
+        for (size_t q = lower(m->vlist, m->vstart[r], m->vstart[r + 1], i + 1); q < m->vstart[r + 1]; q++) {
+            m->crow[m->vlist[q]] = (uint32_t)q;
+            m->cset[m->ncset++] = (uint32_t)m->vlist[q];
+        }
+    } else {
+        for (size_t z = lower(m->rl, 0, m->nrows, i + 1); z < m->nrows; z++) {
+            size_t k = m->rl[z];
+            mcd_entry *e = bit(m, k, i) ? entry_of(m, i, k) : NULL;
+            if (!e) continue;
+            m->crow[k] = (uint32_t)(e - m->ent);
+            m->cset[m->ncset++] = (uint32_t)k;
+        }
     }
 }
 
@@ -402,7 +439,7 @@ static int option_a(mcd *m, size_t i, size_t j, size_t k, const mcd_entry *eij, 
     }
     mcd_pair pr = mkpair(j, j, j, NONE, 'A');
     if (j <= m->fwd[i]) return push_opt(m, wjk + 1, pr);
-    const mcd_entry *e = eij ? eij : entry_of(m, i, j);
+    const mcd_entry *e = eij ? eij : eij_of(m, i, j);
     if (!e || e->w < 0 || wjk + e->w > m->bound) return 1; /* costs more than an option found */
     size_t best = merge_a(m, e, i, j, k);
     if (best != NONE) {
@@ -416,7 +453,7 @@ static int option_a(mcd *m, size_t i, size_t j, size_t k, const mcd_entry *eij, 
 static int option_b(mcd *m, size_t i, size_t j, size_t k, const mcd_entry *eij, const mcd_entry *ejk) {
     long wij = 0;
     if (j > m->fwd[i]) {
-        const mcd_entry *e = eij ? eij : entry_of(m, i, j);
+        const mcd_entry *e = eij ? eij : eij_of(m, i, j);
         if (!e || e->w < 0) return 1;
         wij = e->w;
     }
@@ -499,7 +536,7 @@ static int compute_options(mcd *m, size_t i, size_t k, mcd_entry *out, int prune
     }
     if (m->reflex[k]) {
         for (size_t j = bk; j < k; j++)
-            if ((j <= m->fwd[i] || reflex_diag(m, i, j)) && !option_b(m, i, j, k, NULL, NULL)) return 0;
+            if ((j <= m->fwd[i] || rdiag_i(m, i, j)) && !option_b(m, i, j, k, NULL, NULL)) return 0;
         for (size_t j = i + 1; j <= fi && j < bk; j++)
             if (bit(m, k, j) && !option_b(m, i, j, k, NULL, NULL)) return 0;
         list_range(m, m->row[k], fi, bk, &va, &a0, &a1);
@@ -508,13 +545,13 @@ static int compute_options(mcd *m, size_t i, size_t k, mcd_entry *out, int prune
             /* va = vis(k): the entry (j, k) is there when j is convex */
             for (size_t q = a0; q < a1; q++) {
                 size_t j = va[q];
-                if (reflex_diag(m, i, j) && !option_b(m, i, j, k, NULL, m->reflex[j] ? NULL : &m->ent[q])) return 0;
+                if (rdiag_i(m, i, j) && !option_b(m, i, j, k, NULL, m->reflex[j] ? NULL : &m->ent[q])) return 0;
             }
         } else {
             int vi = m->reflex[i] != 0;
             for (size_t q = b0; q < b1; q++) {
                 size_t j = vb[q];
-                if (bit(m, k, j) && reflex_diag(m, i, j) && !option_b(m, i, j, k, vi ? &m->ent[q] : NULL, NULL))
+                if (bit(m, k, j) && rdiag_i(m, i, j) && !option_b(m, i, j, k, vi ? &m->ent[q] : NULL, NULL))
                     return 0;
             }
         }
@@ -996,6 +1033,8 @@ static void mcd_free(mcd *m) {
     free(m->wkey_j);
     free(m->wslot);
     free(m->went);
+    free(m->crow);
+    free(m->cset);
 }
 
 acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error *err) {
@@ -1012,6 +1051,7 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
     const acd_vec2 *ring = acd_polygon_ring(p, 0);
     mcd m;
     memset(&m, 0, sizeof m);
+    m.ci = NONE;
     m.n = n;
     size_t *perm = malloc(n * sizeof *perm);
     task *stack = NULL;
@@ -1094,6 +1134,10 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
         st = acd_fail(err, ACD_ERR_NOMEM, "MCD: out of memory for %zu diagonals", nv);
         goto done;
     }
+    m.crow = malloc(n * sizeof *m.crow);
+    m.cset = malloc(n * sizeof *m.cset);
+    if (!m.crow || !m.cset) goto dp_nomem;
+    for (size_t j = 0; j < n; j++) m.crow[j] = PNONE;
     for (size_t q = 0; q < nv; q++) {
         m.ent[q].w = -1;
         m.ent[q].first = m.ent[q].count = m.ent[q].s1 = m.ent[q].t1 = 0;
@@ -1102,6 +1146,7 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
      * reflex i its visibility list beyond i; for a convex i the reflex k > i that see it */
     for (size_t i = n; i-- > 0;) {
         size_t r = m.row[i];
+        set_row(&m, i);
         if (r != NONE) {
             size_t q0 = lower(m.vlist, m.vstart[r], m.vstart[r + 1], i + 1);
             for (size_t q = q0; q < m.vstart[r + 1]; q++)
