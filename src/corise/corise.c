@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/union_find.h"
+#include "corise/edgesort.h"
 #include "corise/regions.h"
 #include "corise/ridge.h"
 #include "corise/valley.h"
@@ -26,16 +27,7 @@ acd_corise_params acd_corise_default_params(void) {
     return p;
 }
 
-typedef struct ef {
-    uint32_t lo, hi, face;
-} ef;
-
-static int cmp_ef(const void *x, const void *y) {
-    const ef *p = x, *q = y;
-    if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
-    if (p->hi != q->hi) return p->hi < q->hi ? -1 : 1;
-    return (p->face > q->face) - (p->face < q->face);
-}
+typedef acd_corise_ef ef;
 
 /* Edge-connected components of the facets faces[0..n) of m: comp[i] = component of faces[i],
  * numbered by first occurrence. Returns the count, or SIZE_MAX when out of memory. */
@@ -56,7 +48,12 @@ static size_t components(const acd_mesh *m, const uint32_t *faces, size_t n, uin
             e[3 * i + k] = (ef){u < v ? u : v, u < v ? v : u, (uint32_t)i};
         }
     }
-    qsort(e, 3 * n, sizeof *e, cmp_ef);
+    if (!acd_corise_ef_sort(e, 3 * n)) {
+        free(e);
+        free(p);
+        free(id);
+        return SIZE_MAX;
+    }
     for (size_t i = 1; i < 3 * n; i++)
         if (e[i].lo == e[i - 1].lo && e[i].hi == e[i - 1].hi) {
             uint32_t a = acd_uf_find(p, e[i].face), b = acd_uf_find(p, e[i - 1].face);
@@ -225,7 +222,7 @@ static int cap_cut_holes(const acd_mesh *s, const uint32_t *l2g, const edge_coun
             uint32_t u = s->triangles[3 * t + k], v = s->triangles[3 * t + (k + 1) % 3];
             e[3 * t + k] = (ef){u < v ? u : v, u < v ? v : u, (uint32_t)(3 * t + (size_t)k)};
         }
-    qsort(e, ne, sizeof *e, cmp_ef);
+    if (!acd_corise_ef_sort(e, ne)) goto fail;
     size_t nc = 0;
     for (size_t i = 0; i < ne;) {
         size_t j = i + 1;

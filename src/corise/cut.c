@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/predicates.h"
+#include "corise/edgesort.h"
 #include "corise/maxflow.h"
 #include "corise/regions.h"
 
@@ -18,17 +19,7 @@ acd_corise_cut_params acd_corise_cut_default_params(void) {
     return p;
 }
 
-typedef struct ef {
-    uint32_t lo, hi;
-    uint32_t face;
-} ef;
-
-static int cmp_ef(const void *x, const void *y) {
-    const ef *p = x, *q = y;
-    if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
-    if (p->hi != q->hi) return p->hi < q->hi ? -1 : 1;
-    return (p->face > q->face) - (p->face < q->face);
-}
+typedef acd_corise_ef ef;
 
 typedef struct dual_edge {
     uint32_t f, g;
@@ -59,7 +50,11 @@ static acd_status build_dual(const acd_mesh *m, dual_edge **out, size_t *nout, a
             uint32_t u = m->triangles[3 * t + k], v = m->triangles[3 * t + (k + 1) % 3];
             e[3 * t + k] = (ef){u < v ? u : v, u < v ? v : u, (uint32_t)t};
         }
-    qsort(e, ne, sizeof *e, cmp_ef);
+    if (!acd_corise_ef_sort(e, ne)) {
+        free(e);
+        free(d);
+        return acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for the dual graph of %zu facets", m->ntriangles);
+    }
     size_t nd = 0;
     for (size_t i = 0; i < ne;) {
         size_t j = i + 1;

@@ -30,6 +30,11 @@ typedef struct claim_req {
     double len;
 } claim_req;
 
+static int cmp_claim(const void *x, const void *y) {
+    const claim_req *p = x, *q = y;
+    return (p->r > q->r) - (p->r < q->r);
+}
+
 /* Per-claim output: the claimed facets. */
 typedef struct ball_work {
     uint32_t *faces;
@@ -156,7 +161,24 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
         cl[ncl++] = (claim_req){p[br->count - 1], r->ridge_of[hb], l1};
         count += 2;
     }
-    /* the balls, a chunk at a time in parallel, each applied in claim order */
+    /* Claims from the same vertex are one: its ridge is its hull vertex's, and balls around one
+       vertex are nested (a facet within the smaller radius is within the larger), so the facets
+       they claim together are the largest ball's. One ball per distinct vertex, with the largest
+       radius; the owners come out the same because a facet's owner depends only on the set of
+       ridges that claim it. */
+    if (ncl) {
+        qsort(cl, ncl, sizeof *cl, cmp_claim);
+        size_t k = 0;
+        for (size_t c = 0; c < ncl; c++) {
+            if (k && cl[k - 1].r == cl[c].r) {
+                if (cl[c].len > cl[k - 1].len) cl[k - 1].len = cl[c].len;
+            } else {
+                cl[k++] = cl[c];
+            }
+        }
+        ncl = k;
+    }
+    /* the balls, a round at a time in parallel, applied in order */
     if (ncl) {
         int ok = 1;
         if (nt == 1) {
