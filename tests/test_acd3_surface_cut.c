@@ -2,7 +2,8 @@
  * sphere (cut off by a first plane) is cut again by planes close to that first one, through a
  * vertex of the piece's jagged boundary: the cut follows the boundary and, without the joining
  * of teeth, cuts off faces between its chain and the boundary. Every such cut must give at most
- * two pieces, and the pieces must partition the faces. */
+ * two pieces, and the pieces must partition the faces. The level cut (acd3_surface_cut_deep) keeps
+ * every vertex at or above the level with the seed. */
 #include "testutil.h"
 
 #include <math.h>
@@ -92,9 +93,47 @@ static void test_strip_cut_two_sides(void **state) {
     acd_mesh_free(&sphere);
 }
 
+/* The level cut: the faces around the seed with a vertex at level >= thr, apart from the rest;
+ * every vertex at level >= thr (the seed among them) is in that piece only. */
+static void test_deep_cut(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 24, bumpy, NULL));
+    double *level = malloc(m.nvertices * sizeof *level);
+    assert_non_null(level);
+    uint32_t seed = 0;
+    for (size_t v = 0; v < m.nvertices; v++) {
+        level[v] = m.vertices[3 * v + 2];
+        if (level[v] > level[seed]) seed = (uint32_t)v;
+    }
+    const double thr = 0.5;
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(m.vertices, m.nvertices, m.triangles, m.ntriangles, &g, &err), ACD_OK);
+    acd_cut_result r;
+    assert_int_equal(acd3_surface_cut_deep(&m, &g, level, thr, seed, &r, &err), ACD_OK);
+    assert_true(r.npieces >= 2);
+    size_t faces = 0, seeds = 0;
+    for (size_t i = 0; i < r.npieces; i++) {
+        faces += r.pieces[i].mesh.ntriangles;
+        int has_seed = 0;
+        for (size_t v = 0; v < r.pieces[i].mesh.nvertices; v++) has_seed |= r.pieces[i].source[v] == seed;
+        seeds += (size_t)has_seed;
+        for (size_t v = 0; v < r.pieces[i].mesh.nvertices && !has_seed; v++)
+            assert_true(level[r.pieces[i].source[v]] < thr); /* deep vertices only with the seed */
+    }
+    assert_int_equal(seeds, 1);
+    assert_int_equal(faces, m.ntriangles);
+    acd_cut_result_free(&r);
+    acd_edge_graph_free(&g);
+    free(level);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_strip_cut_two_sides),
+        cmocka_unit_test(test_deep_cut),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
