@@ -85,7 +85,17 @@ static void check_cut(const acd_hull *h, const double *p, size_t n) {
      * a sliver) */
     double ext = 0;
     for (size_t i = 0; i < 3 * m.nvertices; i++) ext = fmax(ext, fabs(m.vertices[i]));
-    double tol = 1e-9 * fabs(v0) + 1e-12 * ext * ext * ext;
+    /* flat shells dropped by the cut (geom3/plane_cut.c: mean thickness below 1e-12 of the
+     * diagonal) take at most 1e-12 * diagonal * half their area each; their area is at most the
+     * mesh's plus twice the section's */
+    double area = 0;
+    for (size_t t = 0; t < m.ntriangles; t++) {
+        const double *a = m.vertices + 3 * m.triangles[3 * t], *b = m.vertices + 3 * m.triangles[3 * t + 1],
+                     *c = m.vertices + 3 * m.triangles[3 * t + 2];
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        area += 0.5 * hypot(hypot(u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2]), u[0] * w[1] - u[1] * w[0]);
+    }
+    double tol = 1e-9 * fabs(v0) + 1e-12 * ext * ext * ext + 1e-12 * 2 * ext * (area + 2 * r.section_area);
     if (fabs(v0) > 1e-250 && fabs(v0) < 1e250 && fabs(vs - v0) > tol) {
         fprintf(stderr, "volumes %.17g vs %.17g\n", vs, v0);
         abort();

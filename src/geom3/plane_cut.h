@@ -55,7 +55,9 @@ typedef struct acd_cut_result {
 
 /* Splits the closed mesh m (every edge used once in each direction; ACD_ERR_NON_MANIFOLD otherwise)
  * by the plane. Faces lying in the plane go to the side their interior lies on (the side opposite to
- * their outward normal). A mesh entirely on one side comes back as its connected components. */
+ * their outward normal). A mesh entirely on one side comes back as its connected components. Flat
+ * shells (mean thickness below 1e-12 of the bounding-box diagonal) are dropped (ndropped), so the
+ * pieces' volumes add up to m's within rounding plus 1e-12 * diagonal * half the dropped area. */
 acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_result *out, acd_error *err);
 void acd_cut_result_free(acd_cut_result *r);
 
