@@ -274,6 +274,106 @@ static int find_all_knots(const acd_mesh *m, const acd3_measure *ms, const acd3_
     return ok;
 }
 
+/* Single-source shortest paths inside the allowed vertices, with work arrays reused across
+ * sources (a visit stamp resets them): the same distances and predecessors as acd_dijkstra with
+ * these weights and vertex_allowed (heap order (distance, vertex), equal distances keep the
+ * smaller predecessor), without its O(vertices + edges) set-up per source. */
+typedef struct rsp_item {
+    double d;
+    uint32_t v;
+} rsp_item;
+
+typedef struct region_sp {
+    double *dist;
+    uint32_t *pred, *stamp;
+    uint8_t *done;
+    uint32_t cur;
+    rsp_item *heap;
+    size_t hn, hcap;
+} region_sp;
+
+static int rsp_less(rsp_item a, rsp_item b) { return a.d < b.d || (a.d == b.d && a.v < b.v); }
+
+static int rsp_push(region_sp *r, double d, uint32_t v) {
+    if (r->hn == r->hcap) {
+        size_t nc = r->hcap ? 2 * r->hcap : 256;
+        rsp_item *nh = realloc(r->heap, nc * sizeof *nh);
+        if (!nh) return 0;
+        r->heap = nh;
+        r->hcap = nc;
+    }
+    size_t i = r->hn++;
+    rsp_item x = {d, v};
+    while (i) {
+        size_t p = (i - 1) / 2;
+        if (!rsp_less(x, r->heap[p])) break;
+        r->heap[i] = r->heap[p];
+        i = p;
+    }
+    r->heap[i] = x;
+    return 1;
+}
+
+static rsp_item rsp_pop(region_sp *r) {
+    rsp_item top = r->heap[0], x = r->heap[--r->hn];
+    size_t i = 0;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= r->hn) break;
+        if (c + 1 < r->hn && rsp_less(r->heap[c + 1], r->heap[c])) c++;
+        if (!rsp_less(r->heap[c], x)) break;
+        r->heap[i] = r->heap[c];
+        i = c;
+    }
+    if (r->hn) r->heap[i] = x;
+    return top;
+}
+
+/* Distance of v from the last source (INFINITY when not reached). */
+static double rsp_dist(const region_sp *r, uint32_t v) { return r->stamp[v] == r->cur ? r->dist[v] : INFINITY; }
+
+/* Returns 0 when out of memory. */
+static int rsp_run(region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src) {
+    if (++r->cur == 0) {
+        memset(r->stamp, 0, g->nvertices * sizeof *r->stamp);
+        r->cur = 1;
+    }
+    uint32_t cur = r->cur;
+    r->hn = 0;
+    if (!allowed[src]) return 1;
+    r->stamp[src] = cur;
+    r->dist[src] = 0;
+    r->pred[src] = ACD_NO_VERTEX;
+    r->done[src] = 0;
+    if (!rsp_push(r, 0.0, src)) return 0;
+    while (r->hn) {
+        rsp_item it = rsp_pop(r);
+        uint32_t u = it.v;
+        if (r->done[u] || it.d != r->dist[u]) continue; /* stale */
+        r->done[u] = 1;
+        for (size_t k = g->row[u]; k < g->row[u + 1]; k++) {
+            uint32_t v = g->adj[k], e = g->adj_edge[k];
+            if (!allowed[v]) continue;
+            if (r->stamp[v] != cur) {
+                r->stamp[v] = cur;
+                r->dist[v] = INFINITY;
+                r->pred[v] = ACD_NO_VERTEX;
+                r->done[v] = 0;
+            }
+            if (r->done[v]) continue;
+            double nd = r->dist[u] + w[e];
+            if (nd < r->dist[v]) {
+                r->dist[v] = nd;
+                r->pred[v] = u;
+                if (!rsp_push(r, nd, v)) return 0;
+            } else if (nd == r->dist[v] && u < r->pred[v]) {
+                r->pred[v] = u;
+            }
+        }
+    }
+    return 1;
+}
+
 /* Flood-fills the faces of region r (listed in rf[0..nrf)) without crossing the edges marked in
  * cut_edge; label[f] = component (faces outside r keep UINT32_MAX). */
 static void flood_split(const uint32_t *fe, const acd3_measure *ms, const acd3_cut_graph *cg,
@@ -337,6 +437,8 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     double *wcost = malloc((ne ? ne : 1) * sizeof *wcost);
     uint8_t *allowed = calloc(nv ? nv : 1, 1), *cut_edge = calloc(ne ? ne : 1, 1);
     u32vec pool = {0}, kept = {0};
+    region_sp sp;
+    memset(&sp, 0, sizeof sp);
     cand *cands = NULL;
     size_t ncand = 0, capcand = 0;
     acd3_pocket_cut *cuts = NULL;
@@ -364,6 +466,17 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
         free(fill);
     }
     for (size_t e = 0; e < ne; e++) wcost[e] = acd3_valley_cost(g, ms->vconc, (uint32_t)e, o->tau);
+    int weights_ok = 1; /* (acd_dijkstra's check, once) */
+    for (size_t e = 0; e < ne; e++)
+        if (!(wcost[e] >= 0) || !isfinite(wcost[e])) weights_ok = 0;
+    sp.dist = malloc((nv ? nv : 1) * sizeof *sp.dist);
+    sp.pred = malloc((nv ? nv : 1) * sizeof *sp.pred);
+    sp.stamp = calloc(nv ? nv : 1, sizeof *sp.stamp);
+    sp.done = malloc(nv ? nv : 1);
+    if (!sp.dist || !sp.pred || !sp.stamp || !sp.done) {
+        ok = 0;
+        goto build_done;
+    }
 
     for (size_t i0 = 0; i0 < nrk && ok;) {
         size_t i1 = i0;
@@ -393,23 +506,17 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
         }
         for (size_t i = 0; i < K * K; i++) wm[i] = NO_PATH_COST, cid[i] = SIZE_MAX;
         for (size_t i = 0; i < K && ok; i++) {
-            acd_dijkstra_opts dop;
-            memset(&dop, 0, sizeof dop);
-            dop.weights = wcost;
-            dop.vertex_allowed = allowed;
-            dop.target = ACD_NO_VERTEX;
-            acd_sp_tree t;
             uint32_t src = out->knot_v[kr[i].knot];
-            if (acd_dijkstra(g, &src, 1, &dop, &t, NULL) != ACD_OK) {
+            if (!weights_ok || !rsp_run(&sp, g, wcost, allowed, src)) {
                 ok = 0;
                 break;
             }
             for (size_t j = i + 1; j < K && ok; j++) {
                 if (out->knot_chain[kr[j].knot] == out->knot_chain[kr[i].knot]) continue;
                 uint32_t dst = out->knot_v[kr[j].knot];
-                if (dst == src || !isfinite(t.dist[dst])) continue;
+                if (dst == src || !isfinite(rsp_dist(&sp, dst))) continue;
                 size_t off = pool.n, n = 0;
-                for (uint32_t v = dst; v != ACD_NO_VERTEX; v = t.pred[v]) {
+                for (uint32_t v = dst; v != ACD_NO_VERTEX; v = sp.pred[v]) {
                     ok = vpush(&pool, v);
                     if (!ok) break;
                     n++;
@@ -435,7 +542,6 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                 cid[i * K + j] = cid[j * K + i] = ncand;
                 ncand++;
             }
-            acd_sp_tree_free(&t);
         }
         for (size_t i = 0; i < nrf; i++)
             for (int k = 0; k < 3; k++) allowed[m->triangles[3 * rf[i] + k]] = 0;
@@ -575,6 +681,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
 build_done:
     free(rks), free(rrow), free(rface), free(label), free(queue), free(fe), free(wcost), free(allowed), free(cut_edge);
     free(pool.a), free(kept.a), free(cands);
+    free(sp.dist), free(sp.pred), free(sp.stamp), free(sp.done), free(sp.heap);
     out->cuts = cuts;
     out->ncuts = ncuts;
     if (!ok) goto nomem;
