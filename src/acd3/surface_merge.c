@@ -90,7 +90,6 @@ static acd_status weld(const ctx *c, const uint32_t *gof, uint32_t a, uint32_t b
         }
         for (size_t t = 0; t < m->ntriangles; t++) {
             uint32_t x = local[m->triangles[3 * t]], y = local[m->triangles[3 * t + 1]], z = local[m->triangles[3 * t + 2]];
-            if (x == y || y == z || z == x) continue;
             uint32_t *q = out->triangles + 3 * out->ntriangles++;
             q[0] = x, q[1] = y, q[2] = z;
         }
