@@ -340,6 +340,7 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
         }
     }
     double vol = 0, area = 0;
+    const double *apex = w + 3 * out->source[0];
     t = 0;
     FORALLfacets {
         uint32_t v[3], opp[3];
@@ -372,21 +373,19 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
         memcpy(out->planes + 4 * t, nrm, sizeof nrm);
         out->planes[4 * t + 3] = d;
         const double *a = w + 3 * out->source[tri[0]], *b = w + 3 * out->source[tri[1]], *c = w + 3 * out->source[tri[2]];
-        double e1[3], e2[3], e3[3], cr[3];
+        double e1[3], e2[3], cr[3];
         sub3(b, a, e1);
         sub3(c, a, e2);
         cross3(e1, e2, cr);
         area += 0.5 * norm3(cr);
-        sub3(a, o, e3);
-        double ao[3], bo[3], co[3], bc[3];
-        sub3(a, o, ao);
-        sub3(b, o, bo);
-        sub3(c, o, co);
-        cross3(bo, co, bc);
-        vol += dot3(ao, bc) / 6.0;
+        /* tetrahedra from a hull vertex (apex), each by the adaptive orient3d (accurate to about
+         * its own magnitude, not to the coordinates' cube): on thin hulls the plain triple product
+         * about the vertex centroid cancelled to a negative volume (coordinates 1e45 around a
+         * slab 1e37 thick gave -4.6e117) */
+        vol += acd_orient3d(a, b, c, apex) / 6.0;
         t++;
     }
-    out->volume = vol * s * s * s;
+    out->volume = vol > 0 ? vol * s * s * s : 0.0;
     out->area = area * s * s;
     free(fidx);
     free(vmap);
