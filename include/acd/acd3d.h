@@ -55,10 +55,13 @@ typedef struct acd3d_params {
     int threads;              /* 0: as many as cores (OpenMP); results are identical for any count */
     size_t max_depth;         /* recursion guard (default 48), raised by twice the input's genus
                                  (a handle may take a cut that only opens it) */
-    int merge;                /* non-zero (default 1, solid mode): after the decomposition, adjacent
-                                 parts are joined while the joined hull stays within tau of the joined
-                                 part and the input surface within tau of it (acd3/merge, docs/acd3d.md
-                                 "Merge pass"); the joined parts are ACD3D_LEAF_JOINED nodes */
+    int merge;                /* non-zero (default 1): after the decomposition, adjacent parts are
+                                 joined cheapest first while the result stays within tau: in solid
+                                 mode the joined hull within tau of the joined part and the input
+                                 surface within tau of it (acd3/merge), in surface mode the welded
+                                 patch measured with the decomposition's own measure
+                                 (acd3/surface_merge); docs/acd3d.md "Merge pass". The joined parts
+                                 are ACD3D_LEAF_JOINED nodes */
     double merge_tau;         /* the merge pass's tolerance, in the units of tau (relative, or absolute
                                  with tau_absolute); 0 (default): tau */
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
