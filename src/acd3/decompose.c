@@ -453,29 +453,53 @@ static int node_is_part(const acd3d_node *nd) {
            (nd->leaf_reason == ACD3D_LEAF_MERGED || (nd->first_child < 0 && nd->leaf_reason != ACD3D_LEAF_NONE));
 }
 
+/* The parts (node_is_part) in node order: *idx their nodes, *meshes their meshes (shallow
+ * copies). *np < 2 leaves nothing allocated. */
+static acd_status collect_parts(const tree *t, size_t *np, size_t **idx, acd_mesh **meshes, acd_error *err) {
+    size_t n0 = 0;
+    for (size_t n = 0; n < t->n; n++) n0 += (size_t)node_is_part(&t->a[n].node);
+    *np = n0;
+    *idx = NULL;
+    *meshes = NULL;
+    if (n0 < 2) return ACD_OK;
+    *idx = malloc(n0 * sizeof **idx);
+    *meshes = malloc(n0 * sizeof **meshes);
+    if (!*idx || !*meshes) {
+        free(*idx);
+        free(*meshes);
+        *np = 0;
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    size_t k = 0;
+    for (size_t n = 0; n < t->n; n++)
+        if (node_is_part(&t->a[n].node)) {
+            (*idx)[k] = n;
+            (*meshes)[k++] = t->a[n].mesh;
+        }
+    return ACD_OK;
+}
+
+/* The members of group g (group_of over the np parts idx) now belong to the node just appended:
+ * merged_into set, their meshes released. */
+static void mark_joined(tree *t, const size_t *idx, size_t np, const uint32_t *group_of, size_t g) {
+    for (size_t i = 0; i < np; i++)
+        if (group_of[i] == g) {
+            t->a[idx[i]].node.merged_into = (int)(t->n - 1);
+            acd_mesh_free(&t->a[idx[i]].mesh);
+        }
+}
+
 /* The merge pass (acd3/merge): every group of adjacent parts it joins becomes a node appended
  * after the tree (ACD3D_LEAF_JOINED, its mesh the members' meshes one after the other, so each
  * component stays closed); the members keep their nodes, with merged_into set and no mesh. */
 static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, double tol, int threads, size_t *nparts,
                                 acd_error *err) {
-    size_t np = 0;
-    for (size_t n = 0; n < t->n; n++) np += (size_t)node_is_part(&t->a[n].node);
-    if (np < 2) return ACD_OK;
-    size_t *idx = malloc(np * sizeof *idx);
-    acd_mesh *meshes = malloc(np * sizeof *meshes);
-    if (!idx || !meshes) {
-        free(idx);
-        free(meshes);
-        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-    }
-    np = 0;
-    for (size_t n = 0; n < t->n; n++)
-        if (node_is_part(&t->a[n].node)) {
-            idx[np] = n;
-            meshes[np++] = t->a[n].mesh;
-        }
+    size_t np, *idx;
+    acd_mesh *meshes;
+    acd_status st = collect_parts(t, &np, &idx, &meshes, err);
+    if (st != ACD_OK || np < 2) return st;
     acd3_merge_result mr;
-    acd_status st = acd3_merge_adjacent(input, meshes, np, tau, tol, threads, &mr, err);
+    st = acd3_merge_adjacent(input, meshes, np, tau, tol, threads, &mr, err);
     free(meshes);
     for (size_t g = 0; st == ACD_OK && g < mr.ngroups; g++) {
         if (mr.group_size[g] < 2) continue;
@@ -514,11 +538,7 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
         w->node.volume = vol;
         w->node.concavity = mr.bound[g];
         w->node.leaf_reason = ACD3D_LEAF_JOINED;
-        for (size_t i = 0; i < np; i++)
-            if (mr.group_of[i] == g) {
-                t->a[idx[i]].node.merged_into = (int)(t->n - 1);
-                acd_mesh_free(&t->a[idx[i]].mesh);
-            }
+        mark_joined(t, idx, np, mr.group_of, g);
         *nparts -= mr.group_size[g] - 1;
     }
     acd3_merge_result_free(&mr);
@@ -530,24 +550,12 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
  * members welded along their shared chains, its concavity measured as the leaves'. */
 static acd_status join_surface(tree *t, double eps, double tau, double tol, int threads, size_t *nparts,
                                acd_error *err) {
-    size_t np = 0;
-    for (size_t n = 0; n < t->n; n++) np += (size_t)node_is_part(&t->a[n].node);
-    if (np < 2) return ACD_OK;
-    size_t *idx = malloc(np * sizeof *idx);
-    acd_mesh *meshes = malloc(np * sizeof *meshes);
-    if (!idx || !meshes) {
-        free(idx);
-        free(meshes);
-        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-    }
-    np = 0;
-    for (size_t n = 0; n < t->n; n++)
-        if (node_is_part(&t->a[n].node)) {
-            idx[np] = n;
-            meshes[np++] = t->a[n].mesh;
-        }
+    size_t np, *idx;
+    acd_mesh *meshes;
+    acd_status st = collect_parts(t, &np, &idx, &meshes, err);
+    if (st != ACD_OK || np < 2) return st;
     acd3_surface_merge_result mr;
-    acd_status st = acd3_surface_merge(meshes, np, eps, tau, tol, threads, &mr, err);
+    st = acd3_surface_merge(meshes, np, eps, tau, tol, threads, &mr, err);
     free(meshes);
     for (size_t g = 0; st == ACD_OK && g < mr.ngroups; g++) {
         if (mr.group_size[g] < 2) continue;
@@ -559,11 +567,7 @@ static acd_status join_surface(tree *t, double eps, double tau, double tol, int 
         work_node *w = &t->a[t->n - 1];
         w->node.concavity = mr.concavity[g];
         w->node.leaf_reason = ACD3D_LEAF_JOINED;
-        for (size_t i = 0; i < np; i++)
-            if (mr.group_of[i] == g) {
-                t->a[idx[i]].node.merged_into = (int)(t->n - 1);
-                acd_mesh_free(&t->a[idx[i]].mesh);
-            }
+        mark_joined(t, idx, np, mr.group_of, g);
         *nparts -= mr.group_size[g] - 1;
     }
     acd3_surface_merge_result_free(&mr);
