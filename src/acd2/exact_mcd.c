@@ -165,12 +165,12 @@ static unsigned popcount64(uint64_t x) {
 }
 
 /* The table entry of the reflex diagonal (i, k), i < k; NULL if it is not one. The entry of
- * (i, k) sits at the position of the other end in the owner's visibility list (owner i if
- * reflex, else k), which is the rank of that bit in the owner's bit row: a prefix count per
+ * (i, k) sits at the position of the other end in the owner's visibility list (owner k if
+ * reflex, else i: for a notch k all entries (j, k) are contiguous, read so by type B), which is the rank of that bit in the owner's bit row: a prefix count per
  * 64-bit word plus a popcount, next to the bit just tested (the hash is the fallback). */
 static mcd_entry *entry_of(mcd *m, size_t i, size_t k) {
     if (m->rank) {
-        size_t a = m->reflex[i] ? i : k, b = a == i ? k : i, r = m->row[a];
+        size_t a = m->reflex[k] ? k : i, b = a == i ? k : i, r = m->row[a];
         if (r == NONE) return NULL;
         size_t w = r * m->words + b / 64;
         uint64_t word = m->bits[w], mask = (uint64_t)1 << (b % 64);
@@ -203,8 +203,9 @@ static void set_row(mcd *m, size_t i) {
     size_t r = m->row[i];
     if (r != NONE) {
         for (size_t q = lower(m->vlist, m->vstart[r], m->vstart[r + 1], i + 1); q < m->vstart[r + 1]; q++) {
-            m->crow[m->vlist[q]] = (uint32_t)q;
-            m->cset[m->ncset++] = (uint32_t)m->vlist[q];
+            size_t j = m->vlist[q];
+            m->crow[j] = m->reflex[j] ? (uint32_t)(entry_of(m, i, j) - m->ent) : (uint32_t)q;
+            m->cset[m->ncset++] = (uint32_t)j;
         }
     } else {
         for (size_t z = lower(m->rl, 0, m->nrows, i + 1); z < m->nrows; z++) {
@@ -239,7 +240,7 @@ static int build_rank(mcd *m) {
     return 1;
 }
 
-/* Fills the entry hash from the visibility rows (owner of (i, k): i if reflex, else k). */
+/* Fills the entry hash from the visibility rows (owner of (i, k): k if reflex, else i). */
 static int build_entry_hash(mcd *m) {
     if (!build_rank(m)) return 0;
     if (m->rank) return 1;
@@ -253,7 +254,7 @@ static int build_entry_hash(mcd *m) {
         size_t a = m->rl[r];
         for (size_t q = m->vstart[r]; q < m->vstart[r + 1]; q++) {
             size_t b = m->vlist[q], i = a < b ? a : b, k = a < b ? b : a;
-            if ((m->reflex[i] ? i : k) != a) continue;
+            if ((m->reflex[k] ? k : i) != a) continue;
             uint64_t key = (uint64_t)i * m->n + k + 1;
             size_t h = hslot(m, key);
             while (m->hkey[h]) h = (h + 1) & m->hmask;
@@ -520,16 +521,16 @@ static int compute_options(mcd *m, size_t i, size_t k, mcd_entry *out, int prune
         list_range(m, m->row[i], fi, bk, &va, &a0, &a1);
         list_range(m, m->reflex[k] ? m->row[k] : NONE, fi, bk, &vb, &b0, &b1);
         if (a1 - a0 <= b1 - b0) {
-            /* va = vis(i): the entry (i, j) is at the same position */
+            /* va = vis(i); the entry (i, j) from the row cache */
             for (size_t q = a0; q < a1; q++)
-                if (reflex_diag(m, va[q], k) && !option_a(m, i, va[q], k, &m->ent[q], NULL)) return 0;
+                if (reflex_diag(m, va[q], k) && !option_a(m, i, va[q], k, NULL, NULL)) return 0;
         } else {
-            /* vb = vis(k) (k reflex; the entry (j, k) is there when j is convex) or the notches */
+            /* vb = vis(k) (k reflex: the entry (j, k) is at the same position) or the notches */
             int vk = m->reflex[k] != 0;
             for (size_t q = b0; q < b1; q++) {
                 size_t j = vb[q];
                 if (bit(m, i, j) && reflex_diag(m, j, k) &&
-                    !option_a(m, i, j, k, NULL, vk && !m->reflex[j] ? &m->ent[q] : NULL))
+                    !option_a(m, i, j, k, NULL, vk ? &m->ent[q] : NULL))
                     return 0;
             }
         }
@@ -542,16 +543,15 @@ static int compute_options(mcd *m, size_t i, size_t k, mcd_entry *out, int prune
         list_range(m, m->row[k], fi, bk, &va, &a0, &a1);
         list_range(m, m->reflex[i] ? m->row[i] : NONE, fi, bk, &vb, &b0, &b1);
         if (a1 - a0 <= b1 - b0) {
-            /* va = vis(k): the entry (j, k) is there when j is convex */
+            /* va = vis(k): the entry (j, k) is at the same position */
             for (size_t q = a0; q < a1; q++) {
                 size_t j = va[q];
-                if (rdiag_i(m, i, j) && !option_b(m, i, j, k, NULL, m->reflex[j] ? NULL : &m->ent[q])) return 0;
+                if (rdiag_i(m, i, j) && !option_b(m, i, j, k, NULL, &m->ent[q])) return 0;
             }
         } else {
-            int vi = m->reflex[i] != 0;
             for (size_t q = b0; q < b1; q++) {
                 size_t j = vb[q];
-                if (bit(m, k, j) && rdiag_i(m, i, j) && !option_b(m, i, j, k, vi ? &m->ent[q] : NULL, NULL))
+                if (bit(m, k, j) && rdiag_i(m, i, j) && !option_b(m, i, j, k, NULL, NULL))
                     return 0;
             }
         }
@@ -1145,23 +1145,10 @@ acd_status acd_exact_mcd(const acd_polygon *p, acd_index_pieces *out, acd_error 
     /* 3. dynamic programming over the reflex diagonals (i, k), i decreasing, k increasing: for a
      * reflex i its visibility list beyond i; for a convex i the reflex k > i that see it */
     for (size_t i = n; i-- > 0;) {
-        size_t r = m.row[i];
-        set_row(&m, i);
-        if (r != NONE) {
-            size_t q0 = lower(m.vlist, m.vstart[r], m.vstart[r + 1], i + 1);
-            for (size_t q = q0; q < m.vstart[r + 1]; q++)
-                if (!compute(&m, i, m.vlist[q], &m.ent[q], 1)) goto dp_nomem;
-        } else {
-            for (size_t z = lower(m.rl, 0, m.nrows, i + 1); z < m.nrows; z++) {
-                size_t k = m.rl[z];
-                if (!bit(&m, k, i)) continue;
-                mcd_entry *e = entry_of(&m, i, k);
-                if (!e) {
-                    st = acd_fail(err, ACD_ERR_INTERNAL, "MCD: diagonal (%zu, %zu) has no table entry", i, k);
-                    goto done;
-                }
-                if (!compute(&m, i, k, e, 1)) goto dp_nomem;
-            }
+        set_row(&m, i); /* the entries (i, k), k > i, in k order */
+        for (size_t z = 0; z < m.ncset; z++) {
+            size_t k = m.cset[z];
+            if (!compute(&m, i, k, &m.ent[m.crow[k]], 1)) goto dp_nomem;
         }
     }
     if (!compute(&m, 0, n - 1, &m.root, 0)) {
