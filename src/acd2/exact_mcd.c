@@ -166,8 +166,9 @@ static unsigned popcount64(uint64_t x) {
 
 /* The table entry of the reflex diagonal (i, k), i < k; NULL if it is not one. The entry of
  * (i, k) sits at the position of the other end in the owner's visibility list (owner k if
- * reflex, else i: for a notch k all entries (j, k) are contiguous, read so by type B), which is the rank of that bit in the owner's bit row: a prefix count per
- * 64-bit word plus a popcount, next to the bit just tested (the hash is the fallback). */
+ * reflex, else i: for a notch k all entries (j, k) are contiguous, read so by type B), which is
+ * the rank of that bit in the owner's bit row: a prefix count per 64-bit word plus a popcount,
+ * next to the bit just tested (the hash is the fallback). */
 static mcd_entry *entry_of(mcd *m, size_t i, size_t k) {
     if (m->rank) {
         size_t a = m->reflex[k] ? k : i, b = a == i ? k : i, r = m->row[a];
