@@ -351,6 +351,7 @@ static void test_nonconvex_polygon_faces(void **state) {
         assert_true(r.closed);
         assert_int_equal(r.self_intersections, 0);
         assert_true(fabs(r.volume - 3.0) < 1e-12);
+        acd_mesh_report_free(&r);
         /* the side quads (convex) are fanned from their first corner: triangles (0 1 7), (0 7 6) */
         int found = 0;
         for (size_t t = 0; t < m.ntriangles; t++)
