@@ -205,7 +205,15 @@ static void set_row(mcd *m, size_t i) {
     if (r != NONE) {
         for (size_t q = lower(m->vlist, m->vstart[r], m->vstart[r + 1], i + 1); q < m->vstart[r + 1]; q++) {
             size_t j = m->vlist[q];
-            m->crow[j] = m->reflex[j] ? (uint32_t)(entry_of(m, i, j) - m->ent) : (uint32_t)q;
+            if (m->reflex[j]) {
+                /* a notch-notch entry lives in the larger end's row; on degenerate input (collinear
+                 * and repeated points) j's list may lack i, and there is no entry (fuzz_exact2d) */
+                mcd_entry *e = entry_of(m, i, j);
+                if (!e) continue;
+                m->crow[j] = (uint32_t)(e - m->ent);
+            } else {
+                m->crow[j] = (uint32_t)q;
+            }
             m->cset[m->ncset++] = (uint32_t)j;
         }
     } else {
