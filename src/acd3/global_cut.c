@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/minheap.h"
 #include "geom3/pca.h"
 
 /* Expansions of the cycle search before it gives up (spec §4.5). */
@@ -40,40 +41,6 @@ typedef struct item {
     double w;
 } item;
 
-typedef struct heap_ent {
-    double w;
-    uint32_t id;
-} heap_ent;
-
-static int heap_less(heap_ent a, heap_ent b) { return a.w < b.w || (a.w == b.w && a.id < b.id); }
-
-static void heap_push(heap_ent *h, size_t *n, heap_ent x) {
-    size_t i = (*n)++;
-    h[i] = x;
-    while (i > 0) {
-        size_t p = (i - 1) / 2;
-        if (!heap_less(h[i], h[p])) break;
-        heap_ent t = h[i];
-        h[i] = h[p], h[p] = t;
-        i = p;
-    }
-}
-
-static heap_ent heap_pop(heap_ent *h, size_t *n) {
-    heap_ent top = h[0];
-    h[0] = h[--(*n)];
-    size_t i = 0;
-    for (;;) {
-        size_t l = 2 * i + 1, r = l + 1, s = i;
-        if (l < *n && heap_less(h[l], h[s])) s = l;
-        if (r < *n && heap_less(h[r], h[s])) s = r;
-        if (s == i) break;
-        heap_ent t = h[i];
-        h[i] = h[s], h[s] = t;
-        i = s;
-    }
-    return top;
-}
 
 static int append(acd3_global_cut *gc, size_t *cap, uint32_t v) {
     if (gc->n && gc->v[gc->n - 1] == v) return 1;
@@ -107,20 +74,23 @@ static int grow_cycle(const acd3_cut_graph *cg, uint32_t root, uint32_t rx, acd3
     uint32_t a = rc->knot[0], b = rc->knot[1];
     uint32_t ra = beyond(cg, a, rx);
     if (ra == UINT32_MAX) return 0;
-    size_t nitems = 0, capitems = 1024, hn = 0;
+    size_t nitems = 0, capitems = 1024;
     item *it = malloc(capitems * sizeof *it);
-    heap_ent *heap = malloc(capitems * sizeof *heap);
+    acd_minheap heap = {0}; /* (branch weight, item) */
     uint8_t *closed = calloc(2 * cg->nknots + 1, 1);
     int res = 0;
-    if (!it || !heap || !closed) {
+    if (!it || !closed) {
         res = -1;
         goto done;
     }
     it[nitems] = (item){a, ra, UINT32_MAX, -1, 0};
-    heap_push(heap, &hn, (heap_ent){0, (uint32_t)nitems++});
+    if (!acd_minheap_push(&heap, 0, (uint32_t)nitems++)) {
+        res = -1;
+        goto done;
+    }
     int32_t goal = -1;
-    for (size_t pops = 0; hn && pops < CYCLE_MAX_EXPANSIONS; pops++) {
-        heap_ent top = heap_pop(heap, &hn);
+    for (size_t pops = 0; heap.n && pops < CYCLE_MAX_EXPANSIONS; pops++) {
+        acd_minheap_item top = acd_minheap_pop(&heap);
         item cur = it[top.id];
         if (cur.knot == b && cur.parent >= 0) {
             goal = (int32_t)top.id;
@@ -148,17 +118,18 @@ static int grow_cycle(const acd3_cut_graph *cg, uint32_t root, uint32_t rx, acd3
             if (nitems == capitems) {
                 capitems *= 2;
                 item *ni = realloc(it, capitems * sizeof *ni);
-                heap_ent *nh = ni ? realloc(heap, capitems * sizeof *nh) : NULL;
-                if (ni) it = ni;
-                if (nh) heap = nh;
-                if (!ni || !nh) {
+                if (!ni) {
                     res = -1;
                     goto done;
                 }
+                it = ni;
             }
             double w = cur.w + cg->cuts[c].w;
             it[nitems] = (item){k2, nr, c, (int32_t)top.id, w};
-            heap_push(heap, &hn, (heap_ent){w, (uint32_t)nitems++});
+            if (!acd_minheap_push(&heap, w, (uint32_t)nitems++)) {
+                res = -1;
+                goto done;
+            }
         }
     }
     if (goal >= 0) {
@@ -171,7 +142,8 @@ static int grow_cycle(const acd3_cut_graph *cg, uint32_t root, uint32_t rx, acd3
         res = 1;
     }
 done:
-    free(it), free(heap), free(closed);
+    free(it), free(closed);
+    acd_minheap_free(&heap);
     return res;
 }
 

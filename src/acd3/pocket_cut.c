@@ -7,6 +7,7 @@
 
 #include "acd3/knots.h"
 #include "core/error.h"
+#include "core/minheap.h"
 
 /* Hungarian costs standing for "no path". */
 #define NO_PATH_COST 1e100
@@ -278,56 +279,13 @@ static int find_all_knots(const acd_mesh *m, const acd3_measure *ms, const acd3_
  * sources (a visit stamp resets them): the same distances and predecessors as acd_dijkstra with
  * these weights and vertex_allowed (heap order (distance, vertex), equal distances keep the
  * smaller predecessor), without its O(vertices + edges) set-up per source. */
-typedef struct rsp_item {
-    double d;
-    uint32_t v;
-} rsp_item;
-
 typedef struct region_sp {
     double *dist;
     uint32_t *pred, *stamp;
     uint8_t *done;
     uint32_t cur;
-    rsp_item *heap;
-    size_t hn, hcap;
+    acd_minheap heap; /* (distance, vertex) */
 } region_sp;
-
-static int rsp_less(rsp_item a, rsp_item b) { return a.d < b.d || (a.d == b.d && a.v < b.v); }
-
-static int rsp_push(region_sp *r, double d, uint32_t v) {
-    if (r->hn == r->hcap) {
-        size_t nc = r->hcap ? 2 * r->hcap : 256;
-        rsp_item *nh = realloc(r->heap, nc * sizeof *nh);
-        if (!nh) return 0;
-        r->heap = nh;
-        r->hcap = nc;
-    }
-    size_t i = r->hn++;
-    rsp_item x = {d, v};
-    while (i) {
-        size_t p = (i - 1) / 2;
-        if (!rsp_less(x, r->heap[p])) break;
-        r->heap[i] = r->heap[p];
-        i = p;
-    }
-    r->heap[i] = x;
-    return 1;
-}
-
-static rsp_item rsp_pop(region_sp *r) {
-    rsp_item top = r->heap[0], x = r->heap[--r->hn];
-    size_t i = 0;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= r->hn) break;
-        if (c + 1 < r->hn && rsp_less(r->heap[c + 1], r->heap[c])) c++;
-        if (!rsp_less(r->heap[c], x)) break;
-        r->heap[i] = r->heap[c];
-        i = c;
-    }
-    if (r->hn) r->heap[i] = x;
-    return top;
-}
 
 /* Distance of v from the last source (INFINITY when not reached). */
 static double rsp_dist(const region_sp *r, uint32_t v) { return r->stamp[v] == r->cur ? r->dist[v] : INFINITY; }
@@ -339,17 +297,17 @@ static int rsp_run(region_sp *r, const acd_edge_graph *g, const double *w, const
         r->cur = 1;
     }
     uint32_t cur = r->cur;
-    r->hn = 0;
+    r->heap.n = 0;
     if (!allowed[src]) return 1;
     r->stamp[src] = cur;
     r->dist[src] = 0;
     r->pred[src] = ACD_NO_VERTEX;
     r->done[src] = 0;
-    if (!rsp_push(r, 0.0, src)) return 0;
-    while (r->hn) {
-        rsp_item it = rsp_pop(r);
-        uint32_t u = it.v;
-        if (r->done[u] || it.d != r->dist[u]) continue; /* stale */
+    if (!acd_minheap_push(&r->heap, 0.0, src)) return 0;
+    while (r->heap.n) {
+        acd_minheap_item it = acd_minheap_pop(&r->heap);
+        uint32_t u = it.id;
+        if (r->done[u] || it.key != r->dist[u]) continue; /* stale */
         r->done[u] = 1;
         for (size_t k = g->row[u]; k < g->row[u + 1]; k++) {
             uint32_t v = g->adj[k], e = g->adj_edge[k];
@@ -365,7 +323,7 @@ static int rsp_run(region_sp *r, const acd_edge_graph *g, const double *w, const
             if (nd < r->dist[v]) {
                 r->dist[v] = nd;
                 r->pred[v] = u;
-                if (!rsp_push(r, nd, v)) return 0;
+                if (!acd_minheap_push(&r->heap, nd, v)) return 0;
             } else if (nd == r->dist[v] && u < r->pred[v]) {
                 r->pred[v] = u;
             }
@@ -681,7 +639,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
 build_done:
     free(rks), free(rrow), free(rface), free(label), free(queue), free(fe), free(wcost), free(allowed), free(cut_edge);
     free(pool.a), free(kept.a), free(cands);
-    free(sp.dist), free(sp.pred), free(sp.stamp), free(sp.done), free(sp.heap);
+    free(sp.dist), free(sp.pred), free(sp.stamp), free(sp.done), acd_minheap_free(&sp.heap);
     out->cuts = cuts;
     out->ncuts = ncuts;
     if (!ok) goto nomem;

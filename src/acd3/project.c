@@ -5,51 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct acd3_heap_item {
-    double f;
-    uint32_t v;
-} heap_item;
-
-static int less(const heap_item *a, const heap_item *b) { return a->f < b->f || (a->f == b->f && a->v < b->v); }
-
-static int push(acd3_pathfinder *pf, double f, uint32_t v) {
-    if (pf->hn == pf->hcap) {
-        size_t nc = pf->hcap ? 2 * pf->hcap : 256;
-        heap_item *nh = realloc(pf->heap, nc * sizeof *nh);
-        if (!nh) return 0;
-        pf->heap = nh;
-        pf->hcap = nc;
-    }
-    size_t i = pf->hn++;
-    pf->heap[i] = (heap_item){f, v};
-    while (i) {
-        size_t p = (i - 1) / 2;
-        if (!less(&pf->heap[i], &pf->heap[p])) break;
-        heap_item t = pf->heap[i];
-        pf->heap[i] = pf->heap[p];
-        pf->heap[p] = t;
-        i = p;
-    }
-    return 1;
-}
-
-static heap_item pop(acd3_pathfinder *pf) {
-    heap_item top = pf->heap[0];
-    pf->heap[0] = pf->heap[--pf->hn];
-    size_t i = 0;
-    for (;;) {
-        size_t l = 2 * i + 1, r = l + 1, m = i;
-        if (l < pf->hn && less(&pf->heap[l], &pf->heap[m])) m = l;
-        if (r < pf->hn && less(&pf->heap[r], &pf->heap[m])) m = r;
-        if (m == i) break;
-        heap_item t = pf->heap[i];
-        pf->heap[i] = pf->heap[m];
-        pf->heap[m] = t;
-        i = m;
-    }
-    return top;
-}
-
 int acd3_pathfinder_init(acd3_pathfinder *pf, const acd_edge_graph *g, const double *coords) {
     memset(pf, 0, sizeof *pf);
     size_t n = g->nvertices ? g->nvertices : 1;
@@ -71,7 +26,7 @@ void acd3_pathfinder_free(acd3_pathfinder *pf) {
     free(pf->pred);
     free(pf->stamp);
     free(pf->closed);
-    free(pf->heap);
+    acd_minheap_free(&pf->heap);
     free(pf->path);
     memset(pf, 0, sizeof *pf);
 }
@@ -89,16 +44,15 @@ int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
     }
     uint32_t cur = pf->cur;
     const double *tp = pf->coords + 3 * (size_t)t;
-    pf->hn = 0;
+    pf->heap.n = 0;
     pf->stamp[s] = cur;
     pf->dist[s] = 0;
     pf->pred[s] = UINT32_MAX;
     pf->closed[s] = 0;
-    if (!push(pf, dist3(pf->coords + 3 * (size_t)s, tp), s)) return -1;
+    if (!acd_minheap_push(&pf->heap, dist3(pf->coords + 3 * (size_t)s, tp), s)) return -1;
     int found = 0;
-    while (pf->hn) {
-        heap_item it = pop(pf);
-        uint32_t v = it.v;
+    while (pf->heap.n) {
+        uint32_t v = acd_minheap_pop(&pf->heap).id;
         if (pf->closed[v]) continue;
         pf->closed[v] = 1;
         if (v == t) {
@@ -117,7 +71,7 @@ int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
             if (d < pf->dist[u] || (d == pf->dist[u] && v < pf->pred[u])) {
                 pf->dist[u] = d;
                 pf->pred[u] = v;
-                if (!push(pf, d + dist3(pf->coords + 3 * (size_t)u, tp), u)) return -1;
+                if (!acd_minheap_push(&pf->heap, d + dist3(pf->coords + 3 * (size_t)u, tp), u)) return -1;
             }
         }
     }

@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/minheap.h"
 #include "geom3/dijkstra.h"
 
 typedef struct acd3_pathfinder {
@@ -23,8 +24,7 @@ typedef struct acd3_pathfinder {
     uint32_t *stamp;      /* dist/pred valid where stamp == cur */
     uint8_t *closed;
     uint32_t cur;
-    struct acd3_heap_item *heap;
-    size_t hn, hcap;
+    acd_minheap heap;     /* (estimate, vertex) */
     uint32_t *path;       /* the last path, source first */
     size_t path_len, path_cap;
 } acd3_pathfinder;
