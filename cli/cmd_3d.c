@@ -189,6 +189,13 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
     return o;
 }
 
+/* Six times the signed volume of the tetrahedron (origin, triangle t of m). */
+static double tet6(const acd_mesh *m, size_t t) {
+    const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
+                 *c = m->vertices + 3 * m->triangles[3 * t + 2];
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
 static double tri_area(const acd_mesh *m, size_t t) {
     const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
                  *c = m->vertices + 3 * m->triangles[3 * t + 2];
@@ -226,12 +233,7 @@ static int verify(const acd3d_result *r, acd_error *err) {
     double sum = 0, abs_sum = 0;
     for (size_t i = 0; i < r->nparts; i++) {
         const acd_mesh *m = &r->parts[i].mesh;
-        for (size_t t = 0; t < m->ntriangles; t++) {
-            const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
-                         *c = m->vertices + 3 * m->triangles[3 * t + 2];
-            abs_sum += fabs(a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                            a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
-        }
+        for (size_t t = 0; t < m->ntriangles; t++) abs_sum += fabs(tet6(m, t)) / 6.0;
     }
     const double vtol = 1e-9 * fabs(r->input_volume) + 1e-12 * abs_sum;
     for (size_t i = 0; i < r->nparts; i++) {
@@ -239,12 +241,7 @@ static int verify(const acd3d_result *r, acd_error *err) {
         const acd3d_node *n = &r->nodes[p->node];
         double v = 0;
         const acd_mesh *m = &p->mesh;
-        for (size_t t = 0; t < m->ntriangles; t++) {
-            const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
-                         *c = m->vertices + 3 * m->triangles[3 * t + 2];
-            v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                 a[2] * (b[0] * c[1] - b[1] * c[0]);
-        }
+        for (size_t t = 0; t < m->ntriangles; t++) v += tet6(m, t);
         v /= 6.0;
         /* a flat part (its hull has no volume) may round to a tiny negative volume */
         if (n->leaf_reason == ACD3D_LEAF_FLAT ? !(v >= -vtol) : !(v > 0))

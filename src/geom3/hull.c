@@ -317,10 +317,6 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
     out->dim = 3;
     for (size_t i = 0; i < n; i++)
         if (vmap[i] != UINT32_MAX) set_vertex(out, vmap[i], points, i);
-    double o[3] = {0, 0, 0};
-    for (size_t k = 0; k < nverts; k++)
-        for (int c = 0; c < 3; c++) o[c] += w[3 * out->source[k] + c];
-    for (int c = 0; c < 3; c++) o[c] /= (double)nverts;
     /* qhull's toporient gives a consistent orientation; which parity means outward is read off the
      * facet whose (unoriented) triangle normal agrees best, in magnitude, with qhull's outward normal */
     int flip = 0;
