@@ -15,16 +15,12 @@ ACD=$B/acd
 M=data/meshes
 OUT=docs/results/3d-hacd.md
 TIMEOUT=${HACD_TIMEOUT:-300}
-HDR=/usr/include/bullet/HACD/hacdHACD.h
-if [ ! -f "$HDR" ] || ! ls /usr/lib/*/libHACD.so >/dev/null 2>&1; then
-  echo "bench_3d_hacd: HACD not found ($HDR, libHACD.so): apt-get install libbullet-extras-dev; skipped"
-  exit 0
-fi
+. bench/peers/hacd.sh
+hacd_available bench_3d_hacd || exit 0
 [ -x "$ACD" ] || { echo "bench_3d_hacd: build first ($ACD missing)"; exit 1; }
 [ -d "$M" ] || { echo "bench_3d_hacd: no $M; run scripts/fetch-data.sh; skipped"; exit 0; }
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-g++ -O2 -std=c++17 -I/usr/include/bullet/HACD -o "$T/hacd_run" bench/peers/hacd_run.cpp -lHACD ||
-  { echo "bench_3d_hacd: cannot build bench/peers/hacd_run.cpp"; exit 1; }
+hacd_build bench_3d_hacd "$T/hacd_run" || exit 1
 cpu=$(grep -m1 "model name" /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
 
 # mesh, tau reaching concavity_max <= 0.02 and its merge tau (docs/results/3d-target.md)

@@ -20,16 +20,12 @@ M=data/meshes
 OUT=docs/results/corise.md
 TIMEOUT=${HACD_TIMEOUT:-120}
 SAMPLES=${EVAL_SAMPLES:-200000}
-HDR=/usr/include/bullet/HACD/hacdHACD.h
-if [ ! -f "$HDR" ] || ! ls /usr/lib/*/libHACD.so >/dev/null 2>&1; then
-  echo "bench_corise_hacd: HACD not found ($HDR, libHACD.so): apt-get install libbullet-extras-dev; skipped"
-  exit 0
-fi
+. bench/peers/hacd.sh
+hacd_available bench_corise_hacd || exit 0
 [ -x "$ACD" ] || { echo "bench_corise_hacd: build first ($ACD missing)"; exit 1; }
 [ -d "$M" ] || { echo "bench_corise_hacd: no $M; run scripts/fetch-data.sh; skipped"; exit 0; }
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-g++ -O2 -std=c++17 -I/usr/include/bullet/HACD -o "$T/hacd_run" bench/peers/hacd_run.cpp -lHACD ||
-  { echo "bench_corise_hacd: cannot build bench/peers/hacd_run.cpp"; exit 1; }
+hacd_build bench_corise_hacd "$T/hacd_run" || exit 1
 
 # union volume / mesh volume of the hulls in an OBJ (acd eval, stratified Monte Carlo)
 volratio() {
