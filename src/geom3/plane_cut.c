@@ -511,6 +511,15 @@ done:
  * again (a part left above tau). */
 #define ACD_PLANE_CUT_FLAT_REL 1e-12
 
+/* A shell's signed volume is a sum of triple products a.(b x d)/6 from the box centre; the
+ * rounding error of each is bounded by a small multiple of DBL_EPSILON times |a||b||d|/6. A shell
+ * whose |volume| is below that bound has no volume we can tell from zero, whatever its area: a
+ * speck of four faces of area 1e-33 left where a plane runs through nearly coincident section
+ * points (CGAL's spool.off) measured volume -3e-22 against the box centre, far above the
+ * thickness bound of its area, and was taken as a cavity, leaving its piece
+ * self-intersecting. */
+#define ACD_PLANE_CUT_VOLUME_ROUNDING (64.0 * DBL_EPSILON)
+
 /* Shells of negative volume (cavities: inward-facing surfaces) join the smallest shell of positive
  * volume on the same side that contains them (exact ray winding number of one of their vertices
  * not on that shell's surface). flat[root] is set for the flat shells (ACD_PLANE_CUT_FLAT_REL),
@@ -519,9 +528,11 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
     acd_error *err = c->err;
     size_t nt = c->nt;
     double *vol = calloc(nt ? nt : 1, sizeof *vol), *area = calloc(nt ? nt : 1, sizeof *area);
-    if (!vol || !area) {
+    double *avol = calloc(nt ? nt : 1, sizeof *avol); /* sum of |a||b||d|/6: rounding scale */
+    if (!vol || !area || !avol) {
         free(vol);
         free(area);
+        free(avol);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping cavities");
     }
     double lo[3], hi[3], o[3];
@@ -542,6 +553,8 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         double tv = (a[0] * bd[0] + a[1] * bd[1] + a[2] * bd[2]) / 6.0;
         uint32_t r = acd_uf_find(parent, (uint32_t)t);
         vol[r] += tv;
+        avol[r] += sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) *
+                        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) / 6.0;
         double e1[3], e2[3], nn[3];
         for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
         cross3(e1, e2, nn);
@@ -554,11 +567,12 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
     diag = sqrt(diag);
     for (size_t t = 0; t < nt; t++) {
         /* (a threshold that overflows decides nothing: such a shell is kept) */
-        double thr = ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t];
+        double thr = fmax(ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t], ACD_PLANE_CUT_VOLUME_ROUNDING * avol[t]);
         flat[t] = parent[t] == t && isfinite(thr) && !(fabs(vol[t]) > thr);
         if (flat[t]) vol[t] = 0; /* neither a piece nor a cavity */
     }
     free(area);
+    free(avol);
     for (size_t t = 0; t < nt; t++)
         if (parent[t] == t && vol[t] < 0) nneg++;
     if (nneg == 0) {

@@ -82,4 +82,16 @@ printf 'v 0 0 0\nf 1 2 3\n' > "$T/bad.obj"
 "$ACD" 3d "$SRC/tests/data/meshes/sliver_part.off" -t 0.5 --tau-abs --verify --json "$T/s.json" >"$T/s.out" 2>"$T/s.err" ||
   fail "sliver part: exit $? $(cat "$T/s.err")"
 grep -q '"no_cut"' "$T/s.json" && fail "sliver part: a part stayed above tau"
+# CGAL's spool.off (fetched data): a cut through nearly coincident section points left a speck
+# shell (area 1e-33, volume -3e-22 from rounding) taken as a cavity, its piece then
+# self-intersecting and left above tau; the plane cut now drops shells whose volume is within
+# rounding. --verify fails (exit 3) when a part is above tau. Checked when
+# scripts/fetch-data.sh has been run.
+SPOOL="$SRC/data/meshes/spool.off"
+if [ -f "$SPOOL" ]; then
+  "$ACD" 3d "$SPOOL" -t 0.1 --verify >"$T/spool.out" 2>"$T/spool.err" ||
+    fail "spool: exit $? $(cat "$T/spool.err")"
+else
+  echo "note: $SPOOL absent (run scripts/fetch-data.sh): spool check skipped"
+fi
 echo ok
