@@ -450,6 +450,68 @@ static void test_spiky_stars_within_tau(void **state) {
     assert_int_equal(below, 16);
 }
 
+/* The same tree and parts, bit for bit (the nodes' concavities and cut planes, the parts'
+ * vertices and triangles). */
+static void assert_same_result(const acd3d_result *a, const acd3d_result *b) {
+    assert_int_equal(a->nnodes, b->nnodes);
+    assert_int_equal(a->nparts, b->nparts);
+    for (size_t i = 0; i < a->nnodes; i++) {
+        const acd3d_node *x = &a->nodes[i], *y = &b->nodes[i];
+        assert_int_equal(x->parent, y->parent);
+        assert_int_equal(x->first_child, y->first_child);
+        assert_int_equal(x->nchildren, y->nchildren);
+        assert_int_equal(x->leaf_reason, y->leaf_reason);
+        assert_int_equal(x->merged_into, y->merged_into);
+        assert_memory_equal(&x->concavity, &y->concavity, sizeof x->concavity);
+        assert_memory_equal(x->cut_plane, y->cut_plane, sizeof x->cut_plane);
+    }
+    for (size_t j = 0; j < a->nparts; j++) {
+        const acd_mesh *x = &a->parts[j].mesh, *y = &b->parts[j].mesh;
+        assert_int_equal(x->nvertices, y->nvertices);
+        assert_int_equal(x->ntriangles, y->ntriangles);
+        assert_memory_equal(x->vertices, y->vertices, 3 * x->nvertices * sizeof(double));
+        assert_memory_equal(x->triangles, y->triangles, 3 * x->ntriangles * sizeof(uint32_t));
+    }
+}
+
+/* A split's candidates are evaluated by every thread without a node of its own (the root's with
+ * 2 or 4 threads: its batch has one node), the choice replayed in candidate order: the tree is
+ * the single thread's, in both modes, on spiky stars (many candidates per split, ties of
+ * concavity between them) and the waist. */
+static void test_parallel_candidates_same_tree(void **state) {
+    (void)state;
+    static const double levels[4] = {0.3, 0.6, 1.0, 1.4};
+    for (uint64_t seed = 0; seed <= 6; seed++) {
+        acd_mesh m;
+        double k = 0.7;
+        star_radii sr;
+        if (seed == 0) {
+            assert_true(mg_radial(&m, 48, 48, waist_r, &k));
+        } else {
+            acd_rng rng;
+            acd_rng_seed(&rng, 100 + seed);
+            for (int i = 0; i < 64; i++) sr.r[i] = levels[acd_rng_below(&rng, 4)];
+            assert_true(mg_radial(&m, 8, 5, star_r, &sr));
+        }
+        for (int mode = 0; mode < 2; mode++) {
+            acd3d_params p = acd3d_default_params();
+            p.tau = 0.03;
+            p.mode = mode ? ACD3D_SURFACE : ACD3D_SOLID;
+            acd3d_result r[3];
+            acd_error err;
+            static const int th[3] = {1, 2, 4};
+            for (int i = 0; i < 3; i++) {
+                p.threads = th[i];
+                assert_int_equal(acd3d_decompose(&m, &p, &r[i], &err), ACD_OK);
+            }
+            assert_true(r[0].nnodes >= 3); /* split at least once */
+            for (int i = 1; i < 3; i++) assert_same_result(&r[0], &r[i]);
+            for (int i = 0; i < 3; i++) acd3d_result_free(&r[i]);
+        }
+        acd_mesh_free(&m);
+    }
+}
+
 static void test_bad_input(void **state) {
     (void)state;
     acd3d_params p = acd3d_default_params();
@@ -488,6 +550,7 @@ int main(void) {
         cmocka_unit_test(test_merge_pass),
         cmocka_unit_test(test_surface_mode),
         cmocka_unit_test(test_spiky_stars_within_tau),
+        cmocka_unit_test(test_parallel_candidates_same_tree),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

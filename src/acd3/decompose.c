@@ -216,127 +216,295 @@ static int surface_bridge_plane(const acd_mesh *m, const acd3_measure *ms, acd3_
     return 1;
 }
 
+/* The candidates of one split are evaluated by a small work queue (split_state): the thread that
+ * splits the part claims them in order, and so does any thread that would otherwise wait (a helper
+ * task; none when the part's batch keeps every thread busy). Each candidate is cut and its pieces
+ * measured independently of the others; the choice is replayed in candidate order (split_replay),
+ * so it is the sequential loop's, whoever evaluated what. */
+
+/* One candidate's evaluation. */
+typedef struct cand_eval {
+    int done;      /* evaluated, or abandoned (the replay no longer needs it) */
+    acd_status st; /* a failure the sequential loop would report (out of memory), with err */
+    acd_error err;
+    size_t failed_at; /* the piece (in measuring order) whose measure failed; SIZE_MAX: none */
+    int ok;           /* the cut gives acceptable pieces */
+    size_t order[2], *ord; /* pieces largest first */
+    size_t nmeasured;      /* pieces measured, in that order */
+    split_choice trial;
+} cand_eval;
+
+typedef struct split_state {
+    const acd_mesh *m;
+    const acd_edge_graph *g;
+    const acd3_measure *ms;
+    double extent, eps, tau, tol, min_piece_volume;
+    int solid, restrict_cut;
+    const acd3_plane_candidate *cand;
+    int nc, nbridge;
+    cand_eval *ev;
+    /* shared, read and written only under the critical section "acd3_split" */
+    int next;    /* the next candidate to claim */
+    int cursor;  /* the next candidate to replay */
+    int stopped; /* the replay is over (a failure, an accepted cut, or no candidate left) */
+    int found, compared, best_progress;
+    split_choice best;
+    int fail; /* a status (the first failure in candidate order) */
+    acd_error err;
+} split_state;
+
+static void cand_eval_free(cand_eval *e) {
+    if (e->ord && e->ord != e->order) free(e->ord);
+    e->ord = NULL;
+    choice_free(&e->trial);
+}
+
+/* Whether the sequential loop skips candidate i (the compared budget is spent; the bridge plane is
+ * still tried unless a cut that makes progress was found). */
+static int split_skips(const split_state *S, int i) {
+    return S->compared >= ACD3_COMPARED_CANDIDATES && (i < S->nbridge || S->best_progress);
+}
+
+/* Whether a trial of concavity c (so far) has lost against the best choice of the candidates before
+ * it (a cut that makes progress beats one that does not: in surface mode only against a best that
+ * makes progress is a higher concavity a loss). */
+static int split_lost(const split_state *S, double c) {
+    return S->found && S->best_progress && c > S->best.concavity + S->tol;
+}
+
+/* Whether trial (its progress given) is better than the best so far: the smallest largest piece
+ * concavity (up to tol), then the fewest pieces, then the candidates' order. */
+static int split_better(const split_state *S, const split_choice *trial, int progress) {
+    const split_choice *best = &S->best;
+    return !S->found || (progress && !S->best_progress) ||
+           (progress == S->best_progress &&
+            (trial->concavity < best->concavity - S->tol ||
+             (trial->concavity <= best->concavity + S->tol && trial->cut.npieces < best->cut.npieces)));
+}
+
+/* Under "acd3_split": replays the evaluated candidates from the cursor in order, as the
+ * sequential loop would have taken them, until one is not evaluated yet or the loop is over. */
+static void split_replay(split_state *S) {
+    while (!S->stopped && S->cursor < S->nc) {
+        int i = S->cursor;
+        if (split_skips(S, i)) {
+            S->cursor++;
+            continue;
+        }
+        cand_eval *e = &S->ev[i];
+        if (!e->done) return;
+        S->cursor++;
+        if (e->st != ACD_OK && e->failed_at == SIZE_MAX) { /* the cut itself failed */
+            S->fail = (int)e->st;
+            S->err = e->err;
+            S->stopped = 1;
+            return;
+        }
+        if (!e->ok) continue;
+        S->compared++;
+        /* the pieces in measuring order, until one is above the best (the sequential loop stops
+         * measuring there: a failure past that point is not its failure) */
+        split_choice *t = &e->trial;
+        double conc = 0;
+        int lost = 0;
+        for (size_t i2 = 0; i2 < t->cut.npieces && !lost; i2++) {
+            if (i2 == e->failed_at) {
+                S->fail = (int)e->st;
+                S->err = e->err;
+                S->stopped = 1;
+                return;
+            }
+            if (i2 >= e->nmeasured) { /* cannot happen: an evaluation stops only where the replay does */
+                S->fail = (int)ACD_ERR_INTERNAL;
+                acd_fail(&S->err, ACD_ERR_INTERNAL, "3d: candidate %d evaluated partially", i);
+                S->stopped = 1;
+                return;
+            }
+            double c = t->pieces[e->ord[i2]].ms.concavity;
+            if (c > conc) conc = c;
+            lost = split_lost(S, conc);
+        }
+        if (lost) {
+            cand_eval_free(e);
+            continue;
+        }
+        t->concavity = conc;
+        int progress = S->solid || surface_progress(S->m, S->ms, t, S->tol);
+        if (split_better(S, t, progress)) {
+            if (S->found) choice_free(&S->best);
+            S->best = *t;
+            memset(t, 0, sizeof *t);
+            S->found = 1;
+            S->best_progress = progress;
+        }
+        cand_eval_free(e);
+        if (S->best_progress && (S->best.concavity <= S->tau + S->tol || S->best.concavity <= 0.5 * S->ms->concavity))
+            S->stopped = 1;
+    }
+    if (S->cursor >= S->nc) S->stopped = 1;
+}
+
+/* Whether the replay no longer needs candidate i (*lost: the replay has reached it and a trial of
+ * concavity c has lost, so its other pieces need no measure). */
+static int split_abandoned(split_state *S, int i, double c, int *lost) {
+    int gone;
+#ifdef _OPENMP
+#pragma omp critical(acd3_split)
+#endif
+    {
+        gone = S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i));
+        *lost = !gone && S->cursor == i && split_lost(S, c);
+    }
+    return gone;
+}
+
+/* Cuts the part by candidate i and measures the pieces (largest first, stopping when the replay
+ * has reached i and the trial has lost, or when the replay no longer needs it). */
+static void split_evaluate(split_state *S, int i) {
+    cand_eval *e = &S->ev[i];
+    e->failed_at = SIZE_MAX;
+    e->ord = e->order;
+    acd_cut_plane pl;
+    const acd3_plane_candidate *cd = &S->cand[i];
+    if (acd_cut_plane_from_normal(cd->point, cd->normal, S->extent, &pl, NULL) != ACD_OK) return;
+    split_choice *trial = &e->trial;
+    acd_error cerr;
+    acd_status cst = S->solid ? acd_plane_cut(S->m, &pl, &trial->cut, &cerr)
+                              : acd3_surface_cut(S->m, S->g, &pl, S->restrict_cut ? cd->point : NULL, &trial->cut, &cerr);
+    if (cst != ACD_OK) {
+        if (cerr.status == ACD_ERR_NOMEM) {
+            e->st = ACD_ERR_NOMEM;
+            e->err = cerr;
+        }
+        return;
+    }
+    if (S->solid && S->restrict_cut && acd3_restrict_cut(&trial->cut, cd->point, &e->err) != ACD_OK) {
+        e->st = ACD_ERR_NOMEM;
+        return;
+    }
+    /* two or more pieces; in surface mode also one piece cut open along a loop that does not
+     * separate it (around a handle: its genus drops) */
+    int ok = trial->cut.npieces >= 2 ||
+             (!S->solid && trial->cut.npieces == 1 && trial->cut.pieces[0].mesh.nvertices > S->m->nvertices);
+    for (size_t k = 0; ok && S->solid && k < trial->cut.npieces; k++) {
+        const acd_mesh *pm = &trial->cut.pieces[k].mesh;
+        if (acd_geom3_signed_volume(pm) < S->min_piece_volume) ok = 0;
+        /* every piece must be a closed, consistently oriented surface; a cut that rounding left
+         * otherwise is not used */
+        acd_edge_map em;
+        if (ok && acd_edge_map_build(pm->triangles, pm->ntriangles, NULL, &em, NULL) == ACD_OK) {
+            if (acd_edge_map_check_closed(&em, pm->triangles, pm->ntriangles, NULL) != ACD_OK) ok = 0;
+            acd_edge_map_free(&em);
+        } else {
+            ok = 0;
+        }
+    }
+    if (!ok) {
+        choice_free(trial);
+        return;
+    }
+    trial->plane = *cd;
+    trial->pieces = calloc(trial->cut.npieces, sizeof *trial->pieces);
+    if (trial->cut.npieces > 2) e->ord = malloc(trial->cut.npieces * sizeof *e->ord);
+    if (!trial->pieces || !e->ord) {
+        e->st = acd_fail(&e->err, ACD_ERR_NOMEM, "out of memory");
+        e->failed_at = 0; /* reported as the sequential loop would: once the candidate is compared */
+        e->ok = 1;
+        return;
+    }
+    for (size_t k = 0; k < trial->cut.npieces; k++) {
+        size_t j = k, nv = trial->cut.pieces[k].mesh.nvertices;
+        while (j > 0 && trial->cut.pieces[e->ord[j - 1]].mesh.nvertices < nv) {
+            e->ord[j] = e->ord[j - 1];
+            j--;
+        }
+        e->ord[j] = k;
+    }
+    e->ok = 1;
+    double conc = 0;
+    for (size_t i2 = 0; i2 < trial->cut.npieces; i2++) {
+        int lost = 0;
+        if (i2 > 0 && (split_abandoned(S, i, conc, &lost) || lost)) return;
+        size_t k = e->ord[i2];
+        acd_status st = measure_mesh(&trial->cut.pieces[k].mesh, S->eps, S->tol, &trial->pieces[k], &e->err);
+        if (st != ACD_OK) {
+            e->st = st;
+            e->failed_at = i2;
+            return;
+        }
+        e->nmeasured = i2 + 1;
+        if (trial->pieces[k].ms.concavity > conc) conc = trial->pieces[k].ms.concavity;
+    }
+}
+
+/* Claims candidates in order and evaluates them until the replay is over. */
+static void split_work(split_state *S) {
+    for (;;) {
+        int i = -1;
+#ifdef _OPENMP
+#pragma omp critical(acd3_split)
+#endif
+        {
+            while (!S->stopped && S->next < S->nc && S->next < S->cursor) S->next++; /* skipped already */
+            if (!S->stopped && S->next < S->nc) i = S->next++;
+        }
+        if (i < 0) return;
+        int lost;
+        if (!split_abandoned(S, i, 0, &lost)) split_evaluate(S, i);
+#ifdef _OPENMP
+#pragma omp critical(acd3_split)
+#endif
+        {
+            S->ev[i].done = 1;
+            split_replay(S);
+        }
+    }
+}
+
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
  * piece concavity (up to tol), then the fewest pieces, then the candidates' order. A cut whose
  * pieces all meet tau, or that at least halves the concavity, is taken at once. With
  * restrict_cut, each plane cuts only its section region nearest the witness (acd3/region_cut). The pieces'
- * measures are kept for when they are processed. Returns 1 if split, 0 if no candidate splits,
- * or -(status) on failure. */
+ * measures are kept for when they are processed. helpers: how many other threads may join the
+ * evaluation of the candidates (the result is the same). Returns 1 if split, 0 if no candidate
+ * splits, or -(status) on failure. */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
-                     const acd3_resolve_opts *ro, split_choice *best, acd_error *err) {
+                     const acd3_resolve_opts *ro, int helpers, split_choice *best, acd_error *err) {
     acd3_plane_candidate cand[ACD3_MAX_CANDIDATES + 1];
     int nc = acd3_cut_candidates(m, g, ms, ro, cand);
     /* surface mode: the bridge plane last (tried when no candidate before it makes progress) */
     int nbridge = nc;
     if (!solid && nc > 0 && surface_bridge_plane(m, ms, &cand[nc])) nc++;
-    int found = 0, compared = 0, best_progress = 0;
     memset(best, 0, sizeof *best);
-    for (int i = 0; i < nc; i++) {
-        /* the bridge plane is tried even when the compared budget is spent, unless a cut that
-         * makes progress was found */
-        if (compared >= ACD3_COMPARED_CANDIDATES && (i < nbridge || best_progress)) continue;
-        acd_cut_plane pl;
-        if (acd_cut_plane_from_normal(cand[i].point, cand[i].normal, extent, &pl, NULL) != ACD_OK) continue;
-        split_choice trial;
-        memset(&trial, 0, sizeof trial);
-        acd_error cerr;
-        acd_status cst = solid ? acd_plane_cut(m, &pl, &trial.cut, &cerr) : acd3_surface_cut(m, g, &pl, restrict_cut ? cand[i].point : NULL, &trial.cut, &cerr);
-        if (cst != ACD_OK) {
-            if (cerr.status == ACD_ERR_NOMEM) {
-                if (found) choice_free(best);
-                *err = cerr;
-                return -(int)ACD_ERR_NOMEM;
-            }
-            continue;
-        }
-        if (solid && restrict_cut && acd3_restrict_cut(&trial.cut, cand[i].point, err) != ACD_OK) {
-            if (found) choice_free(best);
-            return -(int)ACD_ERR_NOMEM;
-        }
-        /* two or more pieces; in surface mode also one piece cut open along a loop that does
-         * not separate it (around a handle: its genus drops) */
-        int ok = trial.cut.npieces >= 2 ||
-                 (!solid && trial.cut.npieces == 1 && trial.cut.pieces[0].mesh.nvertices > m->nvertices);
-        for (size_t k = 0; ok && solid && k < trial.cut.npieces; k++) {
-            const acd_mesh *pm = &trial.cut.pieces[k].mesh;
-            if (acd_geom3_signed_volume(pm) < min_piece_volume) ok = 0;
-            /* every piece must be a closed, consistently oriented surface; a cut that rounding
-             * left otherwise is not used */
-            acd_edge_map em;
-            if (ok && acd_edge_map_build(pm->triangles, pm->ntriangles, NULL, &em, NULL) == ACD_OK) {
-                if (acd_edge_map_check_closed(&em, pm->triangles, pm->ntriangles, NULL) != ACD_OK) ok = 0;
-                acd_edge_map_free(&em);
-            } else {
-                ok = 0;
-            }
-        }
-        if (!ok) {
-            choice_free(&trial);
-            continue;
-        }
-        compared++;
-        trial.plane = cand[i];
-        trial.pieces = calloc(trial.cut.npieces, sizeof *trial.pieces);
-        if (!trial.pieces) {
-            choice_free(&trial);
-            if (found) choice_free(best);
-            acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-            return -(int)ACD_ERR_NOMEM;
-        }
-        /* pieces largest first (most often the most concave); once one is above the best
-         * choice's concavity (+ tol) this candidate cannot win (unless the best makes no
-         * progress): its other pieces are not measured */
-        size_t order[2] = {0, 1}, *ord = trial.cut.npieces <= 2 ? order : malloc(trial.cut.npieces * sizeof *ord);
-        if (!ord) {
-            choice_free(&trial);
-            if (found) choice_free(best);
-            acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-            return -(int)ACD_ERR_NOMEM;
-        }
-        for (size_t k = 0; k < trial.cut.npieces; k++) {
-            size_t j = k, nv = trial.cut.pieces[k].mesh.nvertices;
-            while (j > 0 && trial.cut.pieces[ord[j - 1]].mesh.nvertices < nv) {
-                ord[j] = ord[j - 1];
-                j--;
-            }
-            ord[j] = k;
-        }
-        int lost = 0;
-        for (size_t i2 = 0; i2 < trial.cut.npieces && !lost; i2++) {
-            size_t k = ord[i2];
-            acd_status st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, &trial.pieces[k], err);
-            if (st != ACD_OK) {
-                if (ord != order) free(ord);
-                choice_free(&trial);
-                if (found) choice_free(best);
-                return -(int)st;
-            }
-            if (trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
-            /* (a cut that makes progress beats one that does not, surface mode: only against a
-             * best that makes progress is a higher concavity a loss) */
-            if (found && best_progress && trial.concavity > best->concavity + tol) lost = 1;
-        }
-        if (ord != order) free(ord);
-        if (lost) {
-            choice_free(&trial);
-            continue;
-        }
-        int progress = solid || surface_progress(m, ms, &trial, tol);
-        int better = !found || (progress && !best_progress) ||
-                     (progress == best_progress &&
-                      (trial.concavity < best->concavity - tol ||
-                       (trial.concavity <= best->concavity + tol && trial.cut.npieces < best->cut.npieces)));
-        if (better) {
-            if (found) choice_free(best);
-            *best = trial;
-            found = 1;
-            best_progress = progress;
-        } else {
-            choice_free(&trial);
-        }
-        if (best_progress && (best->concavity <= tau + tol || best->concavity <= 0.5 * ms->concavity)) break;
+    cand_eval ev[ACD3_MAX_CANDIDATES + 1];
+    memset(ev, 0, sizeof ev);
+    split_state S;
+    memset(&S, 0, sizeof S);
+    S.m = m, S.g = g, S.ms = ms, S.extent = extent, S.eps = eps, S.tau = tau, S.tol = tol;
+    S.min_piece_volume = min_piece_volume, S.solid = solid, S.restrict_cut = restrict_cut;
+    S.cand = cand, S.nc = nc, S.nbridge = nbridge, S.ev = ev;
+    if (helpers > nc - 1) helpers = nc - 1;
+#ifdef _OPENMP
+    for (int h = 0; h < helpers; h++) {
+#pragma omp task default(shared)
+        split_work(&S);
     }
+#endif
+    split_work(&S);
+#ifdef _OPENMP
+    if (helpers > 0) {
+#pragma omp taskwait
+    }
+#endif
+    for (int i = 0; i < nc; i++) cand_eval_free(&ev[i]);
+    if (S.fail) {
+        if (S.found) choice_free(&S.best);
+        if (err) *err = S.err;
+        return -S.fail;
+    }
+    int found = S.found, best_progress = S.best_progress;
+    *best = S.best;
     /* surface mode, no cut made progress: the pocket of the witness, cut along the level line of
      * half its concavity (acd3_surface_cut_deep), apart from its bridge */
     if (!solid && !best_progress && ms->witness != UINT32_MAX && ms->concavity > 0) {
@@ -392,6 +560,7 @@ typedef struct run_ctx {
     int solid;
     double tau, eps, tol, extent;
     int tree_full; /* the node budget is spent: no more splits */
+    int helpers;   /* threads that may join the evaluation of a split's candidates */
     size_t max_depth; /* params->max_depth + 2 x the input's genus */
 } run_ctx;
 
@@ -430,13 +599,13 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         const double vol = c->solid ? acd_geom3_signed_volume(&w->mesh) : -INFINITY;
         if (c->params->region_cuts || !c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
-                              ACD3_MIN_PIECE_FRACTION * vol, &ro, &out->choice, &out->err);
+                              ACD3_MIN_PIECE_FRACTION * vol, &ro, c->helpers, &out->choice, &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
-                              ACD3_MIN_PIECE_FRACTION * vol, &ro, &out->choice, &out->err);
+                              ACD3_MIN_PIECE_FRACTION * vol, &ro, c->helpers, &out->choice, &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
-                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, &ro, &out->choice, &out->err);
+                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, &ro, c->helpers, &out->choice, &out->err);
         if (split < 0) {
             out->st = (acd_status)(-split);
             split = 0;
@@ -663,11 +832,19 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
             goto fail;
         }
-        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, max_depth};
+        /* a thread without a node of its own helps with the candidates of the others' splits
+         * (try_split): so a batch of fewer nodes than threads, the root's above all, still uses
+         * every thread */
+        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, nthreads - 1, max_depth};
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) if (nthreads > 1 && b1 - b0 > 1)
+#pragma omp parallel num_threads(nthreads) if (nthreads > 1)
 #endif
-        for (long j = 0; j < (long)(b1 - b0); j++) process_node(&ctx, &t.a[b0 + (size_t)j], &wk[j]);
+        { /* (the end of the loop is a barrier where the threads without a node run helper tasks) */
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 1)
+#endif
+            for (long j = 0; j < (long)(b1 - b0); j++) process_node(&ctx, &t.a[b0 + (size_t)j], &wk[j]);
+        }
         /* the first failure in node order is reported */
         for (size_t j = 0; j < b1 - b0; j++)
             if (wk[j].st != ACD_OK && st == ACD_OK) {
