@@ -5,22 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd3/handles.h"
 #include "acd3/project.h"
 #include "core/error.h"
-
-typedef struct vote {
-    uint32_t face, patch; /* face: the region once the regions are known */
-    double w;
-    uint32_t src;         /* the face */
-} vote;
-
-static int cmp_vote(const void *a, const void *b) {
-    const vote *x = a, *y = b;
-    if (x->face != y->face) return x->face < y->face ? -1 : 1;
-    if (x->patch != y->patch) return x->patch < y->patch ? -1 : 1;
-    if (x->w != y->w) return (x->w > y->w) - (x->w < y->w);
-    return (x->src > y->src) - (x->src < y->src);
-}
 
 acd_status acd3_edge_faces(const acd_mesh *m, const acd_edge_graph *g, uint32_t **face_of, acd_error *err) {
     uint32_t *fo = malloc((2 * g->nedges + 1) * sizeof *fo);
@@ -46,6 +33,8 @@ void acd3_measure_free(acd3_measure *ms) {
     free(ms->face_region);
     free(ms->region_patch);
     free(ms->edge_barrier);
+    free(ms->edge_handle);
+    acd3_handle_arcs_free(&ms->handle_arcs);
     memset(ms, 0, sizeof *ms);
 }
 
@@ -145,146 +134,6 @@ static size_t open_path(open_rule *os, uint32_t v, int reversed) {
     return n;
 }
 
-/* Handle pockets (spec §6; dissertation §V.C, paper §5). On a surface of genus > 0 one pocket
- * can be enclosed by the paths of several bridges, none of which encloses it alone (the two sides
- * of a cup's handle): a region claimed by two or more patches (each with at least
- * HANDLE_VOTE_SHARE of the leading vote) whose faces do not form a disk (Euler characteristic
- * <= 0). Those patches are its handle caps. The region is flooded from the faces next to each
- * cap's paths (multi-source Dijkstra inside the region, every vertex labelled with its nearest
- * cap), and each face takes the bridge of the cap nearest to it (its vertex nearest to a cap).
- * This is a simplification of the dissertation's handle cuts: the borders between the flooded
- * parts play the role of its shortest cap-to-cap arcs, and the region is split between the caps
- * directly instead of re-projecting the bridges with the arcs as barriers. */
-#define HANDLE_VOTE_SHARE 0.25
-static acd_status handle_pockets(const acd_mesh *m, const acd_edge_graph *g, acd3_measure *out, const vote *vl,
-                                 size_t nvote, const double *best, uint32_t **face_patch_out, acd_error *err) {
-    size_t nr = out->nregions, nf = m->ntriangles, nv = m->nvertices;
-    uint8_t *cand = calloc(nr ? nr : 1, 1);
-    uint32_t *vstamp = NULL, *fp = NULL, *srcv = NULL, *srcl = NULL;
-    uint8_t *allowed = NULL;
-    acd_status st = ACD_OK;
-    if (!cand) return acd_fail(err, ACD_ERR_NOMEM, "out of memory finding handle pockets");
-    size_t ncand = 0;
-    for (size_t i = 0; i < nvote;) { /* regions with two or more substantial claimants */
-        size_t j = i, k = 0;
-        uint32_t r = vl[i].face;
-        while (j < nvote && vl[j].face == r) {
-            size_t q = j;
-            double sum = 0;
-            while (q < nvote && vl[q].face == r && vl[q].patch == vl[j].patch) sum += vl[q++].w;
-            k += sum >= HANDLE_VOTE_SHARE * best[r];
-            j = q;
-        }
-        if (k >= 2) cand[r] = 1, ncand++;
-        i = j;
-    }
-    if (!ncand) goto done;
-    /* Euler characteristic of each candidate: faces - edges + vertices of its faces */
-    {
-        long *chi = calloc(nr, sizeof *chi);
-        vstamp = malloc((nv ? nv : 1) * sizeof *vstamp);
-        if (!chi || !vstamp) {
-            free(chi);
-            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory finding handle pockets");
-            goto done;
-        }
-        for (size_t v = 0; v < nv; v++) vstamp[v] = UINT32_MAX;
-        for (size_t f = 0; f < nf; f++) {
-            uint32_t r = out->face_region[f];
-            if (!cand[r]) continue;
-            chi[r] += 1;
-            for (int k = 0; k < 3; k++) {
-                uint32_t v = m->triangles[3 * f + k];
-                if (vstamp[v] != r) vstamp[v] = r, chi[r] += 1;
-            }
-        }
-        /* edges of the region's faces, each once */
-        uint32_t *face_of = NULL;
-        st = acd3_edge_faces(m, g, &face_of, err);
-        if (st != ACD_OK) {
-            free(chi);
-            goto done;
-        }
-        for (size_t e = 0; e < g->nedges; e++) {
-            uint32_t f0 = face_of[2 * e], f1 = face_of[2 * e + 1];
-            uint32_t r0 = f0 != UINT32_MAX ? out->face_region[f0] : UINT32_MAX;
-            uint32_t r1 = f1 != UINT32_MAX ? out->face_region[f1] : UINT32_MAX;
-            if (r0 != UINT32_MAX && cand[r0]) chi[r0] -= 1;
-            if (r1 != UINT32_MAX && r1 != r0 && cand[r1]) chi[r1] -= 1;
-        }
-        free(face_of);
-        for (size_t r = 0; r < nr; r++)
-            if (cand[r] && chi[r] > 0) cand[r] = 0; /* a disk: an ordinary pocket */
-        free(chi);
-    }
-    fp = malloc((nf ? nf : 1) * sizeof *fp);
-    srcv = malloc(3 * (nvote ? nvote : 1) * sizeof *srcv);
-    srcl = malloc(3 * (nvote ? nvote : 1) * sizeof *srcl);
-    allowed = calloc(nv ? nv : 1, 1);
-    if (!fp || !srcv || !srcl || !allowed) {
-        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory finding handle pockets");
-        goto done;
-    }
-    for (size_t f = 0; f < nf; f++) fp[f] = UINT32_MAX;
-    size_t nhandle = 0;
-    for (size_t i = 0; i < nvote;) {
-        uint32_t r = vl[i].face;
-        size_t j = i;
-        while (j < nvote && vl[j].face == r) j++;
-        if (!cand[r]) {
-            i = j;
-            continue;
-        }
-        /* sources: the vertices of the faces next to each substantial claimant's paths */
-        size_t ns = 0;
-        for (size_t q = i; q < j;) {
-            size_t t = q;
-            double sum = 0;
-            while (t < j && vl[t].patch == vl[q].patch) sum += vl[t++].w;
-            if (sum >= HANDLE_VOTE_SHARE * best[r])
-                for (size_t u = q; u < t; u++)
-                    for (int k = 0; k < 3; k++) {
-                        srcv[ns] = m->triangles[3 * (size_t)vl[u].src + k];
-                        srcl[ns++] = vl[u].patch;
-                    }
-            q = t;
-        }
-        for (size_t f = 0; f < nf; f++)
-            if (out->face_region[f] == r)
-                for (int k = 0; k < 3; k++) allowed[m->triangles[3 * f + k]] = 1;
-        acd_dijkstra_opts o;
-        memset(&o, 0, sizeof o);
-        o.edge_blocked = out->edge_barrier;
-        o.vertex_allowed = allowed;
-        o.target = ACD_NO_VERTEX;
-        acd_sp_tree tree;
-        st = acd_dijkstra(g, srcv, ns, &o, &tree, err);
-        if (st != ACD_OK) goto done;
-        for (size_t f = 0; f < nf; f++) {
-            if (out->face_region[f] != r) continue;
-            uint32_t bestv = UINT32_MAX;
-            for (int k = 0; k < 3; k++) {
-                uint32_t v = m->triangles[3 * f + k];
-                if (!isfinite(tree.dist[v])) continue;
-                if (bestv == UINT32_MAX || tree.dist[v] < tree.dist[bestv] || (tree.dist[v] == tree.dist[bestv] && v < bestv))
-                    bestv = v;
-            }
-            if (bestv != UINT32_MAX) fp[f] = srcl[tree.origin[bestv]];
-        }
-        acd_sp_tree_free(&tree);
-        for (size_t f = 0; f < nf; f++)
-            if (out->face_region[f] == r)
-                for (int k = 0; k < 3; k++) allowed[m->triangles[3 * f + k]] = 0;
-        nhandle++;
-        i = j;
-    }
-    out->nhandle_pockets = nhandle;
-    if (nhandle) *face_patch_out = fp, fp = NULL;
-done:
-    free(cand), free(vstamp), free(fp), free(srcv), free(srcl), free(allowed);
-    return st;
-}
-
 /* Regions: faces connected across non-barrier edges. Returns the count. */
 static size_t flood_regions(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of,
                             const uint8_t *barrier, uint32_t *face_region, uint32_t *queue) {
@@ -327,7 +176,7 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     memset(&pf, 0, sizeof pf);
     open_rule os;
     memset(&os, 0, sizeof os);
-    uint32_t *face_patch = NULL; /* handle pockets: per face, the bridge of the nearest cap */
+    uint32_t *corner_patch = NULL; /* shared pockets: per face corner, the nearest cap */
     out->vconc = calloc(nv ? nv : 1, sizeof *out->vconc);
     out->face_region = malloc((nf ? nf : 1) * sizeof *out->face_region);
     out->edge_barrier = calloc(g->nedges ? g->nedges : 1, 1);
@@ -359,7 +208,7 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     /* project the patch-boundary hull edges; collect votes (face, patch, weight) */
     const uint32_t *fp = out->patches.facet_patch;
     size_t nvote = 0, capvote = 0;
-    vote *vl = NULL;
+    acd3_claim *vl = NULL;
     for (size_t t = 0; t < h->ntriangles; t++)
         for (int i = 0; i < 3; i++) {
             uint32_t nb = h->neighbors[3 * t + i];
@@ -404,7 +253,7 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
                 double w = g->length[e];
                 if (nvote + 2 > capvote) {
                     capvote = capvote ? 2 * capvote : 1024;
-                    vote *nvl = realloc(vl, capvote * sizeof *nvl);
+                    acd3_claim *nvl = realloc(vl, capvote * sizeof *nvl);
                     if (!nvl) {
                         free(vl);
                         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory projecting hull edges");
@@ -412,8 +261,8 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
                     }
                     vl = nvl;
                 }
-                if (left != UINT32_MAX) vl[nvote++] = (vote){left, fp[t], w, left};
-                if (right != UINT32_MAX) vl[nvote++] = (vote){right, fp[nb], w, right};
+                if (left != UINT32_MAX) vl[nvote++] = (acd3_claim){left, fp[t], w, left, e};
+                if (right != UINT32_MAX) vl[nvote++] = (acd3_claim){right, fp[nb], w, right, e};
             }
         }
 
@@ -435,8 +284,8 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     {
         /* best patch per region: sort votes by (region, patch, weight) -- a total order, so the
          * sums below are bitwise reproducible -- and sum the runs */
-        for (size_t i = 0; i < nvote; i++) vl[i].face = out->face_region[vl[i].face];
-        if (nvote) qsort(vl, nvote, sizeof *vl, cmp_vote);
+        for (size_t i = 0; i < nvote; i++) vl[i].region = out->face_region[vl[i].face];
+        acd3_claims_sort(vl, nvote);
         double *best = malloc((nr ? nr : 1) * sizeof *best);
         if (!best) {
             free(vl);
@@ -447,20 +296,30 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
         for (size_t i = 0; i < nvote;) {
             size_t j = i;
             double s = 0;
-            while (j < nvote && vl[j].face == vl[i].face && vl[j].patch == vl[i].patch) s += vl[j++].w;
-            uint32_t r = vl[i].face;
+            while (j < nvote && vl[j].region == vl[i].region && vl[j].patch == vl[i].patch) s += vl[j++].w;
+            uint32_t r = vl[i].region;
             if (s > best[r]) {
                 best[r] = s;
                 out->region_patch[r] = vl[i].patch;
             }
             i = j;
         }
-        st = handle_pockets(m, g, out, vl, nvote, best, &face_patch, err);
+        /* handle caps (spec §6, decision A15): shared pockets cut by their caps' arcs, each face
+         * measured against its nearest cap */
+        acd3_handle_input hin = {m, g, face_of, out->face_region, nr, out->edge_barrier, vl, nvote, best};
+        acd3_handle_result hr;
+        st = acd3_handle_cuts(&hin, &hr, err);
         free(best);
         if (st != ACD_OK) {
             free(vl);
             goto fail;
         }
+        out->edge_handle = hr.edge_arc, hr.edge_arc = NULL;
+        out->handle_arcs = hr.arcs, memset(&hr.arcs, 0, sizeof hr.arcs);
+        out->nhandle_pockets = hr.npockets;
+        out->nhandle_candidates = hr.ncandidates;
+        corner_patch = hr.corner_patch, hr.corner_patch = NULL;
+        acd3_handle_result_free(&hr);
     }
     free(vl);
     /* regions without a projected path around them (open surfaces): the patch whose plane
@@ -500,9 +359,10 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     }
     /* concavity: depth below the patch plane of each incident face's region, the largest */
     for (size_t f = 0; f < nf; f++) {
-        uint32_t p = face_patch && face_patch[f] != UINT32_MAX ? face_patch[f] : out->region_patch[out->face_region[f]];
-        if (p == UINT32_MAX) continue;
+        uint32_t pf = out->region_patch[out->face_region[f]];
         for (int k = 0; k < 3; k++) {
+            uint32_t p = corner_patch && corner_patch[3 * f + k] != UINT32_MAX ? corner_patch[3 * f + k] : pf;
+            if (p == UINT32_MAX) continue;
             uint32_t v = m->triangles[3 * f + k];
             double d = acd3_patch_depth(&out->patches, p, m->vertices + 3 * (size_t)v);
             if (d > out->vconc[v]) out->vconc[v] = d;
@@ -532,14 +392,14 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     free(queue);
     acd3_pathfinder_free(&pf);
     open_rule_free(&os);
-    free(face_patch);
+    free(corner_patch);
     return ACD_OK;
 fail:
     free(face_of);
     free(queue);
     acd3_pathfinder_free(&pf);
     open_rule_free(&os);
-    free(face_patch);
+    free(corner_patch);
     acd3_measure_free(out);
     return st;
 }

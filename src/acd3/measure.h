@@ -8,6 +8,9 @@
  *    given the patch on its side of its boundary paths: the face left of a path half-edge
  *    a -> b (in the direction of the hull edge as it runs counterclockwise around its left patch)
  *    votes for the left patch, the face on the right for the right patch, by edge length.
+ *    A region claimed by several patches and bounded by two or more of their paths' loops is a
+ *    pocket shared by handle caps (genus > 0): acd3/handles cuts it along shortest arcs between
+ *    the caps (a forest) and measures each of its faces against the nearest cap.
  * 4. concavity(v) = depth of v below the supporting plane of its region's patch; a vertex on a
  *    path belongs to two regions and takes the larger depth (spec decision A5). concavity(P) is
  *    the maximum over the vertices; the witness is the vertex attaining it (lowest id on ties).
@@ -23,6 +26,7 @@
 #include "acd/base.h"
 #include "acd/hull.h"
 #include "acd/mesh.h"
+#include "acd3/handles.h"
 #include "acd3/patches.h"
 #include "geom3/dijkstra.h"
 
@@ -37,7 +41,10 @@ typedef struct acd3_measure {
     uint32_t *region_patch; /* per region */
     uint8_t *edge_barrier;  /* per graph edge: on a projected path */
     size_t nprojected;      /* projected hull edges */
-    size_t nhandle_pockets; /* regions split between their handle caps (spec §6) */
+    size_t nhandle_pockets; /* shared pockets split between their handle caps (spec §6, acd3/handles) */
+    uint8_t *edge_handle;   /* per graph edge: on a handle arc (NULL when the flat hull skipped it) */
+    acd3_handle_arcs handle_arcs;
+    size_t nhandle_candidates; /* candidate arcs (the shortest per pair of cap loops that meet) */
 } acd3_measure;
 
 /* Measures m (whose edge graph g was built from it). eps: bridge clustering threshold; tol: a
