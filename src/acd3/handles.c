@@ -31,7 +31,7 @@ void acd3_handle_arcs_free(acd3_handle_arcs *h) {
 
 void acd3_handle_result_free(acd3_handle_result *r) {
     free(r->edge_arc);
-    free(r->corner_patch);
+    free(r->face_patch);
     acd3_handle_arcs_free(&r->arcs);
     memset(r, 0, sizeof *r);
 }
@@ -115,6 +115,39 @@ static int arcs_push(acd3_handle_arcs *h, size_t *cap, growbuf *verts, const uin
     return 1;
 }
 
+long acd3_handles_genus(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of) {
+    size_t nv = m->nvertices, nf = m->ntriangles;
+    uint32_t *comp = malloc((nv ? nv : 1) * sizeof *comp), *loop = malloc((nv ? nv : 1) * sizeof *loop);
+    uint8_t *used = calloc(nv ? nv : 1, 1), *onb = calloc(nv ? nv : 1, 1);
+    long genus = -1;
+    if (comp && loop && used && onb) {
+        for (size_t v = 0; v < nv; v++) comp[v] = loop[v] = (uint32_t)v;
+        long V = 0, E = 0, c = 0, b = 0;
+        for (size_t f = 0; f < nf; f++)
+            for (int k = 0; k < 3; k++) {
+                used[m->triangles[3 * f + k]] = 1;
+                acd_uf_union(comp, m->triangles[3 * f + k], m->triangles[3 * f + (k + 1) % 3]);
+            }
+        for (size_t e = 0; e < g->nedges; e++) {
+            int n = (face_of[2 * e] != NONE) + (face_of[2 * e + 1] != NONE);
+            E += n > 0;
+            if (n == 1) {
+                onb[g->edge_v[2 * e]] = onb[g->edge_v[2 * e + 1]] = 1;
+                acd_uf_union(loop, g->edge_v[2 * e], g->edge_v[2 * e + 1]);
+            }
+        }
+        for (size_t v = 0; v < nv; v++)
+            if (used[v]) {
+                V++;
+                c += acd_uf_find(comp, (uint32_t)v) == v;
+                b += onb[v] && acd_uf_find(loop, (uint32_t)v) == v;
+            }
+        genus = (2 * c - (V - E + (long)nf) - b) / 2;
+    }
+    free(comp), free(loop), free(used), free(onb);
+    return genus;
+}
+
 acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     const acd_mesh *m = in->m;
@@ -132,6 +165,12 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
     out->edge_arc = calloc(ne ? ne : 1, 1);
     cand = calloc(nr ? nr : 1, 1);
     if (!out->edge_arc || !cand) goto nomem;
+    /* a surface without handles has no handle caps (an annulus among its regions comes from paths
+     * that encircle another region, which is not what the caps are about) */
+    long genus = acd3_handles_genus(m, g, face_of);
+    if (genus < 0) goto nomem;
+    out->genus = genus;
+    if (genus == 0) goto done;
 
     /* regions with two or more substantial claimants */
     size_t ncand = 0;
@@ -343,13 +382,13 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
     }
     out->arcs.vert = verts.v, verts.v = NULL;
 
-    /* every vertex of a shared pocket measured against its nearest cap: flood from the paths of
-     * the substantial claimants, across no path and no arc; per face corner, since a vertex on a
-     * path between two shared pockets has a cap on either side */
-    out->corner_patch = malloc((nf ? 3 * nf : 1) * sizeof *out->corner_patch);
+    /* every face of a shared pocket measured against its nearest cap (the cap of its vertex
+     * nearest to one): flood from the paths of the substantial claimants, across no path and no
+     * arc */
+    out->face_patch = malloc((nf ? nf : 1) * sizeof *out->face_patch);
     blocked = malloc(ne ? ne : 1);
-    if (!out->corner_patch || !blocked) goto nomem;
-    for (size_t c = 0; c < 3 * nf; c++) out->corner_patch[c] = NONE;
+    if (!out->face_patch || !blocked) goto nomem;
+    for (size_t f = 0; f < nf; f++) out->face_patch[f] = NONE;
     for (size_t e = 0; e < ne; e++) blocked[e] = in->edge_path[e] | out->edge_arc[e];
     for (size_t i = 0; i < in->nclaims;) {
         uint32_t r = in->claims[i].region;
@@ -382,11 +421,16 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
         acd_sp_tree tree;
         st = acd_dijkstra(g, srcs.v, srcs.n, &o, &tree, err);
         if (st != ACD_OK) goto done;
-        for (size_t k = frow[r]; k < frow[r + 1]; k++)
+        for (size_t k = frow[r]; k < frow[r + 1]; k++) {
+            uint32_t f = fl[k], bestv = NONE;
             for (int c = 0; c < 3; c++) {
-                uint32_t v = m->triangles[3 * (size_t)fl[k] + c];
-                if (tree.origin[v] != NONE) out->corner_patch[3 * (size_t)fl[k] + c] = srcl.v[tree.origin[v]];
+                uint32_t v = m->triangles[3 * (size_t)f + c];
+                if (!isfinite(tree.dist[v])) continue;
+                if (bestv == NONE || tree.dist[v] < tree.dist[bestv] || (tree.dist[v] == tree.dist[bestv] && v < bestv))
+                    bestv = v;
             }
+            if (bestv != NONE) out->face_patch[f] = srcl.v[tree.origin[bestv]];
+        }
         acd_sp_tree_free(&tree);
         for (size_t k = frow[r]; k < frow[r + 1]; k++)
             for (int c = 0; c < 3; c++) allowed[m->triangles[3 * (size_t)fl[k] + c]] = 0;
@@ -401,8 +445,8 @@ done:
     free(srcs.v), free(srcl.v), free(verts.v), free(ca);
     if (st != ACD_OK) acd3_handle_result_free(out);
     else if (!out->npockets) {
-        free(out->corner_patch);
-        out->corner_patch = NULL;
+        free(out->face_patch);
+        out->face_patch = NULL;
     }
     return st;
 }

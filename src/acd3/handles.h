@@ -26,10 +26,11 @@
  *    apart, or open a handle inside it instead of joining two caps).
  * 5. The arcs are barriers: the region is measured cap by cap. A second multi-source Dijkstra,
  *    from the vertices of the paths of each substantial claimant (labelled with its patch),
- *    crossing no barrier and no arc, gives every vertex of the pocket the patch of its nearest
- *    cap, and its depth below that patch's plane is its concavity there: a hand through the
- *    handle enters under one cap and leaves under the other, and the handle's wall lies under
- *    the nearer one (the hole of a torus measures r, not 2 r).
+ *    crossing no barrier and no arc, gives every face of the pocket the patch of its vertex
+ *    nearest to a cap: a hand through the handle enters under one cap and leaves under the
+ *    other, and the handle's wall lies under the nearer one (the hole of a torus measures r, not
+ *    2 r). Measuring each vertex against its own nearest cap instead (per face corner) was
+ *    tried: turbine, solid, tau 0.05 gave 90 parts instead of 46 (docs/acd3d.md).
  *
  * Re-projection. A15 re-projects the bridges with the arcs as barriers and loops (at most
  * 2g + 2 rounds). Here the arcs lie in regions that no projected path enters (their inner
@@ -38,6 +39,10 @@
  * are barriers (the forest never separates), and a second round finds every shared pocket with
  * one cap loop. One round is therefore the fixed point; test_acd3_handles checks the invariants
  * (arcs off the paths, regions unchanged) instead of looping.
+ *
+ * Genus 0. Nothing is done on a surface without handles (genus by Euler's formula): a region
+ * with two loops there is an annulus between paths that encircle another region, not a pocket
+ * shared by handle caps (and genus-0 results stay what they were without handle cuts).
  *
  * Hidden handles (a handle inside one pocket, one cap loop) are not cut: the decomposition
  * unearths them when their concavity is above tau (dissertation §V.C). */
@@ -93,13 +98,19 @@ typedef struct acd3_handle_input {
 typedef struct acd3_handle_result {
     uint8_t *edge_arc;      /* per edge: on an arc */
     acd3_handle_arcs arcs;
-    uint32_t *corner_patch; /* per face corner (3 f + k): the cap its vertex is measured against
-                             * in that face, UINT32_MAX outside the shared pockets; NULL when
-                             * there is none */
+    uint32_t *face_patch;   /* per face: the cap it is measured against, UINT32_MAX outside the
+                             * shared pockets; NULL when there is none */
     size_t npockets;        /* shared pockets */
     size_t ncandidates;     /* candidate arcs (one per pair of cap loops that meet) */
+    long genus;             /* of the mesh (Euler characteristic); 0: nothing was looked for */
 } acd3_handle_result;
 
+/* Genus by Euler's formula, chi = V - E + F = 2c - 2g - b over c components and b boundary
+ * loops (as acd3/topology, on the graph and faces at hand); -1 on allocation failure. */
+long acd3_handles_genus(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of);
+
+/* Finds the shared pockets of a labelling, their arcs and the cap of every face in them. Only on
+ * a surface of genus > 0: a surface without handles has no handle caps. */
 acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out, acd_error *err);
 void acd3_handle_result_free(acd3_handle_result *r);
 

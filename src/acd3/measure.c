@@ -176,7 +176,7 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     memset(&pf, 0, sizeof pf);
     open_rule os;
     memset(&os, 0, sizeof os);
-    uint32_t *corner_patch = NULL; /* shared pockets: per face corner, the nearest cap */
+    uint32_t *face_patch = NULL; /* shared pockets: per face, the nearest cap */
     out->vconc = calloc(nv ? nv : 1, sizeof *out->vconc);
     out->face_region = malloc((nf ? nf : 1) * sizeof *out->face_region);
     out->edge_barrier = calloc(g->nedges ? g->nedges : 1, 1);
@@ -318,7 +318,7 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
         out->handle_arcs = hr.arcs, memset(&hr.arcs, 0, sizeof hr.arcs);
         out->nhandle_pockets = hr.npockets;
         out->nhandle_candidates = hr.ncandidates;
-        corner_patch = hr.corner_patch, hr.corner_patch = NULL;
+        face_patch = hr.face_patch, hr.face_patch = NULL;
         acd3_handle_result_free(&hr);
     }
     free(vl);
@@ -359,10 +359,9 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     }
     /* concavity: depth below the patch plane of each incident face's region, the largest */
     for (size_t f = 0; f < nf; f++) {
-        uint32_t pf = out->region_patch[out->face_region[f]];
+        uint32_t p = face_patch && face_patch[f] != UINT32_MAX ? face_patch[f] : out->region_patch[out->face_region[f]];
+        if (p == UINT32_MAX) continue;
         for (int k = 0; k < 3; k++) {
-            uint32_t p = corner_patch && corner_patch[3 * f + k] != UINT32_MAX ? corner_patch[3 * f + k] : pf;
-            if (p == UINT32_MAX) continue;
             uint32_t v = m->triangles[3 * f + k];
             double d = acd3_patch_depth(&out->patches, p, m->vertices + 3 * (size_t)v);
             if (d > out->vconc[v]) out->vconc[v] = d;
@@ -392,14 +391,14 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     free(queue);
     acd3_pathfinder_free(&pf);
     open_rule_free(&os);
-    free(corner_patch);
+    free(face_patch);
     return ACD_OK;
 fail:
     free(face_of);
     free(queue);
     acd3_pathfinder_free(&pf);
     open_rule_free(&os);
-    free(corner_patch);
+    free(face_patch);
     acd3_measure_free(out);
     return st;
 }
