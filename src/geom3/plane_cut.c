@@ -513,11 +513,13 @@ done:
 
 /* A shell's signed volume is a sum of triple products a.(b x d)/6 from the box centre; the
  * rounding error of each is bounded by a small multiple of DBL_EPSILON times |a||b||d|/6. A shell
- * whose |volume| is below that bound has no volume we can tell from zero, whatever its area: a
- * speck of four faces of area 1e-33 left where a plane runs through nearly coincident section
+ * of negative volume within that bound, inside a piece, is no cavity but a speck of rounding and
+ * is dropped: four faces of area 1e-33 left where a plane runs through nearly coincident section
  * points (CGAL's spool.off) measured volume -3e-22 against the box centre, far above the
- * thickness bound of its area, and was taken as a cavity, leaving its piece
- * self-intersecting. */
+ * thickness bound of their area, and were joined to a piece as a cavity, which then
+ * self-intersected and stayed above tau. (Specks inside no piece, and positive ones, stay
+ * pieces, so acd3/decompose's sliver rule refuses such cuts as before: accepting them changed
+ * the armadillo's decomposition, 39 -> 53 parts at the target tau.) */
 #define ACD_PLANE_CUT_VOLUME_ROUNDING (64.0 * DBL_EPSILON)
 
 /* Shells of negative volume (cavities: inward-facing surfaces) join the smallest shell of positive
@@ -567,16 +569,21 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
     diag = sqrt(diag);
     for (size_t t = 0; t < nt; t++) {
         /* (a threshold that overflows decides nothing: such a shell is kept) */
-        double thr = fmax(ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t], ACD_PLANE_CUT_VOLUME_ROUNDING * avol[t]);
+        double thr = ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t];
         flat[t] = parent[t] == t && isfinite(thr) && !(fabs(vol[t]) > thr);
         if (flat[t]) vol[t] = 0; /* neither a piece nor a cavity */
+        /* a negative volume within rounding: no cavity, dropped below if a shell contains it
+         * (one that no shell contains stays a piece of its own, and acd3/decompose's sliver
+         * rule refuses the cut, as before) */
+        else if (parent[t] == t && vol[t] < 0 && -vol[t] <= ACD_PLANE_CUT_VOLUME_ROUNDING * avol[t])
+            avol[t] = -1; /* mark */
     }
     free(area);
-    free(avol);
     for (size_t t = 0; t < nt; t++)
         if (parent[t] == t && vol[t] < 0) nneg++;
     if (nneg == 0) {
         free(vol);
+        free(avol);
         return ACD_OK;
     }
     /* triangles grouped by component root */
@@ -632,6 +639,10 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
             }
             if (inside) best = p;
         }
+        if (best != NONE && avol[n] < 0) {
+            flat[n] = 1; /* a speck within rounding inside a piece: dropped, not a cavity */
+            best = NONE;
+        }
         merge[n] = (uint32_t)best;
     }
     free(tris);
@@ -648,6 +659,7 @@ out:
     free(start);
     free(root);
     free(vol);
+    free(avol);
     return st;
 }
 
