@@ -18,8 +18,9 @@ static void usage(FILE *f) {
     fprintf(f,
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
-            "              [--no-merge] [--merge-tau T] [--no-close-holes] [--resolver global|witness] [--cut-weight ratio|product]\n"
-            "              [--verify] [-v]\n"
+            "              [--no-merge] [--merge-tau T] [--merge-order bound|volume] [--merge-parts N]\n"
+            "              [--cut-choice concavity|volume] [--no-close-holes] [--resolver global|witness]\n"
+            "              [--cut-weight ratio|product] [--verify] [-v]\n"
             "\n"
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
@@ -46,6 +47,13 @@ static void usage(FILE *f) {
             "                      joined while the result stays within tau: solid, the joined hull\n"
             "                      within tau of the joined part; surface, the welded patch's concavity)\n"
             "  --merge-tau T       the merge pass's tolerance, in the units of TAU (default: TAU)\n"
+            "  --merge-order bound solid merge pass: the joinable pair of smallest bound first (default);\n"
+            "                      'volume': the pair whose joined hull adds the least volume first\n"
+            "  --merge-parts N     solid merge pass: stop as soon as at most N parts remain (default: join\n"
+            "                      while a pair is joinable)\n"
+            "  --cut-choice concavity  solid mode: the candidate cut of least piece concavity (default);\n"
+            "                      'volume': planes chosen for tight hulls join the candidates, and the\n"
+            "                      smallest sum of the pieces' hull volumes wins within a band of concavity\n"
             "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
             "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
             "  --no-close-holes    solid mode refuses an open mesh instead of closing its holes (by default\n"
@@ -308,6 +316,25 @@ int acd_cmd_3d(int argc, char **argv) {
             else if (val && !strcmp(val, "witness")) p.resolver = ACD3D_RESOLVER_WITNESS;
             else {
                 fprintf(stderr, "acd 3d: --resolver takes global or witness\n");
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--merge-order")) {
+            if (val && !strcmp(val, "bound")) p.merge_order = ACD3D_MERGE_BOUND;
+            else if (val && !strcmp(val, "volume")) p.merge_order = ACD3D_MERGE_VOLUME;
+            else {
+                fprintf(stderr, "acd 3d: --merge-order takes bound or volume\n");
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--merge-parts")) {
+            if (!acd_cli_parse_size("3d", a, val, &p.merge_parts)) return ACD_EXIT_USAGE;
+            i++;
+        } else if (!strcmp(a, "--cut-choice")) {
+            if (val && !strcmp(val, "concavity")) p.cut_choice = ACD3D_CHOICE_CONCAVITY;
+            else if (val && !strcmp(val, "volume")) p.cut_choice = ACD3D_CHOICE_VOLUME;
+            else {
+                fprintf(stderr, "acd 3d: --cut-choice takes concavity or volume\n");
                 return ACD_EXIT_USAGE;
             }
             i++;

@@ -335,6 +335,63 @@ static void test_merge_pass(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Hull tightness (docs/acd3d.md): the cut choice by hull volume and the merge pass ordered by the
+ * volume a join adds keep every property of a solid decomposition (volumes, closed parts, tau
+ * for the leaves, the joined bounds), give the same output for 1 and 2 threads, and merge_parts
+ * stops the merge at exactly that many parts when the merge would go below it. */
+static void test_hull_tightness(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_torus(&m, 32, 16, 1.0, 0.35));
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.05;
+    p.cut_choice = ACD3D_CHOICE_VOLUME;
+    p.merge_order = ACD3D_MERGE_VOLUME;
+    acd3d_result leaves, all, all2, stop;
+    acd_error err;
+    p.merge = 0;
+    assert_int_equal(acd3d_decompose(&m, &p, &leaves, &err), ACD_OK);
+    check_solid(&m, &leaves, &p);
+    p.merge = 1;
+    p.threads = 1;
+    assert_int_equal(acd3d_decompose(&m, &p, &all, &err), ACD_OK);
+    p.threads = 2;
+    assert_int_equal(acd3d_decompose(&m, &p, &all2, &err), ACD_OK);
+    check_solid(&m, &all, &p);
+    assert_true(all.nparts < leaves.nparts);
+    assert_int_equal(all2.nparts, all.nparts);
+    for (size_t i = 0; i < all.nparts; i++) {
+        assert_int_equal(all2.parts[i].mesh.nvertices, all.parts[i].mesh.nvertices);
+        assert_memory_equal(all2.parts[i].mesh.vertices, all.parts[i].mesh.vertices,
+                            3 * all.parts[i].mesh.nvertices * sizeof(double));
+        assert_true(all2.parts[i].concavity == all.parts[i].concavity);
+    }
+    /* a stop between the merged and the unmerged counts is met exactly */
+    assert_true(leaves.nparts >= all.nparts + 2);
+    p.merge_parts = all.nparts + (leaves.nparts - all.nparts) / 2;
+    assert_int_equal(acd3d_decompose(&m, &p, &stop, &err), ACD_OK);
+    assert_int_equal(stop.nparts, p.merge_parts);
+    check_solid(&m, &stop, &p);
+    /* the stopped merge is a prefix of the full one (the same greedy sequence): every stopped part's
+     * leaves lie in one part of the full merge (the tree, hence the leaves' nodes, is the same) */
+    for (size_t i = 0; i < stop.nparts; i++) {
+        int jn = stop.parts[i].node, target = -2;
+        for (size_t n = 0; n < leaves.nnodes; n++) {
+            int in_stop = stop.nodes[n].merged_into == jn || (int)n == jn;
+            if (!in_stop) continue;
+            int t = all.nodes[n].merged_into >= 0 ? all.nodes[n].merged_into : (int)n;
+            if (target == -2) target = t;
+            assert_int_equal(t, target);
+        }
+        assert_true(target != -2);
+    }
+    acd3d_result_free(&leaves);
+    acd3d_result_free(&all);
+    acd3d_result_free(&all2);
+    acd3d_result_free(&stop);
+    acd_mesh_free(&m);
+}
+
 static void check_surface(const acd_mesh *in, const acd3d_result *r, const acd3d_params *p) {
     size_t faces = 0;
     double area = 0;
@@ -548,6 +605,7 @@ int main(void) {
         cmocka_unit_test(test_threads_and_hull_budget),
         cmocka_unit_test(test_torus_finishes),
         cmocka_unit_test(test_merge_pass),
+        cmocka_unit_test(test_hull_tightness),
         cmocka_unit_test(test_surface_mode),
         cmocka_unit_test(test_spiky_stars_within_tau),
         cmocka_unit_test(test_parallel_candidates_same_tree),

@@ -35,6 +35,23 @@ typedef enum acd3d_resolver {
     ACD3D_RESOLVER_WITNESS     /* only the planes through the most concave vertex */
 } acd3d_resolver;
 
+typedef enum acd3d_cut_choice {
+    ACD3D_CHOICE_CONCAVITY = 0, /* solid mode: among the candidate cuts, the smallest largest piece
+                                   concavity (then fewer pieces); a cut meeting tau or halving the
+                                   concavity is taken at once (default) */
+    ACD3D_CHOICE_VOLUME         /* solid mode: planes chosen for the pieces' hull volumes join the
+                                   candidates (acd3/volume_plane), every candidate is compared (up to
+                                   the budget), and among those whose concavity is within a band of the
+                                   best the smallest sum of the pieces' hull volumes wins (CoACD's
+                                   objective); docs/acd3d.md "Hull tightness" */
+} acd3d_cut_choice;
+
+typedef enum acd3d_merge_order {
+    ACD3D_MERGE_BOUND = 0,  /* the merge pass joins the pair of smallest bound first (default) */
+    ACD3D_MERGE_VOLUME      /* the pair whose joined hull adds the least volume (vol conv(A u B) -
+                               vol conv A - vol conv B) first */
+} acd3d_merge_order;
+
 #define ACD3D_PARAMS_COOKIE 0x41434433u
 
 typedef struct acd3d_params {
@@ -64,6 +81,10 @@ typedef struct acd3d_params {
                                  are ACD3D_LEAF_JOINED nodes */
     double merge_tau;         /* the merge pass's tolerance, in the units of tau (relative, or absolute
                                  with tau_absolute); 0 (default): tau */
+    acd3d_merge_order merge_order; /* solid mode's merge pass: which joinable pair first */
+    size_t merge_parts;       /* solid mode's merge pass: 0 (default) joins while a pair is joinable;
+                                 else it stops as soon as at most this many parts remain */
+    acd3d_cut_choice cut_choice; /* solid mode: how a split's cut is chosen among the candidates */
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
                                  (spec decision A13), falling back to the whole plane; default 0,
                                  see docs/acd3d.md for the measurements behind the default */

@@ -27,6 +27,7 @@
 #include "acd3/surface_cut.h"
 #include "acd3/surface_merge.h"
 #include "acd3/topology.h"
+#include "acd3/volume_plane.h"
 #include "core/error.h"
 #include "core/tolerance.h"
 #include "geom3/dijkstra.h"
@@ -158,12 +159,18 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
 
 /* How many splitting candidates are compared (each costs a measure of its pieces). */
 #define ACD3_COMPARED_CANDIDATES 6
+/* Cut choice by hull volume (ACD3D_CHOICE_VOLUME): how many volume planes join the candidates,
+ * and the band of concavity (a fraction of the part's) within which the pieces' hull volume
+ * decides. */
+#define ACD3_VOLUME_PLANES 1
+#define ACD3_VOLUME_BAND 0.3
 
 typedef struct split_choice {
     acd_cut_result cut;
     measured *pieces; /* cut.npieces measures */
     acd3_plane_candidate plane;
     double concavity; /* the largest over the pieces */
+    double hullvol;   /* the sum of the pieces' hull volumes */
 } split_choice;
 
 static void choice_free(split_choice *c) {
@@ -240,6 +247,8 @@ typedef struct split_state {
     const acd3_measure *ms;
     double extent, eps, tau, tol, min_piece_volume;
     int solid, restrict_cut;
+    int by_volume; /* ACD3D_CHOICE_VOLUME (solid mode) */
+    double band;   /* its band of concavity */
     const acd3_plane_candidate *cand;
     int nc, nbridge;
     cand_eval *ev;
@@ -269,13 +278,20 @@ static int split_skips(const split_state *S, int i) {
  * it (a cut that makes progress beats one that does not: in surface mode only against a best that
  * makes progress is a higher concavity a loss). */
 static int split_lost(const split_state *S, double c) {
-    return S->found && S->best_progress && c > S->best.concavity + S->tol;
+    return S->found && S->best_progress && c > S->best.concavity + (S->by_volume ? S->band : S->tol);
 }
 
 /* Whether trial (its progress given) is better than the best so far: the smallest largest piece
- * concavity (up to tol), then the fewest pieces, then the candidates' order. */
+ * concavity (up to tol), then the fewest pieces, then the candidates' order. By volume: a
+ * concavity lower by more than the band, else (within the band) the smaller sum of the pieces'
+ * hull volumes, then the candidates' order. */
 static int split_better(const split_state *S, const split_choice *trial, int progress) {
     const split_choice *best = &S->best;
+    if (S->by_volume)
+        return !S->found || (progress && !S->best_progress) ||
+               (progress == S->best_progress &&
+                (trial->concavity < best->concavity - S->band ||
+                 (trial->concavity <= best->concavity + S->band && trial->hullvol < best->hullvol)));
     return !S->found || (progress && !S->best_progress) ||
            (progress == S->best_progress &&
             (trial->concavity < best->concavity - S->tol ||
@@ -329,7 +345,12 @@ static void split_replay(split_state *S) {
             continue;
         }
         t->concavity = conc;
-        int progress = S->solid || surface_progress(S->m, S->ms, t, S->tol);
+        t->hullvol = 0;
+        for (size_t k = 0; k < t->cut.npieces; k++) t->hullvol += t->pieces[k].ms.hull.volume;
+        /* by volume, a solid cut makes progress when it lowers the concavity (the band could
+         * otherwise prefer a cut that leaves the witness as deep) */
+        int progress = S->by_volume ? conc < S->ms->concavity - S->tol
+                                    : S->solid || surface_progress(S->m, S->ms, t, S->tol);
         if (split_better(S, t, progress)) {
             if (S->found) choice_free(&S->best);
             S->best = *t;
@@ -338,7 +359,9 @@ static void split_replay(split_state *S) {
             S->best_progress = progress;
         }
         cand_eval_free(e);
-        if (S->best_progress && (S->best.concavity <= S->tau + S->tol || S->best.concavity <= 0.5 * S->ms->concavity))
+        /* (by volume, every candidate is compared, up to the budget) */
+        if (!S->by_volume && S->best_progress &&
+            (S->best.concavity <= S->tau + S->tol || S->best.concavity <= 0.5 * S->ms->concavity))
             S->stopped = 1;
     }
     if (S->cursor >= S->nc) S->stopped = 1;
@@ -470,19 +493,28 @@ static void split_work(split_state *S) {
  * splits, or -(status) on failure. */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
-                     const acd3_resolve_opts *ro, int helpers, split_choice *best, acd_error *err) {
-    acd3_plane_candidate cand[ACD3_MAX_CANDIDATES + 1];
+                     const acd3_resolve_opts *ro, int by_volume, int helpers, split_choice *best, acd_error *err) {
+    acd3_plane_candidate cand[ACD3_MAX_CANDIDATES + 1 + ACD3_VOLUME_PLANES];
     int nc = acd3_cut_candidates(m, g, ms, ro, cand);
+    by_volume = by_volume && solid;
+    if (by_volume && nc > 0) { /* the volume planes after the first candidate */
+        acd3_plane_candidate vp[ACD3_VOLUME_PLANES];
+        int nv = acd3_volume_planes(m, ACD3_VOLUME_PLANES, vp);
+        memmove(cand + 1 + nv, cand + 1, (size_t)(nc - 1) * sizeof *cand);
+        memcpy(cand + 1, vp, (size_t)nv * sizeof *cand);
+        nc += nv;
+    }
     /* surface mode: the bridge plane last (tried when no candidate before it makes progress) */
     int nbridge = nc;
     if (!solid && nc > 0 && surface_bridge_plane(m, ms, &cand[nc])) nc++;
     memset(best, 0, sizeof *best);
-    cand_eval ev[ACD3_MAX_CANDIDATES + 1];
+    cand_eval ev[ACD3_MAX_CANDIDATES + 1 + ACD3_VOLUME_PLANES];
     memset(ev, 0, sizeof ev);
     split_state S;
     memset(&S, 0, sizeof S);
     S.m = m, S.g = g, S.ms = ms, S.extent = extent, S.eps = eps, S.tau = tau, S.tol = tol;
     S.min_piece_volume = min_piece_volume, S.solid = solid, S.restrict_cut = restrict_cut;
+    S.by_volume = by_volume, S.band = ACD3_VOLUME_BAND * ms->concavity;
     S.cand = cand, S.nc = nc, S.nbridge = nbridge, S.ev = ev;
     if (helpers > nc - 1) helpers = nc - 1;
 #ifdef _OPENMP
@@ -599,13 +631,16 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         const double vol = c->solid ? acd_geom3_signed_volume(&w->mesh) : -INFINITY;
         if (c->params->region_cuts || !c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
-                              ACD3_MIN_PIECE_FRACTION * vol, &ro, c->helpers, &out->choice, &out->err);
+                              ACD3_MIN_PIECE_FRACTION * vol, &ro, c->params->cut_choice == ACD3D_CHOICE_VOLUME, c->helpers, &out->choice,
+                              &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
-                              ACD3_MIN_PIECE_FRACTION * vol, &ro, c->helpers, &out->choice, &out->err);
+                              ACD3_MIN_PIECE_FRACTION * vol, &ro, c->params->cut_choice == ACD3D_CHOICE_VOLUME, c->helpers, &out->choice,
+                              &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
-                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, &ro, c->helpers, &out->choice, &out->err);
+                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, &ro, c->params->cut_choice == ACD3D_CHOICE_VOLUME, c->helpers, &out->choice,
+                              &out->err);
         if (split < 0) {
             out->st = (acd_status)(-split);
             split = 0;
@@ -661,14 +696,14 @@ static void mark_joined(tree *t, const size_t *idx, size_t np, const uint32_t *g
 /* The merge pass (acd3/merge): every group of adjacent parts it joins becomes a node appended
  * after the tree (ACD3D_LEAF_JOINED, its mesh the members' meshes one after the other, so each
  * component stays closed); the members keep their nodes, with merged_into set and no mesh. */
-static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, double tol, int threads, size_t *nparts,
-                                acd_error *err) {
+static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, double tol, const acd3_merge_opts *mo,
+                                int threads, size_t *nparts, acd_error *err) {
     size_t np, *idx;
     acd_mesh *meshes;
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
     if (st != ACD_OK || np < 2) return st;
     acd3_merge_result mr;
-    st = acd3_merge_adjacent(input, meshes, np, tau, tol, threads, &mr, err);
+    st = acd3_merge_adjacent(input, meshes, np, tau, tol, mo, threads, &mr, err);
     free(meshes);
     for (size_t g = 0; st == ACD_OK && g < mr.ngroups; g++) {
         if (mr.group_size[g] < 2) continue;
@@ -920,7 +955,8 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
 
     if (params->merge && solid) {
-        st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, nthreads, &nleaves, err);
+        const acd3_merge_opts mo = {params->merge_order == ACD3D_MERGE_VOLUME, params->merge_parts};
+        st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, &mo, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     } else if (params->merge) {
         st = join_surface(&t, eps, out->merge_tau, sc.dist, nthreads, &nleaves, err);

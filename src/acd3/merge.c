@@ -33,6 +33,7 @@ typedef struct group {
     uint32_t *members;
     size_t nmembers;
     double bound;
+    double hvol; /* its hull's volume (0 when flat) */
     double *ft;  /* its hull's facets: 9 coordinates each, corners in canonical order, sorted */
     double *fub; /* per facet: an upper bound of the distance from its points to the group (> tau: not bounded) */
     size_t nft;
@@ -41,8 +42,7 @@ typedef struct group {
 typedef struct pair {
     uint32_t a, b; /* a < b */
     int ok;
-    double cost;  /* the order (the bound; ordering by the hull volume a join adds instead was tried:
-                     IoU +0.001-0.004, one or two parts more on camel and knot1) */
+    double cost;  /* the order: the bound, or (by_volume) the hull volume the join adds */
     double bound; /* max(d_in, bound of d_out) */
     double *ft, *fub; /* ok: the joined hull's facet table (as group.ft, fub), for the join */
     size_t nft;
@@ -344,7 +344,7 @@ static int set_facets(group *g, const group *A, const group *B, const acd_hull *
 }
 
 /* Scores the union of A and B (merge.h): ok and cost = max(d_in, bound of d_out). */
-static void score(const group *A, const group *B, double tau, pair *out) {
+static void score(const group *A, const group *B, double tau, int by_volume, pair *out) {
     out->ok = 0;
     out->cost = INFINITY;
     acd_hull H;
@@ -354,6 +354,7 @@ static void score(const group *A, const group *B, double tau, pair *out) {
     if (din <= tau) din = depth_in_hull(B, &H, din, tau, &start);
     double dout = INFINITY, *key = NULL, *ub = NULL;
     size_t nf = H.ntriangles;
+    double hvol = H.volume;
     if (din <= tau) {
         key = malloc((nf ? nf : 1) * 9 * sizeof *key);
         ub = malloc((nf ? nf : 1) * sizeof *ub);
@@ -367,7 +368,7 @@ static void score(const group *A, const group *B, double tau, pair *out) {
     }
     out->ok = 1;
     out->bound = fmax(din, dout);
-    out->cost = out->bound;
+    out->cost = by_volume ? hvol - A->hvol - B->hvol : out->bound;
     out->ft = key;
     out->fub = ub;
     out->nft = nf;
@@ -482,11 +483,11 @@ static acd_status adjacency(const acd_mesh *parts, size_t nparts, group *G, doub
 }
 
 /* Scores pairs [p0, p1) (independently: any thread count gives the same scores). */
-static void score_pairs(group *G, pair *P, size_t p0, size_t p1, double tau, int threads) {
+static void score_pairs(group *G, pair *P, size_t p0, size_t p1, double tau, int by_volume, int threads) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && p1 - p0 > 1)
 #endif
-    for (long i = (long)p0; i < (long)p1; i++) score(&G[P[i].a], &G[P[i].b], tau, &P[i]);
+    for (long i = (long)p0; i < (long)p1; i++) score(&G[P[i].a], &G[P[i].b], tau, by_volume, &P[i]);
     (void)threads;
 }
 
@@ -500,6 +501,7 @@ static acd_status group_init_hull(group *g, const double *pts, size_t n, double 
     }
     g->hv = h.vertices;
     g->nhv = h.nvertices;
+    g->hvol = h.dim == 3 ? h.volume : 0;
     h.vertices = NULL;
     acd_hull_free(&h);
     return ACD_OK;
@@ -520,6 +522,7 @@ static acd_status join(group *G, pair *pr, uint32_t c, acd_error *err) {
     pr->ft = pr->fub = NULL;
     C->hv = H.vertices;
     C->nhv = H.nvertices;
+    C->hvol = H.volume;
     H.vertices = NULL;
     acd_hull_free(&H);
     C->nsv = A->nsv + B->nsv;
@@ -567,10 +570,12 @@ static acd_status push_pair(pair **P, size_t *np, size_t *cap, uint32_t a, uint3
 }
 
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
-                               int threads, acd3_merge_result *out, acd_error *err) {
+                               const acd3_merge_opts *opts, int threads, acd3_merge_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
+    const int by_volume = opts && opts->by_volume;
+    const size_t stop_at = opts ? opts->stop_at : 0;
     if (threads < 1) threads = 1;
-    if (!(tau > 0) || nparts < 2) { /* tau 0: only a convex union could be joined; not searched */
+    if (!(tau > 0) || nparts < 2 || (stop_at && nparts <= stop_at)) { /* tau 0: only a convex union could be joined; not searched */
         out->group_of = malloc((nparts ? nparts : 1) * sizeof *out->group_of);
         out->group_size = malloc((nparts ? nparts : 1) * sizeof *out->group_size);
         out->bound = calloc(nparts ? nparts : 1, sizeof *out->bound);
@@ -653,9 +658,10 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     for (size_t i = 0; i < nparts && st == ACD_OK; i++)
         for (size_t k = 0; k < G[i].nadj && st == ACD_OK; k++)
             if (G[i].adj[k] > i) st = push_pair(&P, &np, &capp, (uint32_t)i, G[i].adj[k], err);
-    if (st == ACD_OK) score_pairs(G, P, 0, np, tau, threads);
+    if (st == ACD_OK) score_pairs(G, P, 0, np, tau, by_volume, threads);
     /* greedy: the cheapest joinable pair of live groups, ties by the lower ids */
-    while (st == ACD_OK) {
+    size_t nlive = nparts;
+    while (st == ACD_OK && nlive > stop_at) {
         size_t best = SIZE_MAX, w = 0;
         for (size_t i = 0; i < np; i++) {
             if (!G[P[i].a].alive || !G[P[i].b].alive) {
@@ -672,9 +678,10 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         st = join(G, &P[best], c, err);
         if (st != ACD_OK) break;
         out->merges++;
+        nlive--;
         size_t p0 = np;
         for (size_t k = 0; k < G[c].nadj && st == ACD_OK; k++) st = push_pair(&P, &np, &capp, G[c].adj[k], c, err);
-        if (st == ACD_OK) score_pairs(G, P, p0, np, tau, threads);
+        if (st == ACD_OK) score_pairs(G, P, p0, np, tau, by_volume, threads);
     }
     if (st == ACD_OK) {
         /* groups numbered by their lowest part */

@@ -13,9 +13,10 @@
  *           closest to the piece's centroid or, without a query, the one its parent found; or
  *           refused as soon as one centroid is farther than tau.
  *
- * The pair is joinable when both are <= tau; its cost is max(d_in, d_out's bound). Cheapest
- * first (ties: the lower group ids), greedily, until no adjacent pair is joinable; a joined group
- * is a new group and its pairs with its neighbours are scored again. Deterministic for any
+ * The pair is joinable when both are <= tau; its cost is max(d_in, d_out's bound), or (by_volume)
+ * the hull volume the join adds. Cheapest first (ties: the lower group ids), greedily, until no
+ * adjacent pair is joinable or stop_at groups remain; a joined group is a new group and its pairs
+ * with its neighbours are scored again. Deterministic for any
  * thread count (pairs are scored independently, the choice is sequential).
  *
  * What the bound means: d_out is the directed Hausdorff distance from the joined hull to the
@@ -44,10 +45,17 @@ typedef struct acd3_merge_result {
     size_t merges;      /* joins made */
 } acd3_merge_result;
 
+typedef struct acd3_merge_opts {
+    int by_volume;  /* non-zero: the joinable pair whose hull adds the least volume first
+                       (vol conv(A u B) - vol conv A - vol conv B); else the smallest bound */
+    size_t stop_at; /* 0: join while a pair is joinable; else stop at this many groups */
+} acd3_merge_opts;
+
 /* Joins the adjacent parts of the closed input mesh `input` (all parts closed, together tiling
- * it), tau and tol in model units. threads: OpenMP workers for the scoring (<= 1: one). */
+ * it), tau and tol in model units. threads: OpenMP workers for the scoring (<= 1: one). opts may
+ * be NULL (bound order, no stop). */
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
-                               int threads, acd3_merge_result *out, acd_error *err);
+                               const acd3_merge_opts *opts, int threads, acd3_merge_result *out, acd_error *err);
 void acd3_merge_result_free(acd3_merge_result *r);
 
 #endif

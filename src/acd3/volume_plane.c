@@ -1,0 +1,103 @@
+/* acd3/volume_plane: cut planes for tight hulls; see volume_plane.h. */
+#include "acd3/volume_plane.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/hull.h"
+#include "geom3/pca.h"
+
+/* Offsets tried per axis: the planes at i / (VP_OFFSETS + 1) of the part's extent along it. */
+#define VP_OFFSETS 9
+/* Vertices used for scoring at most (every k-th beyond), plus every crossing point. */
+#define VP_MAX_SCORED 4000
+
+static double hull_volume(const double *pts, size_t n) {
+    if (n < 4) return 0;
+    acd_hull h;
+    if (acd_hull_compute(pts, n, &h, NULL) != ACD_OK) return -1;
+    double v = h.dim == 3 ? h.volume : 0;
+    acd_hull_free(&h);
+    return v;
+}
+
+/* Sum of the two sides' hull volumes of the plane (unit normal nrm, offset c: n.x = c); -1 on
+ * failure. buf holds room for every vertex and crossing (twice). */
+static double score_plane(const acd_mesh *m, size_t stride, const double nrm[3], double c, double *bufa, double *bufb) {
+    size_t na = 0, nb = 0;
+    for (size_t v = 0; v < m->nvertices; v += stride) {
+        const double *p = m->vertices + 3 * v;
+        double s = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2] - c;
+        double *dst = s >= 0 ? bufa + 3 * na++ : bufb + 3 * nb++;
+        memcpy(dst, p, sizeof(double[3]));
+    }
+    for (size_t t = 0; t < m->ntriangles; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t i = m->triangles[3 * t + k], j = m->triangles[3 * t + (k + 1) % 3];
+            if (i > j) continue; /* each edge once (a closed mesh has both directions) */
+            const double *p = m->vertices + 3 * (size_t)i, *q = m->vertices + 3 * (size_t)j;
+            double sp = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2] - c;
+            double sq = nrm[0] * q[0] + nrm[1] * q[1] + nrm[2] * q[2] - c;
+            if ((sp >= 0) == (sq >= 0)) continue;
+            double a = sp / (sp - sq), x[3];
+            for (int d = 0; d < 3; d++) x[d] = p[d] + a * (q[d] - p[d]);
+            memcpy(bufa + 3 * na++, x, sizeof x);
+            memcpy(bufb + 3 * nb++, x, sizeof x);
+        }
+    double va = hull_volume(bufa, na), vb = hull_volume(bufb, nb);
+    return va < 0 || vb < 0 ? -1 : va + vb;
+}
+
+int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out) {
+    if (nmax <= 0 || m->nvertices < 4) return 0;
+    acd_pca pca;
+    if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return 0;
+    size_t cap = m->nvertices + 3 * m->ntriangles + 1;
+    double *bufa = malloc(3 * cap * sizeof *bufa), *bufb = malloc(3 * cap * sizeof *bufb);
+    if (!bufa || !bufb) {
+        free(bufa), free(bufb);
+        return 0;
+    }
+    size_t stride = (m->nvertices + VP_MAX_SCORED - 1) / VP_MAX_SCORED;
+    double best[3];
+    int n = 0, order[3];
+    acd3_plane_candidate cand[3];
+    for (int a = 0; a < 3; a++) {
+        const double *ax = pca.axes[a];
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t v = 0; v < m->nvertices; v++) {
+            const double *p = m->vertices + 3 * v;
+            double s = ax[0] * p[0] + ax[1] * p[1] + ax[2] * p[2];
+            lo = fmin(lo, s), hi = fmax(hi, s);
+        }
+        if (!(hi > lo)) continue;
+        double bs = INFINITY, bc = 0;
+        for (int i = 1; i <= VP_OFFSETS; i++) {
+            double c = lo + (hi - lo) * i / (VP_OFFSETS + 1);
+            double s = score_plane(m, stride, ax, c, bufa, bufb);
+            if (s >= 0 && s < bs) bs = s, bc = c;
+        }
+        if (!(bs < INFINITY)) continue;
+        for (int k = 0; k < 3; k++) {
+            cand[n].normal[k] = ax[k];
+            cand[n].point[k] = pca.centroid[k] + (bc - (ax[0] * pca.centroid[0] + ax[1] * pca.centroid[1] + ax[2] * pca.centroid[2])) * ax[k];
+        }
+        cand[n].kind = "volume";
+        best[n] = bs;
+        order[n] = n;
+        n++;
+    }
+    free(bufa);
+    free(bufb);
+    /* best first (stable: the axes' order on ties) */
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && best[order[j]] < best[order[j - 1]]; j--) {
+            int x = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = x;
+        }
+    if (n > nmax) n = nmax;
+    for (int i = 0; i < n; i++) out[i] = cand[order[i]];
+    return n;
+}

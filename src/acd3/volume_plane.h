@@ -1,0 +1,19 @@
+/* acd3/volume_plane: cut planes chosen for the tightness of the pieces' hulls (CoACD's objective):
+ * planes across the part's principal axes at evenly spaced offsets, scored by the sum of the
+ * volumes of the two sides' convex hulls, the best kept. docs/acd3d.md, "Hull tightness".
+ *
+ * A side's hull is the hull of the part's vertices on that side and of the points where the
+ * part's edges cross the plane: exactly the hull of the piece a plane cut gives (the caps add no
+ * vertex but the crossings). Large parts are scored on every k-th vertex (and every crossing):
+ * the score only ranks planes, the cut itself is made and measured by the caller. */
+#ifndef ACD_ACD3_VOLUME_PLANE_H
+#define ACD_ACD3_VOLUME_PLANE_H
+
+#include "acd/mesh.h"
+#include "acd3/resolve.h"
+
+/* Up to nmax planes (kind "volume"), best first, at most one per principal axis; returns how
+ * many (0 for a flat part or on allocation failure). */
+int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out);
+
+#endif
