@@ -984,14 +984,39 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         p->node = (int)i;
         out->nodes[i].part = (int)out->nparts;
         out->nparts++;
-        st = hull_mesh(&p->mesh, params->max_hull_vertices, &p->hull, &p->hull_volume, err);
-        if (st != ACD_OK) goto fail;
-        acd3_topology topo;
-        st = acd3_topology_of(&p->mesh, &topo, err);
-        if (st != ACD_OK) goto fail;
-        p->genus = topo.genus;
-        p->boundary_loops = topo.boundary_loops;
         if (p->concavity > out->max_concavity) out->max_concavity = p->concavity;
+    }
+    /* the parts' hulls and topology, independently (in parallel); the first failure in part order
+     * is reported */
+    {
+        acd_status *pst = calloc(out->nparts ? out->nparts : 1, sizeof *pst);
+        acd_error *perr = calloc(out->nparts ? out->nparts : 1, sizeof *perr);
+        if (!pst || !perr) {
+            free(pst);
+            free(perr);
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            goto fail;
+        }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads) if (nthreads > 1 && out->nparts > 1)
+#endif
+        for (long j = 0; j < (long)out->nparts; j++) {
+            acd3d_part *p = &out->parts[j];
+            pst[j] = hull_mesh(&p->mesh, params->max_hull_vertices, &p->hull, &p->hull_volume, &perr[j]);
+            if (pst[j] != ACD_OK) continue;
+            acd3_topology topo;
+            pst[j] = acd3_topology_of(&p->mesh, &topo, &perr[j]);
+            p->genus = topo.genus;
+            p->boundary_loops = topo.boundary_loops;
+        }
+        for (size_t j = 0; j < out->nparts && st == ACD_OK; j++)
+            if (pst[j] != ACD_OK) {
+                st = pst[j];
+                if (err) *err = perr[j];
+            }
+        free(pst);
+        free(perr);
+        if (st != ACD_OK) goto fail;
     }
     free(t.a);
     clock_gettime(CLOCK_MONOTONIC, &t1);
