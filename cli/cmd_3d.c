@@ -20,7 +20,7 @@ static void usage(FILE *f) {
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
             "              [--no-merge] [--merge-tau T] [--merge-order bound|volume] [--merge-parts N]\n"
             "              [--cut-choice concavity|volume] [--no-close-holes] [--resolver global|witness]\n"
-            "              [--cut-weight ratio|product] [--verify] [-v]\n"
+            "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--verify] [-v]\n"
             "\n"
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
@@ -38,6 +38,9 @@ static void usage(FILE *f) {
             "  --cut-weight ratio  global cut weight W = omega/gamma (paper Eqn 4, default); 'product':\n"
             "                      W = omega*gamma (dissertation Eqn 5.2)\n"
             "  --region-cuts       cut only the section region at the most concave vertex (spec A13)\n"
+            "  --surface-cut strip surface mode: split along a cut plane's section strip (default);\n"
+            "                      'cycle': first along the global cut's cycle of pocket cuts when it\n"
+            "                      separates the part; 'cycle-witness': the cycle through the witness\n"
             "  --json FILE         summary: per part concavity, volume, hull volume; the tree\n"
             "  --export DIR        for other tools: decomposition.obj, hulls/, parts/, summary.json,\n"
             "                      NAME.urdf (one collision per hull), NAME.xml (MuJoCo); --name NAME\n"
@@ -335,6 +338,15 @@ int acd_cmd_3d(int argc, char **argv) {
             else if (val && !strcmp(val, "volume")) p.cut_choice = ACD3D_CHOICE_VOLUME;
             else {
                 fprintf(stderr, "acd 3d: --cut-choice takes concavity or volume\n");
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--surface-cut")) {
+            if (val && !strcmp(val, "strip")) p.surface_cut = ACD3D_SURFACE_STRIP;
+            else if (val && !strcmp(val, "cycle")) p.surface_cut = ACD3D_SURFACE_CYCLE;
+            else if (val && !strcmp(val, "cycle-witness")) p.surface_cut = ACD3D_SURFACE_CYCLE_WITNESS;
+            else {
+                fprintf(stderr, "acd 3d: --surface-cut takes strip, cycle or cycle-witness\n");
                 return ACD_EXIT_USAGE;
             }
             i++;

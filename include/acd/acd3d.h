@@ -52,6 +52,15 @@ typedef enum acd3d_merge_order {
                                vol conv A - vol conv B) first */
 } acd3d_merge_order;
 
+/* How surface mode splits a part (with the global resolver; docs/acd3d.md "Splitting a surface"). */
+typedef enum acd3d_surface_cut {
+    ACD3D_SURFACE_STRIP = 0,    /* along the section strip of a cut plane nearest the witness (default) */
+    ACD3D_SURFACE_CYCLE,        /* first along the global cut's cycle (pocket cuts, closed with the
+                                   paper's dynamic geodesic cuts) when it separates the part and
+                                   makes progress, compared with the plane strips */
+    ACD3D_SURFACE_CYCLE_WITNESS /* the same, the cycle rooted at a cut through the witness */
+} acd3d_surface_cut;
+
 #define ACD3D_PARAMS_COOKIE 0x41434433u
 
 typedef struct acd3d_params {
@@ -85,6 +94,8 @@ typedef struct acd3d_params {
     size_t merge_parts;       /* solid mode's merge pass: 0 (default) joins while a pair is joinable;
                                  else it stops as soon as at most this many parts remain */
     acd3d_cut_choice cut_choice; /* solid mode: how a split's cut is chosen among the candidates */
+    acd3d_surface_cut surface_cut; /* surface mode: plane strips only (default), or the global cut's
+                                 cycle first */
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
                                  (spec decision A13), falling back to the whole plane; default 0,
                                  see docs/acd3d.md for the measurements behind the default */

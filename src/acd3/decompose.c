@@ -20,6 +20,7 @@
 #endif
 
 #include "acd/hull.h"
+#include "acd3/global_cut.h"
 #include "acd3/measure.h"
 #include "acd3/merge.h"
 #include "acd3/region_cut.h"
@@ -484,6 +485,64 @@ static void split_work(split_state *S) {
     }
 }
 
+/* Surface mode's cut along the global cut's cycle (acd3/global_cut with the dynamic geodesic
+ * cuts, spec §5.1: "split the surface at the edges of kappa"; docs/acd3d.md "Splitting a
+ * surface"). Fills cand with the candidate planes as acd3_cut_candidates does (the global cut's
+ * plane first) and returns their count, or -(status) on failure. When the cycle separates the
+ * part and makes progress (surface_progress), *cyc is that cut with its pieces measured and
+ * *have = 1; it then competes with the planes as the first compared candidate. */
+static int surface_cycle_cut(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
+                             const acd3_resolve_opts *ro, double eps, double tol, acd3_plane_candidate *cand,
+                             split_choice *cyc, int *have, acd_error *err) {
+    *have = 0;
+    if (ms->witness == UINT32_MAX) return 0;
+    acd3_global_cut gc;
+    int hp = 0, nc = 0;
+    acd_status st = acd3_global_cut_at_witness(m, g, ms, &ro->gc, &gc, cand[0].point, cand[0].normal, &hp, err);
+    if (st != ACD_OK) return -(int)st;
+    if (hp) cand[0].kind = gc.cup ? "cup" : gc.closed && !gc.dynamic ? "global" : "pocket", nc = 1;
+    acd3_resolve_opts r2 = *ro;
+    r2.global = 0;
+    nc += acd3_cut_candidates(m, g, ms, &r2, cand + nc);
+    if (!gc.closed || gc.n < 4) {
+        acd3_global_cut_free(&gc);
+        return nc;
+    }
+    split_choice trial;
+    memset(&trial, 0, sizeof trial);
+    st = acd3_surface_cut_chain(m, g, gc.v, gc.n, &trial.cut, err);
+    acd3_global_cut_free(&gc);
+    int ok = st == ACD_OK && trial.cut.npieces >= 2;
+    if (ok) {
+        trial.pieces = calloc(trial.cut.npieces, sizeof *trial.pieces);
+        if (!trial.pieces) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+        for (size_t k = 0; st == ACD_OK && k < trial.cut.npieces; k++) {
+            st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, &trial.pieces[k], err);
+            if (st == ACD_OK && trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
+        }
+        for (size_t k = 0; st == ACD_OK && k < trial.cut.npieces; k++) trial.hullvol += trial.pieces[k].ms.hull.volume;
+        ok = st == ACD_OK && surface_progress(m, ms, &trial, tol);
+    }
+    if (st != ACD_OK) {
+        choice_free(&trial);
+        return -(int)st;
+    }
+    if (!ok) {
+        choice_free(&trial);
+        return nc;
+    }
+    if (hp) {
+        trial.plane = cand[0]; /* recorded only */
+    } else {
+        memcpy(trial.plane.point, m->vertices + 3 * (size_t)ms->witness, sizeof(double[3]));
+        trial.plane.normal[0] = trial.plane.normal[1] = 0, trial.plane.normal[2] = 1;
+    }
+    trial.plane.kind = "cycle";
+    *cyc = trial;
+    *have = 1;
+    return nc;
+}
+
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
  * piece concavity (up to tol), then the fewest pieces, then the candidates' order. A cut whose
  * pieces all meet tau, or that at least halves the concavity, is taken at once. With
@@ -495,7 +554,20 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
                      const acd3_resolve_opts *ro, int by_volume, int helpers, split_choice *best, acd_error *err) {
     acd3_plane_candidate cand[ACD3_MAX_CANDIDATES + 1 + ACD3_VOLUME_PLANES];
-    int nc = acd3_cut_candidates(m, g, ms, ro, cand);
+    /* surface mode with acd3d_params.surface_cut: the global cut's cycle first */
+    split_choice cyc;
+    memset(&cyc, 0, sizeof cyc);
+    int nc, have_cyc = 0;
+    if (!solid && ro && ro->global && ro->gc.dynamic) {
+        nc = surface_cycle_cut(m, g, ms, ro, eps, tol, cand, &cyc, &have_cyc, err);
+        if (nc < 0) return nc;
+        if (have_cyc && (cyc.concavity <= tau + tol || cyc.concavity <= 0.5 * ms->concavity)) {
+            *best = cyc;
+            return 1;
+        }
+    } else {
+        nc = acd3_cut_candidates(m, g, ms, ro, cand);
+    }
     by_volume = by_volume && solid;
     if (by_volume && nc > 0) { /* the volume planes after the first candidate */
         acd3_plane_candidate vp[ACD3_VOLUME_PLANES];
@@ -516,6 +588,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     S.min_piece_volume = min_piece_volume, S.solid = solid, S.restrict_cut = restrict_cut;
     S.by_volume = by_volume, S.band = ACD3_VOLUME_BAND * ms->concavity;
     S.cand = cand, S.nc = nc, S.nbridge = nbridge, S.ev = ev;
+    if (have_cyc) S.best = cyc, S.found = S.best_progress = S.compared = 1;
     if (helpers > nc - 1) helpers = nc - 1;
 #ifdef _OPENMP
     for (int h = 0; h < helpers; h++) {
@@ -622,7 +695,9 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     if (reason == ACD3D_LEAF_NONE) {
         /* solid mode: the global cut's plane first (acd3/resolve) */
         const acd3_resolve_opts ro = {c->params->resolver == ACD3D_RESOLVER_GLOBAL,
-                                      {c->tau, c->params->delta_ratio * c->tau, c->params->weight}};
+                                      {c->tau, c->params->delta_ratio * c->tau, c->params->weight,
+                                       !c->solid && c->params->surface_cut != ACD3D_SURFACE_STRIP,
+                                       !c->solid && c->params->surface_cut == ACD3D_SURFACE_CYCLE_WITNESS}};
         /* surface mode, and solid mode with region_cuts, cut along the section nearest the
          * witness first; solid mode then whole-plane cuts when that does not split the part
          * (surface mode does not: cutting a surface along every crossing of a plane leaves many

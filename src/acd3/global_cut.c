@@ -147,6 +147,252 @@ done:
     return res;
 }
 
+/* Runs of the region Dijkstra in the dynamic search before it gives up. */
+#define DYNAMIC_MAX_RUNS 4096
+
+typedef struct ditem {
+    uint32_t v, region, chain, knot, cut; /* knot UINT32_MAX: a pseudo-knot; cut UINT32_MAX: a dynamic path */
+    int32_t parent;
+    size_t off, n; /* a dynamic path: pool[off .. off+n), from the parent's vertex to v */
+    double w;
+} ditem;
+
+/* Open-addressing set of (vertex, region) pairs. */
+typedef struct pairset {
+    uint64_t *a;
+    size_t cap, n;
+} pairset;
+
+static uint64_t pair_hash(uint64_t k) {
+    k ^= k >> 33;
+    k *= 0xff51afd7ed558ccdULL;
+    k ^= k >> 33;
+    return k;
+}
+
+/* 1 if (v, r) was added, 0 if present, -1 out of memory. */
+static int pairset_add(pairset *s, uint32_t v, uint32_t r) {
+    if (2 * (s->n + 1) > s->cap) {
+        size_t nc = s->cap ? 2 * s->cap : 1024;
+        uint64_t *na = malloc(nc * sizeof *na);
+        if (!na) return -1;
+        for (size_t i = 0; i < nc; i++) na[i] = UINT64_MAX;
+        for (size_t i = 0; i < s->cap; i++)
+            if (s->a[i] != UINT64_MAX) {
+                size_t h = pair_hash(s->a[i]) & (nc - 1);
+                while (na[h] != UINT64_MAX) h = (h + 1) & (nc - 1);
+                na[h] = s->a[i];
+            }
+        free(s->a);
+        s->a = na;
+        s->cap = nc;
+    }
+    uint64_t k = (uint64_t)v << 32 | r;
+    size_t h = pair_hash(k) & (s->cap - 1);
+    while (s->a[h] != UINT64_MAX) {
+        if (s->a[h] == k) return 0;
+        h = (h + 1) & (s->cap - 1);
+    }
+    s->a[h] = k;
+    s->n++;
+    return 1;
+}
+
+/* The chain of cg holding vertex v with region r on one side (lowest chain id), or UINT32_MAX. */
+static uint32_t chain_at(const acd3_cut_graph *cg, uint32_t v, uint32_t r) {
+    for (size_t c = 0; c < cg->nchains; c++) {
+        if (cg->chain_region[2 * c] != r && cg->chain_region[2 * c + 1] != r) continue;
+        for (size_t i = cg->chain_off[c]; i < cg->chain_off[c + 1]; i++)
+            if (cg->chain_v[i] == v) return (uint32_t)c;
+    }
+    return UINT32_MAX;
+}
+
+static uint32_t chain_other(const acd3_cut_graph *cg, uint32_t c, uint32_t r) {
+    const uint32_t *cr = cg->chain_region + 2 * (size_t)c;
+    return cr[0] == r ? cr[1] : cr[1] == r ? cr[0] : UINT32_MAX;
+}
+
+/* The cycle search with the paper's dynamic geodesic cuts (§4.2.4, spec §4.5): as grow_cycle,
+ * from vertex av (on chain ach of rx, knot ak or UINT32_MAX) back to vertex bv (on chain bch of
+ * rx), and from every node (vertex v entering pocket p) also along valley-cost shortest paths
+ * inside p to each knot-less chain of p (to its nearest vertex, a pseudo-knot), from a pseudo-
+ * knot to each knot of p's other chains, and to bv when p borders rx along bch. A path crossing
+ * a convex area weighs much more than a valley (its mean concavity is ~0), so the cycles of G_K
+ * alone come first. Returns 1 found (appended to gc), 0 not, -1 out of memory. */
+static int grow_cycle_dynamic(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
+                              const acd3_cut_graph *cg, const acd3_gc_opts *o, uint32_t root, uint32_t av, uint32_t ach,
+                              uint32_t ak, uint32_t bv, uint32_t bch, uint32_t rx, acd3_global_cut *gc, size_t *cap) {
+    size_t nv = m->nvertices, nf = m->ntriangles, ne = g->nedges, nr = ms->nregions, nch = cg->nchains;
+    uint32_t ra = chain_other(cg, ach, rx);
+    if (ra == UINT32_MAX || chain_other(cg, bch, rx) == UINT32_MAX) return 0;
+    size_t *rrow = calloc(nr + 1, sizeof *rrow), *crow = calloc(nr + 1, sizeof *crow), *krow = calloc(nch + 1, sizeof *krow);
+    uint32_t *rface = malloc((nf ? nf : 1) * sizeof *rface), *rchain = malloc((2 * nch + 1) * sizeof *rchain),
+             *ckn = malloc((cg->nknots + 1) * sizeof *ckn), *pool = NULL;
+    double *wc = malloc((ne ? ne : 1) * sizeof *wc);
+    uint8_t *allowed = calloc(nv ? nv : 1, 1);
+    ditem *it = NULL;
+    size_t nitems = 0, capitems = 0, npool = 0, cappool = 0;
+    acd_minheap heap = {0};
+    pairset closed = {0};
+    acd3_region_sp sp;
+    memset(&sp, 0, sizeof sp);
+    int res = -1;
+    if (!rrow || !crow || !krow || !rface || !rchain || !ckn || !wc || !allowed || !acd3_region_sp_init(&sp, nv)) goto done;
+    for (size_t f = 0; f < nf; f++) rrow[ms->face_region[f] + 1]++;
+    for (size_t r = 0; r < nr; r++) rrow[r + 1] += rrow[r];
+    for (size_t c = 0; c < nch; c++) crow[cg->chain_region[2 * c] + 1]++, crow[cg->chain_region[2 * c + 1] + 1]++;
+    for (size_t r = 0; r < nr; r++) crow[r + 1] += crow[r];
+    for (size_t k = 0; k < cg->nknots; k++) krow[cg->knot_chain[k] + 1]++;
+    for (size_t c = 0; c < nch; c++) krow[c + 1] += krow[c];
+    {
+        size_t *fill = malloc((nr + nch + 1) * sizeof *fill);
+        if (!fill) goto done;
+        memcpy(fill, rrow, nr * sizeof *fill);
+        for (size_t f = 0; f < nf; f++) rface[fill[ms->face_region[f]]++] = (uint32_t)f;
+        memcpy(fill, crow, nr * sizeof *fill);
+        for (size_t c = 0; c < nch; c++)
+            for (int s2 = 0; s2 < 2; s2++) rchain[fill[cg->chain_region[2 * c + s2]]++] = (uint32_t)c;
+        memcpy(fill, krow, nch * sizeof *fill);
+        for (size_t k = 0; k < cg->nknots; k++) ckn[fill[cg->knot_chain[k]]++] = (uint32_t)k;
+        free(fill);
+    }
+    for (size_t e = 0; e < ne; e++) wc[e] = acd3_valley_cost(g, ms->vconc, (uint32_t)e, o->tau);
+    capitems = 1024;
+    it = malloc(capitems * sizeof *it);
+    if (!it) goto done;
+    it[nitems] = (ditem){av, ra, ach, ak, UINT32_MAX, -1, 0, 0, 0};
+    if (!acd_minheap_push(&heap, 0, (uint32_t)nitems++)) goto done;
+    int32_t goal = -1;
+    size_t runs = 0;
+    uint32_t targets[1024];
+    for (size_t pops = 0; heap.n && pops < CYCLE_MAX_EXPANSIONS; pops++) {
+        acd_minheap_item top = acd_minheap_pop(&heap);
+        ditem cur = it[top.id];
+        if (cur.v == bv && cur.region == rx && cur.parent >= 0) {
+            goal = (int32_t)top.id;
+            break;
+        }
+        int added = pairset_add(&closed, cur.v, cur.region);
+        if (added < 0) goto done;
+        if (!added) continue;
+        uint32_t p = cur.region;
+        /* candidate moves: (vertex, chain, knot, cut or path) */
+        /* 1. the cuts of G_K at a knot */
+        if (cur.knot != UINT32_MAX)
+            for (size_t q = cg->knot_row[cur.knot]; q < cg->knot_row[cur.knot + 1]; q++) {
+                uint32_t c = cg->knot_cut[q];
+                if (c == root || cg->cuts[c].region != p) continue;
+                uint32_t k2 = cg->cuts[c].knot[0] == cur.knot ? cg->cuts[c].knot[1] : cg->cuts[c].knot[0];
+                uint32_t n2 = beyond(cg, k2, p);
+                if (n2 == UINT32_MAX) continue;
+                if (n2 == rx) {
+                    if (cg->knot_v[k2] != bv) continue;
+                } else {
+                    int visited = 0;
+                    for (int32_t a = (int32_t)top.id; a >= 0 && !visited; a = it[a].parent) visited = it[a].region == n2;
+                    if (visited) continue;
+                }
+                if (nitems == capitems) {
+                    ditem *ni = realloc(it, 2 * capitems * sizeof *ni);
+                    if (!ni) goto done;
+                    it = ni, capitems *= 2;
+                }
+                double w = cur.w + cg->cuts[c].w;
+                it[nitems] = (ditem){cg->knot_v[k2], n2, cg->knot_chain[k2], k2, c, (int32_t)top.id, 0, 0, w};
+                if (!acd_minheap_push(&heap, w, (uint32_t)nitems++)) goto done;
+            }
+        /* 2. dynamic geodesic cuts inside p */
+        if (runs >= DYNAMIC_MAX_RUNS) continue;
+        runs++;
+        for (size_t i = rrow[p]; i < rrow[p + 1]; i++)
+            for (int k = 0; k < 3; k++) allowed[m->triangles[3 * (size_t)rface[i] + k]] = 1;
+        int run_ok = acd3_region_sp_run(&sp, g, wc, allowed, cur.v);
+        for (size_t i = rrow[p]; i < rrow[p + 1]; i++)
+            for (int k = 0; k < 3; k++) allowed[m->triangles[3 * (size_t)rface[i] + k]] = 0;
+        if (!run_ok) goto done;
+        for (size_t q = crow[p]; q < crow[p + 1]; q++) {
+            uint32_t ch = rchain[q];
+            if (ch == cur.chain || (q > crow[p] && rchain[q - 1] == ch)) continue; /* (a chain with p on both sides) */
+            uint32_t n2 = chain_other(cg, ch, p);
+            size_t nt = 0;
+            uint32_t tknot[1024];
+            if (n2 == rx) {
+                if (ch != bch) continue;
+                targets[nt] = bv, tknot[nt++] = UINT32_MAX;
+                for (size_t j = krow[ch]; j < krow[ch + 1]; j++)
+                    if (cg->knot_v[ckn[j]] == bv) tknot[0] = ckn[j];
+            } else {
+                int visited = 0;
+                for (int32_t a = (int32_t)top.id; a >= 0 && !visited; a = it[a].parent) visited = it[a].region == n2;
+                if (visited) continue;
+                if (krow[ch + 1] > krow[ch]) {
+                    if (cur.knot != UINT32_MAX) continue; /* knot to knot: the cuts of G_K */
+                    for (size_t j = krow[ch]; j < krow[ch + 1] && nt < 1024; j++)
+                        targets[nt] = cg->knot_v[ckn[j]], tknot[nt++] = ckn[j];
+                } else {
+                    uint32_t best = UINT32_MAX;
+                    double bd = INFINITY;
+                    for (size_t j = cg->chain_off[ch]; j < cg->chain_off[ch + 1]; j++) {
+                        double d = acd3_region_sp_dist(&sp, cg->chain_v[j]);
+                        if (d < bd || (d == bd && best != UINT32_MAX && cg->chain_v[j] < best)) bd = d, best = cg->chain_v[j];
+                    }
+                    if (best == UINT32_MAX) continue;
+                    targets[nt] = best, tknot[nt++] = UINT32_MAX;
+                }
+            }
+            for (size_t t = 0; t < nt; t++) {
+                uint32_t tv = targets[t];
+                if (!isfinite(acd3_region_sp_dist(&sp, tv))) continue;
+                size_t n = 0;
+                for (uint32_t v = tv; v != ACD_NO_VERTEX; v = sp.pred[v]) n++;
+                if (npool + n > cappool) {
+                    size_t nc = cappool ? 2 * cappool : 4096;
+                    while (nc < npool + n) nc *= 2;
+                    uint32_t *np2 = realloc(pool, nc * sizeof *np2);
+                    if (!np2) goto done;
+                    pool = np2, cappool = nc;
+                }
+                size_t i = npool + n;
+                for (uint32_t v = tv; v != ACD_NO_VERTEX; v = sp.pred[v]) pool[--i] = v;
+                double w = n > 1 ? acd3_cut_weight(m, g, cg->face_of, ms->vconc, pool + npool, n, o) : 0;
+                if (nitems == capitems) {
+                    ditem *ni = realloc(it, 2 * capitems * sizeof *ni);
+                    if (!ni) goto done;
+                    it = ni, capitems *= 2;
+                }
+                it[nitems] = (ditem){tv, n2, ch, tknot[t], UINT32_MAX, (int32_t)top.id, npool, n, cur.w + w};
+                npool += n;
+                if (!acd_minheap_push(&heap, cur.w + w, (uint32_t)nitems++)) goto done;
+            }
+        }
+    }
+    res = 0;
+    if (goal >= 0) {
+        /* the branch from bv back to av continues the root av -> bv */
+        for (int32_t q = goal; it[q].parent >= 0; q = it[q].parent) {
+            if (it[q].cut != UINT32_MAX) {
+                if (!append_cut(gc, cap, cg, it[q].cut, it[q].knot)) goto oom;
+            } else {
+                for (size_t i = it[q].n; i-- > 0;)
+                    if (!append(gc, cap, pool[it[q].off + i])) goto oom;
+                gc->ncuts++;
+                gc->weight += it[q].w - it[it[q].parent].w;
+            }
+        }
+        res = 1;
+    }
+    goto done;
+oom:
+    res = -1;
+done:
+    free(rrow), free(crow), free(krow), free(rface), free(rchain), free(ckn), free(pool), free(wc), free(allowed);
+    free(it), free(closed.a);
+    acd_minheap_free(&heap);
+    acd3_region_sp_free(&sp);
+    return res;
+}
+
 /* Cup-shaped pocket rx: the cut u -> x -> w through the witness x. */
 static int cup_cut(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, const acd3_cut_graph *cg,
                    const acd3_gc_opts *o, uint32_t x, uint32_t rx, acd3_global_cut *gc, size_t *cap) {
@@ -189,10 +435,20 @@ static int cup_cut(const acd_mesh *m, const acd_edge_graph *g, const acd3_measur
     double s = du[0] * N[0] + du[1] * N[1] + du[2] * N[2];
     for (int k = 0; k < 3; k++) du[k] -= s * N[k];
     double lu = sqrt(du[0] * du[0] + du[1] * du[1] + du[2] * du[2]);
+    /* a root for the dynamic cycle (witness_root): w off the chains through u, else the cycle
+     * could only close along u's own chain */
+    if (o->dynamic && o->witness_root)
+        for (size_t c = 0; c < cg->nchains; c++) {
+            if (cg->chain_region[2 * c] != rx && cg->chain_region[2 * c + 1] != rx) continue;
+            int has = 0;
+            for (size_t i = cg->chain_off[c]; i < cg->chain_off[c + 1] && !has; i++) has = cg->chain_v[i] == u;
+            if (has)
+                for (size_t i = cg->chain_off[c]; i < cg->chain_off[c + 1]; i++) onb[cg->chain_v[i]] = 2;
+        }
     uint32_t w = UINT32_MAX;
     double best = -INFINITY;
     for (size_t v = 0; v < nv; v++) {
-        if (!onb[v] || v == u || v == x || !isfinite(t.dist[v])) continue;
+        if (onb[v] != 1 || v == u || v == x || !isfinite(t.dist[v])) continue;
         double dv[3];
         for (int k = 0; k < 3; k++) dv[k] = m->vertices[3 * v + k] - px[k];
         double sv = dv[0] * N[0] + dv[1] * N[1] + dv[2] * N[2];
@@ -268,14 +524,32 @@ acd_status acd3_global_cut_find(const acd_mesh *m, const acd_edge_graph *g, cons
     }
     size_t cap = 0;
     int r;
-    if (root == UINT32_MAX || (!near && kmax < ms->vconc[x] - o->delta)) {
+    if (root == UINT32_MAX || (!near && kmax < ms->vconc[x] - o->delta) || (o->dynamic && o->witness_root)) {
         r = cup_cut(m, g, ms, cg, o, x, rx, out, &cap);
+        out->plane_n = out->n;
+        if (r > 0 && o->dynamic && out->n >= 2) {
+            /* the cup cut ends on the pocket's boundary: the dynamic search closes it */
+            uint32_t u = out->v[0], w = out->v[out->n - 1];
+            uint32_t cu = chain_at(cg, u, rx), cw = chain_at(cg, w, rx);
+            if (cu != UINT32_MAX && cw != UINT32_MAX) {
+                r = grow_cycle_dynamic(m, g, ms, cg, o, UINT32_MAX, u, cu, UINT32_MAX, w, cw, rx, out, &cap);
+                if (r > 0) out->closed = out->dynamic = 1;
+                if (r == 0) r = 1;
+            }
+        }
     } else {
         r = append_cut(out, &cap, cg, root, cg->cuts[root].knot[0]) ? 1 : -1;
         out->root_n = out->n;
         if (r > 0) {
             r = grow_cycle(cg, root, rx, out, &cap);
             if (r > 0) out->closed = 1;
+            out->plane_n = out->n;
+            if (r == 0 && o->dynamic) {
+                uint32_t a = cg->cuts[root].knot[0], b = cg->cuts[root].knot[1];
+                r = grow_cycle_dynamic(m, g, ms, cg, o, root, cg->knot_v[a], cg->knot_chain[a], a, cg->knot_v[b],
+                                       cg->knot_chain[b], rx, out, &cap);
+                if (r > 0) out->closed = out->dynamic = 1;
+            }
             if (r == 0) r = 1;
         }
     }
@@ -312,7 +586,8 @@ static int fit_plane(const double *pts, const double *w, size_t n, const double 
 int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_cut_graph *cg,
                           const acd3_global_cut *gc, const acd3_gc_opts *o, double point[3], double normal[3],
                           double fitted[3]) {
-    size_t n = gc->n;
+    size_t n = gc->plane_n && gc->plane_n <= gc->n ? gc->plane_n : gc->n;
+    const uint32_t *cv = gc->v;
     if (n < 2) return 0;
     size_t ns = 3 * (n - 1);
     double *pts = malloc(3 * ns * sizeof *pts), *w = malloc(ns * sizeof *w), *mult = malloc(n * sizeof *mult);
@@ -322,9 +597,9 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
     double total_len = 0;
     int any_conc = 0;
     for (size_t i = 0; i + 1 < n; i++) {
-        const double *a = m->vertices + 3 * (size_t)gc->v[i], *b = m->vertices + 3 * (size_t)gc->v[i + 1];
+        const double *a = m->vertices + 3 * (size_t)cv[i], *b = m->vertices + 3 * (size_t)cv[i + 1];
         total_len += dist3(a, b);
-        any_conc |= ms->vconc[gc->v[i]] > 0 || ms->vconc[gc->v[i + 1]] > 0;
+        any_conc |= ms->vconc[cv[i]] > 0 || ms->vconc[cv[i + 1]] > 0;
     }
     if (!(total_len > 0)) goto done;
     double theta = 2.0 * total_len / (double)(n - 1);
@@ -333,7 +608,7 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
     const double *through = NULL;
     for (int iter = 0;; iter++) {
         for (size_t i = 0; i + 1 < n; i++) {
-            uint32_t va = gc->v[i], vb = gc->v[i + 1];
+            uint32_t va = cv[i], vb = cv[i + 1];
             const double *a = m->vertices + 3 * (size_t)va, *b = m->vertices + 3 * (size_t)vb;
             double len = dist3(a, b), ca = any_conc ? ms->vconc[va] : 1, cb = any_conc ? ms->vconc[vb] : 1;
             for (int k = 0; k < 3; k++) {
@@ -351,7 +626,7 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
             /* a straight cut: the plane through its direction and the mean surface normal */
             double sn[3] = {0, 0, 0};
             for (size_t i = 0; i < n; i++)
-                for (size_t q = cg->vf_row[gc->v[i]]; q < cg->vf_row[gc->v[i] + 1]; q++) {
+                for (size_t q = cg->vf_row[cv[i]]; q < cg->vf_row[cv[i] + 1]; q++) {
                     const uint32_t *t = m->triangles + 3 * (size_t)cg->vf[q];
                     const double *p0 = m->vertices + 3 * (size_t)t[0], *p1 = m->vertices + 3 * (size_t)t[1],
                                  *p2 = m->vertices + 3 * (size_t)t[2];
@@ -373,13 +648,13 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
         size_t worst = SIZE_MAX;
         double wd = theta;
         for (size_t i = 0; i < n; i++) {
-            const double *p = m->vertices + 3 * (size_t)gc->v[i];
+            const double *p = m->vertices + 3 * (size_t)cv[i];
             double dd = fabs((p[0] - c[0]) * axes[2][0] + (p[1] - c[1]) * axes[2][1] + (p[2] - c[2]) * axes[2][2]);
-            if (dd > theta && ms->vconc[gc->v[i]] > 0) mult[i] *= 2;
+            if (dd > theta && ms->vconc[cv[i]] > 0) mult[i] *= 2;
             if (dd > wd) wd = dd, worst = i;
         }
         if (worst == SIZE_MAX) break;
-        if (iter == PUSH_ITERATIONS) through = m->vertices + 3 * (size_t)gc->v[worst]; /* last: through the worst */
+        if (iter == PUSH_ITERATIONS) through = m->vertices + 3 * (size_t)cv[worst]; /* last: through the worst */
     }
     {
         double l = sqrt(axes[2][0] * axes[2][0] + axes[2][1] * axes[2][1] + axes[2][2] * axes[2][2]);
@@ -398,4 +673,18 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
 done:
     free(pts), free(w), free(mult);
     return ok;
+}
+
+acd_status acd3_global_cut_at_witness(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
+                                      const acd3_gc_opts *o, acd3_global_cut *gc, double point[3], double normal[3],
+                                      int *has_plane, acd_error *err) {
+    memset(gc, 0, sizeof *gc);
+    *has_plane = 0;
+    acd3_cut_graph cg;
+    acd_status st = acd3_cut_graph_build(m, g, ms, o, &cg, err);
+    if (st != ACD_OK) return st;
+    st = acd3_global_cut_find(m, g, ms, &cg, o, gc, err);
+    if (st == ACD_OK && gc->n >= 2) *has_plane = acd3_global_cut_plane(m, ms, &cg, gc, o, point, normal, NULL);
+    acd3_cut_graph_free(&cg);
+    return st;
 }

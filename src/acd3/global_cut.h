@@ -37,6 +37,9 @@ typedef struct acd3_global_cut {
     size_t ncuts;   /* pocket cuts in it */
     int closed;     /* a cycle of G_K */
     int cup;        /* a cut through the witness of a cup-shaped pocket */
+    int dynamic;    /* the cycle needed the dynamic geodesic cuts (acd3_gc_opts.dynamic) */
+    size_t plane_n; /* the cut plane is fitted to v[0 .. plane_n): the root and the cycle of G_K,
+                       not the dynamic search's extension */
     double weight;  /* total W */
 } acd3_global_cut;
 
@@ -54,5 +57,11 @@ void acd3_global_cut_free(acd3_global_cut *gc);
 int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_cut_graph *cg,
                           const acd3_global_cut *gc, const acd3_gc_opts *o, double point[3], double normal[3],
                           double fitted[3]);
+
+/* acd3_cut_graph_build, acd3_global_cut_find and acd3_global_cut_plane in one call (the cut graph
+ * is freed): *has_plane = 1 when point and normal were set. ACD_ERR_NOMEM only. */
+acd_status acd3_global_cut_at_witness(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
+                                      const acd3_gc_opts *o, acd3_global_cut *gc, double point[3], double normal[3],
+                                      int *has_plane, acd_error *err);
 
 #endif

@@ -275,23 +275,26 @@ static int find_all_knots(const acd_mesh *m, const acd3_measure *ms, const acd3_
     return ok;
 }
 
-/* Single-source shortest paths inside the allowed vertices, with work arrays reused across
- * sources (a visit stamp resets them): the same distances and predecessors as acd_dijkstra with
- * these weights and vertex_allowed (heap order (distance, vertex), equal distances keep the
- * smaller predecessor), without its O(vertices + edges) set-up per source. */
-typedef struct region_sp {
-    double *dist;
-    uint32_t *pred, *stamp;
-    uint8_t *done;
-    uint32_t cur;
-    acd_minheap heap; /* (distance, vertex) */
-} region_sp;
+int acd3_region_sp_init(acd3_region_sp *r, size_t nv) {
+    memset(r, 0, sizeof *r);
+    r->dist = malloc((nv ? nv : 1) * sizeof *r->dist);
+    r->pred = malloc((nv ? nv : 1) * sizeof *r->pred);
+    r->stamp = calloc(nv ? nv : 1, sizeof *r->stamp);
+    r->done = malloc(nv ? nv : 1);
+    if (r->dist && r->pred && r->stamp && r->done) return 1;
+    acd3_region_sp_free(r);
+    return 0;
+}
 
-/* Distance of v from the last source (INFINITY when not reached). */
-static double rsp_dist(const region_sp *r, uint32_t v) { return r->stamp[v] == r->cur ? r->dist[v] : INFINITY; }
+void acd3_region_sp_free(acd3_region_sp *r) {
+    free(r->dist), free(r->pred), free(r->stamp), free(r->done);
+    acd_minheap_free(&r->heap);
+    memset(r, 0, sizeof *r);
+}
 
-/* Returns 0 when out of memory. */
-static int rsp_run(region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src) {
+double acd3_region_sp_dist(const acd3_region_sp *r, uint32_t v) { return r->stamp[v] == r->cur ? r->dist[v] : INFINITY; }
+
+int acd3_region_sp_run(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src) {
     if (++r->cur == 0) {
         memset(r->stamp, 0, g->nvertices * sizeof *r->stamp);
         r->cur = 1;
@@ -395,7 +398,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     double *wcost = malloc((ne ? ne : 1) * sizeof *wcost);
     uint8_t *allowed = calloc(nv ? nv : 1, 1), *cut_edge = calloc(ne ? ne : 1, 1);
     u32vec pool = {0}, kept = {0};
-    region_sp sp;
+    acd3_region_sp sp;
     memset(&sp, 0, sizeof sp);
     cand *cands = NULL;
     size_t ncand = 0, capcand = 0;
@@ -427,11 +430,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     int weights_ok = 1; /* (acd_dijkstra's check, once) */
     for (size_t e = 0; e < ne; e++)
         if (!(wcost[e] >= 0) || !isfinite(wcost[e])) weights_ok = 0;
-    sp.dist = malloc((nv ? nv : 1) * sizeof *sp.dist);
-    sp.pred = malloc((nv ? nv : 1) * sizeof *sp.pred);
-    sp.stamp = calloc(nv ? nv : 1, sizeof *sp.stamp);
-    sp.done = malloc(nv ? nv : 1);
-    if (!sp.dist || !sp.pred || !sp.stamp || !sp.done) {
+    if (!acd3_region_sp_init(&sp, nv)) {
         ok = 0;
         goto build_done;
     }
@@ -465,14 +464,14 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
         for (size_t i = 0; i < K * K; i++) wm[i] = NO_PATH_COST, cid[i] = SIZE_MAX;
         for (size_t i = 0; i < K && ok; i++) {
             uint32_t src = out->knot_v[kr[i].knot];
-            if (!weights_ok || !rsp_run(&sp, g, wcost, allowed, src)) {
+            if (!weights_ok || !acd3_region_sp_run(&sp, g, wcost, allowed, src)) {
                 ok = 0;
                 break;
             }
             for (size_t j = i + 1; j < K && ok; j++) {
                 if (out->knot_chain[kr[j].knot] == out->knot_chain[kr[i].knot]) continue;
                 uint32_t dst = out->knot_v[kr[j].knot];
-                if (dst == src || !isfinite(rsp_dist(&sp, dst))) continue;
+                if (dst == src || !isfinite(acd3_region_sp_dist(&sp, dst))) continue;
                 size_t off = pool.n, n = 0;
                 for (uint32_t v = dst; v != ACD_NO_VERTEX; v = sp.pred[v]) {
                     ok = vpush(&pool, v);
@@ -639,7 +638,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
 build_done:
     free(rks), free(rrow), free(rface), free(label), free(queue), free(fe), free(wcost), free(allowed), free(cut_edge);
     free(pool.a), free(kept.a), free(cands);
-    free(sp.dist), free(sp.pred), free(sp.stamp), free(sp.done), acd_minheap_free(&sp.heap);
+    acd3_region_sp_free(&sp);
     out->cuts = cuts;
     out->ncuts = ncuts;
     if (!ok) goto nomem;

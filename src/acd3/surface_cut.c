@@ -373,6 +373,37 @@ done:
     return st;
 }
 
+acd_status acd3_surface_cut_chain(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *v, size_t n,
+                                  acd_cut_result *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    size_t nf = m->ntriangles, ne = g->nedges;
+    int8_t *cls = malloc(nf ? nf : 1);
+    uint8_t *blocked = calloc(ne ? ne : 1, 1), *near = calloc(nf ? nf : 1, 1);
+    uint32_t *face_of = NULL;
+    acd_status st = ACD_OK;
+    if (!cls || !blocked || !near) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting a surface of %zu faces", nf);
+        goto done;
+    }
+    st = acd3_edge_faces(m, g, &face_of, err);
+    if (st != ACD_OK) goto done;
+    memset(cls, 1, nf ? nf : 1);
+    /* the chain's edges (an edge of the mesh boundary separates nothing), and the faces along
+     * them: a piece made only of those is a sliver between two stretches of the chain */
+    for (size_t i = 0; i + 1 < n; i++) {
+        uint32_t e = acd_edge_graph_find(g, v[i], v[i + 1]);
+        if (e == ACD_NO_VERTEX) continue;
+        uint32_t f0 = face_of[2 * (size_t)e], f1 = face_of[2 * (size_t)e + 1];
+        if (f0 == UINT32_MAX || f1 == UINT32_MAX) continue;
+        blocked[e] = 1;
+        near[f0] = near[f1] = 1;
+    }
+    st = split_blocked(m, g, face_of, cls, blocked, near, out, err);
+done:
+    free(cls), free(blocked), free(near), free(face_of);
+    return st;
+}
+
 acd_status acd3_surface_cut_deep(const acd_mesh *m, const acd_edge_graph *g, const double *level, double thr,
                                  uint32_t seed, acd_cut_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);

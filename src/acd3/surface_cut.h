@@ -28,6 +28,15 @@
 acd_status acd3_surface_cut(const acd_mesh *m, const acd_edge_graph *g, const acd_cut_plane *pl, const double *near,
                             acd_cut_result *out, acd_error *err);
 
+/* Splits m along a chain of mesh edges, v[0..n) (consecutive vertices joined by an edge; a closed
+ * loop repeats its first vertex last): the global cut's cycle (acd3/global_cut), the surface
+ * split of the dissertation (§V.B.3). A piece made only of faces along the chain, and every
+ * piece but the two of largest area (where the loop touches itself), is joined to the neighbour
+ * it shares most chain length with. A chain that does not separate m cuts it open (one piece,
+ * more vertices) or leaves it whole. Same output form as acd3_surface_cut. */
+acd_status acd3_surface_cut_chain(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *v, size_t n,
+                                  acd_cut_result *out, acd_error *err);
+
 /* Splits m into the faces around vertex `seed` that have a vertex v with level[v] >= thr (joined
  * across edges between two such faces) and the rest: a cut along a level line of `level` (the
  * measure's per-vertex concavity: the pocket around the witness apart from its bridge). No
