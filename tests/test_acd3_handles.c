@@ -35,6 +35,8 @@ static void fixture_free(fixture *fx) {
     free(fx->face_of);
 }
 
+static long genus_of(const acd_mesh *m, const fixture *fx) { return acd3_handles_genus(m, &fx->g, fx->face_of); }
+
 /* faces joined across edges that are not blocked: the number of groups */
 static size_t count_regions(const acd_mesh *m, const fixture *fx, const uint8_t *b0, const uint8_t *b1) {
     size_t nf = m->ntriangles, n = 0;
@@ -118,6 +120,7 @@ static void test_torus_one_arc_wall_depth(void **state) {
     const acd3_measure *ms = &fx.ms;
     print_message("torus: %zu shared pockets, %zu arcs (of %zu candidates), concavity %g\n", ms->nhandle_pockets,
                   ms->handle_arcs.narcs, ms->nhandle_candidates, ms->concavity);
+    assert_int_equal(genus_of(&m, &fx), 1);
     assert_int_equal(ms->nhandle_pockets, 1);
     assert_int_equal(ms->handle_arcs.narcs, 1);
     check_arcs(&m, &fx);
@@ -206,12 +209,68 @@ static void test_crossing_tunnels_forest(void **state) {
     const acd3_measure *ms = &fx.ms;
     print_message("crossing tunnels: %zu shared pockets, %zu arcs of %zu candidates, concavity %g\n",
                   ms->nhandle_pockets, ms->handle_arcs.narcs, ms->nhandle_candidates, ms->concavity);
+    assert_int_equal(genus_of(&m, &fx), 3);
     check_arcs(&m, &fx);
     assert_int_equal(ms->nhandle_pockets, 1);
     assert_int_equal(ms->handle_arcs.narcs, 3);
     assert_true(ms->nhandle_candidates > 3);
     /* every tunnel vertex is measured against its nearest mouth: at most half a tunnel deep */
     assert_true(ms->concavity <= 0.5 * TX + 1e-9);
+    fixture_free(&fx);
+    acd_mesh_free(&m);
+}
+
+/* A plate 4 thick with two holes through it (genus 2): the front and back caps share one pocket
+ * (both faces and both holes' walls). Two cap loops take one arc; the second handle stays inside
+ * the pocket (a hidden handle: arcs join loops, they do not count handles). Both walls are measured
+ * against the nearer cap. */
+enum { PX = 12, PY = 4, PZ = 6 };
+static void test_plate_two_holes_one_arc(void **state) {
+    (void)state;
+    unsigned char occ[PX * PY * PZ];
+    for (int z = 0; z < PZ; z++)
+        for (int y = 0; y < PY; y++)
+            for (int x = 0; x < PX; x++) {
+                int hole = z >= 2 && z < 4 && ((x >= 2 && x < 5) || (x >= 7 && x < 10));
+                occ[((size_t)z * PY + y) * PX + x] = (unsigned char)!hole;
+            }
+    acd_mesh m;
+    assert_true(mg_voxels(&m, occ, PX, PY, PZ));
+    fixture fx;
+    measure(&m, 0.05, &fx);
+    const acd3_measure *ms = &fx.ms;
+    assert_int_equal(genus_of(&m, &fx), 2);
+    check_arcs(&m, &fx);
+    assert_int_equal(ms->nhandle_pockets, 1);
+    assert_int_equal(ms->handle_arcs.narcs, 1);
+    print_message("plate with two holes: concavity %g\n", ms->concavity);
+    assert_true(ms->concavity >= 0.5 * PY - 1e-9 && ms->concavity <= 0.5 * PY + 1 + 1e-9); /* one cap: 4 */
+    fixture_free(&fx);
+    acd_mesh_free(&m);
+}
+
+/* A handle inside a bowl (a bar across a box's cavity, under the rim): genus 1, but the handle
+ * maps to one bridge (the top cap), its pocket has one loop: a hidden handle, not cut; the cavity
+ * is measured against the top cap as any pocket (5 deep). */
+enum { BX = 8, BY = 8, BZ = 6 };
+static void test_hidden_handle_in_a_bowl(void **state) {
+    (void)state;
+    unsigned char occ[BX * BY * BZ];
+    for (int z = 0; z < BZ; z++)
+        for (int y = 0; y < BY; y++)
+            for (int x = 0; x < BX; x++) {
+                int cavity = x >= 1 && x < BX - 1 && y >= 1 && y < BY - 1 && z >= 1;
+                int bar = y >= 3 && y < 5 && z == 2;
+                occ[((size_t)z * BY + y) * BX + x] = (unsigned char)(!cavity || bar);
+            }
+    acd_mesh m;
+    assert_true(mg_voxels(&m, occ, BX, BY, BZ));
+    fixture fx;
+    measure(&m, 0.05, &fx);
+    assert_int_equal(genus_of(&m, &fx), 1);
+    assert_int_equal(fx.ms.nhandle_pockets, 0);
+    assert_int_equal(fx.ms.handle_arcs.narcs, 0);
+    assert_true(fabs(fx.ms.concavity - (BZ - 1)) < 1e-9);
     fixture_free(&fx);
     acd_mesh_free(&m);
 }
@@ -228,6 +287,7 @@ static void test_genus_zero_has_no_arcs(void **state) {
     assert_true(mg_radial(&m, 48, 24, dimple_r, NULL));
     fixture fx;
     measure(&m, 0.02, &fx);
+    assert_int_equal(genus_of(&m, &fx), 0);
     assert_int_equal(fx.ms.nhandle_pockets, 0);
     assert_int_equal(fx.ms.handle_arcs.narcs, 0);
     assert_true(fx.ms.concavity > 0.1);
@@ -240,6 +300,8 @@ int main(void) {
         cmocka_unit_test(test_torus_one_arc_wall_depth),
         cmocka_unit_test(test_mug_handle_depth),
         cmocka_unit_test(test_crossing_tunnels_forest),
+        cmocka_unit_test(test_plate_two_holes_one_arc),
+        cmocka_unit_test(test_hidden_handle_in_a_bowl),
         cmocka_unit_test(test_genus_zero_has_no_arcs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
