@@ -178,6 +178,7 @@ typedef struct cut_ctx {
     int ax, swap; /* 2D frame: drop axis ax; swap the two others when the normal's ax component < 0 */
     int scale_exp;          /* working coordinates are the input's times 2^scale_exp (exact) */
     const double *orig;     /* the input vertices */
+    unsigned flags;         /* ACD_PLANE_CUT_* */
     acd_error *err;
 } cut_ctx;
 
@@ -575,8 +576,15 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         /* a negative volume within rounding: no cavity, dropped below if a shell contains it
          * (one that no shell contains stays a piece of its own, and acd3/decompose's sliver
          * rule refuses the cut, as before) */
-        else if (parent[t] == t && vol[t] < 0 && -vol[t] <= ACD_PLANE_CUT_VOLUME_ROUNDING * avol[t])
-            avol[t] = -1; /* mark */
+        else if (parent[t] == t && (vol[t] < 0 || (c->flags & ACD_PLANE_CUT_DROP_SPECKS)) &&
+                 fabs(vol[t]) <= ACD_PLANE_CUT_VOLUME_ROUNDING * avol[t]) {
+            if (c->flags & ACD_PLANE_CUT_DROP_SPECKS) {
+                flat[t] = 1; /* every speck dropped */
+                vol[t] = 0;
+            } else {
+                avol[t] = -1; /* mark */
+            }
+        }
     }
     free(area);
     for (size_t t = 0; t < nt; t++)
@@ -773,6 +781,11 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
 }
 
 acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_result *out, acd_error *err) {
+    return acd_plane_cut_flags(m, pl, 0, out, err);
+}
+
+acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsigned flags, acd_cut_result *out,
+                               acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!m || !pl) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "plane cut: NULL mesh or plane");
     if (m->nvertices >= UINT32_MAX / 2 || m->ntriangles >= UINT32_MAX / 8)
@@ -829,6 +842,7 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
     c.pl = pl;
     c.scale_exp = -e2;
     c.orig = m->vertices;
+    c.flags = flags;
     c.err = err;
     c.ax = 0;
     for (int k = 1; k < 3; k++)

@@ -59,6 +59,12 @@ typedef struct acd_cut_result {
  * shells (mean thickness below 1e-12 of the bounding-box diagonal) are dropped (ndropped), so the
  * pieces' volumes add up to m's within rounding plus 1e-12 * diagonal * half the dropped area. */
 acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_result *out, acd_error *err);
+/* Flags of acd_plane_cut_flags. DROP_SPECKS: every shell whose volume is within rounding (see
+ * ACD_PLANE_CUT_VOLUME_ROUNDING in plane_cut.c) is dropped; by default only those of negative
+ * volume inside a piece are (the others come back as pieces of their own). */
+#define ACD_PLANE_CUT_DROP_SPECKS 1u
+acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsigned flags, acd_cut_result *out,
+                               acd_error *err);
 void acd_cut_result_free(acd_cut_result *r);
 
 /* Signed volume of a closed mesh (divergence theorem about the bounding-box centre). */
