@@ -15,7 +15,12 @@
  * grows along the cuts of p at k, into the pocket beyond the far knot's chain, never into a
  * pocket an ancestor visited (each pocket once, the root's pocket included). The first branch
  * that reaches knot b closes the minimum-weight cycle root + branch (at most 10^4 expansions).
- * With no cycle, the global cut is the root cut alone.
+ * With no cycle, the global cut is the root cut alone. With acd3_gc_opts.dynamic (surface mode's
+ * --surface-cut cycle), when no cycle of G_K closes (or the root is a cup cut, whose ends lie on
+ * the pocket's rim), the search runs again with the paper's dynamic geodesic cuts (§4.2.4): from
+ * every node also valley-cost shortest paths inside the entered pocket to the nearest vertex of
+ * each knot-less chain (a pseudo-knot), from a pseudo-knot to the knots of the pocket's other
+ * chains, and to the root's other end; the plane stays fitted to the root (and G_K's cycle).
  *
  * Cut plane (§5.2): the concavity-weighted best-fit plane of the cut (PCA on the edges' end and
  * mid points, weight = edge length x concavity), pushed toward the cut where it misses it: a cut
