@@ -280,9 +280,13 @@ static int split_skips(const split_state *S, int i) {
 
 /* Whether a trial of concavity c (so far) has lost against the best choice of the candidates before
  * it (a cut that makes progress beats one that does not: in surface mode only against a best that
- * makes progress is a higher concavity a loss). */
-static int split_lost(const split_state *S, double c) {
-    return S->found && S->best_progress && c > S->best.concavity + (S->by_volume ? S->band : S->tol);
+ * makes progress is a higher concavity a loss). r: how many candidates before it are not replayed
+ * yet. Each of them may replace the best by one at most tol (by volume: the band) more concave
+ * (split_better), so c above the best by (r + 1) margins has lost against any best they leave; one
+ * margin more covers the rounding of those sums. */
+static int split_lost(const split_state *S, double c, int r) {
+    double margin = S->by_volume ? S->band : S->tol;
+    return S->found && S->best_progress && c > S->best.concavity + (r ? r + 2 : 1) * margin;
 }
 
 /* Whether trial (its progress given) is better than the best so far: the smallest largest piece
@@ -342,7 +346,7 @@ static void split_replay(split_state *S) {
             }
             double c = t->pieces[e->ord[i2]].ms.concavity;
             if (c > conc) conc = c;
-            lost = split_lost(S, conc);
+            lost = split_lost(S, conc, 0);
         }
         if (lost) {
             cand_eval_free(e);
@@ -371,8 +375,9 @@ static void split_replay(split_state *S) {
     if (S->cursor >= S->nc) S->stopped = 1;
 }
 
-/* Whether the replay no longer needs candidate i (*lost: the replay has reached it and a trial of
- * concavity c has lost, so its other pieces need no measure). */
+/* Whether the replay no longer needs candidate i (*lost: a trial of concavity c has lost against
+ * any best the replay can reach at i, so its other pieces need no measure; the replay finds the
+ * same when it reaches i). */
 static int split_abandoned(split_state *S, int i, double c, int *lost) {
     int gone;
 #ifdef _OPENMP
@@ -380,13 +385,13 @@ static int split_abandoned(split_state *S, int i, double c, int *lost) {
 #endif
     {
         gone = S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i));
-        *lost = !gone && S->cursor == i && split_lost(S, c);
+        *lost = !gone && split_lost(S, c, i - S->cursor);
     }
     return gone;
 }
 
-/* Cuts the part by candidate i and measures the pieces (largest first, stopping when the replay
- * has reached i and the trial has lost, or when the replay no longer needs it). */
+/* Cuts the part by candidate i and measures the pieces (largest first, stopping when the trial has
+ * lost, or when the replay no longer needs it). */
 static void split_evaluate(split_state *S, int i) {
     cand_eval *e = &S->ev[i];
     e->failed_at = SIZE_MAX;
