@@ -56,14 +56,12 @@ static int cmp_len(const void *p, const void *q) {
     return (x->edge > y->edge) - (x->edge < y->edge);
 }
 
-/* the edge of face f at vertex v other than e; NONE when absent */
-static uint32_t other_edge_at(const acd_mesh *m, const acd_edge_graph *g, uint32_t f, uint32_t v, uint32_t e) {
-    const uint32_t *t = m->triangles + 3 * (size_t)f;
+/* the edge of face f at vertex v other than e (fe: the face's three edge ids); NONE when absent */
+static uint32_t other_edge_at(const acd_edge_graph *g, const uint32_t *fe, uint32_t f, uint32_t v, uint32_t e) {
     for (int k = 0; k < 3; k++) {
-        uint32_t a = t[k], b = t[(k + 1) % 3];
-        if (a != v && b != v) continue;
-        uint32_t x = acd_edge_graph_find(g, a, b);
-        if (x != ACD_NO_VERTEX && x != e) return x;
+        uint32_t x = fe[3 * (size_t)f + k];
+        if (x == NONE || x == e) continue;
+        if (g->edge_v[2 * (size_t)x] == v || g->edge_v[2 * (size_t)x + 1] == v) return x;
     }
     return NONE;
 }
@@ -157,7 +155,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
     acd_status st = ACD_OK;
     uint8_t *cand = NULL, *allowed = NULL, *blocked = NULL;
     uint32_t *nloops = NULL, *frow = NULL, *fl = NULL, *srow = NULL, *sl = NULL, *parent = NULL, *loopid = NULL;
-    uint32_t *label = NULL, *estamp = NULL, *lpar = NULL, *seq = NULL;
+    uint32_t *label = NULL, *estamp = NULL, *lpar = NULL, *seq = NULL, *fe = NULL;
     uint8_t *issrc = NULL;
     growbuf srcs = {0}, srcl = {0}, verts = {0};
     cand_arc *ca = NULL;
@@ -165,12 +163,6 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
     out->edge_arc = calloc(ne ? ne : 1, 1);
     cand = calloc(nr ? nr : 1, 1);
     if (!out->edge_arc || !cand) goto nomem;
-    /* a surface without handles has no handle caps (an annulus among its regions comes from paths
-     * that encircle another region, which is not what the caps are about) */
-    long genus = acd3_handles_genus(m, g, face_of);
-    if (genus < 0) goto nomem;
-    out->genus = genus;
-    if (genus == 0) goto done;
 
     /* regions with two or more substantial claimants */
     size_t ncand = 0;
@@ -189,6 +181,12 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
         i = j;
     }
     if (!ncand) goto done;
+    /* a surface without handles has no handle caps (an annulus among its regions comes from paths
+     * that encircle another region, which is not what the caps are about) */
+    long genus = acd3_handles_genus(m, g, face_of);
+    if (genus < 0) goto nomem;
+    out->genus = genus;
+    if (genus == 0) goto done;
 
     /* faces and boundary sides of the candidate regions, by region (CSR) */
     frow = calloc(nr + 1, sizeof *frow);
@@ -222,6 +220,13 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
         }
         free(fill);
     }
+    /* the edge ids of the candidate regions' faces (the wedge walks and the arcs look them up) */
+    fe = malloc((nf ? 3 * nf : 1) * sizeof *fe);
+    if (!fe) goto nomem;
+    for (size_t i = 0; i < frow[nr]; i++) {
+        const uint32_t *t = m->triangles + 3 * (size_t)fl[i];
+        for (int k = 0; k < 3; k++) fe[3 * (size_t)fl[i] + k] = acd_edge_graph_find(g, t[k], t[(k + 1) % 3]);
+    }
 
     /* boundary loops of the regions cut open along the barriers: join the two barrier sides of
      * every wedge (the region's faces around a vertex between two barriers) */
@@ -232,7 +237,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
             uint32_t v = g->edge_v[2 * (size_t)e + end], f = f0, ce = e;
             size_t steps = 0, maxsteps = g->row[v + 1] - g->row[v] + 2;
             while (steps++ < maxsteps) {
-                uint32_t e2 = other_edge_at(m, g, f, v, ce);
+                uint32_t e2 = other_edge_at(g, fe, f, v, ce);
                 if (e2 == NONE) break;
                 uint32_t s2 = face_of[2 * (size_t)e2] == f ? 2 * e2 : face_of[2 * (size_t)e2 + 1] == f ? 2 * e2 + 1 : NONE;
                 if (s2 == NONE) break; /* non-manifold */
@@ -307,10 +312,9 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
         /* candidate arcs through the region's edges whose ends were reached from different loops */
         size_t nca = 0;
         for (size_t i = frow[r]; i < frow[r + 1]; i++) {
-            const uint32_t *t = m->triangles + 3 * (size_t)fl[i];
             for (int k = 0; k < 3; k++) {
-                uint32_t e = acd_edge_graph_find(g, t[k], t[(k + 1) % 3]);
-                if (e == ACD_NO_VERTEX || estamp[e] == r || in->edge_path[e]) continue;
+                uint32_t e = fe[3 * (size_t)fl[i] + k];
+                if (e == NONE || estamp[e] == r || in->edge_path[e]) continue;
                 estamp[e] = (uint32_t)r;
                 uint32_t u = g->edge_v[2 * (size_t)e], v = g->edge_v[2 * (size_t)e + 1];
                 if (tree.origin[u] == NONE || tree.origin[v] == NONE) continue;
@@ -441,7 +445,7 @@ nomem:
     st = acd_fail(err, ACD_ERR_NOMEM, "out of memory cutting the handles of a mesh of %zu faces", nf);
 done:
     free(cand), free(allowed), free(blocked), free(nloops), free(frow), free(fl), free(srow), free(sl);
-    free(parent), free(loopid), free(label), free(estamp), free(lpar), free(seq), free(issrc);
+    free(parent), free(loopid), free(label), free(estamp), free(lpar), free(seq), free(issrc), free(fe);
     free(srcs.v), free(srcl.v), free(verts.v), free(ca);
     if (st != ACD_OK) acd3_handle_result_free(out);
     else if (!out->npockets) {

@@ -102,7 +102,8 @@ typedef struct acd3_handle_result {
                              * shared pockets; NULL when there is none */
     size_t npockets;        /* shared pockets */
     size_t ncandidates;     /* candidate arcs (one per pair of cap loops that meet) */
-    long genus;             /* of the mesh (Euler characteristic); 0: nothing was looked for */
+    long genus;             /* of the mesh (Euler characteristic), computed once a region has two
+                             * substantial claimants (else 0); 0: nothing more was looked for */
 } acd3_handle_result;
 
 /* Genus by Euler's formula, chi = V - E + F = 2c - 2g - b over c components and b boundary
