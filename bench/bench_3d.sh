@@ -31,6 +31,28 @@ run_eval() { # FILE TAU [ARGS] -> parts seconds cpu concavity_max iou coverage
   echo "${parts:-fail} ${secs:-fail} ${cpu:-fail} $ev"
 }
 ok_c() { awk -v c="$1" 'BEGIN { exit !(c != "fail" && c + 0 <= 0.02) }'; }
+# The tight pipeline (docs/acd3d.md "Hull tightness"): cut choice by hull volume, the merge ordered
+# by the hull volume a join adds and stopped at TIGHT_PARTS parts; the merge tolerance set so that the
+# merge bound (a two-sided distance per part) is 0.0195 of the bounding-box diagonal (the target's
+# 0.02 with a margin), i.e. 0.0195 x diagonal / radius in tau's units.
+TIGHT_PARTS=${TIGHT_PARTS:-40}
+TIGHT="--cut-choice volume --merge-order volume --merge-parts $TIGHT_PARTS"
+diag_radius() { # FILE -> diagonal radius
+  local f=$1 r d
+  r=$("$ACD" 3d "$f" -t 100 --no-merge --threads 2 2>/dev/null | head -1 | sed 's/.*radius \([0-9.e+-]*\)).*/\1/')
+  d=$("$ACD" info "$f" 2>/dev/null | python3 -c "
+import re,sys
+for l in sys.stdin:
+    if l.startswith('bounding box'):
+        v=[float(x) for x in re.findall(r'[-+]?[0-9][0-9.eE+-]*', l[len('bounding box'):])]
+        print(sum((v[3+k]-v[k])**2 for k in range(3))**0.5)")
+  echo "$d $r"
+}
+pick_better() { # "ROW_A" "ROW_B" (tau mt parts secs cpu conc iou cov) -> the better: concavity_max <= 0.02 first, then parts <= TIGHT_PARTS, then IoU
+  awk -v a="$1" -v b="$2" -v np="$TIGHT_PARTS" 'function key(r, f, n) { n = split(r, f, " "); if (n < 8 || f[6] == "fail") return -1;
+      return (f[6] + 0 <= 0.02) * 4 + (f[3] + 0 <= np) * 2 + f[7] / 10 }
+    BEGIN { if (a == "" || key(b) > key(a)) print b; else print a }'
+}
 target_table() {
   local TO=${TARGET_OUT:-docs/results/3d-target.md}
   {
@@ -47,31 +69,31 @@ target_table() {
   echo "IoU >= 0.95, coverage >= 0.999, under 2 s per mesh on 2 cores. CoACD's reference figures on this"
   echo "machine: 13-54 s per mesh, 27-43 parts, concavity_max 0.015-0.028, IoU 0.83-0.97."
   echo
-  echo "Per mesh: the first of tau = 0.05, 0.045, ..., 0.02 (relative to the minimum enclosing sphere's radius)"
-  echo "whose result with the merge pass's tolerance \`--merge-tau\` = tau reaches concavity_max <= 0.02; at that tau"
-  echo "the largest merge tau of 4/3, 5/4, 7/6, 10/9 x tau that still reaches it (else tau). Beside it the same tau"
-  echo "without the merge pass (\`--no-merge\`). seconds: wall"
-  echo "time reported by acd (2 threads); cpu: user CPU seconds of the run (both threads; less sensitive to"
-  echo "the machine's load than the wall time)."
+  echo "**Default** (the defaults of \`acd 3d\`): per mesh, the first of tau = 0.05, 0.045, ..., 0.02 (relative"
+  echo "to the minimum enclosing sphere's radius) whose result with \`--merge-tau\` = tau reaches concavity_max <= 0.02;"
+  echo "at that tau the largest merge tau of 4/3, 5/4, 7/6, 10/9 x tau that still reaches it (else tau)."
+  echo "**Tight** (\`$TIGHT\`, docs/acd3d.md \"Hull tightness\"): merge tau = 0.0195 x bbox diagonal / radius"
+  echo "(the merge bound, a two-sided distance per part, then stays under the target's 0.02 of the diagonal);"
+  echo "of tau = 0.035, 0.03, 0.025 the result with concavity_max <= 0.02 and at most $TIGHT_PARTS parts of highest IoU."
+  echo "**No merge**: the default's tau with \`--no-merge\`. cpu: user CPU seconds of the run (both threads)."
   echo
-  echo "| model | triangles | tau | merge tau | parts | seconds | cpu | concavity_max | IoU | coverage | parts (no merge) | concavity_max (no merge) | IoU (no merge) | seconds (no merge) | cpu (no merge) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| model | triangles | default: tau / merge tau | parts | concavity_max | IoU | coverage | cpu | tight: tau / merge tau | parts | concavity_max | IoU | coverage | seconds | cpu | no merge: parts | concavity_max | IoU |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   } > "$T/target.md"
-  local mf f m tri best tau r c
+  local mf f m tri best tau r
   for mf in camel.off knot1.off fandisk.off armadillo.off bunny00.off bunny.obj; do
     f=$M/$mf
     [ -f "$f" ] || continue
     m=${mf%.*}
     if [ "${mf##*.}" = off ]; then tri=$(awk 'NR>1 && NF>=3 && !/^#/ {print $2; exit}' "$f"); else tri=$(grep -c '^f ' "$f"); fi
     best=""
-    local done_=0 mt r1
+    local mt r1
     for tau in 0.05 0.045 0.04 0.035 0.03 0.025 0.02; do
       # merge tau = tau first; when it reaches the target, the largest of 4/3, 5/4, 7/6, 10/9 x tau
       # that still does (fewer parts), else tau
       r1=$(run_eval "$f" $tau --merge-tau $tau)
       best="$tau $tau $r1"
       ok_c "$(echo "$r1" | awk '{print $4}')" || continue
-      done_=1
       for mt in $(awk -v t=$tau 'BEGIN { printf "%.4g %.4g %.4g %.4g", t * 4 / 3, t * 5 / 4, t * 7 / 6, t * 10 / 9 }'); do
         r=$(run_eval "$f" $tau --merge-tau $mt)
         if ok_c "$(echo "$r" | awk '{print $4}')"; then best="$tau $mt $r"; break; fi
@@ -79,9 +101,19 @@ target_table() {
       break
     done
     set -- $best
-    local row="| $m | $tri | $1 | $2 | $3 | $4 | $5 | $6 | $7 | $8"
-    set -- $(run_eval "$f" "$1" --no-merge)
-    echo "$row | $1 | $4 | $5 | $2 | $3 |" >> "$T/target.md"
+    local dtau=$1 row="| $m | $tri | $1 / $2 | $3 | $6 | $7 | $8 | $5"
+    # tight
+    local dr tmt tbest=""
+    dr=$(diag_radius "$f")
+    tmt=$(echo "$dr" | awk '{ printf "%.4g", 0.0195 * $1 / $2 }')
+    for tau in 0.035 0.03 0.025; do
+      r=$(run_eval "$f" $tau --merge-tau $tmt $TIGHT)
+      tbest=$(pick_better "$tbest" "$tau $tmt $r")
+    done
+    set -- $tbest
+    row="$row | $1 / $2 | $3 | $6 | $7 | $8 | $4 | $5"
+    set -- $(run_eval "$f" "$dtau" --no-merge)
+    echo "$row | $1 | $4 | $5 |" >> "$T/target.md"
   done
   cp "$T/target.md" "$TO"
   cat "$TO"
