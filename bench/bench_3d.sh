@@ -74,7 +74,7 @@ target_table() {
   echo "at that tau the largest merge tau of 4/3, 5/4, 7/6, 10/9 x tau that still reaches it (else tau)."
   echo "**Tight** (\`$TIGHT\`, docs/acd3d.md \"Hull tightness\"): merge tau = 0.0195 x bbox diagonal / radius"
   echo "(the merge bound, a two-sided distance per part, then stays under the target's 0.02 of the diagonal);"
-  echo "of tau = 0.035, 0.03, 0.025 the result with concavity_max <= 0.02 and at most $TIGHT_PARTS parts of highest IoU."
+  echo "of tau = 0.045, 0.04, ..., 0.025 the result with concavity_max <= 0.02 and at most $TIGHT_PARTS parts of highest IoU."
   echo "**No merge**: the default's tau with \`--no-merge\`. cpu: user CPU seconds of the run (both threads)."
   echo
   echo "| model | triangles | default: tau / merge tau | parts | concavity_max | IoU | coverage | cpu | tight: tau / merge tau | parts | concavity_max | IoU | coverage | seconds | cpu | no merge: parts | concavity_max | IoU |"
@@ -106,7 +106,7 @@ target_table() {
     local dr tmt tbest=""
     dr=$(diag_radius "$f")
     tmt=$(echo "$dr" | awk '{ printf "%.4g", 0.0195 * $1 / $2 }')
-    for tau in 0.035 0.03 0.025; do
+    for tau in 0.045 0.04 0.035 0.03 0.025; do
       r=$(run_eval "$f" $tau --merge-tau $tmt $TIGHT)
       tbest=$(pick_better "$tbest" "$tau $tmt $r")
     done

@@ -166,7 +166,7 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
  * and the band of concavity (a fraction of the part's) within which the pieces' hull volume
  * decides. */
 #define ACD3_VOLUME_PLANES 1
-#define ACD3_VOLUME_BAND 0.3
+#define ACD3_VOLUME_BAND 0.5
 
 typedef struct split_choice {
     acd_cut_result cut;

@@ -10,6 +10,8 @@
 
 /* Offsets tried per axis: the planes at i / (VP_OFFSETS + 1) of the part's extent along it. */
 #define VP_OFFSETS 9
+/* Then refined around the best: half a step either side, a quarter, an eighth. */
+#define VP_REFINE 3
 /* Vertices used for scoring at most (every k-th beyond), plus every crossing point. */
 #define VP_MAX_SCORED 4000
 
@@ -72,11 +74,21 @@ int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out) {
             lo = fmin(lo, s), hi = fmax(hi, s);
         }
         if (!(hi > lo)) continue;
-        double bs = INFINITY, bc = 0;
+        double bs = INFINITY, bc = 0, step = (hi - lo) / (VP_OFFSETS + 1);
         for (int i = 1; i <= VP_OFFSETS; i++) {
-            double c = lo + (hi - lo) * i / (VP_OFFSETS + 1);
+            double c = lo + step * i;
             double s = score_plane(m, stride, ax, c, bufa, bufb);
             if (s >= 0 && s < bs) bs = s, bc = c;
+        }
+        /* refined around the best (VP_REFINE times, halving the step) */
+        for (int r = 0; r < VP_REFINE && bs < INFINITY; r++) {
+            step *= 0.5;
+            double c0 = bc;
+            for (int sgn = -1; sgn <= 1; sgn += 2) {
+                double c = c0 + sgn * step;
+                double s = score_plane(m, stride, ax, c, bufa, bufb);
+                if (s >= 0 && s < bs) bs = s, bc = c;
+            }
         }
         if (!(bs < INFINITY)) continue;
         for (int k = 0; k < 3; k++) {

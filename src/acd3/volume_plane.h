@@ -1,6 +1,7 @@
 /* acd3/volume_plane: cut planes chosen for the tightness of the pieces' hulls (CoACD's objective):
- * planes across the part's principal axes at evenly spaced offsets, scored by the sum of the
- * volumes of the two sides' convex hulls, the best kept. docs/acd3d.md, "Hull tightness".
+ * planes across the part's principal axes at nine evenly spaced offsets, refined three times
+ * around the best (half the step each time), scored by the sum of the volumes of the two sides'
+ * convex hulls, the best kept. docs/acd3d.md, "Hull tightness".
  *
  * A side's hull is the hull of the part's vertices on that side and of the points where the
  * part's edges cross the plane: exactly the hull of the piece a plane cut gives (the caps add no
