@@ -19,8 +19,9 @@ static void usage(FILE *f) {
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
             "              [--no-merge] [--merge-tau T] [--merge-order bound|volume] [--merge-parts N]\n"
-            "              [--cut-choice concavity|volume] [--no-close-holes] [--resolver global|witness]\n"
-            "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--verify] [-v]\n"
+            "              [--cut-choice concavity|volume] [--no-close-holes] [--resolver global|witness|notch]\n"
+            "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--eps-ratio R]\n"
+            "              [--no-feature-grouping] [--verify] [-v]\n"
             "\n"
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
@@ -35,6 +36,11 @@ static void usage(FILE *f) {
             "                      minimum-weight cycle of the cut graph), then by planes through the most\n"
             "                      concave vertex (default)\n"
             "  --resolver witness  only the planes through the most concave vertex\n"
+            "  --resolver notch    only the plane bisecting the most reflex edge at the most concave vertex\n"
+            "                      (notch cutting; the witness planes when that vertex has no reflex edge)\n"
+            "  --eps-ratio R       bridge clustering threshold eps = R * TAU (default 0.5; 0: none)\n"
+            "  --no-feature-grouping  the variant without feature grouping (spec A14): --eps-ratio 0\n"
+            "                      --resolver notch --region-cuts\n"
             "  --cut-weight ratio  global cut weight W = omega/gamma (paper Eqn 4, default); 'product':\n"
             "                      W = omega*gamma (dissertation Eqn 5.2)\n"
             "  --region-cuts       cut only the section region at the most concave vertex (spec A13)\n"
@@ -317,8 +323,9 @@ int acd_cmd_3d(int argc, char **argv) {
         } else if (!strcmp(a, "--resolver")) {
             if (val && !strcmp(val, "global")) p.resolver = ACD3D_RESOLVER_GLOBAL;
             else if (val && !strcmp(val, "witness")) p.resolver = ACD3D_RESOLVER_WITNESS;
+            else if (val && !strcmp(val, "notch")) p.resolver = ACD3D_RESOLVER_NOTCH;
             else {
-                fprintf(stderr, "acd 3d: --resolver takes global or witness\n");
+                fprintf(stderr, "acd 3d: --resolver takes global, witness or notch\n");
                 return ACD_EXIT_USAGE;
             }
             i++;
@@ -397,6 +404,17 @@ int acd_cmd_3d(int argc, char **argv) {
         } else if (!strcmp(a, "--no-merge")) {
             p.merge = 0;
         } else if (!strcmp(a, "--region-cuts")) {
+            p.region_cuts = 1;
+        } else if (!strcmp(a, "--eps-ratio")) {
+            if (!acd_cli_parse_double("3d", a, val, &p.eps_ratio) || p.eps_ratio < 0) {
+                fprintf(stderr, "acd 3d: %s needs a number >= 0\n", a);
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--no-feature-grouping")) {
+            /* spec §5.4, decision A14: no bridge clustering, notch cutting in the witness's region */
+            p.eps_ratio = 0;
+            p.resolver = ACD3D_RESOLVER_NOTCH;
             p.region_cuts = 1;
         } else if (!strcmp(a, "--no-close-holes")) {
             close_holes = 0;

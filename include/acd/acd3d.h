@@ -32,7 +32,16 @@ typedef enum acd3d_resolver {
     ACD3D_RESOLVER_GLOBAL = 0, /* solid mode: the global cut's plane first (knots, pocket cuts, the
                                   minimum-weight cycle of the cut graph; dissertation §V.B.2-3),
                                   then the planes through the most concave vertex */
-    ACD3D_RESOLVER_WITNESS     /* only the planes through the most concave vertex */
+    ACD3D_RESOLVER_WITNESS,    /* only the planes through the most concave vertex */
+    ACD3D_RESOLVER_NOTCH       /* the resolver without feature grouping (spec §5.4, decision A14):
+                                  the plane through the most reflex edge at the most concave
+                                  vertex, bisecting its dihedral angle (notch cutting), then only
+                                  the planes through that vertex perpendicular to the principal
+                                  axes; the witness planes when that vertex has no reflex edge.
+                                  The "without
+                                  FG" variant of Figs 47/48 is this with eps_ratio = 0 (no bridge
+                                  clustering) and region_cuts (docs/acd3d.md "Without feature
+                                  grouping") */
 } acd3d_resolver;
 
 typedef enum acd3d_cut_choice {
@@ -69,7 +78,8 @@ typedef struct acd3d_params {
     int tau_absolute;         /* 0: tau is relative to the minimum enclosing sphere's radius (default);
                                  1: tau is in model units */
     acd3d_mode mode;          /* default ACD3D_SOLID */
-    double eps_ratio;         /* bridge clustering threshold eps = eps_ratio * tau (default 0.5) */
+    double eps_ratio;         /* bridge clustering threshold eps = eps_ratio * tau (default 0.5); 0: no
+                                 clustering (every hull facet its own bridge, coplanar ones joined) */
     double delta_ratio;       /* knot threshold delta = delta_ratio * tau (default 0.1) */
     acd3d_weight weight;      /* cut weight of the global cut (default ratio) */
     acd3d_resolver resolver;  /* how solid mode chooses its cut planes (see docs/acd3d.md) */

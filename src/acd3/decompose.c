@@ -707,7 +707,8 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         const acd3_resolve_opts ro = {c->params->resolver == ACD3D_RESOLVER_GLOBAL,
                                       {c->tau, c->params->delta_ratio * c->tau, c->params->weight,
                                        !c->solid && c->params->surface_cut != ACD3D_SURFACE_STRIP,
-                                       !c->solid && c->params->surface_cut == ACD3D_SURFACE_CYCLE_WITNESS}};
+                                       !c->solid && c->params->surface_cut == ACD3D_SURFACE_CYCLE_WITNESS},
+                                      c->params->resolver == ACD3D_RESOLVER_NOTCH};
         /* surface mode, and solid mode with region_cuts, cut along the section nearest the
          * witness first; solid mode then whole-plane cuts when that does not split the part
          * (surface mode does not: cutting a surface along every crossing of a plane leaves many

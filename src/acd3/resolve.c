@@ -14,19 +14,34 @@
  * multiple of the third. */
 #define VALLEY_PLANARITY 4.0
 
+/* A notch is an edge whose faces turn by more than this (1 - cos of the angle between their
+ * normals; 1e-8 is about 1.4e-4 rad): an edge between two coplanar faces of a cap, which
+ * rounding may leave reflex, is not one (its bisector would be the cap's own plane). */
+#define NOTCH_MIN_TURN 1e-8
+/* A face whose doubled area is below this fraction of its squared longest edge (the sine of its
+ * smallest angle, about) has no reliable normal: in notch mode it is not a side of a notch. */
+#define FACE_MIN_SINE 1e-9
+
 static void normalize(double v[3]) {
     double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     if (l > 0) v[0] /= l, v[1] /= l, v[2] /= l;
 }
 
-static void face_normal(const acd_mesh *m, uint32_t f, double n[3]) {
+/* Returns the length of the unnormalized normal (twice the face's area). */
+static double face_normal(const acd_mesh *m, uint32_t f, double n[3]) {
     const double *a = m->vertices + 3 * (size_t)m->triangles[3 * f], *b = m->vertices + 3 * (size_t)m->triangles[3 * f + 1],
                  *c = m->vertices + 3 * (size_t)m->triangles[3 * f + 2];
     double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     n[0] = u[1] * v[2] - u[2] * v[1];
     n[1] = u[2] * v[0] - u[0] * v[2];
     n[2] = u[0] * v[1] - u[1] * v[0];
+    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     normalize(n);
+    /* against the squared longest edge: a needle or a point has no normal */
+    double e = fmax(u[0] * u[0] + u[1] * u[1] + u[2] * u[2], v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    double w[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+    e = fmax(e, w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    return l > FACE_MIN_SINE * e ? l : 0.0;
 }
 
 static int valley_plane(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, acd3_plane_candidate *c) {
@@ -70,8 +85,9 @@ done:
     return ok;
 }
 
-/* The most reflex edge at the witness, bisected: normal = n1 + n2 (outward face normals). */
-static int notch_plane(const acd_mesh *m, const acd3_measure *ms, acd3_plane_candidate *c) {
+/* The most reflex edge at the witness, bisected: normal = n1 - n2 (outward face normals) when
+ * strict (the notch resolver), n1 + n2 otherwise (see below). */
+static int notch_plane(const acd_mesh *m, const acd3_measure *ms, int strict, acd3_plane_candidate *c) {
     /* c[0]: bisector, c[1], c[2]: the planes of the two faces */
     uint32_t x = ms->witness;
     double best = 0;
@@ -88,16 +104,24 @@ static int notch_plane(const acd_mesh *m, const acd3_measure *ms, acd3_plane_can
                 int has = (t[0] == y && t[1] == x) || (t[1] == y && t[2] == x) || (t[2] == y && t[0] == x);
                 if (!has) continue;
                 double n1[3], n2[3];
-                face_normal(m, (uint32_t)f, n1);
-                face_normal(m, (uint32_t)h, n2);
+                double a1 = face_normal(m, (uint32_t)f, n1), a2 = face_normal(m, (uint32_t)h, n2);
+                /* strict (the notch resolver): degenerate faces and edges within rounding of flat
+                 * are no notches; the witness planes keep their earlier candidates */
+                if (strict && (a1 == 0 || a2 == 0)) break;
                 /* reflex when the opposite face's far vertex is above face f's plane */
                 uint32_t far = t[0] != x && t[0] != y ? t[0] : t[1] != x && t[1] != y ? t[1] : t[2];
                 const double *p = m->vertices + 3 * (size_t)far, *q = m->vertices + 3 * (size_t)x;
                 double above = n1[0] * (p[0] - q[0]) + n1[1] * (p[1] - q[1]) + n1[2] * (p[2] - q[2]);
                 if (above <= 0) continue;
                 double turn = 1.0 - (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]); /* 0 flat .. 2 folded */
-                if (turn > best) {
-                    double n[3] = {n1[0] + n2[0], n1[1] + n2[1], n1[2] + n2[2]};
+                if (turn > best && (!strict || turn > NOTCH_MIN_TURN)) {
+                    /* the plane containing the edge that bisects the material's (reflex) angle
+                     * separates the two faces: normal n1 - n2. n1 + n2 (kept for the witness
+                     * planes, whose candidates it shapes) is the other bisector, which leaves
+                     * both faces on its positive side and does not resolve the notch (on an L it
+                     * only touches the material along the notch edge). */
+                    double sg = strict ? -1.0 : 1.0;
+                    double n[3] = {n1[0] + sg * n2[0], n1[1] + sg * n2[1], n1[2] + sg * n2[2]};
                     if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
                     normalize(n);
                     best = turn;
@@ -133,13 +157,36 @@ static int global_plane(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
     return ok;
 }
 
+/* The planes through the witness perpendicular to the part's principal axes (at most max). */
+static int axis_planes(const acd_mesh *m, const acd3_measure *ms, int max, acd3_plane_candidate *out) {
+    acd_pca pca;
+    if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return 0;
+    int n = 0;
+    for (int a = 0; a < 3 && n < max; a++) {
+        memcpy(out[n].point, m->vertices + 3 * (size_t)ms->witness, sizeof(double[3]));
+        memcpy(out[n].normal, pca.axes[a], sizeof(double[3]));
+        out[n].kind = "axis";
+        n++;
+    }
+    return n;
+}
+
 int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
                         const acd3_resolve_opts *ro, acd3_plane_candidate *out) {
     if (ms->witness == UINT32_MAX) return 0;
     int n = 0;
     if (ro && ro->global) n += global_plane(m, g, ms, &ro->gc, &out[n]);
+    else if (ro && ro->notch) {
+        /* notch cutting (spec §5.4, A14): the bisector, then only the axis planes (progress when
+         * the bisector cannot split the part: a notch whose bisector runs along an earlier cap,
+         * or one that only cuts off a sliver); the face planes it also fills are not proposed */
+        if (notch_plane(m, ms, 1, &out[0])) {
+            n = 1 + axis_planes(m, ms, ACD3_MAX_CANDIDATES - 1, &out[1]);
+            return n;
+        }
+    }
     if (valley_plane(m, g, ms, &out[n])) n++;
-    n += notch_plane(m, ms, &out[n]);
+    n += notch_plane(m, ms, 0, &out[n]);
     acd_pca pca;
     if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return n;
     /* planes through the witness and the centroid containing a principal axis: across a ring
@@ -156,13 +203,5 @@ int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
         out[n].kind = "centroid";
         n++;
     }
-    {
-        for (int a = 0; a < 3 && n < ACD3_MAX_CANDIDATES; a++) {
-            memcpy(out[n].point, m->vertices + 3 * (size_t)ms->witness, sizeof(double[3]));
-            memcpy(out[n].normal, pca.axes[a], sizeof(double[3]));
-            out[n].kind = "axis";
-            n++;
-        }
-    }
-    return n;
+    return n + axis_planes(m, ms, ACD3_MAX_CANDIDATES - n, &out[n]);
 }

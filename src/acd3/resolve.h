@@ -17,7 +17,10 @@
  * 3. Planes through the witness and the part's centroid containing a principal axis (across a
  *    ring or a bent limb, where the concave valley is not a loop around a neck).
  * 4. Planes through the witness perpendicular to the part's principal axes (the fallback that
- *    guarantees progress whenever the witness is not an extreme point of the part). */
+ *    guarantees progress whenever the witness is not an extreme point of the part).
+ * With acd3_resolve_opts.notch (ACD3D_RESOLVER_NOTCH, the resolver without feature grouping) the
+ * bisector of 2. (degenerate faces and edges within rounding of flat are not notches), then only
+ * the axis planes of 4., when the witness has a reflex edge; else 1.-4. as above. */
 #ifndef ACD_ACD3_RESOLVE_H
 #define ACD_ACD3_RESOLVE_H
 
@@ -37,6 +40,9 @@ typedef struct acd3_plane_candidate {
 typedef struct acd3_resolve_opts {
     int global;       /* non-zero: the global cut's plane first */
     acd3_gc_opts gc;  /* its parameters */
+    int notch;        /* non-zero (and global zero): the resolver without feature grouping (spec §5.4,
+                         A14): the bisector of the most reflex edge at the witness and the axis
+                         planes, or the witness planes when the witness has no reflex edge */
 } acd3_resolve_opts;
 
 /* Fills up to ACD3_MAX_CANDIDATES candidate planes for the measured part; returns their count
