@@ -295,6 +295,32 @@ static void test_genus_zero_has_no_arcs(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Three closed tetrahedra sharing one apex: not a 2-manifold there (V 10, E 18, F 12, one
+ * component, no boundary: Euler's formula gives genus -1). Such surfaces reach surface mode from
+ * soups and CAD files (assimp's spider.obj); they have no handles, and the genus used to come
+ * back as -1, read as an allocation failure ("out of memory cutting the handles"). */
+static void test_nonmanifold_vertex_genus_zero(void **state) {
+    (void)state;
+    double V[30] = {0, 0, 0};
+    uint32_t T[36];
+    for (int k = 0; k < 3; k++) {
+        double ox = 3.0 * k;
+        double *q = V + 3 + 9 * k;
+        q[0] = ox + 1, q[1] = 0, q[2] = 0.2;
+        q[3] = ox + 1, q[4] = 1, q[5] = -0.3;
+        q[6] = ox + 1, q[7] = -1, q[8] = -0.4;
+        uint32_t a = 0, b = (uint32_t)(1 + 3 * k), c = b + 1, d = b + 2;
+        uint32_t t[12] = {a, b, c, a, c, d, a, d, b, b, d, c};
+        for (int i = 0; i < 12; i++) T[12 * k + i] = t[i];
+    }
+    acd_mesh m = {V, 10, T, 12};
+    fixture fx;
+    measure(&m, 0.02, &fx);
+    assert_int_equal(genus_of(&m, &fx), 0);
+    assert_int_equal(fx.ms.handle_arcs.narcs, 0);
+    fixture_free(&fx);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_torus_one_arc_wall_depth),
@@ -303,6 +329,7 @@ int main(void) {
         cmocka_unit_test(test_plate_two_holes_one_arc),
         cmocka_unit_test(test_hidden_handle_in_a_bowl),
         cmocka_unit_test(test_genus_zero_has_no_arcs),
+        cmocka_unit_test(test_nonmanifold_vertex_genus_zero),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

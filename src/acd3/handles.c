@@ -141,6 +141,11 @@ long acd3_handles_genus(const acd_mesh *m, const acd_edge_graph *g, const uint32
                 b += onb[v] && acd_uf_find(loop, (uint32_t)v) == v;
             }
         genus = (2 * c - (V - E + (long)nf) - b) / 2;
+        /* Euler's formula holds for a 2-manifold; where the surface is not one (vertices where
+         * sheets touch, edges of three faces: soups and CAD files in surface mode) it can come
+         * out negative, and such a surface is taken as having no handles (not as a failure: -1
+         * is kept for out of memory) */
+        if (genus < 0) genus = 0;
     }
     free(comp), free(loop), free(used), free(onb);
     return genus;

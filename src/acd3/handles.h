@@ -107,7 +107,8 @@ typedef struct acd3_handle_result {
 } acd3_handle_result;
 
 /* Genus by Euler's formula, chi = V - E + F = 2c - 2g - b over c components and b boundary
- * loops (as acd3/topology, on the graph and faces at hand); -1 on allocation failure. */
+ * loops (as acd3/topology, on the graph and faces at hand); 0 where the formula gives a negative
+ * value (not a 2-manifold: sheets touching at a vertex); -1 on allocation failure. */
 long acd3_handles_genus(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of);
 
 /* Finds the shared pockets of a labelling, their arcs and the cap of every face in them. Only on
