@@ -82,6 +82,18 @@ printf 'v 0 0 0\nf 1 2 3\n' > "$T/bad.obj"
 "$ACD" 3d "$SRC/tests/data/meshes/sliver_part.off" -t 0.5 --tau-abs --verify --json "$T/s.json" >"$T/s.out" 2>"$T/s.err" ||
   fail "sliver part: exit $? $(cat "$T/s.err")"
 grep -q '"no_cut"' "$T/s.json" && fail "sliver part: a part stayed above tau"
+# hull tightness options (docs/acd3d.md "Hull tightness"): --verify passes with them, and the
+# merge stops at --merge-parts; bad values are usage errors (exit 1)
+"$ACD" 3d "$SRC/tests/data/meshes/sliver_part.off" -t 0.05 --cut-choice volume --merge-order volume --merge-parts 3 \
+  --verify > "$T/tight.txt" 2> "$T/tight.err" || fail "tight options: exit $? $(cat "$T/tight.err")"
+np=$(head -1 "$T/tight.txt" | awk '{print $1}')
+"$ACD" 3d "$SRC/tests/data/meshes/sliver_part.off" -t 0.05 --no-merge > "$T/nm.txt" 2>/dev/null || fail "no-merge exit $?"
+nn=$(head -1 "$T/nm.txt" | awk '{print $1}')
+[ "$nn" -le 3 ] || [ "$np" -ge 3 ] || fail "--merge-parts 3 gave $np parts (from $nn)"
+for bad in "--cut-choice x" "--merge-order x" "--merge-parts -1"; do
+  "$ACD" 3d "$T/l.obj" $bad > /dev/null 2>&1; rc=$?
+  [ $rc = 1 ] || fail "$bad: exit $rc"
+done
 # CGAL's spool.off (fetched data): a cut through nearly coincident section points left a speck
 # shell (area 1e-33, volume -3e-22 from rounding) taken as a cavity, its piece then
 # self-intersecting and left above tau; the plane cut now drops shells whose volume is within
