@@ -25,16 +25,7 @@ cpu=$(grep -m1 "model name" /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
 
 # mesh, tau reaching concavity_max <= 0.02 and its merge tau (docs/results/3d-target.md)
 MESHES="knot1.off:0.045:0.06 fandisk.off:0.03:0.04 camel.off:0.03:0.04 bunny.obj:0.045:0.05 elephant.off:0.045:0.05"
-ev() { # MESH HULLS -> concavity_max iou coverage
-  "$ACD" eval "$1" "$2" --json 2>/dev/null |
-    python3 -c "import json,sys; d=json.load(sys.stdin); print('%.4f %.4f %.4f' % (d['concavity_max'], d['iou'], d['coverage']))" 2>/dev/null ||
-    echo "fail fail fail"
-}
-cputime() { # command... -> prints user+system CPU seconds of the command (its output to $T/out)
-  local TIMEFORMAT=%U+%S t
-  t=$( { time "$@" >"$T/out" 2>"$T/err"; } 2>&1 )
-  python3 -c "print('%.2f' % ($t))"
-}
+. bench/peers/score.sh
 rows=()
 for spec in $MESHES; do
   IFS=: read -r name tau mtau <<<"$spec"

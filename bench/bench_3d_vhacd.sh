@@ -34,16 +34,7 @@ fi
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 cpu=$(grep -m1 "model name" /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
 
-ev() { # MESH HULLS -> concavity_max iou coverage
-  "$ACD" eval "$1" "$2" --json 2>/dev/null |
-    python3 -c "import json,sys; d=json.load(sys.stdin); print('%.4f %.4f %.4f' % (d['concavity_max'], d['iou'], d['coverage']))" 2>/dev/null ||
-    echo "fail fail fail"
-}
-cputime() { # command... -> user+system CPU seconds of the command (its output to $T/out)
-  local TIMEFORMAT=%U+%S t
-  t=$( { time "$@" >"$T/out" 2>"$T/err"; } 2>&1 )
-  python3 -c "print('%.2f' % ($t))"
-}
+. bench/peers/score.sh
 target() { # MODEL -> "tau merge_tau" from the target table (empty when the row is missing)
   awk -F'|' -v m="$1" '{gsub(/ /, "", $2)} $2 == m {gsub(/ /, "", $4); gsub(/ /, "", $5); print $4, $5; exit}' "$TARGET"
 }

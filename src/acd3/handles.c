@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/u32vec.h"
 #include "core/union_find.h"
 
 #define NONE UINT32_MAX
@@ -66,24 +67,8 @@ static uint32_t other_edge_at(const acd_edge_graph *g, const uint32_t *fe, uint3
     return NONE;
 }
 
-typedef struct growbuf {
-    uint32_t *v;
-    size_t n, cap;
-} growbuf;
-
-static int gpush(growbuf *b, uint32_t x) {
-    if (b->n == b->cap) {
-        size_t nc = b->cap ? 2 * b->cap : 256;
-        uint32_t *nv = realloc(b->v, nc * sizeof *nv);
-        if (!nv) return 0;
-        b->v = nv, b->cap = nc;
-    }
-    b->v[b->n++] = x;
-    return 1;
-}
-
 /* arcs: appends one (vertex list, region, loops, length); 0 on allocation failure */
-static int arcs_push(acd3_handle_arcs *h, size_t *cap, growbuf *verts, const uint32_t *seq, size_t len, uint32_t r,
+static int arcs_push(acd3_handle_arcs *h, size_t *cap, acd_u32vec *verts, const uint32_t *seq, size_t len, uint32_t r,
                      uint32_t a, uint32_t b, double length) {
     if (h->narcs == *cap) {
         size_t nc = *cap ? 2 * *cap : 8;
@@ -106,7 +91,7 @@ static int arcs_push(acd3_handle_arcs *h, size_t *cap, growbuf *verts, const uin
     }
     if (h->narcs == 0) h->off[0] = 0;
     for (size_t i = 0; i < len; i++)
-        if (!gpush(verts, seq[i])) return 0;
+        if (!acd_u32vec_push(verts, seq[i])) return 0;
     h->region[h->narcs] = r, h->a[h->narcs] = a, h->b[h->narcs] = b, h->length[h->narcs] = length;
     h->narcs++;
     h->off[h->narcs] = verts->n;
@@ -162,7 +147,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
     uint32_t *nloops = NULL, *frow = NULL, *fl = NULL, *srow = NULL, *sl = NULL, *parent = NULL, *loopid = NULL;
     uint32_t *label = NULL, *estamp = NULL, *lpar = NULL, *seq = NULL, *fe = NULL;
     uint8_t *issrc = NULL;
-    growbuf srcs = {0}, srcl = {0}, verts = {0};
+    acd_u32vec srcs = {0}, srcl = {0}, verts = {0};
     cand_arc *ca = NULL;
     size_t arccap = 0, capca = 0;
     out->edge_arc = calloc(ne ? ne : 1, 1);
@@ -287,7 +272,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
             for (int end = 0; end < 2; end++) {
                 uint32_t v = g->edge_v[2 * (size_t)e + end];
                 if (label[v] == NONE) {
-                    if (!gpush(&srcs, v)) goto nomem;
+                    if (!acd_u32vec_push(&srcs, v)) goto nomem;
                     issrc[v] = 1;
                     label[v] = L;
                 } else if (label[v] != L) {
@@ -312,7 +297,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
         o.vertex_allowed = allowed;
         o.target = ACD_NO_VERTEX;
         acd_sp_tree tree;
-        st = acd_dijkstra(g, srcs.v, srcs.n, &o, &tree, err);
+        st = acd_dijkstra(g, srcs.a, srcs.n, &o, &tree, err);
         if (st != ACD_OK) goto done;
         /* candidate arcs through the region's edges whose ends were reached from different loops */
         size_t nca = 0;
@@ -323,7 +308,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
                 estamp[e] = (uint32_t)r;
                 uint32_t u = g->edge_v[2 * (size_t)e], v = g->edge_v[2 * (size_t)e + 1];
                 if (tree.origin[u] == NONE || tree.origin[v] == NONE) continue;
-                uint32_t la = label[srcs.v[tree.origin[u]]], lb = label[srcs.v[tree.origin[v]]];
+                uint32_t la = label[srcs.a[tree.origin[u]]], lb = label[srcs.a[tree.origin[v]]];
                 if (la == lb) continue;
                 if (nca == capca) {
                     size_t nc = capca ? 2 * capca : 64;
@@ -357,7 +342,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
             if (acd_uf_find(lpar, ca[i].a) == acd_uf_find(lpar, ca[i].b)) continue;
             acd_uf_union(lpar, ca[i].a, ca[i].b);
             uint32_t u = g->edge_v[2 * (size_t)ca[i].edge], v = g->edge_v[2 * (size_t)ca[i].edge + 1];
-            if (label[srcs.v[tree.origin[u]]] != ca[i].a) {
+            if (label[srcs.a[tree.origin[u]]] != ca[i].a) {
                 uint32_t x = u;
                 u = v, v = x;
             }
@@ -385,11 +370,11 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
             }
         }
         acd_sp_tree_free(&tree);
-        for (size_t i = 0; i < srcs.n; i++) label[srcs.v[i]] = NONE, issrc[srcs.v[i]] = 0;
+        for (size_t i = 0; i < srcs.n; i++) label[srcs.a[i]] = NONE, issrc[srcs.a[i]] = 0;
         for (size_t i = frow[r]; i < frow[r + 1]; i++)
             for (int k = 0; k < 3; k++) allowed[m->triangles[3 * (size_t)fl[i] + k]] = 0;
     }
-    out->arcs.vert = verts.v, verts.v = NULL;
+    out->arcs.vert = verts.a, verts.a = NULL;
 
     /* every face of a shared pocket measured against its nearest cap (the cap of its vertex
      * nearest to one): flood from the paths of the substantial claimants, across no path and no
@@ -415,8 +400,8 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
             if (sum >= ACD3_HANDLE_VOTE_SHARE * in->best[r])
                 for (size_t u = q; u < t; u++)
                     for (int end = 0; end < 2; end++)
-                        if (!gpush(&srcs, g->edge_v[2 * (size_t)in->claims[u].edge + end]) ||
-                            !gpush(&srcl, in->claims[u].patch))
+                        if (!acd_u32vec_push(&srcs, g->edge_v[2 * (size_t)in->claims[u].edge + end]) ||
+                            !acd_u32vec_push(&srcl, in->claims[u].patch))
                             goto nomem;
             q = t;
         }
@@ -428,7 +413,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
         o.vertex_allowed = allowed;
         o.target = ACD_NO_VERTEX;
         acd_sp_tree tree;
-        st = acd_dijkstra(g, srcs.v, srcs.n, &o, &tree, err);
+        st = acd_dijkstra(g, srcs.a, srcs.n, &o, &tree, err);
         if (st != ACD_OK) goto done;
         for (size_t k = frow[r]; k < frow[r + 1]; k++) {
             uint32_t f = fl[k], bestv = NONE;
@@ -438,7 +423,7 @@ acd_status acd3_handle_cuts(const acd3_handle_input *in, acd3_handle_result *out
                 if (bestv == NONE || tree.dist[v] < tree.dist[bestv] || (tree.dist[v] == tree.dist[bestv] && v < bestv))
                     bestv = v;
             }
-            if (bestv != NONE) out->face_patch[f] = srcl.v[tree.origin[bestv]];
+            if (bestv != NONE) out->face_patch[f] = srcl.a[tree.origin[bestv]];
         }
         acd_sp_tree_free(&tree);
         for (size_t k = frow[r]; k < frow[r + 1]; k++)
@@ -451,7 +436,7 @@ nomem:
 done:
     free(cand), free(allowed), free(blocked), free(nloops), free(frow), free(fl), free(srow), free(sl);
     free(parent), free(loopid), free(label), free(estamp), free(lpar), free(seq), free(issrc), free(fe);
-    free(srcs.v), free(srcl.v), free(verts.v), free(ca);
+    free(srcs.a), free(srcl.a), free(verts.a), free(ca);
     if (st != ACD_OK) acd3_handle_result_free(out);
     else if (!out->npockets) {
         free(out->face_patch);

@@ -8,6 +8,7 @@
 #include "acd3/knots.h"
 #include "core/error.h"
 #include "core/minheap.h"
+#include "core/u32vec.h"
 
 /* Hungarian costs standing for "no path". */
 #define NO_PATH_COST 1e100
@@ -141,29 +142,12 @@ static int cmp_rk(const void *x, const void *y) {
     return (a->knot > b->knot) - (a->knot < b->knot);
 }
 
-typedef struct u32vec {
-    uint32_t *a;
-    size_t n, cap;
-} u32vec;
-
-static int vpush(u32vec *v, uint32_t x) {
-    if (v->n == v->cap) {
-        size_t nc = v->cap ? 2 * v->cap : 256;
-        uint32_t *na = realloc(v->a, nc * sizeof *na);
-        if (!na) return 0;
-        v->a = na;
-        v->cap = nc;
-    }
-    v->a[v->n++] = x;
-    return 1;
-}
-
 /* Traces boundary chains from the barrier edges that separate two regions. */
 static int trace_chains(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, acd3_cut_graph *cg) {
     size_t nv = m->nvertices, ne = g->nedges;
     uint8_t *bnd = calloc(ne ? ne : 1, 1), *seen = calloc(ne ? ne : 1, 1);
     uint32_t *bdeg = calloc(nv ? nv : 1, sizeof *bdeg);
-    u32vec cv = {0}, off = {0}, creg = {0};
+    acd_u32vec cv = {0}, off = {0}, creg = {0};
     int ok = bnd && seen && bdeg;
     if (!ok) goto done;
     for (size_t e = 0; e < ne; e++) {
@@ -174,7 +158,7 @@ static int trace_chains(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
         bdeg[g->edge_v[2 * e]]++;
         bdeg[g->edge_v[2 * e + 1]]++;
     }
-    ok = vpush(&off, 0);
+    ok = acd_u32vec_push(&off, 0);
     for (int pass = 0; pass < 2 && ok; pass++) {
         /* pass 0: chains from branch points (vertices of boundary degree != 2); pass 1: loops */
         for (size_t s = 0; s < (pass ? ne : nv) && ok; s++) {
@@ -195,12 +179,12 @@ static int trace_chains(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
                     uint32_t t = r0;
                     r0 = r1, r1 = t;
                 }
-                ok = vpush(&cv, start);
+                ok = acd_u32vec_push(&cv, start);
                 uint32_t cur = start;
                 while (ok) {
                     seen[e] = 1;
                     uint32_t nx = g->edge_v[2 * (size_t)e] == cur ? g->edge_v[2 * (size_t)e + 1] : g->edge_v[2 * (size_t)e];
-                    ok = vpush(&cv, nx);
+                    ok = acd_u32vec_push(&cv, nx);
                     if (nx == start || bdeg[nx] != 2) break;
                     uint32_t ne2 = ACD_NO_VERTEX;
                     for (size_t q = g->row[nx]; q < g->row[nx + 1]; q++) {
@@ -214,7 +198,7 @@ static int trace_chains(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
                     e = ne2;
                     cur = nx;
                 }
-                ok = ok && vpush(&off, (uint32_t)cv.n) && vpush(&creg, r0) && vpush(&creg, r1);
+                ok = ok && acd_u32vec_push(&off, (uint32_t)cv.n) && acd_u32vec_push(&creg, r0) && acd_u32vec_push(&creg, r1);
                 if (pass == 1) break; /* one loop per start */
             }
         }
@@ -239,7 +223,7 @@ static int find_all_knots(const acd_mesh *m, const acd3_measure *ms, const acd3_
     size_t total = cg->chain_off[cg->nchains];
     double *pts = malloc(3 * (total ? total : 1) * sizeof *pts), *conc = malloc((total ? total : 1) * sizeof *conc);
     uint32_t *idx = malloc((total ? total : 1) * sizeof *idx);
-    u32vec kv = {0}, kc = {0};
+    acd_u32vec kv = {0}, kc = {0};
     int ok = pts && conc && idx;
     for (size_t c = 0; ok && c < cg->nchains; c++) {
         size_t o0 = cg->chain_off[c], n = cg->chain_off[c + 1] - o0;
@@ -264,7 +248,7 @@ static int find_all_knots(const acd_mesh *m, const acd3_measure *ms, const acd3_
             ok = 0;
             break;
         }
-        for (size_t i = 0; i < nk && ok; i++) ok = vpush(&kv, cg->chain_v[o0 + idx[i]]) && vpush(&kc, (uint32_t)c);
+        for (size_t i = 0; i < nk && ok; i++) ok = acd_u32vec_push(&kv, cg->chain_v[o0 + idx[i]]) && acd_u32vec_push(&kc, (uint32_t)c);
     }
     if (ok) {
         cg->nknots = kv.n;
@@ -397,7 +381,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
              *queue = malloc((nf ? nf : 1) * sizeof *queue), *fe = malloc((nf ? 3 * nf : 1) * sizeof *fe);
     double *wcost = malloc((ne ? ne : 1) * sizeof *wcost);
     uint8_t *allowed = calloc(nv ? nv : 1, 1), *cut_edge = calloc(ne ? ne : 1, 1);
-    u32vec pool = {0}, kept = {0};
+    acd_u32vec pool = {0}, kept = {0};
     acd3_region_sp sp;
     memset(&sp, 0, sizeof sp);
     cand *cands = NULL;
@@ -474,7 +458,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                 if (dst == src || !isfinite(acd3_region_sp_dist(&sp, dst))) continue;
                 size_t off = pool.n, n = 0;
                 for (uint32_t v = dst; v != ACD_NO_VERTEX; v = sp.pred[v]) {
-                    ok = vpush(&pool, v);
+                    ok = acd_u32vec_push(&pool, v);
                     if (!ok) break;
                     n++;
                 }
@@ -546,7 +530,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
         /* crossing cuts deleted, heaviest first */
         kept.n = 0;
         for (size_t c = 0; c < ncand && ok; c++)
-            if (cands[c].keep) ok = vpush(&kept, (uint32_t)c);
+            if (cands[c].keep) ok = acd_u32vec_push(&kept, (uint32_t)c);
         if (!ok) break;
         size_t nk = kept.n;
         uint8_t *cross = calloc(nk * nk + 1, 1);
