@@ -48,6 +48,10 @@ acd_status acd3_topology_of(const acd_mesh *m, acd3_topology *out, acd_error *er
     out->boundary_loops = nloops;
     out->euler = (long)V - (long)g.nedges + (long)nf;
     out->genus = ((long)(2 * ncomp) - out->euler - (long)nloops) / 2;
+    /* negative only where the part is not a 2-manifold (shells touching at a vertex: a cavity
+     * that touches the outer surface at one point, as a join of cheese's parts gave): no
+     * handles; the Euler characteristic is reported as computed */
+    if (out->genus < 0) out->genus = 0;
 done:
     free(nface), free(used), free(comp), free(loop), free(onb);
     acd_edge_graph_free(&g);

@@ -18,7 +18,8 @@ typedef struct acd3_topology {
     size_t components;     /* edge-connected */
     size_t boundary_loops;
     long euler;            /* V - E + F */
-    long genus;            /* (2 components - euler - boundary_loops) / 2, summed over components */
+    long genus;            /* (2 components - euler - boundary_loops) / 2, summed over components;
+                              0 where that is negative (not a 2-manifold) */
 } acd3_topology;
 
 acd_status acd3_topology_of(const acd_mesh *m, acd3_topology *out, acd_error *err);
