@@ -16,6 +16,7 @@
 #include "geom3/dijkstra.h"
 #include "geom3/edge_map.h"
 #include "shapes.h"
+#include "acd3d_check.h"
 
 static double sphere_r(double th, double ph, void *u) { (void)th, (void)ph, (void)u; return 1.0; }
 static double waist_r(double th, double ph, void *u) {
@@ -168,12 +169,7 @@ static void test_waist_splits_and_is_deterministic(void **state) {
     assert_true(r.nparts >= 2);
     check_solid(&m, &r, &p);
     assert_int_equal(acd3d_decompose(&m, &p, &r2, &err), ACD_OK);
-    assert_int_equal(r.nparts, r2.nparts);
-    for (size_t i = 0; i < r.nparts; i++) {
-        assert_int_equal(r.parts[i].mesh.nvertices, r2.parts[i].mesh.nvertices);
-        assert_memory_equal(r.parts[i].mesh.vertices, r2.parts[i].mesh.vertices,
-                            3 * r.parts[i].mesh.nvertices * sizeof(double));
-    }
+    ck3_same_parts(&r, &r2);
     acd3d_result_free(&r);
     acd3d_result_free(&r2);
     acd_mesh_free(&m);

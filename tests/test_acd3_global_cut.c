@@ -181,18 +181,23 @@ static void test_l_notch_plane(void **state) {
     acd_mesh_free(&m);
 }
 
-/* A 5x5x2 box with a 1x1 dent in the top: the dent has no knots (its rim is where the hull
- * touches), the pocket is cup-shaped, the cut runs through the dent's bottom and its plane is
- * vertical. */
-static void test_cup_dent(void **state) {
-    (void)state;
+/* A 5x5x2 box of voxels with the middle voxel of the top layer removed: a 1x1 dent. */
+static void dented_box(acd_mesh *m) {
     enum { N = 5 };
     unsigned char occ[N * N * 2];
     for (int z = 0; z < 2; z++)
         for (int y = 0; y < N; y++)
             for (int x = 0; x < N; x++) occ[(z * N + y) * N + x] = !(z == 1 && x == 2 && y == 2);
+    assert_true(mg_voxels(m, occ, N, N, 2));
+}
+
+/* A 5x5x2 box with a 1x1 dent in the top: the dent has no knots (its rim is where the hull
+ * touches), the pocket is cup-shaped, the cut runs through the dent's bottom and its plane is
+ * vertical. */
+static void test_cup_dent(void **state) {
+    (void)state;
     acd_mesh m;
-    assert_true(mg_voxels(&m, occ, N, N, 2));
+    dented_box(&m);
     analysed a;
     analyse(&m, 0.02, ACD3D_WEIGHT_RATIO, &a);
     check_cut_graph(&m, &a);
@@ -353,13 +358,8 @@ static size_t check_cycle_split(const acd_mesh *m, const analysed *a) {
  * not separate: the driver then keeps the plane strips). */
 static void test_dynamic_cycle(void **state) {
     (void)state;
-    enum { N = 5 };
-    unsigned char occ[N * N * 2];
-    for (int z = 0; z < 2; z++)
-        for (int y = 0; y < N; y++)
-            for (int x = 0; x < N; x++) occ[(z * N + y) * N + x] = !(z == 1 && x == 2 && y == 2);
     acd_mesh m;
-    assert_true(mg_voxels(&m, occ, N, N, 2));
+    dented_box(&m);
     analysed a, b;
     analyse(&m, 0.02, ACD3D_WEIGHT_RATIO, &a);
     analyse_opts(&m, 0.02, ACD3D_WEIGHT_RATIO, 1, 0, &b);

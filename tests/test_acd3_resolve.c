@@ -15,6 +15,7 @@
 #include "geom3/dijkstra.h"
 #include "geom3/edge_map.h"
 #include "shapes.h"
+#include "acd3d_check.h"
 
 /* An L of unit voxels, 6 x 4 x 1 with the corner x, y >= 2 empty (arms of lengths 6 and 4, so
  * that no principal axis of the L is along a diagonal): its reflex edge is the line x = y = 2,
@@ -140,12 +141,7 @@ static void test_waist_without_grouping(void **state) {
     check_parts(&m, &r);
     p.threads = 2;
     assert_int_equal(acd3d_decompose(&m, &p, &r2, &err), ACD_OK);
-    assert_int_equal(r.nparts, r2.nparts);
-    for (size_t i = 0; i < r.nparts; i++) {
-        assert_int_equal(r.parts[i].mesh.nvertices, r2.parts[i].mesh.nvertices);
-        assert_memory_equal(r.parts[i].mesh.vertices, r2.parts[i].mesh.vertices,
-                            3 * r.parts[i].mesh.nvertices * sizeof(double));
-    }
+    ck3_same_parts(&r, &r2);
     acd3d_result_free(&r2);
     acd3d_result_free(&r);
     p.mode = ACD3D_SURFACE;
