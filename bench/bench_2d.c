@@ -19,18 +19,7 @@
 #include "acd/polygon.h"
 #include "acd/verify2d.h"
 
-static double now(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* CPU time of this thread: what the run costs even when other jobs share the cores. */
-static double cpu_now(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#include "bench_clock.h"
 
 static int load(const char *dir, const char *file, acd_polygon_set *set) {
     char path[2048];
@@ -61,9 +50,9 @@ static double run(const acd_polygon *p, acd2d_measure m, double tau, int reps, i
     for (int r = 0; r < reps; r++) {
         acd2d_result res;
         acd_error err;
-        double t0 = now(), c0 = cpu_now();
+        double t0 = bench_wall(), c0 = bench_thread_cpu();
         acd_status st = acd2d_decompose(p, &prm, &res, &err);
-        double t = now() - t0, c = cpu_now() - c0;
+        double t = bench_wall() - t0, c = bench_thread_cpu() - c0;
         if (*cpu < 0 || c < *cpu) *cpu = c;
         if (st != ACD_OK) {
             snprintf(msg, msgsize, "%s", err.message);
@@ -73,10 +62,10 @@ static double run(const acd_polygon *p, acd2d_measure m, double tau, int reps, i
         *ncomp = res.ncomponents;
         *notches = res.input_notches;
         if (verify && r == 0) {
-            double v0 = now();
+            double v0 = bench_wall();
             acd_verify2d_report rep;
             *vok = acd_verify2d_result(p, &res, &prm, 0, &rep, &err) == ACD_OK;
-            *vsec = now() - v0;
+            *vsec = bench_wall() - v0;
             if (!*vok) snprintf(msg, msgsize, "%s", err.message);
         }
         acd2d_result_free(&res);

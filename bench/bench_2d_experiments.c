@@ -34,11 +34,7 @@
 #include "acd/polygon.h"
 #include "acd/verify2d.h"
 
-static double cpu_now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_clock.h"
 
 /* Shoelace area (positive for counterclockwise). */
 static double ring_area(const acd_vec2 *p, size_t n) {
@@ -86,9 +82,9 @@ static int run_acd(const acd_polygon *p, acd2d_measure m, double tau, int reps, 
     for (int r = 0; r < reps; r++) {
         acd2d_result res;
         acd_error err;
-        double c0 = cpu_now();
+        double c0 = bench_cpu();
         acd_status st = acd2d_decompose(p, &prm, &res, &err);
-        double c = cpu_now() - c0;
+        double c = bench_cpu() - c0;
         if (st != ACD_OK) {
             fprintf(stderr, "bench_2d_experiments: %s tau %g: %s\n", acd2d_measure_name(m), tau, err.message);
             return 0;
@@ -120,9 +116,9 @@ static int run_exact(const acd_polygon *p, acd_exact2d_method m, int reps, size_
     for (int r = 0; r < reps; r++) {
         acd_exact2d_result res;
         acd_error err;
-        double c0 = cpu_now();
+        double c0 = bench_cpu();
         acd_status st = acd_exact2d_decompose(p, m, &res, &err);
-        double c = cpu_now() - c0;
+        double c = bench_cpu() - c0;
         if (st != ACD_OK) {
             fprintf(stderr, "bench_2d_experiments: %s: %s\n", acd_exact2d_method_name(m), err.message);
             return 0;

@@ -27,11 +27,7 @@
 #include "acd/polygon.h"
 #include "acd/verify2d.h"
 
-static double cpu_now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_clock.h"
 
 static double ring_area(const acd_vec2 *p, size_t n) {
     double a = 0;
@@ -91,9 +87,9 @@ static int run_acd(const acd_polygon *p, double tau_rel, int reps, FILE *res, co
     for (int r = 0; r < reps; r++) {
         acd2d_result out;
         acd_error err;
-        double c0 = cpu_now();
+        double c0 = bench_cpu();
         acd_status st = acd2d_decompose(p, &prm, &out, &err);
-        double c = cpu_now() - c0;
+        double c = bench_cpu() - c0;
         if (st != ACD_OK) {
             fprintf(stderr, "bench_2d_real: %s acd tau %g R: %s\n", name, tau_rel, err.message);
             fprintf(res, "%s,acd-sl,%g,,,,error\n", name, tau_rel);
@@ -125,9 +121,9 @@ static int run_exact(const acd_polygon *p, acd_exact2d_method m, int reps, FILE 
     for (int r = 0; r < reps; r++) {
         acd_exact2d_result out;
         acd_error err;
-        double c0 = cpu_now();
+        double c0 = bench_cpu();
         acd_status st = acd_exact2d_decompose(p, m, &out, &err);
-        double c = cpu_now() - c0;
+        double c = bench_cpu() - c0;
         if (st != ACD_OK) {
             fprintf(stderr, "bench_2d_real: %s %s: %s\n", name, acd_exact2d_method_name(m), err.message);
             fprintf(res, "%s,%s,0,,,,error\n", name, acd_exact2d_method_name(m));

@@ -7,11 +7,7 @@
 
 #include "acd/acd2d.h"
 
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_clock.h"
 
 int main(int argc, char **argv) {
     const char *dir = argc > 1 ? argv[1] : ACD_SHARED_DATA;
@@ -28,7 +24,7 @@ int main(int argc, char **argv) {
             return 1;
         }
         for (int m = 0; m < 4; m++) {
-            double t0 = now();
+            double t0 = bench_wall();
             printf("%-22s %s:", models[i], acd2d_measure_name((acd2d_measure)m));
             for (int t = 0; t < 9; t++) {
                 acd2d_params prm = acd2d_default_params();
@@ -42,7 +38,7 @@ int main(int argc, char **argv) {
                 printf(" %zu", res.ncomponents);
                 acd2d_result_free(&res);
             }
-            double dt = now() - t0;
+            double dt = bench_wall() - t0;
             total += dt;
             printf("  %.3f s\n", dt);
         }
@@ -57,11 +53,11 @@ int main(int argc, char **argv) {
         acd2d_params prm = acd2d_default_params();
         for (int tol = 0; tol < 2; tol++) {
             prm.notch_tolerance = tol ? 0 : 1e-5;
-            double t0 = now();
+            double t0 = bench_wall();
             acd2d_result res;
             if (acd2d_decompose(&set.polygons[0], &prm, &res, &err) != ACD_OK) return 1;
             printf("star6 tau 0 SL notch-tol %g: %zu vertices, %zu notches, %zu components, %.4f s\n", prm.notch_tolerance,
-                   res.input_vertices, res.input_notches, res.ncomponents, now() - t0);
+                   res.input_vertices, res.input_notches, res.ncomponents, bench_wall() - t0);
             acd2d_result_free(&res);
         }
         acd_polygon_set_free(&set);

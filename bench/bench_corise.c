@@ -9,17 +9,13 @@
 #include "corise/corise.h"
 #include "../tests/corise_meshes.h"
 
+#include "bench_clock.h"
+
 static double trench_top(double x, double y, const void *u) {
     (void)y;
     (void)u;
     double d = fabs(x - 1.0) / 0.25;
     return 1.0 - (d < 1 ? 0.6 * (1 - d) : 0);
-}
-
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 int main(void) {
@@ -38,12 +34,12 @@ int main(void) {
                 p.clamp_hull_depth = clamp;
                 acd_corise_stats st;
                 acd_error err;
-                double t0 = now();
+                double t0 = bench_wall();
                 if (acd_corise_segment(&m, &p, lab, &st, &err) != ACD_OK) {
                     fprintf(stderr, "bench_corise: %s\n", err.message);
                     return 1;
                 }
-                printf("%10zu %6.2f %6d %6zu %6zu %9.3f\n", m.ntriangles, p.tau, clamp, st.parts, st.cuts, now() - t0);
+                printf("%10zu %6.2f %6d %6zu %6zu %9.3f\n", m.ntriangles, p.tau, clamp, st.parts, st.cuts, bench_wall() - t0);
             }
         free(lab);
         acd_mesh_free(&m);

@@ -16,11 +16,7 @@
 #include "acd/polygon.h"
 #include "geom2/triangulate.h"
 
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts); /* CPU time: the machine is shared */
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_clock.h"
 
 static int cmp_d(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
@@ -33,14 +29,14 @@ static double run(const acd_polygon *p, int m, int reps, size_t *count, const ch
     *fail = NULL;
     for (int r = 0; r < reps; r++) {
         acd_error err;
-        double t0 = now();
+        double t0 = bench_cpu();
         if (m < 0) {
             size_t *tris, nt;
             if (acd_triangulate_polygon(p, &tris, &nt, NULL, &err) != ACD_OK) {
                 *fail = "error";
                 return 0;
             }
-            t[r] = now() - t0;
+            t[r] = bench_cpu() - t0;
             *count = nt;
             free(tris);
         } else {
@@ -50,7 +46,7 @@ static double run(const acd_polygon *p, int m, int reps, size_t *count, const ch
                 *fail = st == ACD_ERR_UNSUPPORTED ? "holes" : "error";
                 return 0;
             }
-            t[r] = now() - t0;
+            t[r] = bench_cpu() - t0;
             *count = res.npieces;
             acd_exact2d_result_free(&res);
         }

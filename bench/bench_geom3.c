@@ -14,11 +14,7 @@
 #include "geom3/plane_cut.h"
 #include "geom3/sphere.h"
 
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_clock.h"
 
 static void torus(double R, double r, int nu, int nv, acd_mesh *m) {
     m->nvertices = (size_t)nu * (size_t)nv;
@@ -61,15 +57,15 @@ int main(void) {
                 }
             }
             acd_hull h;
-            double t0 = now();
+            double t0 = bench_wall();
             if (acd_hull_compute(p, n, &h, NULL) != ACD_OK) return 5;
-            double t1 = now();
+            double t1 = bench_wall();
             acd_sphere sp;
             if (acd_min_sphere(p, n, &sp, NULL) != ACD_OK) return 5;
-            double t2 = now();
+            double t2 = bench_wall();
             acd_pca pc;
             if (acd_pca_points(p, n, NULL, &pc, NULL) != ACD_OK) return 5;
-            double t3 = now();
+            double t3 = bench_wall();
             printf("%-7zu points %-6s hull %8.3f s (%zu facets)  min sphere %7.3f s  pca %7.3f s\n", n,
                    sphere ? "sphere" : "cube", t1 - t0, h.ntriangles, t2 - t1, t3 - t2);
             acd_hull_free(&h);
@@ -83,17 +79,17 @@ int main(void) {
         acd_cut_plane pl;
         double o[3] = {0.1, 0.2, 0.05}, nrm[3] = {0.3, 0.2, 1};
         if (acd_cut_plane_from_normal(o, nrm, 3, &pl, NULL) != ACD_OK) return 5;
-        double t0 = now();
+        double t0 = bench_wall();
         acd_cut_result res;
         if (acd_plane_cut(&m, &pl, &res, NULL) != ACD_OK) return 5;
-        double t1 = now();
+        double t1 = bench_wall();
         acd_edge_graph eg;
         if (acd_edge_graph_from_mesh(m.vertices, m.nvertices, m.triangles, m.ntriangles, &eg, NULL) != ACD_OK) return 5;
-        double t2 = now();
+        double t2 = bench_wall();
         acd_sp_tree tr;
         uint32_t src = 0;
         if (acd_dijkstra(&eg, &src, 1, NULL, &tr, NULL) != ACD_OK) return 5;
-        double t3 = now();
+        double t3 = bench_wall();
         printf("torus %7zu triangles: plane cut %7.3f s (%zu pieces, %zu loops)  edge graph %7.3f s  dijkstra %7.3f s\n",
                m.ntriangles, t1 - t0, res.npieces, res.nloops, t2 - t1, t3 - t2);
         acd_cut_result_free(&res);

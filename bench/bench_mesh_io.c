@@ -10,11 +10,7 @@
 
 #include "acd/mesh.h"
 
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_clock.h"
 
 int main(int argc, char **argv) {
     const char *dir = argc > 1 ? argv[1] : "/tmp";
@@ -54,12 +50,12 @@ int main(int argc, char **argv) {
     for (size_t k = 0; k < sizeof fmts / sizeof fmts[0]; k++) {
         char path[512];
         snprintf(path, sizeof path, "%s/acd_bench_mesh_io_%ld.%s", dir, (long)getpid(), fmts[k].ext);
-        double t0 = now();
+        double t0 = bench_wall();
         if (acd_mesh_write(path, &m, fmts[k].fmt, &err) != ACD_OK) {
             fprintf(stderr, "%s\n", err.message);
             return 1;
         }
-        double tw = now() - t0, best = INFINITY;
+        double tw = bench_wall() - t0, best = INFINITY;
         FILE *f = fopen(path, "rb");
         long bytes = 0;
         if (f) {
@@ -69,12 +65,12 @@ int main(int argc, char **argv) {
         }
         for (int rep = 0; rep < 3; rep++) {
             acd_mesh back;
-            t0 = now();
+            t0 = bench_wall();
             if (acd_mesh_read(path, &back, &err) != ACD_OK) {
                 fprintf(stderr, "%s\n", err.message);
                 return 1;
             }
-            double tr = now() - t0;
+            double tr = bench_wall() - t0;
             if (tr < best) best = tr;
             if (back.ntriangles != m.ntriangles || back.nvertices != m.nvertices) {
                 fprintf(stderr, "%s: read %zu vertices %zu triangles\n", fmts[k].ext, back.nvertices, back.ntriangles);
@@ -85,15 +81,15 @@ int main(int argc, char **argv) {
         printf("%-10s %12ld %10.3f %10.3f\n", fmts[k].ext, bytes, tw, best);
         unlink(path);
     }
-    double t0 = now();
+    double t0 = bench_wall();
     acd_mesh_report r;
     if (acd_mesh_validate(&m, 0, &r, &err) != ACD_OK) return 1;
-    double tv = now() - t0;
+    double tv = bench_wall() - t0;
     printf("validate (no self-intersections): %.3f s (genus %ld)\n", tv, r.genus);
     acd_mesh_report_free(&r);
-    t0 = now();
+    t0 = bench_wall();
     if (acd_mesh_validate(&m, 1, &r, &err) != ACD_OK) return 1;
-    printf("validate with self-intersections: %.3f s (%zu pairs)\n", now() - t0, r.self_intersections);
+    printf("validate with self-intersections: %.3f s (%zu pairs)\n", bench_wall() - t0, r.self_intersections);
     acd_mesh_report_free(&r);
     acd_mesh_free(&m);
     return 0;

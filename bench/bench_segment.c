@@ -15,19 +15,9 @@
 #include "acd/mesh.h"
 #include "acd/segment.h"
 
+#include "bench_clock.h"
+
 #define REPS 3
-
-static double wall(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static double cpu(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Best of REPS runs; *r keeps the last result (caller frees). Returns 0 on failure. */
 static int timed(const acd_mesh *m, const acd_segment_params *p, acd_segment_result *r, double *w, double *c) {
@@ -35,12 +25,12 @@ static int timed(const acd_mesh *m, const acd_segment_params *p, acd_segment_res
     for (int k = 0; k < REPS; k++) {
         acd_error err;
         if (k) acd_segment_result_free(r);
-        double w0 = wall(), c0 = cpu();
+        double w0 = bench_wall(), c0 = bench_cpu();
         if (acd_segment(m, p, r, &err) != ACD_OK) {
             printf("failed: %s\n", err.message);
             return 0;
         }
-        double dw = wall() - w0, dc = cpu() - c0;
+        double dw = bench_wall() - w0, dc = bench_cpu() - c0;
         if (dw < *w) *w = dw, *c = dc;
     }
     return 1;

@@ -12,13 +12,9 @@
 #include "core/rng.h"
 #include "geom2/validate.h"
 
-#define BV_PI 3.14159265358979323846
+#include "bench_clock.h"
 
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#define BV_PI 3.14159265358979323846
 
 /* kind 0: circle with radius noise about the vertex spacing; kind 1: spiky comb (radius
  * 900..1000, spikes 1600 times longer than their spacing at n = 1e5); kind 2: circle plus a
@@ -65,19 +61,19 @@ static void row(const char *name, const acd_polygon *p) {
     acd_status st = ACD_OK, sd = ACD_OK;
     double fast = 1e30, sub = 1e30;
     for (int rep = 0; rep < 3; rep++) {
-        double t0 = now();
+        double t0 = bench_wall();
         st = acd_polygon_validate(p, 0, &err);
-        fast = fmin(fast, now() - t0);
-        t0 = now();
+        fast = fmin(fast, bench_wall() - t0);
+        t0 = bench_wall();
         sd = acd_polygon_validate_with(p, 0, ACD_VALIDATE_SUBDIV, NULL);
-        sub = fmin(sub, now() - t0);
+        sub = fmin(sub, bench_wall() - t0);
     }
     size_t n = acd_polygon_num_points(p);
     char brute[32] = "-";
     if (n <= 20000) {
-        double t0 = now();
+        double t0 = bench_wall();
         acd_status sb = acd_polygon_validate_with(p, 0, ACD_VALIDATE_BRUTE, NULL);
-        snprintf(brute, sizeof brute, "%.1f ms%s", 1000 * (now() - t0), sb == st ? "" : " (DISAGREES)");
+        snprintf(brute, sizeof brute, "%.1f ms%s", 1000 * (bench_wall() - t0), sb == st ? "" : " (DISAGREES)");
     }
     printf("| %s | %zu | %zu | %s | %.2f ms | %.2f ms%s | %s |\n", name, n, p->nrings - 1,
            st == ACD_OK ? "valid" : "invalid", 1000 * fast, 1000 * sub, sd == st ? "" : " (DISAGREES)", brute);
