@@ -572,19 +572,13 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         /* (a threshold that overflows decides nothing: such a shell is kept) */
         double thr = ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t];
         flat[t] = parent[t] == t && isfinite(thr) && !(fabs(vol[t]) > thr);
+        /* DROP_SPECKS: every shell whose volume is within rounding is dropped too (without it,
+         * only the negative ones that a shell contains are, below; the others stay pieces, and
+         * acd3/decompose's sliver rule refuses the cut, as before) */
+        if (!flat[t] && parent[t] == t && (c->flags & ACD_PLANE_CUT_DROP_SPECKS) &&
+            fabs(vol[t]) <= ACD_PLANE_CUT_VOLUME_ROUNDING * avol[t])
+            flat[t] = 1;
         if (flat[t]) vol[t] = 0; /* neither a piece nor a cavity */
-        /* a negative volume within rounding: no cavity, dropped below if a shell contains it
-         * (one that no shell contains stays a piece of its own, and acd3/decompose's sliver
-         * rule refuses the cut, as before) */
-        else if (parent[t] == t && (vol[t] < 0 || (c->flags & ACD_PLANE_CUT_DROP_SPECKS)) &&
-                 fabs(vol[t]) <= ACD_PLANE_CUT_VOLUME_ROUNDING * avol[t]) {
-            if (c->flags & ACD_PLANE_CUT_DROP_SPECKS) {
-                flat[t] = 1; /* every speck dropped */
-                vol[t] = 0;
-            } else {
-                avol[t] = -1; /* mark */
-            }
-        }
     }
     free(area);
     for (size_t t = 0; t < nt; t++)
@@ -647,7 +641,7 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
             }
             if (inside) best = p;
         }
-        if (best != NONE && avol[n] < 0) {
+        if (best != NONE && -vol[n] <= ACD_PLANE_CUT_VOLUME_ROUNDING * avol[n]) {
             flat[n] = 1; /* a speck within rounding inside a piece: dropped, not a cavity */
             best = NONE;
         }
