@@ -21,7 +21,7 @@ static void usage(FILE *f) {
             "              [--no-merge] [--merge-tau T] [--merge-order bound|volume] [--merge-parts N]\n"
             "              [--cut-choice concavity|volume] [--no-close-holes] [--resolver global|witness|notch]\n"
             "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--eps-ratio R]\n"
-            "              [--no-feature-grouping] [--verify] [-v]\n"
+            "              [--no-feature-grouping] [--stop measure|hull] [--verify] [-v]\n"
             "\n"
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
@@ -63,6 +63,10 @@ static void usage(FILE *f) {
             "  --cut-choice concavity  solid mode: the candidate cut of least piece concavity (default);\n"
             "                      'volume': planes chosen for tight hulls join the candidates, and the\n"
             "                      smallest sum of the pieces' hull volumes wins within a band of concavity\n"
+            "  --stop measure      a part is a leaf when its measure (depth below its bridge patch's plane,\n"
+            "                      the paper's) is at most TAU (default)\n"
+            "  --stop hull         also when its surface and its hull's boundary are within TAU of each\n"
+            "                      other both ways (upper bounds; leaf reason \"hull_distance\")\n"
             "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
             "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
             "  --no-close-holes    solid mode refuses an open mesh instead of closing its holes (by default\n"
@@ -102,6 +106,7 @@ static const char *leaf_reason_name(acd3d_leaf_reason r) {
     case ACD3D_LEAF_DEPTH: return "depth";
     case ACD3D_LEAF_MERGED: return "merged";
     case ACD3D_LEAF_JOINED: return "joined";
+    case ACD3D_LEAF_HULL: return "hull_distance";
     }
     return "unknown";
 }
@@ -345,6 +350,14 @@ int acd_cmd_3d(int argc, char **argv) {
             else if (val && !strcmp(val, "volume")) p.cut_choice = ACD3D_CHOICE_VOLUME;
             else {
                 fprintf(stderr, "acd 3d: --cut-choice takes concavity or volume\n");
+                return ACD_EXIT_USAGE;
+            }
+            i++;
+        } else if (!strcmp(a, "--stop")) {
+            if (val && !strcmp(val, "measure")) p.stop = ACD3D_STOP_MEASURE;
+            else if (val && !strcmp(val, "hull")) p.stop = ACD3D_STOP_HULL;
+            else {
+                fprintf(stderr, "acd 3d: --stop takes measure or hull\n");
                 return ACD_EXIT_USAGE;
             }
             i++;

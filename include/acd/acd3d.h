@@ -70,6 +70,14 @@ typedef enum acd3d_surface_cut {
     ACD3D_SURFACE_CYCLE_WITNESS /* the same, the cycle rooted at a cut through the witness */
 } acd3d_surface_cut;
 
+/* When a part whose measure is above tau is nevertheless a leaf (docs/acd3d.md "Stopping test"). */
+typedef enum acd3d_stop {
+    ACD3D_STOP_MEASURE = 0, /* only the measure decides (the paper's Algorithm 1: concavity <= tau) */
+    ACD3D_STOP_HULL         /* also a part whose surface and hull boundary are within tau of each
+                               other in both directions (upper bounds, acd3/leaf_test): the measure's
+                               bridge patches may over-report by up to eps */
+} acd3d_stop;
+
 #define ACD3D_PARAMS_COOKIE 0x41434433u
 
 typedef struct acd3d_params {
@@ -106,6 +114,7 @@ typedef struct acd3d_params {
     acd3d_cut_choice cut_choice; /* solid mode: how a split's cut is chosen among the candidates */
     acd3d_surface_cut surface_cut; /* surface mode: plane strips only (default), or the global cut's
                                  cycle first */
+    acd3d_stop stop;          /* the stopping test (see acd3d_stop and docs/acd3d.md for the default) */
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
                                  (spec decision A13), falling back to the whole plane; default 0,
                                  see docs/acd3d.md for the measurements behind the default */
@@ -124,10 +133,13 @@ typedef enum acd3d_leaf_reason {
     ACD3D_LEAF_DEPTH,         /* max_depth reached */
     ACD3D_LEAF_MERGED,        /* a split node made a part again by max_hulls (its children are dropped:
                                  leaf_reason NONE, part -1) */
-    ACD3D_LEAF_JOINED         /* a part made by the merge pass from adjacent parts: a node appended
+    ACD3D_LEAF_JOINED,        /* a part made by the merge pass from adjacent parts: a node appended
                                  after the tree (parent -1, no children); the parts it joins keep their
                                  nodes and leaf reasons, with part -1 and merged_into set to it; its
                                  concavity is the merge bound (<= merge_tau, acd3/merge) */
+    ACD3D_LEAF_HULL           /* measure above tau, but (ACD3D_STOP_HULL) the part's surface and its hull's
+                                 boundary are within tau of each other both ways; its concavity is
+                                 that distance's upper bound (<= tau), not the measure */
 } acd3d_leaf_reason;
 
 typedef struct acd3d_node {

@@ -21,6 +21,7 @@
 
 #include "acd/hull.h"
 #include "acd3/global_cut.h"
+#include "acd3/leaf_test.h"
 #include "acd3/measure.h"
 #include "acd3/merge.h"
 #include "acd3/region_cut.h"
@@ -690,6 +691,16 @@ typedef struct node_work {
     split_choice choice;
 } node_work;
 
+/* ACD3D_STOP_HULL: whether w, its measure above tau, is within tau of its hull both ways
+ * (acd3/leaf_test); its concavity is then that bound. A failure is left in out->st. */
+static int hull_leaf(const run_ctx *c, work_node *w, const acd3_measure *ms, node_work *out) {
+    int ok = 0;
+    double bound;
+    out->st = acd3_leaf_test(&w->mesh, &ms->hull, c->tau + c->tol, ms->witness, &ok, &bound, &out->err);
+    if (out->st == ACD_OK && ok) w->node.concavity = bound;
+    return out->st == ACD_OK && ok;
+}
+
 /* Measures node w (unless its measure was kept) and chooses its split; touches only w and out. */
 static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     measured cur = w->cache;
@@ -703,7 +714,12 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     acd3d_leaf_reason reason = ACD3D_LEAF_NONE;
     if (cur.ms.hull.dim < 3) reason = ACD3D_LEAF_FLAT;
     else if (cur.ms.concavity <= c->tau + c->tol) reason = ACD3D_LEAF_TAU; /* tau = 0: up to rounding */
+    else if (c->params->stop == ACD3D_STOP_HULL && hull_leaf(c, w, &cur.ms, out)) reason = ACD3D_LEAF_HULL;
     else if (w->depth >= c->max_depth || c->tree_full) reason = ACD3D_LEAF_DEPTH;
+    if (out->st != ACD_OK) { /* the hull test failed (out of memory) */
+        measured_free(&cur);
+        return;
+    }
     int split = 0;
     if (reason == ACD3D_LEAF_NONE) {
         /* solid mode: the global cut's plane first (acd3/resolve) */
@@ -880,6 +896,8 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "max_hull_vertices must be 0 (no limit) or at least 4");
     if (params->mode != ACD3D_SOLID && params->mode != ACD3D_SURFACE)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown mode %d", (int)params->mode);
+    if (params->stop != ACD3D_STOP_MEASURE && params->stop != ACD3D_STOP_HULL)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown stopping test %d", (int)params->stop);
     int solid = params->mode == ACD3D_SOLID;
     acd_status st = check_input(mesh, err);
     if (st != ACD_OK) return st;

@@ -719,3 +719,22 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     if (st != ACD_OK) acd3_merge_result_free(out);
     return st;
 }
+
+double acd3_merge_hull_reach(const acd_bvh *part, const acd_hull *H, double tau) {
+    if (H->dim != 3) return INFINITY;
+    size_t nf = H->ntriangles;
+    double *key = malloc((nf ? nf : 1) * 9 * sizeof *key), *ub = malloc((nf ? nf : 1) * sizeof *ub);
+    double worst = INFINITY;
+    if (key && ub) {
+        uint32_t member = 0;
+        group g;
+        memset(&g, 0, sizeof g);
+        g.pbvh = part;
+        g.members = &member;
+        g.nmembers = 1;
+        worst = hull_facets_ub(&g, NULL, H, tau, 1, key, ub);
+    }
+    free(key);
+    free(ub);
+    return worst;
+}

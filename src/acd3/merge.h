@@ -35,7 +35,9 @@
 #include <stdint.h>
 
 #include "acd/base.h"
+#include "acd/hull.h"
 #include "acd/mesh.h"
+#include "geom3/bvh.h"
 
 typedef struct acd3_merge_result {
     size_t ngroups;
@@ -57,5 +59,11 @@ typedef struct acd3_merge_opts {
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
                                const acd3_merge_opts *opts, int threads, acd3_merge_result *out, acd_error *err);
 void acd3_merge_result_free(acd3_merge_result *r);
+
+/* d_out of one part: an upper bound of the largest distance from a point of the boundary of H (a
+ * dim 3 hull) to the triangles of `part` (its tree), by the facet subdivision above; INFINITY as
+ * soon as it exceeds tau, when the query budget runs out, or for a hull that is not dim 3. Used by
+ * acd3/leaf_test. */
+double acd3_merge_hull_reach(const acd_bvh *part, const acd_hull *H, double tau);
 
 #endif
