@@ -2,19 +2,25 @@
  * eps) all join back into the closed sphere; pieces of a torus join only into groups whose welded
  * union measures within tau (measured again here), and with a tolerant tau back into the torus
  * (genus 1: the welding restores the input's connectivity); tau 0 on the torus joins nothing
- * that is not convex. */
+ * that is not convex. Through the driver (acd3d_decompose, surface mode, whose tree is cut finer
+ * than tau for the merge pass): every part measured again here at the output's eps is within the
+ * merge tolerance (also with a merge tolerance above tau: the merge pass measures with that
+ * tolerance's eps), the parts tile the input's faces, the same parts for 1 and 2 threads, and no
+ * more parts than without the merge pass. */
 #include "testutil.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd/acd3d.h"
 #include "acd3/measure.h"
 #include "acd3/surface_cut.h"
 #include "acd3/surface_merge.h"
 #include "acd3/topology.h"
 #include "geom3/dijkstra.h"
 #include "geom3/plane_cut.h"
+#include "acd3d_check.h"
 #include "shapes.h"
 
 static double sphere_r(double th, double ph, void *u) {
@@ -145,10 +151,67 @@ static void test_torus_groups_within_tau(void **state) {
     acd_mesh_free(&m);
 }
 
+static double bumpy(double th, double ph, void *u) {
+    (void)u;
+    return 1.0 + 0.15 * sin(5 * th) * cos(3 * ph) + 0.05 * cos(11 * ph) * sin(7 * th);
+}
+
+static acd3d_result decompose(const acd_mesh *m, double tau, double merge_tau, int merge, int threads) {
+    acd3d_params p = acd3d_default_params();
+    p.mode = ACD3D_SURFACE;
+    p.tau = tau;
+    p.merge = merge;
+    p.merge_tau = merge_tau;
+    p.threads = threads;
+    acd3d_result r;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(m, &p, &r, &err), ACD_OK);
+    return r;
+}
+
+/* Every part within bound by the measure at eps = eps_ratio x bound; the parts hold every face once. */
+static void check_parts(const acd_mesh *m, const acd3d_result *r, double bound) {
+    const double eps = acd3d_default_params().eps_ratio * bound, tol = 1e-9 * r->scale;
+    size_t faces = 0;
+    for (size_t i = 0; i < r->nparts; i++) {
+        faces += r->parts[i].mesh.ntriangles;
+        double c = measure(&r->parts[i].mesh, eps);
+        if (c > bound + tol) print_message("part %zu: %.17g > %.17g\n", i, c, bound);
+        assert_true(c <= bound + tol);
+        assert_true(r->parts[i].concavity <= bound + tol);
+    }
+    assert_int_equal(faces, m->ntriangles);
+}
+
+static void test_decompose_within_tau(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 24, bumpy, NULL));
+    const double tau = 0.03;
+    acd3d_result a = decompose(&m, tau, 0, 1, 1), b = decompose(&m, tau, 0, 1, 2), c = decompose(&m, tau, 0, 0, 1);
+    print_message("bumpy sphere, surface, tau %g: %zu parts (%zu without the merge pass)\n", tau, a.nparts, c.nparts);
+    check_parts(&m, &a, a.tau);
+    check_parts(&m, &c, c.tau);
+    ck3_same_parts(&a, &b);
+    assert_true(a.nparts <= c.nparts);
+    assert_true(a.nparts < c.nparts); /* this input: the merge pass joins something */
+    acd3d_result_free(&b);
+    /* a merge tolerance above tau: measured with its own eps */
+    b = decompose(&m, tau, 2 * tau, 1, 1);
+    assert_true(b.merge_tau > b.tau);
+    check_parts(&m, &b, b.merge_tau);
+    assert_true(b.nparts <= a.nparts);
+    acd3d_result_free(&a);
+    acd3d_result_free(&b);
+    acd3d_result_free(&c);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sphere_joins_back),
         cmocka_unit_test(test_torus_groups_within_tau),
+        cmocka_unit_test(test_decompose_within_tau),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -51,6 +51,11 @@
 #define ACD3_MIN_PIECE_FRACTION_RETRY 1e-12
 /* Safety net on the number of nodes of the tree. */
 #define ACD3_MAX_NODES 20000
+/* Surface mode with the merge pass: the tree is cut down to this fraction of tau (its measure's
+ * eps scaled alike) and the merge pass (acd3/surface_merge) joins the leaves back up to the merge
+ * tolerance; finer leaves give the merge pass more places to put the parts' boundaries
+ * (docs/acd3d.md "Splitting a surface", "Finer leaves for the merge pass"). */
+#define ACD3_SURFACE_SPLIT_RATIO 0.5
 
 acd3d_params acd3d_default_params(void) {
     acd3d_params p;
@@ -932,7 +937,9 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     out->merge_tau = params->merge_tau > 0 ? (params->tau_absolute ? params->merge_tau : params->merge_tau * sph.radius)
                                            : out->tau;
     out->input_volume = vol;
-    double tau = out->tau, eps = params->eps_ratio * tau;
+    double tau = out->tau;
+    if (!solid && params->merge) tau *= ACD3_SURFACE_SPLIT_RATIO; /* the tree's tau; the parts' is out->merge_tau */
+    double eps = params->eps_ratio * tau;
 
     /* every handle may take a cut that only opens it (surface mode cuts a non-separating loop
      * open, spec §5.3 step 6; the spec's genus rounds are 2g + 2): the depth guard grows by
@@ -1066,7 +1073,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, &mo, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     } else if (params->merge) {
-        st = join_surface(&t, eps, out->merge_tau, sc.dist, nthreads, &nleaves, err);
+        st = join_surface(&t, params->eps_ratio * out->merge_tau, out->merge_tau, sc.dist, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     }
 
