@@ -87,11 +87,16 @@ static void measured_free(measured *x) {
     x->valid = 0;
 }
 
-static acd_status measure_mesh(const acd_mesh *m, double eps, double tol, measured *out, acd_error *err) {
+/* hull: m's hull when already computed (taken over, also on failure), else NULL */
+static acd_status measure_mesh(const acd_mesh *m, double eps, double tol, acd_hull *hull, measured *out,
+                               acd_error *err) {
     out->valid = 0;
     acd_status st = acd_edge_graph_from_mesh(m->vertices, m->nvertices, m->triangles, m->ntriangles, &out->g, err);
-    if (st != ACD_OK) return st;
-    st = acd3_measure_compute(m, &out->g, eps, tol, &out->ms, err);
+    if (st != ACD_OK) {
+        if (hull) acd_hull_free(hull);
+        return st;
+    }
+    st = acd3_measure_compute_hull(m, &out->g, hull, eps, tol, &out->ms, err);
     if (st != ACD_OK) {
         acd_edge_graph_free(&out->g);
         return st;
@@ -251,6 +256,13 @@ typedef struct cand_eval {
     size_t order[2], *ord; /* pieces largest first */
     size_t nmeasured;      /* pieces measured, in that order */
     split_choice trial;
+    /* solid mode: the pieces' hulls, computed before any piece is measured (each taken over by its
+     * measure), and what they tell before the measures (split_screen) */
+    acd_hull *hulls;
+    size_t nhulls;
+    double cbound;   /* a lower bound on the trial's concavity (0: none) */
+    int have_hullvol; /* by volume: hullvol is the sum of the pieces' hull volumes (as the replay sums them) */
+    double hullvol;
 } cand_eval;
 
 typedef struct split_state {
@@ -278,6 +290,10 @@ typedef struct split_state {
 static void cand_eval_free(cand_eval *e) {
     if (e->ord && e->ord != e->order) free(e->ord);
     e->ord = NULL;
+    if (e->hulls)
+        for (size_t k = 0; k < e->nhulls; k++) acd_hull_free(&e->hulls[k]);
+    free(e->hulls);
+    e->hulls = NULL;
     choice_free(&e->trial);
 }
 
@@ -296,6 +312,16 @@ static int split_skips(const split_state *S, int i) {
 static int split_lost(const split_state *S, double c, int r) {
     double margin = S->by_volume ? S->band : S->tol;
     return S->found && S->best_progress && c > S->best.concavity + (r ? r + 2 : 1) * margin;
+}
+
+/* split_lost, and by volume, with the candidates before e's all replayed (r = 0: the best is the one
+ * e is compared with) and e's hull volume known: whether a trial of concavity c (so far) cannot be
+ * better (split_better). Its hull volume is not smaller than the best's: it would need a concavity
+ * below the band; else one within it. */
+static int split_lost_at(const split_state *S, const cand_eval *e, double c, int r) {
+    if (split_lost(S, c, r)) return 1;
+    if (r || !S->by_volume || !e->have_hullvol || !S->found || !S->best_progress) return 0;
+    return e->hullvol >= S->best.hullvol ? c >= S->best.concavity - S->band : c > S->best.concavity + S->band;
 }
 
 /* Whether trial (its progress given) is better than the best so far: the smallest largest piece
@@ -339,7 +365,7 @@ static void split_replay(split_state *S) {
          * measuring there: a failure past that point is not its failure) */
         split_choice *t = &e->trial;
         double conc = 0;
-        int lost = 0;
+        int lost = split_lost_at(S, e, e->cbound, 0);
         for (size_t i2 = 0; i2 < t->cut.npieces && !lost; i2++) {
             if (i2 == e->failed_at) {
                 S->fail = (int)e->st;
@@ -355,7 +381,7 @@ static void split_replay(split_state *S) {
             }
             double c = t->pieces[e->ord[i2]].ms.concavity;
             if (c > conc) conc = c;
-            lost = split_lost(S, conc, 0);
+            lost = split_lost_at(S, e, fmax(conc, e->cbound), 0);
         }
         if (lost) {
             cand_eval_free(e);
@@ -394,9 +420,69 @@ static int split_abandoned(split_state *S, int i, double c, int *lost) {
 #endif
     {
         gone = S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i));
-        *lost = !gone && split_lost(S, c, i - S->cursor);
+        *lost = !gone && split_lost_at(S, &S->ev[i], c, i - S->cursor);
     }
     return gone;
+}
+
+/* How many of a piece's vertices, the deepest in the part, bound its concavity from below. */
+#define ACD3_SCREEN_VERTICES 24
+
+/* A lower bound on the concavity of piece pc (of part S->m) whose hull is h: a vertex's concavity is
+ * its depth below a plane tangent to the hull, at least its distance to the hull's boundary (the
+ * ball of that radius lies in the hull, so on the plane's inner side). Taken over the piece's
+ * vertices deepest in the part (no deeper in the piece: its hull lies in the part's), less S->tol for
+ * rounding; 0 when none. */
+static double piece_concavity_bound(const split_state *S, const acd_cut_piece *pc, const acd_hull *h) {
+    if (h->dim != 3 || !pc->source) return 0;
+    uint32_t top[ACD3_SCREEN_VERTICES];
+    double key[ACD3_SCREEN_VERTICES];
+    size_t n = 0;
+    for (size_t v = 0; v < pc->mesh.nvertices; v++) {
+        uint32_t src = pc->source[v];
+        if (src == ACD_CUT_NEW_VERTEX || src >= S->m->nvertices) continue;
+        double d = S->ms->vconc[src];
+        if (!(d > S->tol) || (n == ACD3_SCREEN_VERTICES && d <= key[n - 1])) continue;
+        size_t j = n < ACD3_SCREEN_VERTICES ? n++ : n - 1;
+        while (j > 0 && key[j - 1] < d) {
+            key[j] = key[j - 1], top[j] = top[j - 1];
+            j--;
+        }
+        key[j] = d, top[j] = (uint32_t)v;
+    }
+    double lb = 0;
+    for (size_t j = 0; j < n && key[j] - S->tol > lb; j++) {
+        double d = -acd_hull_plane_distance(h, pc->mesh.vertices + 3 * (size_t)top[j]) - S->tol;
+        if (d > lb) lb = d;
+    }
+    return lb;
+}
+
+/* Solid mode: the pieces' hulls (kept for their measures), their volumes' sum (by volume) and the
+ * lower bound on the trial's concavity. A hull that cannot be computed is left to the measure (which
+ * reports the failure when it is reached). */
+static void split_screen(split_state *S, cand_eval *e) {
+    split_choice *trial = &e->trial;
+    size_t np = trial->cut.npieces;
+    e->hulls = calloc(np, sizeof *e->hulls);
+    if (!e->hulls) return;
+    e->nhulls = np;
+    int all = 1;
+    double vol = 0, cb = 0;
+    for (size_t k = 0; k < np; k++) {
+        const acd_mesh *pm = &trial->cut.pieces[k].mesh;
+        if (acd_hull_compute(pm->vertices, pm->nvertices, &e->hulls[k], NULL) != ACD_OK) {
+            acd_hull_free(&e->hulls[k]);
+            all = 0;
+            continue;
+        }
+        vol += e->hulls[k].volume;
+        double b = piece_concavity_bound(S, &trial->cut.pieces[k], &e->hulls[k]);
+        if (b > cb) cb = b;
+    }
+    e->cbound = cb;
+    e->have_hullvol = S->by_volume && all;
+    e->hullvol = vol;
 }
 
 /* Cuts the part by candidate i and measures the pieces (largest first, stopping when the trial has
@@ -462,12 +548,14 @@ static void split_evaluate(split_state *S, int i) {
         e->ord[j] = k;
     }
     e->ok = 1;
+    if (S->by_volume) split_screen(S, e); /* (by_volume: solid mode only) */
     double conc = 0;
     for (size_t i2 = 0; i2 < trial->cut.npieces; i2++) {
         int lost = 0;
-        if (i2 > 0 && (split_abandoned(S, i, conc, &lost) || lost)) return;
+        if (split_abandoned(S, i, fmax(conc, e->cbound), &lost) || lost) return;
         size_t k = e->ord[i2];
-        acd_status st = measure_mesh(&trial->cut.pieces[k].mesh, S->eps, S->tol, &trial->pieces[k], &e->err);
+        acd_hull *hk = e->hulls && e->hulls[k].dim >= 0 ? &e->hulls[k] : NULL;
+        acd_status st = measure_mesh(&trial->cut.pieces[k].mesh, S->eps, S->tol, hk, &trial->pieces[k], &e->err);
         if (st != ACD_OK) {
             e->st = st;
             e->failed_at = i2;
@@ -534,7 +622,7 @@ static int surface_cycle_cut(const acd_mesh *m, const acd_edge_graph *g, const a
         trial.pieces = calloc(trial.cut.npieces, sizeof *trial.pieces);
         if (!trial.pieces) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
         for (size_t k = 0; st == ACD_OK && k < trial.cut.npieces; k++) {
-            st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, &trial.pieces[k], err);
+            st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, NULL, &trial.pieces[k], err);
             if (st == ACD_OK && trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
         }
         for (size_t k = 0; st == ACD_OK && k < trial.cut.npieces; k++) trial.hullvol += trial.pieces[k].ms.hull.volume;
@@ -658,7 +746,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
                 return -(int)ACD_ERR_NOMEM;
             }
             for (size_t k = 0; k < trial.cut.npieces; k++) {
-                acd_status st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, &trial.pieces[k], err);
+                acd_status st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, NULL, &trial.pieces[k], err);
                 if (st != ACD_OK) {
                     choice_free(&trial);
                     if (found) choice_free(best);
@@ -712,7 +800,7 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     w->cache.valid = 0;
     out->st = ACD_OK;
     if (!cur.valid) {
-        out->st = measure_mesh(&w->mesh, c->eps, c->tol, &cur, &out->err);
+        out->st = measure_mesh(&w->mesh, c->eps, c->tol, NULL, &cur, &out->err);
         if (out->st != ACD_OK) return;
     }
     w->node.concavity = cur.ms.concavity;

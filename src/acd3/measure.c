@@ -167,6 +167,11 @@ static size_t flood_regions(const acd_mesh *m, const acd_edge_graph *g, const ui
 
 acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, double eps, double tol,
                                 acd3_measure *out, acd_error *err) {
+    return acd3_measure_compute_hull(m, g, NULL, eps, tol, out, err);
+}
+
+acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g, acd_hull *hull, double eps,
+                                     double tol, acd3_measure *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     out->witness = UINT32_MAX;
     size_t nv = m->nvertices, nf = m->ntriangles;
@@ -181,11 +186,18 @@ acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, doub
     out->face_region = malloc((nf ? nf : 1) * sizeof *out->face_region);
     out->edge_barrier = calloc(g->nedges ? g->nedges : 1, 1);
     if (!out->vconc || !out->face_region || !out->edge_barrier) {
+        if (hull) acd_hull_free(hull);
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory measuring a mesh of %zu vertices", nv);
         goto fail;
     }
-    st = acd_hull_compute(m->vertices, nv, &out->hull, err);
-    if (st != ACD_OK) goto fail;
+    if (hull) { /* taken over */
+        out->hull = *hull;
+        memset(hull, 0, sizeof *hull);
+        hull->dim = -1;
+    } else {
+        st = acd_hull_compute(m->vertices, nv, &out->hull, err);
+        if (st != ACD_OK) goto fail;
+    }
     if (out->hull.dim < 3) { /* flat: convex by definition (a planar patch or a degenerate solid) */
         for (size_t f = 0; f < nf; f++) out->face_region[f] = 0;
         out->nregions = nf ? 1 : 0;

@@ -51,6 +51,10 @@ typedef struct acd3_measure {
  * scale-relative length for "exactly coplanar". */
 acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, double eps, double tol,
                                 acd3_measure *out, acd_error *err);
+/* The same with m's hull already computed (acd_hull_compute of m's vertices): *hull is taken over
+ * (left empty, also on failure); NULL computes it. */
+acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g, acd_hull *hull, double eps,
+                                     double tol, acd3_measure *out, acd_error *err);
 void acd3_measure_free(acd3_measure *ms);
 
 /* Per graph edge, the faces on its two sides: face_of[2e] has the half-edge lower->upper

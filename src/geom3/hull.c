@@ -243,7 +243,7 @@ static int qhull_run_do(qhull_run *r, double *w, size_t n) {
         r->qh = NULL;
         return -1;
     }
-    char flags[] = "qhull Qt";
+    char flags[] = "qhull Qt Q5";
     qh_zero(r->qh, r->errf);
     /* qh_new_qhull sets its own setjmp for the whole build and sets NOerrexit again before returning */
     r->exitcode = qh_new_qhull(r->qh, 3, (int)n, w, False, flags, NULL, r->errf);
