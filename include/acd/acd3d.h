@@ -114,7 +114,8 @@ typedef struct acd3d_params {
     acd3d_cut_choice cut_choice; /* solid mode: how a split's cut is chosen among the candidates */
     acd3d_surface_cut surface_cut; /* surface mode: plane strips only (default), or the global cut's
                                  cycle first */
-    acd3d_stop stop;          /* the stopping test (see acd3d_stop and docs/acd3d.md for the default) */
+    acd3d_stop stop;          /* the stopping test (default ACD3D_STOP_MEASURE, the paper's; docs/acd3d.md
+                                 "Stopping test" has the measurements behind the default) */
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
                                  (spec decision A13), falling back to the whole plane; default 0,
                                  see docs/acd3d.md for the measurements behind the default */
