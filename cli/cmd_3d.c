@@ -19,6 +19,7 @@ static void usage(FILE *f) {
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
             "              [--no-merge] [--merge-tau T] [--merge-order bound|volume] [--merge-parts N]\n"
+            "              [--merge-refine N]\n"
             "              [--cut-choice concavity|volume] [--no-close-holes] [--resolver global|witness|notch]\n"
             "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--eps-ratio R]\n"
             "              [--no-feature-grouping] [--stop measure|hull] [--verify] [-v]\n"
@@ -60,6 +61,9 @@ static void usage(FILE *f) {
             "                      'volume': the pair whose joined hull adds the least volume first\n"
             "  --merge-parts N     solid merge pass: stop as soon as at most N parts remain (default: join\n"
             "                      while a pair is joinable)\n"
+            "  --merge-refine N    with --merge-parts: up to N refinement steps after the joins, each a cut\n"
+            "                      of the part whose volume plane saves the most hull volume and a join of\n"
+            "                      the cheapest pair, while the hulls' volume falls (default 0)\n"
             "  --cut-choice concavity  solid mode: the candidate cut of least piece concavity (default);\n"
             "                      'volume': planes chosen for tight hulls join the candidates, and the\n"
             "                      smallest sum of the pieces' hull volumes wins within a band of concavity\n"
@@ -107,6 +111,7 @@ static const char *leaf_reason_name(acd3d_leaf_reason r) {
     case ACD3D_LEAF_MERGED: return "merged";
     case ACD3D_LEAF_JOINED: return "joined";
     case ACD3D_LEAF_HULL: return "hull_distance";
+    case ACD3D_LEAF_REFINED: return "refined";
     }
     return "unknown";
 }
@@ -344,6 +349,9 @@ int acd_cmd_3d(int argc, char **argv) {
             i++;
         } else if (!strcmp(a, "--merge-parts")) {
             if (!acd_cli_parse_size("3d", a, val, &p.merge_parts)) return ACD_EXIT_USAGE;
+            i++;
+        } else if (!strcmp(a, "--merge-refine")) {
+            if (!acd_cli_parse_size("3d", a, val, &p.merge_refine)) return ACD_EXIT_USAGE;
             i++;
         } else if (!strcmp(a, "--cut-choice")) {
             if (val && !strcmp(val, "concavity")) p.cut_choice = ACD3D_CHOICE_CONCAVITY;

@@ -111,6 +111,10 @@ typedef struct acd3d_params {
     acd3d_merge_order merge_order; /* solid mode's merge pass: which joinable pair first */
     size_t merge_parts;       /* solid mode's merge pass: 0 (default) joins while a pair is joinable;
                                  else it stops as soon as at most this many parts remain */
+    size_t merge_refine;      /* solid mode's merge pass with merge_parts: at most this many refinement
+                                 steps after the joins (0, default: none); a step cuts a joined part by
+                                 the plane saving the most hull volume and joins the cheapest pair, when
+                                 the hulls' volume falls (docs/acd3d.md "Hull tightness") */
     acd3d_cut_choice cut_choice; /* solid mode: how a split's cut is chosen among the candidates */
     acd3d_surface_cut surface_cut; /* surface mode: plane strips only (default), or the global cut's
                                  cycle first */
@@ -138,9 +142,12 @@ typedef enum acd3d_leaf_reason {
                                  after the tree (parent -1, no children); the parts it joins keep their
                                  nodes and leaf reasons, with part -1 and merged_into set to it; its
                                  concavity is the merge bound (<= merge_tau, acd3/merge) */
-    ACD3D_LEAF_HULL           /* measure above tau, but (ACD3D_STOP_HULL) the part's surface and its hull's
+    ACD3D_LEAF_HULL,          /* measure above tau, but (ACD3D_STOP_HULL) the part's surface and its hull's
                                  boundary are within tau of each other both ways; its concavity is
                                  that distance's upper bound (<= tau), not the measure */
+    ACD3D_LEAF_REFINED        /* a piece cut from a part by the merge pass's refinement (merge_refine):
+                                 a child of that part's node, always joined into an ACD3D_LEAF_JOINED
+                                 node (merged_into set), its concavity that node's bound */
 } acd3d_leaf_reason;
 
 typedef struct acd3d_node {

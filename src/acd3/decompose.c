@@ -903,13 +903,40 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
     acd3_merge_result mr;
     st = acd3_merge_adjacent(input, meshes, np, tau, tol, mo, threads, &mr, err);
     free(meshes);
+    /* the refinement's pieces (acd3/merge): children of the parts they were cut from */
+    size_t na = np + mr.nnew, *idx2 = st == ACD_OK ? realloc(idx, (na ? na : 1) * sizeof *idx) : NULL;
+    if (st == ACD_OK && !idx2) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    if (idx2) idx = idx2;
+    for (size_t k = 0; st == ACD_OK && k < mr.nnew; k++) {
+        size_t pn = idx[mr.new_parent[k]];
+        if (!tree_push(t, (int)pn, &mr.new_parts[k], t->a[pn].depth + 1, 1)) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            break;
+        }
+        memset(&mr.new_parts[k], 0, sizeof mr.new_parts[k]);
+        idx[np + k] = t->n - 1;
+        acd3d_node *pa = &t->a[pn].node, *nd = &t->a[t->n - 1].node;
+        if (pa->first_child < 0) {
+            pa->first_child = (int)(t->n - 1);
+            memcpy(pa->cut_plane, mr.new_plane[k], sizeof pa->cut_plane);
+            pa->leaf_reason = ACD3D_LEAF_NONE;
+            acd_mesh_free(&t->a[pn].mesh);
+        }
+        pa->nchildren++;
+        nd->leaf_reason = ACD3D_LEAF_REFINED;
+        if (mr.group_of[np + k] != UINT32_MAX) nd->concavity = mr.bound[mr.group_of[np + k]];
+    }
     for (size_t g = 0; st == ACD_OK && g < mr.ngroups; g++) {
-        if (mr.group_size[g] < 2) continue;
+        if (mr.group_size[g] < 2) { /* a part alone: joined when a piece */
+            size_t i = 0;
+            while (i < na && mr.group_of[i] != g) i++;
+            if (i < np) continue;
+        }
         acd_mesh joined;
         memset(&joined, 0, sizeof joined);
         size_t nv = 0, ntr = 0;
         double vol = 0;
-        for (size_t i = 0; i < np; i++)
+        for (size_t i = 0; i < na; i++)
             if (mr.group_of[i] == g) {
                 nv += t->a[idx[i]].mesh.nvertices;
                 ntr += t->a[idx[i]].mesh.ntriangles;
@@ -922,7 +949,7 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory joining parts");
             break;
         }
-        for (size_t i = 0; i < np; i++) {
+        for (size_t i = 0; i < na; i++) {
             if (mr.group_of[i] != g) continue;
             acd_mesh *m = &t->a[idx[i]].mesh;
             memcpy(joined.vertices + 3 * joined.nvertices, m->vertices, 3 * m->nvertices * sizeof(double));
@@ -940,9 +967,9 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
         w->node.volume = vol;
         w->node.concavity = mr.bound[g];
         w->node.leaf_reason = ACD3D_LEAF_JOINED;
-        mark_joined(t, idx, np, mr.group_of, g);
-        *nparts -= mr.group_size[g] - 1;
+        mark_joined(t, idx, na, mr.group_of, g);
     }
+    if (st == ACD_OK) *nparts = mr.ngroups;
     acd3_merge_result_free(&mr);
     free(idx);
     return st;
@@ -1157,7 +1184,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
 
     if (params->merge && solid) {
-        const acd3_merge_opts mo = {params->merge_order == ACD3D_MERGE_VOLUME, params->merge_parts};
+        const acd3_merge_opts mo = {params->merge_order == ACD3D_MERGE_VOLUME, params->merge_parts, params->merge_refine};
         st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, &mo, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     } else if (params->merge) {

@@ -10,7 +10,9 @@
 
 #include "acd/hull.h"
 #include "core/error.h"
+#include "acd3/volume_plane.h"
 #include "geom3/bvh.h"
+#include "geom3/plane_cut.h"
 
 /* Closest-point queries allowed when scoring one pair; a pair needing more is refused. */
 #define MERGE_MAX_QUERIES 100000
@@ -21,13 +23,28 @@
  * diagonal of it (cut vertices are interpolated on input edges: off by rounding only). */
 #define MERGE_ON_SURFACE_REL 1e-9
 
+/* The atoms the groups are made of: the input parts, then the pieces the refinement cuts. */
+typedef struct atoms {
+    size_t n, cap;
+    acd_mesh *mesh; /* shallow copies of the input parts (i < nparts), owned pieces beyond */
+    acd_bvh *bvh;
+    double *vol;
+    double **sv; /* its vertices on the input surface */
+    size_t *nsv;
+    uint32_t **adj; /* adjacent atoms, increasing */
+    size_t *nadj;
+    uint32_t *owner; /* its live group; UINT32_MAX once cut */
+    uint32_t *parent; /* pieces: the atom cut */
+    double (*plane)[4]; /* pieces: the parent's cut plane */
+} atoms;
+
 typedef struct group {
     int alive;
     double *hv; /* hull vertices */
     size_t nhv;
     double *sv; /* vertices on the input surface */
     size_t nsv;
-    const acd_bvh *pbvh; /* the trees of all parts (shared), indexed by members[] */
+    const atoms *at; /* the atoms (shared), indexed by members[] */
     uint32_t *adj; /* adjacent live groups, increasing */
     size_t nadj;
     uint32_t *members;
@@ -37,6 +54,10 @@ typedef struct group {
     double *ft;  /* its hull's facets: 9 coordinates each, corners in canonical order, sorted */
     double *fub; /* per facet: an upper bound of the distance from its points to the group (> tau: not bounded) */
     size_t nft;
+    double vol;      /* the members' volume */
+    int est;         /* refinement: 0 its volume plane not searched yet, 1 searched, 2 its cut refused */
+    double est_gain; /* the hull volume its volume plane saves (an estimate) */
+    acd3_plane_candidate est_plane;
 } group;
 
 typedef struct pair {
@@ -69,6 +90,11 @@ void acd3_merge_result_free(acd3_merge_result *r) {
     free(r->group_of);
     free(r->group_size);
     free(r->bound);
+    for (size_t k = 0; k < r->nnew; k++) acd_mesh_free(&r->new_parts[k]);
+    free(r->new_parts);
+    free(r->new_parent);
+    free(r->new_plane);
+    free(r->new_volume);
     memset(r, 0, sizeof *r);
 }
 
@@ -79,7 +105,7 @@ static double dist_group(const group *g, const double p[3], double lim, double q
     for (size_t m = 0; m < g->nmembers; m++) {
         acd_bvh_closest_result r;
         double l = d < lim ? d : lim;
-        if (acd_bvh_closest(&g->pbvh[g->members[m]], p, l * l, &r) && sqrt(r.dist2) < d) {
+        if (acd_bvh_closest(&g->at->bvh[g->members[m]], p, l * l, &r) && sqrt(r.dist2) < d) {
             d = sqrt(r.dist2);
             memcpy(q, r.point, sizeof r.point);
         }
@@ -374,19 +400,23 @@ static void score(const group *A, const group *B, double tau, int by_volume, pai
     out->nft = nf;
 }
 
-static int add_adj(group *g, uint32_t x) {
-    for (size_t i = 0; i < g->nadj; i++)
-        if (g->adj[i] == x) return 1;
-    uint32_t *na = realloc(g->adj, (g->nadj + 1) * sizeof *na);
+static int adj_add(uint32_t **adj, size_t *n, uint32_t x) {
+    for (size_t i = 0; i < *n; i++)
+        if ((*adj)[i] == x) return 1;
+    uint32_t *na = realloc(*adj, (*n + 1) * sizeof *na);
     if (!na) return 0;
-    g->adj = na;
-    size_t i = g->nadj++;
-    while (i > 0 && g->adj[i - 1] > x) {
-        g->adj[i] = g->adj[i - 1];
+    *adj = na;
+    size_t i = (*n)++;
+    while (i > 0 && na[i - 1] > x) {
+        na[i] = na[i - 1];
         i--;
     }
-    g->adj[i] = x;
+    na[i] = x;
     return 1;
+}
+
+static int add_adj(group *g, uint32_t x) {
+    return adj_add(&g->adj, &g->nadj, x);
 }
 
 static void remove_adj(group *g, uint32_t x) {
@@ -419,18 +449,24 @@ static int cmp_shared(const void *x, const void *y) {
     return (a->pos > b->pos) - (a->pos < b->pos);
 }
 
-/* Adjacent part pairs (three non-collinear shared vertex positions) as adjacency lists. */
-static acd_status adjacency(const acd_mesh *parts, size_t nparts, group *G, double tol, acd_error *err) {
+/* Adjacent pairs (three non-collinear shared vertex positions) among the meshes M[sel[k]] (sel
+ * NULL: M[k]), k < n: *pairs gets the local indices a < b of each pair, pairs in increasing order. */
+static acd_status adjacent_pairs(const acd_mesh *M, const uint32_t *sel, size_t n, double tol, uint32_t **pairs,
+                                 size_t *npairs, acd_error *err) {
+    *pairs = NULL;
+    *npairs = 0;
     size_t nv = 0;
-    for (size_t i = 0; i < nparts; i++) nv += parts[i].nvertices;
+    for (size_t i = 0; i < n; i++) nv += M[sel ? sel[i] : i].nvertices;
     vpos *vp = malloc((nv ? nv : 1) * sizeof *vp);
     if (!vp) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for %zu vertices", nv);
     size_t k = 0;
-    for (size_t i = 0; i < nparts; i++)
-        for (size_t v = 0; v < parts[i].nvertices; v++) {
-            memcpy(vp[k].p, parts[i].vertices + 3 * v, sizeof(double[3]));
+    for (size_t i = 0; i < n; i++) {
+        const acd_mesh *m = &M[sel ? sel[i] : i];
+        for (size_t v = 0; v < m->nvertices; v++) {
+            memcpy(vp[k].p, m->vertices + 3 * v, sizeof(double[3]));
             vp[k++].part = (uint32_t)i;
         }
+    }
     qsort(vp, nv, sizeof *vp, cmp_vpos);
     size_t ns = 0, caps = 0;
     shared *sh = NULL;
@@ -456,6 +492,7 @@ static acd_status adjacency(const acd_mesh *parts, size_t nparts, group *G, doub
     }
     if (ns) qsort(sh, ns, sizeof *sh, cmp_shared);
     acd_status st = ACD_OK;
+    size_t capp = 0;
     for (size_t i = 0; i < ns && st == ACD_OK;) {
         size_t j = i;
         while (j < ns && sh[j].a == sh[i].a && sh[j].b == sh[i].b) j++;
@@ -473,12 +510,29 @@ static acd_status adjacency(const acd_mesh *parts, size_t nparts, group *G, doub
             if (sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) > tol * sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]))
                 found = 1;
         }
-        if (found && (!add_adj(&G[sh[i].a], sh[i].b) || !add_adj(&G[sh[i].b], sh[i].a)))
-            st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
+        if (found) {
+            if (*npairs == capp) {
+                capp = capp ? 2 * capp : 256;
+                uint32_t *np2 = realloc(*pairs, 2 * capp * sizeof *np2);
+                if (!np2) {
+                    st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
+                    break;
+                }
+                *pairs = np2;
+            }
+            (*pairs)[2 * *npairs] = sh[i].a;
+            (*pairs)[2 * *npairs + 1] = sh[i].b;
+            (*npairs)++;
+        }
         i = j;
     }
     free(sh);
     free(vp);
+    if (st != ACD_OK) {
+        free(*pairs);
+        *pairs = NULL;
+        *npairs = 0;
+    }
     return st;
 }
 
@@ -534,7 +588,8 @@ static acd_status join(group *G, pair *pr, uint32_t c, acd_error *err) {
     memcpy(C->sv + 3 * A->nsv, B->sv, 3 * B->nsv * sizeof(double));
     memcpy(C->members, A->members, A->nmembers * sizeof *C->members);
     memcpy(C->members + A->nmembers, B->members, B->nmembers * sizeof *C->members);
-    C->pbvh = A->pbvh;
+    C->at = A->at;
+    C->vol = A->vol + B->vol;
     for (int s = 0; s < 2; s++) {
         group *S = s ? B : A;
         for (size_t i = 0; i < S->nadj; i++) {
@@ -569,13 +624,379 @@ static acd_status push_pair(pair **P, size_t *np, size_t *cap, uint32_t a, uint3
     return ACD_OK;
 }
 
+/* Refinement (merge.h, docs/acd3d.md "Hull tightness"). A step must save at least this fraction of
+ * the input's volume (hull volume saved by the cut minus hull volume added by the join). */
+#define MERGE_REFINE_MIN_GAIN_REL 1e-4
+/* Cuts refused (a side beyond tau, or not saving enough) allowed per step allowed, over the pass. */
+#define MERGE_REFINE_FAILS_PER_STEP 2
+
+static int u32_push(uint32_t **a, size_t *n, size_t *cap, uint32_t x) {
+    if (*n == *cap) {
+        size_t nc = *cap ? 2 * *cap : 16;
+        uint32_t *na = realloc(*a, nc * sizeof *na);
+        if (!na) return 0;
+        *a = na;
+        *cap = nc;
+    }
+    (*a)[(*n)++] = x;
+    return 1;
+}
+
+static int atoms_reserve(atoms *at, size_t n) {
+    if (n <= at->cap) return 1;
+    size_t nc = at->cap ? 2 * at->cap : 16;
+    while (nc < n) nc *= 2;
+#define ATOMS_GROW(f)                                        \
+    do {                                                     \
+        void *p_ = realloc(at->f, nc * sizeof *at->f);       \
+        if (!p_) return 0;                                   \
+        at->f = p_;                                          \
+        memset(at->f + at->cap, 0, (nc - at->cap) * sizeof *at->f); \
+    } while (0)
+    ATOMS_GROW(mesh);
+    ATOMS_GROW(bvh);
+    ATOMS_GROW(vol);
+    ATOMS_GROW(sv);
+    ATOMS_GROW(nsv);
+    ATOMS_GROW(adj);
+    ATOMS_GROW(nadj);
+    ATOMS_GROW(owner);
+    ATOMS_GROW(parent);
+    ATOMS_GROW(plane);
+#undef ATOMS_GROW
+    at->cap = nc;
+    return 1;
+}
+
+/* Frees atom i's data (its mesh too when owned: i >= nparts). */
+static void atom_clear(atoms *at, size_t i, size_t nparts) {
+    acd_bvh_free(&at->bvh[i]);
+    free(at->sv[i]);
+    free(at->adj[i]);
+    at->sv[i] = NULL;
+    at->adj[i] = NULL;
+    at->nsv[i] = at->nadj[i] = 0;
+    if (i >= nparts) acd_mesh_free(&at->mesh[i]);
+}
+
+static void atoms_free(atoms *at, size_t nparts) {
+    for (size_t i = 0; i < at->n; i++) atom_clear(at, i, nparts);
+    free(at->mesh);
+    free(at->bvh);
+    free(at->vol);
+    free(at->sv);
+    free(at->nsv);
+    free(at->adj);
+    free(at->nadj);
+    free(at->owner);
+    free(at->parent);
+    free(at->plane);
+    memset(at, 0, sizeof *at);
+}
+
+/* Atom i's surface vertices (within on_tol of the input) and tree. */
+static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double on_tol, acd_error *err) {
+    const acd_mesh *m = &at->mesh[i];
+    at->sv[i] = malloc((m->nvertices ? m->nvertices : 1) * 3 * sizeof(double));
+    if (!at->sv[i]) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
+    for (size_t v = 0; v < m->nvertices; v++) {
+        acd_bvh_closest_result q;
+        const double *p = m->vertices + 3 * v;
+        if (acd_bvh_closest(in_bvh, p, on_tol * on_tol, &q)) memcpy(at->sv[i] + 3 * at->nsv[i]++, p, sizeof(double[3]));
+    }
+    return acd_bvh_build(&at->bvh[i], m->vertices, m->nvertices, m->triangles, m->ntriangles, err);
+}
+
+/* The group's volume plane and the hull volume it saves (estimated: acd3_volume_planes_scored). */
+static void estimate(group *g) {
+    const atoms *at = g->at;
+    g->est = 1;
+    g->est_gain = -INFINITY;
+    size_t nv = 0, nt = 0;
+    for (size_t k = 0; k < g->nmembers; k++) {
+        nv += at->mesh[g->members[k]].nvertices;
+        nt += at->mesh[g->members[k]].ntriangles;
+    }
+    acd_mesh m;
+    memset(&m, 0, sizeof m);
+    m.vertices = malloc((nv ? nv : 1) * 3 * sizeof(double));
+    m.triangles = malloc((nt ? nt : 1) * 3 * sizeof(uint32_t));
+    if (m.vertices && m.triangles && nv < UINT32_MAX) {
+        for (size_t k = 0; k < g->nmembers; k++) {
+            const acd_mesh *s = &at->mesh[g->members[k]];
+            memcpy(m.vertices + 3 * m.nvertices, s->vertices, 3 * s->nvertices * sizeof(double));
+            for (size_t t = 0; t < 3 * s->ntriangles; t++) m.triangles[3 * m.ntriangles + t] = s->triangles[t] + (uint32_t)m.nvertices;
+            m.nvertices += s->nvertices;
+            m.ntriangles += s->ntriangles;
+        }
+        double sc;
+        if (acd3_volume_planes_scored(&m, 1, &g->est_plane, &sc) == 1) g->est_gain = g->hvol - sc;
+    }
+    acd_mesh_free(&m);
+}
+
+/* S = the group of the atoms mem[0..n): hull, surface vertices, facet bounds. Returns 1 when its
+ * bound is within tau, 0 when not (or flat; S freed), -1 out of memory (S freed). */
+static int side_group(group *S, const atoms *at, const uint32_t *mem, size_t n, double tau) {
+    memset(S, 0, sizeof *S);
+    S->at = at;
+    size_t nv = 0, nsv = 0;
+    for (size_t i = 0; i < n; i++) {
+        nv += at->mesh[mem[i]].nvertices;
+        nsv += at->nsv[mem[i]];
+    }
+    double *pts = malloc((nv ? nv : 1) * 3 * sizeof *pts);
+    S->members = malloc((n ? n : 1) * sizeof *S->members);
+    S->sv = malloc((nsv ? nsv : 1) * 3 * sizeof(double));
+    if (!pts || !S->members || !S->sv) {
+        free(pts);
+        group_free(S);
+        return -1;
+    }
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        const acd_mesh *m = &at->mesh[mem[i]];
+        memcpy(pts + 3 * k, m->vertices, 3 * m->nvertices * sizeof *pts);
+        k += m->nvertices;
+        memcpy(S->sv + 3 * S->nsv, at->sv[mem[i]], 3 * at->nsv[mem[i]] * sizeof(double));
+        S->nsv += at->nsv[mem[i]];
+        S->members[i] = mem[i];
+        S->vol += at->vol[mem[i]];
+    }
+    S->nmembers = n;
+    acd_hull H;
+    acd_status hs = acd_hull_compute(pts, nv, &H, NULL);
+    free(pts);
+    if (hs != ACD_OK || H.dim != 3) {
+        if (hs == ACD_OK) acd_hull_free(&H);
+        group_free(S);
+        return hs == ACD_ERR_NOMEM ? -1 : 0;
+    }
+    size_t start = 0, nf = H.ntriangles;
+    double din = depth_in_hull(S, &H, 0.0, tau, &start), dout = INFINITY;
+    double *key = NULL, *ub = NULL;
+    int ret = 1;
+    if (din <= tau) {
+        key = malloc((nf ? nf : 1) * 9 * sizeof *key);
+        ub = malloc((nf ? nf : 1) * sizeof *ub);
+        if (!key || !ub) ret = -1;
+        else dout = hull_facets_ub(S, NULL, &H, tau, 1, key, ub);
+    }
+    if (ret == 1 && (!(din <= tau) || !(dout <= tau))) ret = 0;
+    if (ret == 1 && !sort_facets(key, ub, nf)) ret = -1;
+    if (ret != 1) {
+        free(key);
+        free(ub);
+        acd_hull_free(&H);
+        group_free(S);
+        return ret;
+    }
+    S->ft = key;
+    S->fub = ub;
+    S->nft = nf;
+    S->bound = fmax(din, dout);
+    S->hv = H.vertices;
+    S->nhv = H.nvertices;
+    S->hvol = H.volume;
+    H.vertices = NULL;
+    acd_hull_free(&H);
+    S->alive = 1;
+    return 1;
+}
+
+/* Cuts group X by its volume plane: its members crossing the plane are cut (the pieces appended to
+ * the atoms, owner unset), the two sides' groups made in S. Returns 1 (both sides within tau;
+ * *gain: X's hull volume minus theirs), 0 refused (the atoms as before), or -(status). */
+static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_bvh, double on_tol, double diag,
+                   double tau, group S[2], double *gain, acd_error *err) {
+    acd_cut_plane cp;
+    if (acd_cut_plane_from_normal(X->est_plane.point, X->est_plane.normal, diag, &cp, NULL) != ACD_OK) return 0;
+    double d = -(cp.normal[0] * cp.a[0] + cp.normal[1] * cp.a[1] + cp.normal[2] * cp.a[2]);
+    size_t n0 = at->n;
+    uint32_t *mem[2] = {NULL, NULL};
+    size_t nm[2] = {0, 0}, cm[2] = {0, 0};
+    int ret = 1;
+    for (size_t k = 0; k < X->nmembers && ret == 1; k++) {
+        uint32_t a = X->members[k];
+        const acd_mesh *M = &at->mesh[a];
+        int pos = 0, neg = 0;
+        for (size_t v = 0; v < M->nvertices && !(pos && neg); v++) {
+            int s = acd_cut_plane_side(&cp, M->vertices + 3 * v);
+            pos |= s > 0;
+            neg |= s < 0;
+        }
+        if (!pos || !neg) {
+            if (!u32_push(&mem[neg ? 1 : 0], &nm[neg ? 1 : 0], &cm[neg ? 1 : 0], a)) ret = -(int)ACD_ERR_NOMEM;
+            continue;
+        }
+        acd_cut_result cr;
+        acd_error ce;
+        acd_status cs = acd_plane_cut_flags(M, &cp, ACD_PLANE_CUT_DROP_SPECKS, &cr, &ce);
+        if (cs != ACD_OK) {
+            ret = cs == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
+            break;
+        }
+        if (!atoms_reserve(at, at->n + cr.npieces)) ret = -(int)ACD_ERR_NOMEM;
+        for (size_t p = 0; p < cr.npieces && ret == 1; p++) {
+            size_t i = at->n++;
+            at->mesh[i] = cr.pieces[p].mesh;
+            memset(&cr.pieces[p].mesh, 0, sizeof cr.pieces[p].mesh);
+            at->vol[i] = acd_geom3_signed_volume(&at->mesh[i]);
+            at->owner[i] = UINT32_MAX;
+            at->parent[i] = a;
+            memcpy(at->plane[i], cp.normal, sizeof(double[3]));
+            at->plane[i][3] = d;
+            acd_status as = atom_init(at, i, in_bvh, on_tol, err);
+            if (as != ACD_OK) ret = as == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
+            else if (!u32_push(&mem[cr.pieces[p].side > 0 ? 0 : 1], &nm[cr.pieces[p].side > 0 ? 0 : 1],
+                               &cm[cr.pieces[p].side > 0 ? 0 : 1], (uint32_t)i))
+                ret = -(int)ACD_ERR_NOMEM;
+        }
+        acd_cut_result_free(&cr);
+    }
+    if (ret == 1 && (!nm[0] || !nm[1])) ret = 0;
+    if (ret == 1) {
+        int r0 = side_group(&S[0], at, mem[0], nm[0], tau);
+        int r1 = r0 == 1 ? side_group(&S[1], at, mem[1], nm[1], tau) : 0;
+        if (r0 == 1 && r1 != 1) group_free(&S[0]);
+        ret = r0 < 0 || r1 < 0 ? -(int)ACD_ERR_NOMEM : r0 == 1 && r1 == 1;
+    }
+    if (ret == 1) *gain = X->hvol - S[0].hvol - S[1].hvol;
+    if (ret != 1) {
+        for (size_t i = n0; i < at->n; i++) atom_clear(at, i, nparts);
+        at->n = n0;
+    }
+    if (ret < 0) acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory cutting a part");
+    free(mem[0]);
+    free(mem[1]);
+    return ret;
+}
+
+static int grow_groups(group **G, size_t *capg, size_t need) {
+    if (need <= *capg) return 1;
+    size_t nc = 2 * *capg;
+    if (nc < need) nc = need;
+    group *n2 = realloc(*G, nc * sizeof *n2);
+    if (!n2) return 0;
+    memset(n2 + *capg, 0, (nc - *capg) * sizeof *n2);
+    *G = n2;
+    *capg = nc;
+    return 1;
+}
+
+/* Drops the pairs of dead groups; returns the cheapest joinable pair (ties: the earlier), SIZE_MAX if
+ * none. */
+static size_t best_pair(const group *G, pair *P, size_t *np) {
+    size_t best = SIZE_MAX, w = 0;
+    for (size_t i = 0; i < *np; i++) {
+        if (!G[P[i].a].alive || !G[P[i].b].alive) {
+            pair_free(&P[i]);
+            continue;
+        }
+        P[w++] = P[i];
+        if (!P[w - 1].ok) continue;
+        if (best == SIZE_MAX || P[w - 1].cost < P[best].cost) best = w - 1;
+    }
+    *np = w;
+    return best;
+}
+
+/* Joins pair best into a new group, its pairs with its neighbours pushed and scored. */
+static acd_status join_best(group **G, size_t *ng, size_t *capg, atoms *at, pair **P, size_t *np, size_t *capp,
+                            size_t best, double tau, int by_volume, int threads, acd_error *err) {
+    if (!grow_groups(G, capg, *ng + 1)) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for groups");
+    uint32_t c = (uint32_t)(*ng)++;
+    acd_status st = join(*G, &(*P)[best], c, err);
+    if (st != ACD_OK) return st;
+    group *C = &(*G)[c];
+    for (size_t k = 0; k < C->nmembers; k++) at->owner[C->members[k]] = c;
+    size_t p0 = *np;
+    for (size_t k = 0; k < C->nadj && st == ACD_OK; k++) st = push_pair(P, np, capp, C->adj[k], c, err);
+    if (st == ACD_OK) score_pairs(*G, *P, p0, *np, tau, by_volume, threads);
+    return st;
+}
+
+static int cmp_u32(const void *x, const void *y) {
+    uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+    return (a > b) - (a < b);
+}
+
+/* Makes the cut of group x (try_cut: pieces from n0 on, sides S) real: the sides become groups, the
+ * pieces get their adjacency, X dies; the sides' pairs are pushed and scored. */
+static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, atoms *at, size_t n0, group S[2],
+                             double tol, pair **P, size_t *np, size_t *capp, double tau, int by_volume, int threads,
+                             acd_error *err) {
+    if (!grow_groups(Gp, capg, *ng + 2)) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for groups");
+    group *G = *Gp;
+    uint32_t s[2] = {(uint32_t)*ng, (uint32_t)*ng + 1};
+    *ng += 2;
+    G[s[0]] = S[0];
+    G[s[1]] = S[1];
+    for (int j = 0; j < 2; j++)
+        for (size_t k = 0; k < G[s[j]].nmembers; k++) at->owner[G[s[j]].members[k]] = s[j];
+    /* the atoms whose adjacency may change: the pieces, X's members and their neighbours */
+    uint32_t *sel = NULL;
+    size_t nsel = 0, csel = 0;
+    int ok = 1;
+    for (size_t k = 0; k < G[x].nmembers; k++)
+        if (at->owner[G[x].members[k]] == x) at->owner[G[x].members[k]] = UINT32_MAX; /* cut */
+    for (size_t i = n0; i < at->n && ok; i++) ok = u32_push(&sel, &nsel, &csel, (uint32_t)i);
+    for (size_t k = 0; k < G[x].nmembers && ok; k++) {
+        uint32_t a = G[x].members[k];
+        if (at->owner[a] != UINT32_MAX) ok = u32_push(&sel, &nsel, &csel, a);
+        for (size_t j = 0; j < at->nadj[a] && ok; j++)
+            if (at->owner[at->adj[a][j]] != UINT32_MAX) ok = u32_push(&sel, &nsel, &csel, at->adj[a][j]);
+    }
+    if (!ok) {
+        free(sel);
+        return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
+    }
+    qsort(sel, nsel, sizeof *sel, cmp_u32);
+    size_t w = 0;
+    for (size_t i = 0; i < nsel; i++)
+        if (!w || sel[w - 1] != sel[i]) sel[w++] = sel[i];
+    nsel = w;
+    uint32_t *pr;
+    size_t npr;
+    acd_status st = adjacent_pairs(at->mesh, sel, nsel, tol, &pr, &npr, err);
+    for (size_t k = 0; k < npr && st == ACD_OK; k++) {
+        uint32_t a = sel[pr[2 * k]], b = sel[pr[2 * k + 1]];
+        if (a < n0 && b < n0) continue;
+        if (at->owner[a] == UINT32_MAX || at->owner[b] == UINT32_MAX) continue;
+        if (!adj_add(&at->adj[a], &at->nadj[a], b) || !adj_add(&at->adj[b], &at->nadj[b], a))
+            st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
+    }
+    free(pr);
+    free(sel);
+    /* group adjacency */
+    for (size_t k = 0; k < G[x].nadj; k++) remove_adj(&G[G[x].adj[k]], x);
+    for (int j = 0; j < 2 && st == ACD_OK; j++)
+        for (size_t k = 0; k < G[s[j]].nmembers && st == ACD_OK; k++) {
+            uint32_t a = G[s[j]].members[k];
+            for (size_t i = 0; i < at->nadj[a] && st == ACD_OK; i++) {
+                uint32_t o = at->owner[at->adj[a][i]];
+                if (o == UINT32_MAX || o == s[j]) continue;
+                if (!add_adj(&G[s[j]], o) || !add_adj(&G[o], s[j]))
+                    st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
+            }
+        }
+    group_free(&G[x]);
+    size_t p0 = *np;
+    for (int j = 0; j < 2 && st == ACD_OK; j++)
+        for (size_t k = 0; k < G[s[j]].nadj && st == ACD_OK; k++)
+            if (!(j == 1 && G[s[1]].adj[k] == s[0])) st = push_pair(P, np, capp, G[s[j]].adj[k], s[j], err);
+    if (st == ACD_OK) score_pairs(G, *P, p0, *np, tau, by_volume, threads);
+    return st;
+}
+
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
                                const acd3_merge_opts *opts, int threads, acd3_merge_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     const int by_volume = opts && opts->by_volume;
     const size_t stop_at = opts ? opts->stop_at : 0;
+    const size_t refine = stop_at && opts ? opts->refine : 0;
     if (threads < 1) threads = 1;
-    if (!(tau > 0) || nparts < 2 || (stop_at && nparts <= stop_at)) { /* tau 0: only a convex union could be joined; not searched */
+    if (!(tau > 0) || nparts < 2 || (stop_at && nparts <= stop_at && !refine)) { /* tau 0: only a convex union could be joined; not searched */
         out->group_of = malloc((nparts ? nparts : 1) * sizeof *out->group_of);
         out->group_size = malloc((nparts ? nparts : 1) * sizeof *out->group_size);
         out->bound = calloc(nparts ? nparts : 1, sizeof *out->bound);
@@ -596,14 +1017,14 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     size_t np = 0, capp = 0;
     acd_bvh in_bvh;
     memset(&in_bvh, 0, sizeof in_bvh);
-    acd_bvh *pbvh = calloc(nparts, sizeof *pbvh);
-    out->group_of = malloc((nparts ? nparts : 1) * sizeof *out->group_of);
-    if (!G || !out->group_of || !pbvh) {
+    atoms at;
+    memset(&at, 0, sizeof at);
+    if (!G || !atoms_reserve(&at, nparts)) {
         free(G);
-        free(pbvh);
-        acd3_merge_result_free(out);
+        atoms_free(&at, nparts);
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for %zu parts", nparts);
     }
+    at.n = nparts;
     acd_status st = acd_bvh_build(&in_bvh, input->vertices, input->nvertices, input->triangles, input->ntriangles, err);
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < input->nvertices; v++)
@@ -611,7 +1032,8 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
             lo[k] = fmin(lo[k], input->vertices[3 * v + k]);
             hi[k] = fmax(hi[k], input->vertices[3 * v + k]);
         }
-    double on_tol = MERGE_ON_SURFACE_REL * len3(lo, hi);
+    const double diag = len3(lo, hi), on_tol = MERGE_ON_SURFACE_REL * diag;
+    double in_vol = 0;
     /* one group per part (independently: in parallel) */
     ng = nparts;
     acd_status *gst = calloc(nparts ? nparts : 1, sizeof *gst);
@@ -624,23 +1046,23 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         for (long li = 0; li < (long)nparts; li++) {
             size_t i = (size_t)li;
             group *g = &G[i];
+            at.mesh[i] = parts[i];
+            at.owner[i] = (uint32_t)i;
+            at.parent[i] = UINT32_MAX;
+            at.vol[i] = acd_geom3_signed_volume(&parts[i]);
             g->alive = 1;
+            g->at = &at;
+            g->vol = at.vol[i];
             g->nmembers = 1;
             g->members = malloc(sizeof *g->members);
-            g->sv = malloc((parts[i].nvertices ? parts[i].nvertices : 1) * 3 * sizeof(double));
-            if (!g->members || !g->sv) {
-                gst[i] = acd_fail(&gerr[i], ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
-                continue;
+            acd_status s2 = atom_init(&at, i, &in_bvh, on_tol, &gerr[i]);
+            if (s2 == ACD_OK && g->members) {
+                g->members[0] = (uint32_t)i;
+                g->nsv = at.nsv[i];
+                g->sv = malloc((g->nsv ? g->nsv : 1) * 3 * sizeof(double));
+                if (g->sv) memcpy(g->sv, at.sv[i], 3 * g->nsv * sizeof(double));
             }
-            g->members[0] = (uint32_t)i;
-            for (size_t v = 0; v < parts[i].nvertices; v++) {
-                acd_bvh_closest_result q;
-                const double *p = parts[i].vertices + 3 * v;
-                if (acd_bvh_closest(&in_bvh, p, on_tol * on_tol, &q)) memcpy(g->sv + 3 * g->nsv++, p, sizeof(double[3]));
-            }
-            g->pbvh = pbvh;
-            acd_status s2 = acd_bvh_build(&pbvh[i], parts[i].vertices, parts[i].nvertices, parts[i].triangles,
-                                          parts[i].ntriangles, &gerr[i]);
+            if (s2 == ACD_OK && (!g->members || !g->sv)) s2 = acd_fail(&gerr[i], ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
             if (s2 == ACD_OK) s2 = group_init_hull(g, parts[i].vertices, parts[i].nvertices, tau, &gerr[i]);
             gst[i] = s2;
         }
@@ -653,8 +1075,19 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     }
     free(gst);
     free(gerr);
-    acd_bvh_free(&in_bvh);
-    if (st == ACD_OK) st = adjacency(parts, nparts, G, tol, err);
+    for (size_t i = 0; i < nparts; i++) in_vol += at.vol[i];
+    if (st == ACD_OK) {
+        uint32_t *pr;
+        size_t npr;
+        st = adjacent_pairs(parts, NULL, nparts, tol, &pr, &npr, err);
+        for (size_t k = 0; k < npr && st == ACD_OK; k++) {
+            uint32_t a = pr[2 * k], b = pr[2 * k + 1];
+            if (!add_adj(&G[a], b) || !add_adj(&G[b], a) || !adj_add(&at.adj[a], &at.nadj[a], b) ||
+                !adj_add(&at.adj[b], &at.nadj[b], a))
+                st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
+        }
+        free(pr);
+    }
     for (size_t i = 0; i < nparts && st == ACD_OK; i++)
         for (size_t k = 0; k < G[i].nadj && st == ACD_OK; k++)
             if (G[i].adj[k] > i) st = push_pair(&P, &np, &capp, (uint32_t)i, G[i].adj[k], err);
@@ -662,57 +1095,115 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     /* greedy: the cheapest joinable pair of live groups, ties by the lower ids */
     size_t nlive = nparts;
     while (st == ACD_OK && nlive > stop_at) {
-        size_t best = SIZE_MAX, w = 0;
-        for (size_t i = 0; i < np; i++) {
-            if (!G[P[i].a].alive || !G[P[i].b].alive) {
-                pair_free(&P[i]);
-                continue;
-            }
-            P[w++] = P[i];
-            if (!P[w - 1].ok) continue;
-            if (best == SIZE_MAX || P[w - 1].cost < P[best].cost) best = w - 1;
-        }
-        np = w;
+        size_t best = best_pair(G, P, &np);
         if (best == SIZE_MAX) break;
-        uint32_t c = (uint32_t)ng++;
-        st = join(G, &P[best], c, err);
+        st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, by_volume, threads, err);
         if (st != ACD_OK) break;
         out->merges++;
         nlive--;
-        size_t p0 = np;
-        for (size_t k = 0; k < G[c].nadj && st == ACD_OK; k++) st = push_pair(&P, &np, &capp, G[c].adj[k], c, err);
-        if (st == ACD_OK) score_pairs(G, P, p0, np, tau, by_volume, threads);
+    }
+    /* refinement: a cut (the group whose volume plane saves the most hull volume) and a join (the
+     * cheapest), when the cut saves more than the join adds */
+    size_t fails = 0;
+    const double min_gain = MERGE_REFINE_MIN_GAIN_REL * in_vol;
+    while (st == ACD_OK && out->trades < refine && fails <= MERGE_REFINE_FAILS_PER_STEP * refine) {
+        best_pair(G, P, &np);
+        uint32_t *todo = NULL;
+        size_t ntodo = 0, ctodo = 0;
+        for (size_t g = 0; g < ng && st == ACD_OK; g++)
+            if (G[g].alive && G[g].est == 0 && !u32_push(&todo, &ntodo, &ctodo, (uint32_t)g))
+                st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntodo > 1)
+#endif
+        for (long k = 0; k < (long)ntodo; k++) estimate(&G[todo[k]]);
+        free(todo);
+        if (st != ACD_OK) break;
+        size_t x = SIZE_MAX;
+        for (size_t g = 0; g < ng; g++)
+            if (G[g].alive && G[g].est == 1 && (x == SIZE_MAX || G[g].est_gain > G[x].est_gain)) x = g;
+        if (x == SIZE_MAX) break;
+        double c0 = INFINITY; /* the cheapest join that survives the cut */
+        for (size_t i = 0; i < np; i++)
+            if (P[i].ok && P[i].a != x && P[i].b != x && P[i].cost < c0) c0 = P[i].cost;
+        if (!(G[x].est_gain > c0 + min_gain)) break;
+        group S[2];
+        double gain = 0;
+        size_t n0 = at.n;
+        int r = try_cut(&G[x], &at, nparts, &in_bvh, on_tol, diag, tau, S, &gain, err);
+        if (r < 0) {
+            st = (acd_status)(-r);
+            break;
+        }
+        if (r == 1 && !(gain > c0 + min_gain)) {
+            group_free(&S[0]);
+            group_free(&S[1]);
+            for (size_t i = n0; i < at.n; i++) atom_clear(&at, i, nparts);
+            at.n = n0;
+            r = 0;
+        }
+        if (r == 0) {
+            G[x].est = 2;
+            fails++;
+            continue;
+        }
+        st = commit_cut(&G, &ng, &capg, (uint32_t)x, &at, n0, S, tol, &P, &np, &capp, tau, by_volume, threads, err);
+        if (st != ACD_OK) break;
+        size_t best = best_pair(G, P, &np);
+        if (best == SIZE_MAX) { /* cannot happen: the pair of cost c0 is still there */
+            st = acd_fail(err, ACD_ERR_INTERNAL, "merge: no join after a refinement cut");
+            break;
+        }
+        st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, by_volume, threads, err);
+        out->trades++;
     }
     if (st == ACD_OK) {
-        /* groups numbered by their lowest part */
-        uint32_t *num = malloc(ng * sizeof *num);
-        out->group_size = calloc(nparts ? nparts : 1, sizeof *out->group_size);
-        out->bound = calloc(nparts ? nparts : 1, sizeof *out->bound);
-        uint32_t *owner = malloc((nparts ? nparts : 1) * sizeof *owner);
-        if (!num || !out->group_size || !out->bound || !owner) {
+        /* groups numbered by their lowest atom; the cut atoms in none */
+        size_t na = at.n;
+        uint32_t *num = malloc((ng ? ng : 1) * sizeof *num);
+        out->group_of = realloc(out->group_of, (na ? na : 1) * sizeof *out->group_of);
+        out->group_size = calloc(na ? na : 1, sizeof *out->group_size);
+        out->bound = calloc(na ? na : 1, sizeof *out->bound);
+        out->nnew = na - nparts;
+        size_t nn = out->nnew ? out->nnew : 1;
+        out->new_parts = calloc(nn, sizeof *out->new_parts);
+        out->new_parent = malloc(nn * sizeof *out->new_parent);
+        out->new_plane = malloc(nn * sizeof *out->new_plane);
+        out->new_volume = malloc(nn * sizeof *out->new_volume);
+        if (!num || !out->group_of || !out->group_size || !out->bound || !out->new_parts || !out->new_parent ||
+            !out->new_plane || !out->new_volume) {
             st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
         } else {
-            for (size_t g = 0; g < ng; g++) {
-                num[g] = UINT32_MAX;
-                if (G[g].alive)
-                    for (size_t m = 0; m < G[g].nmembers; m++) owner[G[g].members[m]] = (uint32_t)g;
-            }
-            for (size_t i = 0; i < nparts; i++) {
-                uint32_t g = owner[i];
+            for (size_t g = 0; g < ng; g++) num[g] = UINT32_MAX;
+            for (size_t i = 0; i < na; i++) {
+                uint32_t g = at.owner[i];
+                if (g == UINT32_MAX) {
+                    out->group_of[i] = UINT32_MAX;
+                    continue;
+                }
                 if (num[g] == UINT32_MAX) {
                     num[g] = (uint32_t)out->ngroups++;
-                    out->bound[num[g]] = G[g].nmembers > 1 ? G[g].bound : 0.0;
+                    int pieces = 0;
+                    for (size_t m = 0; m < G[g].nmembers; m++) pieces |= G[g].members[m] >= nparts;
+                    out->bound[num[g]] = G[g].nmembers > 1 || pieces ? G[g].bound : 0.0;
                 }
                 out->group_of[i] = num[g];
                 out->group_size[num[g]]++;
             }
+            for (size_t k = 0; k < out->nnew; k++) {
+                size_t i = nparts + k;
+                out->new_parts[k] = at.mesh[i];
+                memset(&at.mesh[i], 0, sizeof at.mesh[i]);
+                out->new_parent[k] = at.parent[i];
+                memcpy(out->new_plane[k], at.plane[i], sizeof(double[4]));
+                out->new_volume[k] = at.vol[i];
+            }
         }
         free(num);
-        free(owner);
     }
     for (size_t g = 0; g < ng; g++) group_free(&G[g]);
-    for (size_t i = 0; i < nparts; i++) acd_bvh_free(&pbvh[i]);
-    free(pbvh);
+    atoms_free(&at, nparts);
+    acd_bvh_free(&in_bvh);
     for (size_t i = 0; i < np; i++) pair_free(&P[i]);
     free(G);
     free(P);
@@ -727,9 +1218,12 @@ double acd3_merge_hull_reach(const acd_bvh *part, const acd_hull *H, double tau)
     double worst = INFINITY;
     if (key && ub) {
         uint32_t member = 0;
+        atoms at;
+        memset(&at, 0, sizeof at);
+        at.bvh = (acd_bvh *)part; /* read only */
         group g;
         memset(&g, 0, sizeof g);
-        g.pbvh = part;
+        g.at = &at;
         g.members = &member;
         g.nmembers = 1;
         worst = hull_facets_ub(&g, NULL, H, tau, 1, key, ub);

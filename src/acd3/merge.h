@@ -45,12 +45,26 @@ typedef struct acd3_merge_result {
     size_t *group_size; /* per group: how many parts */
     double *bound;      /* per group of >= 2 parts: max(d_in, bound of d_out) <= tau; 0 otherwise */
     size_t merges;      /* joins made */
+    /* the refinement (acd3_merge_opts.refine): pieces of parts cut by it, numbered after the input
+     * parts (atom nparts + k is new_parts[k]); group_of covers them too (nparts + nnew entries), a
+     * part or piece that was cut having UINT32_MAX. The pieces of one cut are consecutive. */
+    size_t nnew;
+    acd_mesh *new_parts;  /* owned */
+    uint32_t *new_parent; /* per piece: the atom (input part or earlier piece) it was cut from */
+    double (*new_plane)[4]; /* per piece: its parent's cut plane n.x + d = 0 */
+    double *new_volume;   /* per piece: its volume */
+    size_t trades;        /* refinement steps made (one cut, one join each) */
 } acd3_merge_result;
 
 typedef struct acd3_merge_opts {
     int by_volume;  /* non-zero: the joinable pair whose hull adds the least volume first
                        (vol conv(A u B) - vol conv A - vol conv B); else the smallest bound */
     size_t stop_at; /* 0: join while a pair is joinable; else stop at this many groups */
+    size_t refine;  /* with stop_at: at most this many refinement steps after the greedy joins (0:
+                       none). A step cuts the group whose best volume plane (acd3/volume_plane)
+                       lowers the sum of hull volumes the most, both sides within tau under the
+                       bound above, and joins the cheapest joinable pair; taken only when the cut
+                       saves more hull volume than the join adds (docs/acd3d.md "Hull tightness") */
 } acd3_merge_opts;
 
 /* Joins the adjacent parts of the closed input mesh `input` (all parts closed, together tiling

@@ -52,6 +52,10 @@ static double score_plane(const acd_mesh *m, size_t stride, const double nrm[3],
 }
 
 int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out) {
+    return acd3_volume_planes_scored(m, nmax, out, NULL);
+}
+
+int acd3_volume_planes_scored(const acd_mesh *m, int nmax, acd3_plane_candidate *out, double *score) {
     if (nmax <= 0 || m->nvertices < 4) return 0;
     acd_pca pca;
     if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return 0;
@@ -110,6 +114,9 @@ int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out) {
             order[j - 1] = x;
         }
     if (n > nmax) n = nmax;
-    for (int i = 0; i < n; i++) out[i] = cand[order[i]];
+    for (int i = 0; i < n; i++) {
+        out[i] = cand[order[i]];
+        if (score) score[i] = best[order[i]];
+    }
     return n;
 }

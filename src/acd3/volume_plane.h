@@ -16,5 +16,8 @@
 /* Up to nmax planes (kind "volume"), best first, at most one per principal axis; returns how
  * many (0 for a flat part or on allocation failure). */
 int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out);
+/* The same, with the score of each plane returned (score may be NULL): the sum of the two sides'
+ * hull volumes as scored above (on every k-th vertex of a large part: an estimate). */
+int acd3_volume_planes_scored(const acd_mesh *m, int nmax, acd3_plane_candidate *out, double *score);
 
 #endif
