@@ -114,33 +114,35 @@ static int heap_push(heap *hp, heap_item it) {
         hp->a = na;
         hp->cap = nc;
     }
+    /* sift up: parents move down into the hole */
     size_t i = hp->n++;
-    hp->a[i] = it;
     while (i > 0) {
         size_t p = (i - 1) / 2;
-        if (!item_less(&hp->a[i], &hp->a[p])) break;
-        heap_item t = hp->a[i];
+        if (!item_less(&it, &hp->a[p])) break;
         hp->a[i] = hp->a[p];
-        hp->a[p] = t;
         i = p;
     }
+    hp->a[i] = it;
     return 1;
 }
 
+/* (the items are distinct under item_less's total order, so the pops come in one order whatever
+ * the heap's layout) */
 static heap_item heap_pop(heap *hp) {
     heap_item top = hp->a[0];
-    hp->a[0] = hp->a[--hp->n];
-    size_t i = 0;
+    heap_item last = hp->a[--hp->n];
+    size_t n = hp->n, i = 0;
+    if (n == 0) return top;
+    /* sift the last item down from the root: smaller children move up into the hole */
     for (;;) {
-        size_t l = 2 * i + 1, r = l + 1, m = i;
-        if (l < hp->n && item_less(&hp->a[l], &hp->a[m])) m = l;
-        if (r < hp->n && item_less(&hp->a[r], &hp->a[m])) m = r;
-        if (m == i) break;
-        heap_item t = hp->a[i];
+        size_t l = 2 * i + 1;
+        if (l >= n) break;
+        size_t m = l + 1 < n && item_less(&hp->a[l + 1], &hp->a[l]) ? l + 1 : l;
+        if (!item_less(&hp->a[m], &last)) break;
         hp->a[i] = hp->a[m];
-        hp->a[m] = t;
         i = m;
     }
+    hp->a[i] = last;
     return top;
 }
 
@@ -243,14 +245,15 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
     uint32_t *order = malloc(nf * sizeof *order), *tmp = malloc(nf * sizeof *tmp);
     uint32_t *label = malloc(nf * sizeof *label), *prev = malloc(nf * sizeof *prev);
     uint32_t *seeds = malloc(nf * sizeof *seeds), *queue = malloc(nf * sizeof *queue);
-    double *N = malloc(3 * nf * sizeof *N);
+    double *N = malloc(3 * nf * sizeof *N), *prevN = malloc(3 * nf * sizeof *prevN);
+    uint32_t *prev_seeds = malloc(nf * sizeof *prev_seeds);
     heap_item *fbest = malloc(nf * sizeof *fbest);
     heap hp = {0};
     vadj va = {0};
     uint32_t *label1 = NULL, *seeds1 = NULL; /* the step-1 grouping, kept as the fallback */
     double *N1 = NULL;
     acd_status st = ACD_OK;
-    if (!vadj_build(h, &va) || !fi || !order || !tmp || !label || !prev || !seeds || !queue || !N || !fbest) {
+    if (!vadj_build(h, &va) || !fi || !order || !tmp || !label || !prev || !seeds || !queue || !N || !fbest || !prevN || !prev_seeds) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory grouping %zu hull facets", nf);
         goto done;
     }
@@ -313,8 +316,13 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
                 st = acd_fail(err, ACD_ERR_NOMEM, "out of memory in bridge clustering");
                 goto done;
             }
+            memcpy(prevN, N, 3 * k * sizeof *N);
+            memcpy(prev_seeds, seeds, k * sizeof *seeds);
             fit(h, fi, label, k, N, seeds);
             if (it > 0 && !memcmp(prev, label, nf * sizeof *label)) break;
+            /* the fit left the proxies as they were: the next flood would repeat this partition
+             * (and stop the loop with this state), so it is not run */
+            if (!memcmp(prevN, N, 3 * k * sizeof *N) && !memcmp(prev_seeds, seeds, k * sizeof *seeds)) break;
         }
         /* worst facet of each patch against its tangent plane */
         size_t added = 0, k0 = k;
@@ -378,6 +386,7 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
     }
 done:
     free(fi), free(order), free(tmp), free(label), free(prev), free(seeds), free(queue), free(N), free(hp.a), free(fbest);
+    free(prevN), free(prev_seeds);
     free(va.row), free(va.adj);
     free(label1), free(seeds1), free(N1);
     return st;
