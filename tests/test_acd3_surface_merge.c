@@ -156,6 +156,49 @@ static double bumpy(double th, double ph, void *u) {
     return 1.0 + 0.15 * sin(5 * th) * cos(3 * ph) + 0.05 * cos(11 * ph) * sin(7 * th);
 }
 
+/* Slices of a bumpy sphere: groups within tau (measured again), connected, the same for 1 and 2
+ * threads; on this input some parts are moved (a pair nearly joinable joined by moving one of
+ * its parts to a third group). */
+static void test_moves(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 64, 32, bumpy, NULL));
+    const double nrm[6][3] = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {0.6, 0.8, 0}, {0.8, 0, 0.6}, {0, 0.6, -0.8}};
+    acd_mesh *parts;
+    size_t n = slice(&m, nrm, 6, &parts);
+    acd_error err;
+    const double taus[2] = {0.0965, 0.212};
+    size_t moves = 0;
+    for (int i = 0; i < 2; i++) {
+        const double tau = taus[i], eps = 0.5 * tau;
+        acd3_surface_merge_result r, r2;
+        assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 1, &r, &err), ACD_OK);
+        assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 2, &r2, &err), ACD_OK);
+        print_message("tau %g: %zu pieces, %zu groups, %zu joins, %zu moves\n", tau, n, r.ngroups, r.merges, r.moves);
+        assert_int_equal(r.ngroups + r.merges + r.moves, n);
+        assert_int_equal(r2.ngroups, r.ngroups);
+        assert_int_equal(r2.moves, r.moves);
+        for (size_t k = 0; k < n; k++) assert_int_equal(r2.group_of[k], r.group_of[k]);
+        size_t total = 0;
+        for (size_t g = 0; g < r.ngroups; g++) {
+            total += r.group_size[g];
+            if (r.group_size[g] < 2) continue;
+            assert_true(r.concavity[g] <= tau);
+            assert_true(measure(&r.meshes[g], eps) <= tau);
+            acd3_topology t;
+            assert_int_equal(acd3_topology_of(&r.meshes[g], &t, &err), ACD_OK);
+            assert_int_equal(t.components, 1);
+        }
+        assert_int_equal(total, n);
+        moves += r.moves;
+        acd3_surface_merge_result_free(&r);
+        acd3_surface_merge_result_free(&r2);
+    }
+    assert_true(moves > 0);
+    free_parts(parts, n);
+    acd_mesh_free(&m);
+}
+
 static acd3d_result decompose(const acd_mesh *m, double tau, double merge_tau, int merge, int threads) {
     acd3d_params p = acd3d_default_params();
     p.mode = ACD3D_SURFACE;
@@ -212,6 +255,7 @@ int main(void) {
         cmocka_unit_test(test_sphere_joins_back),
         cmocka_unit_test(test_torus_groups_within_tau),
         cmocka_unit_test(test_decompose_within_tau),
+        cmocka_unit_test(test_moves),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

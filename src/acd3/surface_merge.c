@@ -12,6 +12,14 @@
 #include "core/error.h"
 #include "geom3/dijkstra.h"
 
+/* Rounds of moves (refine) between rounds of joins. */
+#define ACD3_SURFACE_MERGE_ROUNDS 8
+/* Parts tried per nearly joinable pair (the witness's first). */
+#define ACD3_SURFACE_MERGE_TRIES 12
+/* A pair whose union measures within this many tau is nearly joinable: refine tries to move the
+ * part holding its witness to a third group. */
+#define ACD3_SURFACE_MERGE_NEAR 1.6
+
 typedef struct vkey {
     double p[3];
     uint32_t idx; /* into the concatenation of the parts' vertices */
@@ -39,6 +47,7 @@ typedef struct pair {
     uint32_t a, b; /* groups (their lowest parts), a < b */
     double cost;   /* the union's concavity; INFINITY when it could not be measured */
     int valid;
+    uint32_t wpart; /* the part holding the union's witness */
     acd_status st;
 } pair;
 
@@ -57,24 +66,27 @@ typedef struct ctx {
     double eps, tol;
 } ctx;
 
-/* The welded union of the parts whose group (gof) is a or b (b may be a). */
-static acd_status weld(const ctx *c, const uint32_t *gof, uint32_t a, uint32_t b, acd_mesh *out) {
+/* The welded union of the parts p with sel[p]; vpart (NULL: not wanted) receives per vertex of
+ * the union its part (the first part holding it), allocated here. */
+static acd_status weld_sel(const ctx *c, const uint8_t *sel, acd_mesh *out, uint32_t **vpart) {
     memset(out, 0, sizeof *out);
+    if (vpart) *vpart = NULL;
     size_t nv = 0, nt = 0;
     for (size_t p = 0; p < c->nparts; p++)
-        if (gof[p] == a || gof[p] == b) nv += c->parts[p].nvertices, nt += c->parts[p].ntriangles;
+        if (sel[p]) nv += c->parts[p].nvertices, nt += c->parts[p].ntriangles;
     uint32_t *map = malloc((c->ngid ? c->ngid : 1) * sizeof *map);
     uint32_t *local = malloc((nv ? nv : 1) * sizeof *local);
     out->vertices = malloc(3 * (nv ? nv : 1) * sizeof(double));
     out->triangles = malloc(3 * (nt ? nt : 1) * sizeof(uint32_t));
-    if (!map || !local || !out->vertices || !out->triangles || nv >= UINT32_MAX) {
-        free(map), free(local);
+    uint32_t *vp = vpart ? malloc((nv ? nv : 1) * sizeof *vp) : NULL;
+    if (!map || !local || !out->vertices || !out->triangles || nv >= UINT32_MAX || (vpart && !vp)) {
+        free(map), free(local), free(vp);
         acd_mesh_free(out);
         return ACD_ERR_NOMEM;
     }
     for (size_t g = 0; g < c->ngid; g++) map[g] = UINT32_MAX;
     for (size_t p = 0; p < c->nparts; p++) {
-        if (gof[p] != a && gof[p] != b) continue;
+        if (!sel[p]) continue;
         const acd_mesh *m = &c->parts[p];
         for (size_t v = 0; v < m->nvertices; v++) {
             size_t i = c->off[p] + v;
@@ -84,6 +96,7 @@ static acd_status weld(const ctx *c, const uint32_t *gof, uint32_t a, uint32_t b
             } else {
                 id = (uint32_t)out->nvertices++;
                 memcpy(out->vertices + 3 * (size_t)id, m->vertices + 3 * v, sizeof(double[3]));
+                if (vp) vp[id] = (uint32_t)p;
                 if (!c->dup[i]) map[g] = id;
             }
             local[v] = id;
@@ -95,28 +108,61 @@ static acd_status weld(const ctx *c, const uint32_t *gof, uint32_t a, uint32_t b
         }
     }
     free(map), free(local);
+    if (vpart) *vpart = vp;
     return ACD_OK;
 }
 
-static void score(const ctx *c, const uint32_t *gof, pair *pr) {
+/* The welded union of the parts whose group (gof) is a or b (b may be a). */
+static acd_status weld(const ctx *c, const uint32_t *gof, uint32_t a, uint32_t b, acd_mesh *out) {
+    uint8_t *sel = malloc(c->nparts ? c->nparts : 1);
+    if (!sel) {
+        memset(out, 0, sizeof *out);
+        return ACD_ERR_NOMEM;
+    }
+    for (size_t p = 0; p < c->nparts; p++) sel[p] = gof[p] == a || gof[p] == b;
+    acd_status st = weld_sel(c, sel, out, NULL);
+    free(sel);
+    return st;
+}
+
+/* The concavity of the welded union of the parts p with sel[p] (INFINITY when it cannot be
+ * measured) and the part holding its witness (*wpart; UINT32_MAX when none). */
+static acd_status measure_sel(const ctx *c, const uint8_t *sel, double *conc, uint32_t *wpart) {
     acd_mesh u;
-    pr->cost = INFINITY;
-    pr->st = weld(c, gof, pr->a, pr->b, &u);
-    if (pr->st != ACD_OK) return;
+    uint32_t *vp = NULL;
+    *conc = INFINITY;
+    if (wpart) *wpart = UINT32_MAX;
+    acd_status st = weld_sel(c, sel, &u, wpart ? &vp : NULL);
+    if (st != ACD_OK) return st;
     acd_edge_graph g;
     acd_error err;
-    acd_status st = acd_edge_graph_from_mesh(u.vertices, u.nvertices, u.triangles, u.ntriangles, &g, &err);
+    st = acd_edge_graph_from_mesh(u.vertices, u.nvertices, u.triangles, u.ntriangles, &g, &err);
     if (st == ACD_OK) {
         acd3_measure ms;
         st = acd3_measure_compute(&u, &g, c->eps, c->tol, &ms, &err);
         if (st == ACD_OK) {
-            pr->cost = ms.concavity;
+            *conc = ms.concavity;
+            if (wpart && ms.witness != UINT32_MAX) *wpart = vp[ms.witness];
             acd3_measure_free(&ms);
         }
         acd_edge_graph_free(&g);
     }
-    if (st == ACD_ERR_NOMEM) pr->st = st; /* other failures: the pair is not joined */
+    free(vp);
     acd_mesh_free(&u);
+    return st == ACD_ERR_NOMEM ? st : ACD_OK; /* other failures: INFINITY */
+}
+
+static void score(const ctx *c, const uint32_t *gof, pair *pr) {
+    pr->cost = INFINITY;
+    pr->wpart = UINT32_MAX;
+    uint8_t *sel = malloc(c->nparts ? c->nparts : 1);
+    if (!sel) {
+        pr->st = ACD_ERR_NOMEM;
+        return;
+    }
+    for (size_t p = 0; p < c->nparts; p++) sel[p] = gof[p] == pr->a || gof[p] == pr->b;
+    pr->st = measure_sel(c, sel, &pr->cost, &pr->wpart);
+    free(sel);
 }
 
 static acd_status score_all(const ctx *c, const uint32_t *gof, pair *prs, size_t p0, size_t p1, int threads) {
@@ -128,6 +174,181 @@ static acd_status score_all(const ctx *c, const uint32_t *gof, pair *prs, size_t
     for (size_t i = p0; i < p1; i++)
         if (prs[i].st != ACD_OK) return prs[i].st;
     return ACD_OK;
+}
+
+/* Appends the pairs of group a with each neighbouring group (adj: the adjacent parts), by the
+ * neighbours' lowest parts, each once (those already appended by this call). 0: out of memory. */
+static int add_pairs(const uint32_t *gof, const uint64_t *adj, size_t nadj, uint32_t a, pair **prs, size_t *npr,
+                     size_t *cappr) {
+    size_t p0 = *npr;
+    for (size_t i = 0; i < nadj; i++) {
+        uint32_t x = gof[adj[i] >> 32], y = gof[adj[i] & 0xffffffffu];
+        if (x == y || (x != a && y != a)) continue;
+        uint32_t h = x == a ? y : x, lo = a < h ? a : h, hi = a < h ? h : a;
+        int seen = 0;
+        for (size_t k = p0; k < *npr && !seen; k++) seen = (*prs)[k].a == lo && (*prs)[k].b == hi;
+        if (seen) continue;
+        if (*npr == *cappr) {
+            size_t nc = *cappr ? 2 * *cappr : 64;
+            pair *np = realloc(*prs, nc * sizeof *np);
+            if (!np) return 0;
+            *prs = np, *cappr = nc;
+        }
+        pair *q = &(*prs)[(*npr)++];
+        q->a = lo, q->b = hi, q->valid = 1, q->st = ACD_OK, q->wpart = UINT32_MAX;
+    }
+    return 1;
+}
+
+typedef struct refine_cand {
+    size_t pr;
+    double cost;
+    uint32_t a, b;
+} refine_cand;
+
+static int cmp_refine_cand(const void *x, const void *y) {
+    const refine_cand *p = x, *q = y;
+    if (p->cost != q->cost) return p->cost < q->cost ? -1 : 1;
+    if (p->a != q->a) return p->a < q->a ? -1 : 1;
+    return p->b < q->b ? -1 : p->b > q->b;
+}
+
+/* Whether part l of the pair of groups (a, b) can move to a third group C next to it (not touched
+ * this round): (A u B) \ l is connected and measures within tau, and C u l measures within tau
+ * (the cheapest C, then the lowest). Reads the groups only. */
+typedef struct move_eval {
+    int ok;
+    uint32_t to;        /* C */
+    double conc_to, conc_rest; /* C u l, (A u B) minus l */
+    acd_status st;
+} move_eval;
+
+static void eval_move(const ctx *c, const uint32_t *gof, const size_t *nbo, const uint32_t *nb, uint32_t a, uint32_t b,
+                      uint32_t l, double tau, const uint8_t *touched, move_eval *r) {
+    size_t np = c->nparts;
+    memset(r, 0, sizeof *r);
+    r->st = ACD_OK;
+    uint8_t *sel = malloc(np ? np : 1);
+    uint32_t *queue = malloc((np ? np : 1) * sizeof *queue), *cs = malloc((np ? np : 1) * sizeof *cs);
+    if (!sel || !queue || !cs) {
+        r->st = ACD_ERR_NOMEM;
+        goto out;
+    }
+    /* l is not its group's only part; (A u B) \ l connected */
+    size_t in_u = 0, in_l = 0;
+    for (size_t p = 0; p < np; p++) {
+        sel[p] = (gof[p] == a || gof[p] == b) && p != l;
+        in_u += sel[p];
+        in_l += gof[p] == gof[l];
+    }
+    if (in_l < 2 || in_u < 2) goto out;
+    {
+        size_t qh = 0, qt = 0, s0 = 0;
+        while (!sel[s0]) s0++;
+        sel[s0] = 2, queue[qt++] = (uint32_t)s0;
+        while (qh < qt) {
+            uint32_t p = queue[qh++];
+            for (size_t j = nbo[p]; j < nbo[p + 1]; j++)
+                if (sel[nb[j]] == 1) sel[nb[j]] = 2, queue[qt++] = nb[j];
+        }
+        if (qt != in_u) goto out;
+    }
+    /* the groups C next to l, ascending */
+    size_t ncs = 0;
+    for (size_t j = nbo[l]; j < nbo[l + 1]; j++) {
+        uint32_t g = gof[nb[j]];
+        if (g == a || g == b || touched[g]) continue;
+        int seen = 0;
+        for (size_t i = 0; i < ncs && !seen; i++) seen = cs[i] == g;
+        if (!seen) cs[ncs++] = g;
+    }
+    for (size_t i = 1; i < ncs; i++)
+        for (size_t j = i; j > 0 && cs[j - 1] > cs[j]; j--) {
+            uint32_t t = cs[j];
+            cs[j] = cs[j - 1], cs[j - 1] = t;
+        }
+    double bestc = INFINITY, cu;
+    uint32_t bestg = UINT32_MAX;
+    for (size_t i = 0; i < ncs; i++) {
+        for (size_t p = 0; p < np; p++) sel[p] = gof[p] == cs[i] || p == l;
+        double cc;
+        r->st = measure_sel(c, sel, &cc, NULL);
+        if (r->st != ACD_OK) goto out;
+        if (cc <= tau && cc < bestc) bestc = cc, bestg = cs[i];
+    }
+    if (bestg == UINT32_MAX) goto out;
+    for (size_t p = 0; p < np; p++) sel[p] = (gof[p] == a || gof[p] == b) && p != l;
+    r->st = measure_sel(c, sel, &cu, NULL);
+    if (r->st != ACD_OK || !(cu <= tau)) goto out;
+    r->ok = 1, r->to = bestg, r->conc_to = bestc, r->conc_rest = cu;
+out:
+    free(sel), free(queue), free(cs);
+}
+
+/* Makes the move eval_move found: the groups' new ids are their lowest parts. */
+static void commit_move(size_t np, uint32_t *gof, double *gconc, uint8_t *touched, uint32_t a, uint32_t b, uint32_t l,
+                        const move_eval *r) {
+    uint32_t nu = UINT32_MAX, ncg = r->to < l ? r->to : l;
+    for (size_t p = 0; p < np && nu == UINT32_MAX; p++)
+        if ((gof[p] == a || gof[p] == b) && p != l) nu = (uint32_t)p;
+    for (size_t p = 0; p < np; p++) {
+        if (p == l || gof[p] == r->to) gof[p] = ncg;
+        else if (gof[p] == a || gof[p] == b) gof[p] = nu;
+    }
+    gconc[nu] = r->conc_rest, gconc[ncg] = r->conc_to;
+    touched[a] = touched[b] = touched[r->to] = touched[nu] = touched[ncg] = 1;
+}
+
+/* One round of moves. A pair of groups (A, B) whose union measures above tau but within
+ * ACD3_SURFACE_MERGE_NEAR x tau (cheapest first) is joined when one of its parts l can go to a
+ * third group C adjacent to it (eval_move): one group fewer. The parts tried, at most
+ * ACD3_SURFACE_MERGE_TRIES: the one holding the union's witness, then those of A u B next to a
+ * third group, ascending; the first that can move is moved. Groups touched by a move wait for the next round (touched[group id] = 1, old and new
+ * ids). nbo/nb: the parts' neighbours (CSR). Sequential, so the same for any thread count. */
+static acd_status refine(const ctx *c, uint32_t *gof, double *gconc, const size_t *nbo, const uint32_t *nb,
+                         const pair *prs, size_t npr, double tau, uint8_t *touched, size_t *moved) {
+    size_t np = c->nparts, nc = 0;
+    refine_cand *cand = malloc((npr ? npr : 1) * sizeof *cand);
+    uint32_t ls[ACD3_SURFACE_MERGE_TRIES];
+    acd_status st = ACD_OK;
+    if (!cand) {
+        st = ACD_ERR_NOMEM;
+        goto out;
+    }
+    for (size_t i = 0; i < npr; i++)
+        if (prs[i].valid && prs[i].cost > tau && prs[i].cost <= ACD3_SURFACE_MERGE_NEAR * tau && prs[i].wpart != UINT32_MAX)
+            cand[nc++] = (refine_cand){i, prs[i].cost, prs[i].a, prs[i].b};
+    qsort(cand, nc, sizeof *cand, cmp_refine_cand);
+    for (size_t k = 0; k < nc; k++) {
+        const pair *pr = &prs[cand[k].pr];
+        uint32_t a = pr->a, b = pr->b;
+        if (touched[a] || touched[b] || (gof[pr->wpart] != a && gof[pr->wpart] != b)) continue;
+        /* the parts to try: the witness's, then the parts of A u B next to a third group, ascending */
+        size_t nls = 0;
+        ls[nls++] = pr->wpart;
+        for (size_t p = 0; p < np && nls < ACD3_SURFACE_MERGE_TRIES; p++) {
+            if ((gof[p] != a && gof[p] != b) || p == pr->wpart) continue;
+            int third = 0;
+            for (size_t j = nbo[p]; j < nbo[p + 1] && !third; j++) third = gof[nb[j]] != a && gof[nb[j]] != b && !touched[gof[nb[j]]];
+            if (third) ls[nls++] = (uint32_t)p;
+        }
+        for (size_t li = 0; li < nls; li++) {
+            move_eval r;
+            eval_move(c, gof, nbo, nb, a, b, ls[li], tau, touched, &r);
+            if (r.st != ACD_OK) {
+                st = r.st;
+                goto out;
+            }
+            if (r.ok) {
+                commit_move(np, gof, gconc, touched, a, b, ls[li], &r);
+                (*moved)++;
+                break;
+            }
+        }
+    }
+out:
+    free(cand);
+    return st;
 }
 
 void acd3_surface_merge_result_free(acd3_surface_merge_result *r) {
@@ -156,8 +377,12 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
     double *gconc = calloc(nparts ? nparts : 1, sizeof *gconc);
     pair *prs = NULL;
     size_t npr = 0, cappr = 0, nadj = 0;
+    size_t *nbo = calloc(nparts + 1, sizeof *nbo);
+    uint32_t *nb = NULL;
+    uint8_t *touched = calloc(nparts ? nparts : 1, 1);
     acd_status st = ACD_OK;
-    if (!off || !vk || !gid || !partof || !dup || !ek || !gof || !gconc || nv >= UINT32_MAX || nparts >= UINT32_MAX) {
+    if (!off || !vk || !gid || !partof || !dup || !ek || !gof || !gconc || !nbo || !touched || nv >= UINT32_MAX ||
+        nparts >= UINT32_MAX) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory merging %zu surface parts", nparts);
         goto done;
     }
@@ -225,6 +450,31 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
     }
     free(vk), vk = NULL;
     free(ek), ek = NULL;
+    /* the parts' neighbours (CSR, ascending) */
+    nb = malloc((nadj ? 2 * nadj : 1) * sizeof *nb);
+    if (!nb) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory merging %zu surface parts", nparts);
+        goto done;
+    }
+    for (size_t i = 0; i < nadj; i++) nbo[(adj[i] >> 32) + 1]++, nbo[(adj[i] & 0xffffffffu) + 1]++;
+    for (size_t p = 0; p < nparts; p++) nbo[p + 1] += nbo[p];
+    {
+        size_t *fill = malloc((nparts ? nparts : 1) * sizeof *fill);
+        if (!fill) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory merging %zu surface parts", nparts);
+            goto done;
+        }
+        memcpy(fill, nbo, nparts * sizeof *fill);
+        for (size_t i = 0; i < nadj; i++) { /* adj sorted by (x, y): each list ends up ascending */
+            uint32_t x = (uint32_t)(adj[i] >> 32), y = (uint32_t)(adj[i] & 0xffffffffu);
+            nb[fill[x]++] = y;
+        }
+        for (size_t i = 0; i < nadj; i++) {
+            uint32_t x = (uint32_t)(adj[i] >> 32), y = (uint32_t)(adj[i] & 0xffffffffu);
+            nb[fill[y]++] = x;
+        }
+        free(fill);
+    }
     for (size_t p = 0; p < nparts; p++) gof[p] = (uint32_t)p;
     const ctx c = {parts, nparts, off, gid, dup, ngid, eps, tol};
     /* the pairs of adjacent parts */
@@ -238,6 +488,7 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
         prs[npr].a = (uint32_t)(adj[i] >> 32);
         prs[npr].b = (uint32_t)(adj[i] & 0xffffffffu);
         prs[npr].valid = 1;
+        prs[npr].wpart = UINT32_MAX;
         prs[npr++].st = ACD_OK;
     }
     st = score_all(&c, gof, prs, 0, npr, threads);
@@ -245,54 +496,65 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
         st = acd_fail(err, st, "out of memory merging %zu surface parts", nparts);
         goto done;
     }
-    for (;;) {
-        size_t best = SIZE_MAX;
-        for (size_t i = 0; i < npr; i++) {
-            if (!prs[i].valid || !(prs[i].cost <= tau)) continue;
-            if (best == SIZE_MAX || prs[i].cost < prs[best].cost ||
-                (prs[i].cost == prs[best].cost &&
-                 (prs[i].a < prs[best].a || (prs[i].a == prs[best].a && prs[i].b < prs[best].b))))
-                best = i;
-        }
-        if (best == SIZE_MAX) break;
-        uint32_t a = prs[best].a, b = prs[best].b;
-        gconc[a] = prs[best].cost;
-        for (size_t p = 0; p < nparts; p++)
-            if (gof[p] == b) gof[p] = a;
-        out->merges++;
-        for (size_t i = 0; i < npr; i++)
-            if (prs[i].a == a || prs[i].b == a || prs[i].a == b || prs[i].b == b) prs[i].valid = 0;
-        /* the new group's neighbours (by their lowest parts), in order */
-        size_t p0 = npr;
-        for (size_t i = 0; i < nadj; i++) {
-            uint32_t x = gof[adj[i] >> 32], y = gof[adj[i] & 0xffffffffu];
-            if (x == y || (x != a && y != a)) continue;
-            uint32_t h = x == a ? y : x, lo = a < h ? a : h, hi = a < h ? h : a;
-            int seen = 0;
-            for (size_t k = p0; k < npr && !seen; k++) seen = prs[k].a == lo && prs[k].b == hi;
-            if (seen) continue;
-            if (npr == cappr) {
-                cappr *= 2;
-                pair *np = realloc(prs, cappr * sizeof *np);
-                if (!np) {
-                    st = acd_fail(err, ACD_ERR_NOMEM, "out of memory merging %zu surface parts", nparts);
-                    goto done;
-                }
-                prs = np;
+    for (int round = 0;; round++) {
+        for (;;) {
+            size_t best = SIZE_MAX;
+            for (size_t i = 0; i < npr; i++) {
+                if (!prs[i].valid || !(prs[i].cost <= tau)) continue;
+                if (best == SIZE_MAX || prs[i].cost < prs[best].cost ||
+                    (prs[i].cost == prs[best].cost &&
+                     (prs[i].a < prs[best].a || (prs[i].a == prs[best].a && prs[i].b < prs[best].b))))
+                    best = i;
             }
-            prs[npr].a = lo, prs[npr].b = hi, prs[npr].valid = 1, prs[npr++].st = ACD_OK;
+            if (best == SIZE_MAX) break;
+            uint32_t a = prs[best].a, b = prs[best].b;
+            gconc[a] = prs[best].cost;
+            for (size_t p = 0; p < nparts; p++)
+                if (gof[p] == b) gof[p] = a;
+            out->merges++;
+            for (size_t i = 0; i < npr; i++)
+                if (prs[i].a == a || prs[i].b == a || prs[i].a == b || prs[i].b == b) prs[i].valid = 0;
+            size_t p0 = npr;
+            if (!add_pairs(gof, adj, nadj, a, &prs, &npr, &cappr)) {
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory merging %zu surface parts", nparts);
+                goto done;
+            }
+            st = score_all(&c, gof, prs, p0, npr, threads);
+            if (st != ACD_OK) {
+                st = acd_fail(err, st, "out of memory merging %zu surface parts", nparts);
+                goto done;
+            }
+            /* drop the invalid pairs now and then */
+            if (npr > 4 * nadj + 64) {
+                size_t u = 0;
+                for (size_t i = 0; i < npr; i++)
+                    if (prs[i].valid) prs[u++] = prs[i];
+                npr = u;
+            }
         }
-        st = score_all(&c, gof, prs, p0, npr, threads);
+        /* no pair joinable: move a part out of a pair that is nearly joinable (refine), then join again */
+        if (round >= ACD3_SURFACE_MERGE_ROUNDS) break;
+        size_t moved = 0;
+        st = refine(&c, gof, gconc, nbo, nb, prs, npr, tau, touched, &moved);
         if (st != ACD_OK) {
             st = acd_fail(err, st, "out of memory merging %zu surface parts", nparts);
             goto done;
         }
-        /* drop the invalid pairs now and then */
-        if (npr > 4 * nadj + 64) {
-            size_t u = 0;
-            for (size_t i = 0; i < npr; i++)
-                if (prs[i].valid) prs[u++] = prs[i];
-            npr = u;
+        if (!moved) break;
+        out->moves += moved;
+        for (size_t i = 0; i < npr; i++)
+            if (touched[prs[i].a] || touched[prs[i].b]) prs[i].valid = 0;
+        size_t p0 = npr;
+        for (size_t g = 0; g < nparts; g++)
+            if (touched[g] && gof[g] == g && !add_pairs(gof, adj, nadj, (uint32_t)g, &prs, &npr, &cappr)) {
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory merging %zu surface parts", nparts);
+                goto done;
+            }
+        memset(touched, 0, nparts);
+        st = score_all(&c, gof, prs, p0, npr, threads);
+        if (st != ACD_OK) {
+            st = acd_fail(err, st, "out of memory merging %zu surface parts", nparts);
+            goto done;
         }
     }
     /* groups numbered by their lowest part */
@@ -328,6 +590,7 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
     free(num);
 done:
     free(off), free(vk), free(gid), free(partof), free(dup), free(ek), free(adj), free(gof), free(gconc), free(prs);
+    free(nbo), free(nb), free(touched);
     if (st != ACD_OK) acd3_surface_merge_result_free(out);
     return st;
 }

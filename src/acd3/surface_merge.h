@@ -6,12 +6,17 @@
  * Two parts are adjacent when they share an edge (both ends at the same positions, exactly).
  * The union of two adjacent groups is welded along their shared vertices (a position that occurs
  * more than once in one group, the two sides of a slit that opened a handle, is not welded there)
- * and measured with the decomposition's own measure (acd3/measure, same eps): the pair is
+ * and measured with the decomposition's own measure (acd3/measure, with eps given): the pair is
  * joinable when that concavity is <= tau, and its cost is the concavity. Cheapest first (ties:
  * the lower group ids), greedily, until no adjacent pair is joinable; a joined group is a new
- * group and its pairs with its neighbours are measured again. Every joined group is thus within
- * tau by the same measure as the leaves. Deterministic for any thread count (pairs are measured
- * independently, the choice is sequential). */
+ * group and its pairs with its neighbours are measured again. When no pair is joinable, moves
+ * (up to 8 rounds, each followed by joins again): a pair whose union measures above tau but within
+ * 1.6 tau is joined when one of its parts (the one holding the union's witness first, then those
+ * next to a third group; 12 at most) can go to a third adjacent group C, the rest staying
+ * connected and within tau and C with the part within tau: one group fewer. Every group is thus
+ * within tau by the same measure as the leaves, and connected. Deterministic for any thread count
+ * (pairs are measured independently, the choices and the moves are sequential). docs/acd3d.md
+ * "Splitting a surface", "Moves in the surface merge pass". */
 #ifndef ACD_ACD3_SURFACE_MERGE_H
 #define ACD_ACD3_SURFACE_MERGE_H
 
@@ -28,6 +33,7 @@ typedef struct acd3_surface_merge_result {
     double *concavity;   /* per group of >= 2 parts: its measured concavity (<= tau); 0 otherwise */
     acd_mesh *meshes;    /* per group of >= 2 parts: the welded union; empty otherwise */
     size_t merges;       /* joins made */
+    size_t moves;        /* parts moved from a nearly joinable pair to a third group (refine) */
 } acd3_surface_merge_result;
 
 /* eps, tol, tau in model units (eps: the bridge clustering threshold of the measure). threads:
