@@ -1,147 +1,138 @@
-/* Tests of the merge pass's refinement (acd3/merge, acd3d_params.merge_refine; docs/acd3d.md "Hull
- * tightness"): at a fixed part count it cuts a part by a volume plane and joins the cheapest pair
- * when that lowers the hulls' volume. The parts still tile the input (volumes add up), every part
- * made or changed by it is a joined record within the merge tolerance whose hull reaches out by no
- * more than its bound, the pieces sit in the tree under the parts they were cut from, the hulls'
- * volume is not higher than without it, and the output is the same for 1, 2 and 4 threads. */
+/* Tests of the merge pass's refinement (acd3/merge with acd3_merge_opts.refine; docs/acd3d.md "Hull
+ * tightness"): at a fixed part count it cuts a group by a volume plane and joins the cheapest pair, or
+ * cuts the union of an adjacent pair anew, when that lowers the sum of the hulls' volumes. On a
+ * voxel shape whose best partition is known: the part count is kept, the hull volume falls to the
+ * known optimum, the groups tile the input (volumes add up), every group is within tau, the pieces
+ * name the atoms they were cut from, no refinement gives the greedy result unchanged, and the output
+ * is the same for 1, 2 and 4 threads. */
 #include "testutil.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "acd/acd3d.h"
 #include "acd/hull.h"
-#include "geom3/bvh.h"
+#include "acd3/merge.h"
+#include "geom3/plane_cut.h"
 #include "shapes.h"
-#include "acd3d_check.h"
 
-/* How far the part's hull reaches out of the part: the largest distance from a hull vertex or
- * facet centroid to the part's surface (a lower bound of the Hausdorff distance from the hull). */
-static double hull_reach(const acd3d_part *pt) {
-    acd_bvh b;
-    acd_error err;
-    assert_int_equal(acd_bvh_build(&b, pt->mesh.vertices, pt->mesh.nvertices, pt->mesh.triangles,
-                                   pt->mesh.ntriangles, &err), ACD_OK);
-    double worst = 0;
-    const acd_mesh *h = &pt->hull;
-    for (size_t t = 0; t < h->ntriangles; t++)
-        for (int k = 0; k < 4; k++) {
-            double p[3];
-            for (int d = 0; d < 3; d++) {
-                if (k < 3) p[d] = h->vertices[3 * (size_t)h->triangles[3 * t + k] + d];
-                else p[d] = (h->vertices[3 * (size_t)h->triangles[3 * t] + d] + h->vertices[3 * (size_t)h->triangles[3 * t + 1] + d] +
-                             h->vertices[3 * (size_t)h->triangles[3 * t + 2] + d]) / 3.0;
-            }
-            acd_bvh_closest_result q;
-            if (acd_bvh_closest(&b, p, INFINITY, &q) && sqrt(q.dist2) > worst) worst = sqrt(q.dist2);
-        }
-    acd_bvh_free(&b);
-    return worst;
+enum { NX = 7, NY = 2, NZ = 1 };
+
+/* Voxels of a 7 x 2 x 1 grid: the cells (x, y) listed in xs/ys. */
+static void voxels(acd_mesh *m, const int *xs, const int *ys, int n) {
+    unsigned char occ[NX * NY * NZ];
+    memset(occ, 0, sizeof occ);
+    for (int i = 0; i < n; i++) occ[ys[i] * NX + xs[i]] = 1;
+    assert_true(mg_voxels(m, occ, NX, NY, NZ));
 }
 
-static double hull_sum(const acd3d_result *r) {
+/* The atom k of r (an input part below nparts, else a piece). */
+static const acd_mesh *atom(const acd_mesh *parts, size_t nparts, const acd3_merge_result *r, size_t k) {
+    return k < nparts ? &parts[k] : &r->new_parts[k - nparts];
+}
+
+/* Sum over r's groups of the volume of the hull of its atoms. */
+static double hull_sum(const acd_mesh *parts, size_t nparts, const acd3_merge_result *r) {
+    size_t na = nparts + r->nnew;
     double s = 0;
-    for (size_t i = 0; i < r->nparts; i++) s += r->parts[i].hull_volume;
+    for (size_t g = 0; g < r->ngroups; g++) {
+        size_t nv = 0;
+        for (size_t k = 0; k < na; k++)
+            if (r->group_of[k] == g) nv += atom(parts, nparts, r, k)->nvertices;
+        double *pts = malloc(3 * nv * sizeof *pts);
+        assert_non_null(pts);
+        size_t w = 0;
+        for (size_t k = 0; k < na; k++)
+            if (r->group_of[k] == g) {
+                const acd_mesh *m = atom(parts, nparts, r, k);
+                memcpy(pts + 3 * w, m->vertices, 3 * m->nvertices * sizeof *pts);
+                w += m->nvertices;
+            }
+        acd_hull h;
+        assert_int_equal(acd_hull_compute(pts, nv, &h, NULL), ACD_OK);
+        s += h.volume;
+        acd_hull_free(&h);
+        free(pts);
+    }
     return s;
 }
 
-/* The refinement's invariants on r (input volume vin); returns how many pieces it made. */
-static size_t check_refined(const acd3d_result *r, double vin) {
+/* An inverted T (a bar of 5 cells, one cell on its middle) and two cells continuing the bar; input =
+ * their union. Three groups kept: the best is the T cut at its bar's top (hulls 5 + 1) with the two
+ * cells joined (hull 2): 8, against 8 + 1 + 1 = 10 without the refinement (the T's hull is 8). */
+static void test_trade_on_voxels(void **state) {
+    (void)state;
+    const int tx[] = {0, 1, 2, 3, 4, 2}, ty[] = {0, 0, 0, 0, 0, 1};
+    const int bx[] = {5}, by[] = {0}, cx[] = {6}, cy[] = {0};
+    const int ix[] = {0, 1, 2, 3, 4, 5, 6, 2}, iy[] = {0, 0, 0, 0, 0, 0, 0, 1};
+    acd_mesh in, parts[3];
+    voxels(&in, ix, iy, 8);
+    voxels(&parts[0], tx, ty, 6);
+    voxels(&parts[1], bx, by, 1);
+    voxels(&parts[2], cx, cy, 1);
+    const double tau = 0.25, tol = 1e-9, vin = mg_volume(&in);
+    acd3_merge_opts mo = {1, 3, 0};
+    acd3_merge_result plain, ref[3];
+    acd_error err;
+    assert_int_equal(acd3_merge_adjacent(&in, parts, 3, tau, tol, &mo, 1, &plain, &err), ACD_OK);
+    /* no refinement: nothing joined (already at 3), no piece */
+    assert_int_equal(plain.ngroups, 3);
+    assert_int_equal(plain.nnew, 0);
+    assert_true(fabs(hull_sum(parts, 3, &plain) - 10) <= 1e-9);
+    mo.refine = 5;
+    const int threads[3] = {1, 2, 4};
+    for (int t = 0; t < 3; t++)
+        assert_int_equal(acd3_merge_adjacent(&in, parts, 3, tau, tol, &mo, threads[t], &ref[t], &err), ACD_OK);
+    acd3_merge_result *r = &ref[0];
+    assert_int_equal(r->ngroups, 3);
+    assert_true(r->trades >= 1);
+    assert_true(r->nnew >= 2);
+    print_message("refined: %zu steps, %zu pieces, hull volume %.9g\n", r->trades, r->nnew, hull_sum(parts, 3, r));
+    /* near the optimum 8 (the volume plane is searched at sampled offsets: within 0.1 of it) */
+    assert_true(hull_sum(parts, 3, r) >= 8 - 1e-9 && hull_sum(parts, 3, r) <= 8.1);
+    /* the groups tile the input: the atoms not cut add up to its volume; every group within tau */
+    size_t na = 3 + r->nnew;
     double sum = 0;
-    for (size_t i = 0; i < r->nparts; i++) {
-        const acd3d_part *pt = &r->parts[i];
-        const acd3d_node *nd = &r->nodes[pt->node];
-        double v = mg_volume(&pt->mesh);
-        assert_true(v > 0);
-        assert_true(fabs(v - pt->volume) <= 1e-9 * vin);
-        sum += v;
-        assert_true(pt->hull_volume >= v * (1 - 1e-9));
-        if (nd->leaf_reason != ACD3D_LEAF_JOINED) continue;
-        /* a joined record: within the merge tolerance, its hull within its bound of it, its members'
-         * volumes adding up to its own */
-        assert_true(pt->concavity <= r->merge_tau * (1 + 1e-12));
-        assert_true(hull_reach(pt) <= pt->concavity * (1 + 1e-9) + 1e-12);
-        double mv = 0;
-        for (size_t n = 0; n < r->nnodes; n++)
-            if (r->nodes[n].merged_into == pt->node) mv += r->nodes[n].volume;
-        assert_true(fabs(mv - nd->volume) <= 1e-9 * vin);
+    for (size_t k = 0; k < na; k++) {
+        const acd_mesh *m = atom(parts, 3, r, k);
+        if (k >= 3) {
+            assert_true(r->new_parent[k - 3] < k);
+            assert_true(fabs(mg_volume(m) - r->new_volume[k - 3]) <= 1e-12 * vin);
+            /* a piece lies on one side of its parent's cut plane */
+            const double *pl = r->new_plane[k - 3];
+            double lo = INFINITY, hi = -INFINITY;
+            for (size_t v = 0; v < m->nvertices; v++) {
+                double s = pl[0] * m->vertices[3 * v] + pl[1] * m->vertices[3 * v + 1] + pl[2] * m->vertices[3 * v + 2] + pl[3];
+                lo = fmin(lo, s), hi = fmax(hi, s);
+            }
+            assert_true(lo >= -1e-9 || hi <= 1e-9);
+        }
+        if (r->group_of[k] == UINT32_MAX) continue;
+        assert_true(r->group_of[k] < r->ngroups);
+        sum += mg_volume(m);
     }
     assert_true(fabs(sum - vin) <= 1e-9 * vin);
-    /* the pieces: children of the node cut, that node no longer a part, each piece in a joined
-     * record unless cut again */
-    size_t pieces = 0;
-    for (size_t n = 0; n < r->nnodes; n++) {
-        const acd3d_node *nd = &r->nodes[n];
-        if (nd->leaf_reason != ACD3D_LEAF_REFINED && !(nd->first_child >= 0 && r->nodes[nd->first_child].leaf_reason == ACD3D_LEAF_REFINED))
-            continue;
-        if (nd->leaf_reason == ACD3D_LEAF_REFINED) {
-            pieces++;
-            assert_true(nd->parent >= 0);
-            const acd3d_node *pa = &r->nodes[nd->parent];
-            assert_true((int)n >= pa->first_child && (int)n < pa->first_child + pa->nchildren);
-            assert_int_equal(pa->part, -1);
-            if (nd->first_child < 0) assert_true(nd->merged_into >= 0);
-        }
-        if (nd->first_child >= 0) { /* cut: its children's volumes add up to its own */
-            double cv = 0;
-            for (int k = 0; k < nd->nchildren; k++) cv += r->nodes[nd->first_child + k].volume;
-            assert_true(fabs(cv - nd->volume) <= 1e-9 * vin);
-            assert_int_equal(nd->part, -1);
+    for (size_t g = 0; g < r->ngroups; g++) assert_true(r->bound[g] <= tau);
+    /* the same for any thread count */
+    for (int t = 1; t < 3; t++) {
+        assert_int_equal(ref[t].nnew, r->nnew);
+        assert_int_equal(ref[t].ngroups, r->ngroups);
+        assert_memory_equal(ref[t].group_of, r->group_of, na * sizeof *r->group_of);
+        for (size_t k = 0; k < r->nnew; k++) {
+            assert_int_equal(ref[t].new_parts[k].nvertices, r->new_parts[k].nvertices);
+            assert_memory_equal(ref[t].new_parts[k].vertices, r->new_parts[k].vertices,
+                                3 * r->new_parts[k].nvertices * sizeof(double));
         }
     }
-    return pieces;
-}
-
-static void run_shape(const acd_mesh *m, double tau, double merge_tau, size_t parts) {
-    acd3d_params p = acd3d_default_params();
-    p.tau = tau;
-    p.merge_tau = merge_tau;
-    p.cut_choice = ACD3D_CHOICE_VOLUME;
-    p.merge_order = ACD3D_MERGE_VOLUME;
-    p.merge_parts = parts;
-    p.threads = 1;
-    acd3d_result plain, ref[3];
-    acd_error err;
-    assert_int_equal(acd3d_decompose(m, &p, &plain, &err), ACD_OK);
-    p.merge_refine = 20;
-    const int threads[3] = {1, 2, 4};
-    for (int k = 0; k < 3; k++) {
-        p.threads = threads[k];
-        assert_int_equal(acd3d_decompose(m, &p, &ref[k], &err), ACD_OK);
-    }
-    double vin = mg_volume(m);
-    size_t pieces = check_refined(&ref[0], vin);
-    print_message("refine: %zu parts, %zu pieces, hull volume %.6g -> %.6g (input %.6g)\n", ref[0].nparts, pieces,
-                  hull_sum(&plain), hull_sum(&ref[0]), vin);
-    assert_true(pieces > 0);
-    assert_int_equal(ref[0].nparts, plain.nparts);
-    assert_true(hull_sum(&ref[0]) < hull_sum(&plain));
-    for (int k = 1; k < 3; k++) {
-        ck3_same_parts(&ref[0], &ref[k]);
-        assert_int_equal(ref[k].nnodes, ref[0].nnodes);
-    }
-    acd3d_result_free(&plain);
-    for (int k = 0; k < 3; k++) acd3d_result_free(&ref[k]);
-}
-
-/* A bumpy, elongated blob (like a scanned limb): radius 1 + 0.15 sin(4 theta) cos(3 phi), stretched. */
-static double bumpy_r(double th, double ph, void *u) {
-    (void)u;
-    return 1.0 + 0.15 * sin(4 * th) * cos(3 * ph) + 0.6 * fabs(cos(th));
-}
-
-static void test_bumpy(void **state) {
-    (void)state;
-    acd_mesh m;
-    assert_true(mg_radial(&m, 48, 32, bumpy_r, NULL));
-    run_shape(&m, 0.03, 0.06, 10);
-    acd_mesh_free(&m);
+    acd3_merge_result_free(&plain);
+    for (int t = 0; t < 3; t++) acd3_merge_result_free(&ref[t]);
+    for (int k = 0; k < 3; k++) acd_mesh_free(&parts[k]);
+    acd_mesh_free(&in);
 }
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bumpy),
+        cmocka_unit_test(test_trade_on_voxels),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

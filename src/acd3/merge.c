@@ -67,6 +67,9 @@ typedef struct pair {
     double bound; /* max(d_in, bound of d_out) */
     double *ft, *fub; /* ok: the joined hull's facet table (as group.ft, fub), for the join */
     size_t nft;
+    int est;          /* refinement: as group.est, for the cut of the pair's union */
+    double est_gain;  /* the hull volume that cut saves against the pair's two hulls (an estimate) */
+    acd3_plane_candidate est_plane;
 } pair;
 
 static void pair_free(pair *p) {
@@ -620,7 +623,11 @@ static acd_status push_pair(pair **P, size_t *np, size_t *cap, uint32_t a, uint3
         *P = n2;
         *cap = nc;
     }
-    (*P)[(*np)++] = (pair){a < b ? a : b, a < b ? b : a, 0, INFINITY, INFINITY, NULL, NULL, 0};
+    pair *p = &(*P)[(*np)++];
+    memset(p, 0, sizeof *p);
+    p->a = a < b ? a : b;
+    p->b = a < b ? b : a;
+    p->cost = p->bound = INFINITY;
     return ACD_OK;
 }
 
@@ -629,6 +636,8 @@ static acd_status push_pair(pair **P, size_t *np, size_t *cap, uint32_t a, uint3
 #define MERGE_REFINE_MIN_GAIN_REL 1e-4
 /* Cuts refused (a side beyond tau, or not saving enough) allowed per step allowed, over the pass. */
 #define MERGE_REFINE_FAILS_PER_STEP 2
+/* The volume planes of the estimates are scored on at most this many vertices (acd3/volume_plane). */
+#define MERGE_REFINE_SCORED 1000
 
 static int u32_push(uint32_t **a, size_t *n, size_t *cap, uint32_t x) {
     if (*n == *cap) {
@@ -707,8 +716,9 @@ static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double o
     return acd_bvh_build(&at->bvh[i], m->vertices, m->nvertices, m->triangles, m->ntriangles, err);
 }
 
-/* The group's volume plane and the hull volume it saves (estimated: acd3_volume_planes_scored). */
-static void estimate(group *g) {
+/* The group's volume plane and the hull volume it saves against g->hvol (estimated:
+ * acd3_volume_planes_scored); whole: the volume of the hull of all its members. */
+static void estimate(group *g, double whole) {
     const atoms *at = g->at;
     g->est = 1;
     g->est_gain = -INFINITY;
@@ -729,10 +739,31 @@ static void estimate(group *g) {
             m.nvertices += s->nvertices;
             m.ntriangles += s->ntriangles;
         }
-        double sc;
-        if (acd3_volume_planes_scored(&m, 1, &g->est_plane, &sc) == 1) g->est_gain = g->hvol - sc;
+        /* the saving of the sampled hulls (sampling shrinks the hulls: compared with the whole's
+         * sampled hull, the scores scaled by the ratio of the exact hull to it) */
+        double sc, wh = -1;
+        if (acd3_volume_planes_scored(&m, 1, MERGE_REFINE_SCORED, &g->est_plane, &sc, &wh) == 1 && wh > 0)
+            g->est_gain = g->hvol - sc * (whole / wh);
     }
     acd_mesh_free(&m);
+}
+
+static int pair_union(const group *A, const group *B, group *U);
+
+/* The volume plane of the union of the pair's groups and the hull volume it saves against theirs. */
+static void estimate_pair(const group *G, pair *p) {
+    group U;
+    p->est = 1;
+    p->est_gain = -INFINITY;
+    if (!pair_union(&G[p->a], &G[p->b], &U)) return;
+    acd_hull H;
+    if (joint_hull(&G[p->a], &G[p->b], &H)) {
+        estimate(&U, H.volume);
+        acd_hull_free(&H);
+    }
+    p->est_gain = U.est_gain;
+    p->est_plane = U.est_plane;
+    free(U.members);
 }
 
 /* S = the group of the atoms mem[0..n): hull, surface vertices, facet bounds. Returns 1 when its
@@ -921,32 +952,36 @@ static int cmp_u32(const void *x, const void *y) {
     return (a > b) - (a < b);
 }
 
-/* Makes the cut of group x (try_cut: pieces from n0 on, sides S) real: the sides become groups, the
- * pieces get their adjacency, X dies; the sides' pairs are pushed and scored. */
-static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, atoms *at, size_t n0, group S[2],
-                             double tol, pair **P, size_t *np, size_t *capp, double tau, int by_volume, int threads,
-                             acd_error *err) {
+/* Makes the cut of the group(s) x (and y, unless UINT32_MAX: a pair cut as one; try_cut: pieces
+ * from n0 on, sides S) real: the sides become groups, the pieces get their adjacency, x and y die;
+ * the sides' pairs are pushed and scored. */
+static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, uint32_t y, atoms *at, size_t n0,
+                             group S[2], double tol, pair **P, size_t *np, size_t *capp, double tau, int by_volume,
+                             int threads, acd_error *err) {
     if (!grow_groups(Gp, capg, *ng + 2)) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for groups");
     group *G = *Gp;
-    uint32_t s[2] = {(uint32_t)*ng, (uint32_t)*ng + 1};
+    uint32_t s[2] = {(uint32_t)*ng, (uint32_t)*ng + 1}, dy[2] = {x, y};
+    const int ndy = y == UINT32_MAX ? 1 : 2;
     *ng += 2;
     G[s[0]] = S[0];
     G[s[1]] = S[1];
     for (int j = 0; j < 2; j++)
         for (size_t k = 0; k < G[s[j]].nmembers; k++) at->owner[G[s[j]].members[k]] = s[j];
-    /* the atoms whose adjacency may change: the pieces, X's members and their neighbours */
+    /* the atoms whose adjacency may change: the pieces, the cut groups' members and their neighbours */
     uint32_t *sel = NULL;
     size_t nsel = 0, csel = 0;
     int ok = 1;
-    for (size_t k = 0; k < G[x].nmembers; k++)
-        if (at->owner[G[x].members[k]] == x) at->owner[G[x].members[k]] = UINT32_MAX; /* cut */
+    for (int e = 0; e < ndy; e++)
+        for (size_t k = 0; k < G[dy[e]].nmembers; k++)
+            if (at->owner[G[dy[e]].members[k]] == dy[e]) at->owner[G[dy[e]].members[k]] = UINT32_MAX; /* cut */
     for (size_t i = n0; i < at->n && ok; i++) ok = u32_push(&sel, &nsel, &csel, (uint32_t)i);
-    for (size_t k = 0; k < G[x].nmembers && ok; k++) {
-        uint32_t a = G[x].members[k];
-        if (at->owner[a] != UINT32_MAX) ok = u32_push(&sel, &nsel, &csel, a);
-        for (size_t j = 0; j < at->nadj[a] && ok; j++)
-            if (at->owner[at->adj[a][j]] != UINT32_MAX) ok = u32_push(&sel, &nsel, &csel, at->adj[a][j]);
-    }
+    for (int e = 0; e < ndy; e++)
+        for (size_t k = 0; k < G[dy[e]].nmembers && ok; k++) {
+            uint32_t a = G[dy[e]].members[k];
+            if (at->owner[a] != UINT32_MAX) ok = u32_push(&sel, &nsel, &csel, a);
+            for (size_t j = 0; j < at->nadj[a] && ok; j++)
+                if (at->owner[at->adj[a][j]] != UINT32_MAX) ok = u32_push(&sel, &nsel, &csel, at->adj[a][j]);
+        }
     if (!ok) {
         free(sel);
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
@@ -969,7 +1004,8 @@ static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, a
     free(pr);
     free(sel);
     /* group adjacency */
-    for (size_t k = 0; k < G[x].nadj; k++) remove_adj(&G[G[x].adj[k]], x);
+    for (int e = 0; e < ndy; e++)
+        for (size_t k = 0; k < G[dy[e]].nadj; k++) remove_adj(&G[G[dy[e]].adj[k]], dy[e]);
     for (int j = 0; j < 2 && st == ACD_OK; j++)
         for (size_t k = 0; k < G[s[j]].nmembers && st == ACD_OK; k++) {
             uint32_t a = G[s[j]].members[k];
@@ -980,13 +1016,28 @@ static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, a
                     st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
             }
         }
-    group_free(&G[x]);
+    for (int e = 0; e < ndy; e++) group_free(&G[dy[e]]);
     size_t p0 = *np;
     for (int j = 0; j < 2 && st == ACD_OK; j++)
         for (size_t k = 0; k < G[s[j]].nadj && st == ACD_OK; k++)
             if (!(j == 1 && G[s[1]].adj[k] == s[0])) st = push_pair(P, np, capp, G[s[j]].adj[k], s[j], err);
     if (st == ACD_OK) score_pairs(G, *P, p0, *np, tau, by_volume, threads);
     return st;
+}
+
+/* The union of groups a and b as a group for estimate and try_cut (members and hull volume: the sum
+ * of theirs); 0 out of memory. */
+static int pair_union(const group *A, const group *B, group *U) {
+    memset(U, 0, sizeof *U);
+    U->at = A->at;
+    U->nmembers = A->nmembers + B->nmembers;
+    U->members = malloc(U->nmembers * sizeof *U->members);
+    if (!U->members) return 0;
+    memcpy(U->members, A->members, A->nmembers * sizeof *U->members);
+    memcpy(U->members + A->nmembers, B->members, B->nmembers * sizeof *U->members);
+    U->hvol = A->hvol + B->hvol;
+    U->vol = A->vol + B->vol;
+    return 1;
 }
 
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
@@ -1102,40 +1153,66 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         out->merges++;
         nlive--;
     }
-    /* refinement: a cut (the group whose volume plane saves the most hull volume) and a join (the
-     * cheapest), when the cut saves more than the join adds */
+    /* refinement: the move of largest estimated gain, made when its actual gain is positive: a trade
+     * (a group cut by its volume plane, the cheapest other pair joined) or a re-cut (the union of an
+     * adjacent pair cut anew by its volume plane) */
     size_t fails = 0;
     const double min_gain = MERGE_REFINE_MIN_GAIN_REL * in_vol;
     while (st == ACD_OK && out->trades < refine && fails <= MERGE_REFINE_FAILS_PER_STEP * refine) {
         best_pair(G, P, &np);
         uint32_t *todo = NULL;
-        size_t ntodo = 0, ctodo = 0;
+        size_t ntodo = 0, ctodo = 0, ngt;
         for (size_t g = 0; g < ng && st == ACD_OK; g++)
             if (G[g].alive && G[g].est == 0 && !u32_push(&todo, &ntodo, &ctodo, (uint32_t)g))
+                st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
+        ngt = ntodo;
+        for (size_t i = 0; i < np && st == ACD_OK; i++)
+            if (P[i].est == 0 && !u32_push(&todo, &ntodo, &ctodo, (uint32_t)i))
                 st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntodo > 1)
 #endif
-        for (long k = 0; k < (long)ntodo; k++) estimate(&G[todo[k]]);
+        for (long k = 0; k < (long)ntodo; k++) {
+            if ((size_t)k < ngt) estimate(&G[todo[k]], G[todo[k]].hvol);
+            else estimate_pair(G, &P[todo[k]]);
+        }
         free(todo);
         if (st != ACD_OK) break;
-        size_t x = SIZE_MAX;
-        for (size_t g = 0; g < ng; g++)
-            if (G[g].alive && G[g].est == 1 && (x == SIZE_MAX || G[g].est_gain > G[x].est_gain)) x = g;
-        if (x == SIZE_MAX) break;
-        double c0 = INFINITY; /* the cheapest join that survives the cut */
+        /* the best move: a trade of group x (its gain less the cheapest join surviving it), or a
+         * re-cut of pair q */
+        size_t x = SIZE_MAX, q = SIZE_MAX;
+        double bestv = min_gain, c0x = INFINITY;
+        for (size_t g = 0; g < ng; g++) {
+            if (!G[g].alive || G[g].est != 1) continue;
+            double c0 = INFINITY;
+            for (size_t i = 0; i < np; i++)
+                if (P[i].ok && P[i].a != g && P[i].b != g && P[i].cost < c0) c0 = P[i].cost;
+            if (G[g].est_gain - c0 > bestv) bestv = G[g].est_gain - c0, x = g, c0x = c0;
+        }
         for (size_t i = 0; i < np; i++)
-            if (P[i].ok && P[i].a != x && P[i].b != x && P[i].cost < c0) c0 = P[i].cost;
-        if (!(G[x].est_gain > c0 + min_gain)) break;
-        group S[2];
+            if (P[i].est == 1 && P[i].est_gain > bestv) bestv = P[i].est_gain, q = i, x = SIZE_MAX;
+        if (x == SIZE_MAX && q == SIZE_MAX) break;
+        group S[2], U;
         double gain = 0;
         size_t n0 = at.n;
-        int r = try_cut(&G[x], &at, nparts, &in_bvh, on_tol, diag, tau, S, &gain, err);
+        int r;
+        if (q != SIZE_MAX) {
+            if (!pair_union(&G[P[q].a], &G[P[q].b], &U)) {
+                st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
+                break;
+            }
+            U.est_plane = P[q].est_plane;
+            r = try_cut(&U, &at, nparts, &in_bvh, on_tol, diag, tau, S, &gain, err);
+            free(U.members);
+        } else {
+            r = try_cut(&G[x], &at, nparts, &in_bvh, on_tol, diag, tau, S, &gain, err);
+            gain -= c0x;
+        }
         if (r < 0) {
             st = (acd_status)(-r);
             break;
         }
-        if (r == 1 && !(gain > c0 + min_gain)) {
+        if (r == 1 && !(gain > min_gain)) {
             group_free(&S[0]);
             group_free(&S[1]);
             for (size_t i = n0; i < at.n; i++) atom_clear(&at, i, nparts);
@@ -1143,18 +1220,21 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
             r = 0;
         }
         if (r == 0) {
-            G[x].est = 2;
+            if (q != SIZE_MAX) P[q].est = 2;
+            else G[x].est = 2;
             fails++;
             continue;
         }
-        st = commit_cut(&G, &ng, &capg, (uint32_t)x, &at, n0, S, tol, &P, &np, &capp, tau, by_volume, threads, err);
-        if (st != ACD_OK) break;
-        size_t best = best_pair(G, P, &np);
-        if (best == SIZE_MAX) { /* cannot happen: the pair of cost c0 is still there */
-            st = acd_fail(err, ACD_ERR_INTERNAL, "merge: no join after a refinement cut");
-            break;
+        if (q != SIZE_MAX) {
+            st = commit_cut(&G, &ng, &capg, P[q].a, P[q].b, &at, n0, S, tol, &P, &np, &capp, tau, by_volume, threads, err);
+        } else {
+            st = commit_cut(&G, &ng, &capg, (uint32_t)x, UINT32_MAX, &at, n0, S, tol, &P, &np, &capp, tau, by_volume,
+                            threads, err);
+            size_t best = st == ACD_OK ? best_pair(G, P, &np) : 0;
+            if (st == ACD_OK && best == SIZE_MAX) /* cannot happen: the pair of cost c0x is still there */
+                st = acd_fail(err, ACD_ERR_INTERNAL, "merge: no join after a refinement cut");
+            if (st == ACD_OK) st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, by_volume, threads, err);
         }
-        st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, by_volume, threads, err);
         out->trades++;
     }
     if (st == ACD_OK) {

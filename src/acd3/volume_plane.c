@@ -26,7 +26,8 @@ static double hull_volume(const double *pts, size_t n) {
 
 /* Sum of the two sides' hull volumes of the plane (unit normal nrm, offset c: n.x = c); -1 on
  * failure. buf holds room for every vertex and crossing (twice). */
-static double score_plane(const acd_mesh *m, size_t stride, const double nrm[3], double c, double *bufa, double *bufb) {
+static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, const double nrm[3], double c, double *bufa,
+                          double *bufb) {
     size_t na = 0, nb = 0;
     for (size_t v = 0; v < m->nvertices; v += stride) {
         const double *p = m->vertices + 3 * v;
@@ -34,7 +35,7 @@ static double score_plane(const acd_mesh *m, size_t stride, const double nrm[3],
         double *dst = s >= 0 ? bufa + 3 * na++ : bufb + 3 * nb++;
         memcpy(dst, p, sizeof(double[3]));
     }
-    for (size_t t = 0; t < m->ntriangles; t++)
+    for (size_t t = 0; t < m->ntriangles; t += tstride)
         for (int k = 0; k < 3; k++) {
             uint32_t i = m->triangles[3 * t + k], j = m->triangles[3 * t + (k + 1) % 3];
             if (i > j) continue; /* each edge once (a closed mesh has both directions) */
@@ -52,10 +53,11 @@ static double score_plane(const acd_mesh *m, size_t stride, const double nrm[3],
 }
 
 int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out) {
-    return acd3_volume_planes_scored(m, nmax, out, NULL);
+    return acd3_volume_planes_scored(m, nmax, 0, out, NULL, NULL);
 }
 
-int acd3_volume_planes_scored(const acd_mesh *m, int nmax, acd3_plane_candidate *out, double *score) {
+int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, acd3_plane_candidate *out, double *score,
+                              double *whole) {
     if (nmax <= 0 || m->nvertices < 4) return 0;
     acd_pca pca;
     if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return 0;
@@ -65,7 +67,17 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, acd3_plane_candidate 
         free(bufa), free(bufb);
         return 0;
     }
-    size_t stride = (m->nvertices + VP_MAX_SCORED - 1) / VP_MAX_SCORED;
+    size_t stride = (m->nvertices + VP_MAX_SCORED - 1) / VP_MAX_SCORED, tstride = 1;
+    if (max_scored > 0) { /* an estimate: vertices and triangles sampled */
+        stride = (m->nvertices + max_scored - 1) / max_scored;
+        tstride = (m->ntriangles + 2 * max_scored - 1) / (2 * max_scored);
+        if (tstride < 1) tstride = 1;
+    }
+    if (whole) { /* the hull volume of the scored vertices: the score of no cut */
+        size_t k = 0;
+        for (size_t v = 0; v < m->nvertices; v += stride) memcpy(bufa + 3 * k++, m->vertices + 3 * v, sizeof(double[3]));
+        *whole = hull_volume(bufa, k);
+    }
     double best[3];
     int n = 0, order[3];
     acd3_plane_candidate cand[3];
@@ -81,7 +93,7 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, acd3_plane_candidate 
         double bs = INFINITY, bc = 0, step = (hi - lo) / (VP_OFFSETS + 1);
         for (int i = 1; i <= VP_OFFSETS; i++) {
             double c = lo + step * i;
-            double s = score_plane(m, stride, ax, c, bufa, bufb);
+            double s = score_plane(m, stride, tstride, ax, c, bufa, bufb);
             if (s >= 0 && s < bs) bs = s, bc = c;
         }
         /* refined around the best (VP_REFINE times, halving the step) */
@@ -90,7 +102,7 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, acd3_plane_candidate 
             double c0 = bc;
             for (int sgn = -1; sgn <= 1; sgn += 2) {
                 double c = c0 + sgn * step;
-                double s = score_plane(m, stride, ax, c, bufa, bufb);
+                double s = score_plane(m, stride, tstride, ax, c, bufa, bufb);
                 if (s >= 0 && s < bs) bs = s, bc = c;
             }
         }

@@ -17,7 +17,11 @@
  * many (0 for a flat part or on allocation failure). */
 int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out);
 /* The same, with the score of each plane returned (score may be NULL): the sum of the two sides'
- * hull volumes as scored above (on every k-th vertex of a large part: an estimate). */
-int acd3_volume_planes_scored(const acd_mesh *m, int nmax, acd3_plane_candidate *out, double *score);
+ * hull volumes as scored above (on every k-th vertex of a large part: an estimate). max_scored > 0
+ * scores on at most that many vertices and the crossings of at most twice as many triangles (a
+ * coarser, cheaper estimate); 0: as acd3_volume_planes. whole (may be NULL): the hull volume of the
+ * scored vertices (what the scores compare with: a plane saves whole - score). */
+int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, acd3_plane_candidate *out, double *score,
+                              double *whole);
 
 #endif
