@@ -637,7 +637,9 @@ static acd_status push_pair(pair **P, size_t *np, size_t *cap, uint32_t a, uint3
 /* Cuts refused (a side beyond tau, or not saving enough) allowed per step allowed, over the pass. */
 #define MERGE_REFINE_FAILS_PER_STEP 2
 /* The volume planes of the estimates are scored on at most this many vertices (acd3/volume_plane). */
-#define MERGE_REFINE_SCORED 1000
+#define MERGE_REFINE_SCORED 300
+/* A pair's union is re-cut across its first principal axes only (the groups lie along the first). */
+#define MERGE_REFINE_PAIR_AXES 1
 
 static int u32_push(uint32_t **a, size_t *n, size_t *cap, uint32_t x) {
     if (*n == *cap) {
@@ -718,7 +720,7 @@ static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double o
 
 /* The group's volume plane and the hull volume it saves against g->hvol (estimated:
  * acd3_volume_planes_scored); whole: the volume of the hull of all its members. */
-static void estimate(group *g, double whole) {
+static void estimate(group *g, double whole, int naxes) {
     const atoms *at = g->at;
     g->est = 1;
     g->est_gain = -INFINITY;
@@ -742,7 +744,7 @@ static void estimate(group *g, double whole) {
         /* the saving of the sampled hulls (sampling shrinks the hulls: compared with the whole's
          * sampled hull, the scores scaled by the ratio of the exact hull to it) */
         double sc, wh = -1;
-        if (acd3_volume_planes_scored(&m, 1, MERGE_REFINE_SCORED, &g->est_plane, &sc, &wh) == 1 && wh > 0)
+        if (acd3_volume_planes_scored(&m, 1, MERGE_REFINE_SCORED, naxes, &g->est_plane, &sc, &wh) == 1 && wh > 0)
             g->est_gain = g->hvol - sc * (whole / wh);
     }
     acd_mesh_free(&m);
@@ -758,7 +760,7 @@ static void estimate_pair(const group *G, pair *p) {
     if (!pair_union(&G[p->a], &G[p->b], &U)) return;
     acd_hull H;
     if (joint_hull(&G[p->a], &G[p->b], &H)) {
-        estimate(&U, H.volume);
+        estimate(&U, H.volume, MERGE_REFINE_PAIR_AXES);
         acd_hull_free(&H);
     }
     p->est_gain = U.est_gain;
@@ -1173,7 +1175,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntodo > 1)
 #endif
         for (long k = 0; k < (long)ntodo; k++) {
-            if ((size_t)k < ngt) estimate(&G[todo[k]], G[todo[k]].hvol);
+            if ((size_t)k < ngt) estimate(&G[todo[k]], G[todo[k]].hvol, 3);
             else estimate_pair(G, &P[todo[k]]);
         }
         free(todo);

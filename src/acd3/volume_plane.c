@@ -12,6 +12,9 @@
 #define VP_OFFSETS 9
 /* Then refined around the best: half a step either side, a quarter, an eighth. */
 #define VP_REFINE 3
+/* The same for an estimate (acd3_volume_planes_scored with max_scored > 0). */
+#define VP_OFFSETS_ESTIMATE 5
+#define VP_REFINE_ESTIMATE 2
 /* Vertices used for scoring at most (every k-th beyond), plus every crossing point. */
 #define VP_MAX_SCORED 4000
 
@@ -53,11 +56,11 @@ static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, cons
 }
 
 int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out) {
-    return acd3_volume_planes_scored(m, nmax, 0, out, NULL, NULL);
+    return acd3_volume_planes_scored(m, nmax, 0, 3, out, NULL, NULL);
 }
 
-int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, acd3_plane_candidate *out, double *score,
-                              double *whole) {
+int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, int naxes, acd3_plane_candidate *out,
+                              double *score, double *whole) {
     if (nmax <= 0 || m->nvertices < 4) return 0;
     acd_pca pca;
     if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return 0;
@@ -81,7 +84,9 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, ac
     double best[3];
     int n = 0, order[3];
     acd3_plane_candidate cand[3];
-    for (int a = 0; a < 3; a++) {
+    /* an estimate (max_scored > 0): fewer offsets and refinements */
+    const int noff = max_scored > 0 ? VP_OFFSETS_ESTIMATE : VP_OFFSETS, nref = max_scored > 0 ? VP_REFINE_ESTIMATE : VP_REFINE;
+    for (int a = 0; a < 3 && a < naxes; a++) {
         const double *ax = pca.axes[a];
         double lo = INFINITY, hi = -INFINITY;
         for (size_t v = 0; v < m->nvertices; v++) {
@@ -90,14 +95,14 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, ac
             lo = fmin(lo, s), hi = fmax(hi, s);
         }
         if (!(hi > lo)) continue;
-        double bs = INFINITY, bc = 0, step = (hi - lo) / (VP_OFFSETS + 1);
-        for (int i = 1; i <= VP_OFFSETS; i++) {
+        double bs = INFINITY, bc = 0, step = (hi - lo) / (noff + 1);
+        for (int i = 1; i <= noff; i++) {
             double c = lo + step * i;
             double s = score_plane(m, stride, tstride, ax, c, bufa, bufb);
             if (s >= 0 && s < bs) bs = s, bc = c;
         }
         /* refined around the best (VP_REFINE times, halving the step) */
-        for (int r = 0; r < VP_REFINE && bs < INFINITY; r++) {
+        for (int r = 0; r < nref && bs < INFINITY; r++) {
             step *= 0.5;
             double c0 = bc;
             for (int sgn = -1; sgn <= 1; sgn += 2) {
