@@ -274,6 +274,7 @@ typedef struct split_state {
     int by_volume; /* ACD3D_CHOICE_VOLUME (solid mode) */
     double band;   /* its band of concavity */
     unsigned cut_flags; /* acd_plane_cut_flags */
+    const acd_edge_map *em; /* solid mode: the part's edge map, checked closed (NULL: each cut builds it) */
     const acd3_plane_candidate *cand;
     int nc, nbridge;
     cand_eval *ev;
@@ -496,7 +497,7 @@ static void split_evaluate(split_state *S, int i) {
     if (acd_cut_plane_from_normal(cd->point, cd->normal, S->extent, &pl, NULL) != ACD_OK) return;
     split_choice *trial = &e->trial;
     acd_error cerr;
-    acd_status cst = S->solid ? acd_plane_cut_flags(S->m, &pl, S->cut_flags, &trial->cut, &cerr)
+    acd_status cst = S->solid ? acd_plane_cut_map(S->m, S->em, &pl, S->cut_flags, &trial->cut, &cerr)
                               : acd3_surface_cut(S->m, S->g, &pl, S->restrict_cut ? cd->point : NULL, &trial->cut, &cerr);
     if (cst != ACD_OK) {
         if (cerr.status == ACD_ERR_NOMEM) {
@@ -518,6 +519,7 @@ static void split_evaluate(split_state *S, int i) {
         if (acd_geom3_signed_volume(pm) < S->min_piece_volume) ok = 0;
         /* every piece must be a closed, consistently oriented surface; a cut that rounding left
          * otherwise is not used */
+        if (ok && trial->cut.pieces[k].closed && !S->restrict_cut) continue; /* checked by the cut */
         acd_edge_map em;
         if (ok && acd_edge_map_build(pm->triangles, pm->ntriangles, NULL, &em, NULL) == ACD_OK) {
             if (acd_edge_map_check_closed(&em, pm->triangles, pm->ntriangles, NULL) != ACD_OK) ok = 0;
@@ -695,6 +697,15 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     S.by_volume = by_volume, S.band = ACD3_VOLUME_BAND * ms->concavity;
     S.cut_flags = cut_flags;
     S.cand = cand, S.nc = nc, S.nbridge = nbridge, S.ev = ev;
+    /* solid mode: the part's edge map once for all the cuts (when it cannot be built or the part is
+     * not closed, each cut builds and checks it and reports that as before) */
+    acd_edge_map em;
+    int have_em = 0;
+    if (solid && nc > 0 && acd_edge_map_build(m->triangles, m->ntriangles, NULL, &em, NULL) == ACD_OK) {
+        have_em = acd_edge_map_check_closed(&em, m->triangles, m->ntriangles, NULL) == ACD_OK;
+        if (!have_em) acd_edge_map_free(&em);
+    }
+    S.em = have_em ? &em : NULL;
     if (have_cyc) S.best = cyc, S.found = S.best_progress = S.compared = 1;
     if (helpers > nc - 1) helpers = nc - 1;
 #ifdef _OPENMP
@@ -710,6 +721,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     }
 #endif
     for (int i = 0; i < nc; i++) cand_eval_free(&ev[i]);
+    if (have_em) acd_edge_map_free(&em);
     if (S.fail) {
         if (S.found) choice_free(&S.best);
         if (err) *err = S.err;

@@ -677,6 +677,10 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     }
     for (size_t t = 0; t < c->nt; t++) parent[t] = (uint32_t)t;
     acd_status st = ACD_OK;
+    /* per side: every half-edge unique with its opposite present and no triangle repeating a vertex
+     * (acd_edge_map_check_closed's conditions): then so is every piece of that side (a piece is a
+     * union of components joined across twins, its vertices renumbered one to one) */
+    int closed[2] = {0, 0};
     for (int side = 1; side >= -1 && st == ACD_OK; side -= 2) {
         for (size_t t = 0; t < c->nt; t++) keep[t] = c->tside[t] == side;
         acd_edge_map m;
@@ -684,8 +688,17 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         if (st != ACD_OK) break;
         uint32_t *tw = NULL;
         st = acd_edge_map_twins(&m, &tw, err);
-        for (size_t i = 0; st == ACD_OK && i < m.n; i++)
+        int cl = st == ACD_OK;
+        for (size_t i = 0; st == ACD_OK && i < m.n; i++) {
             if (tw[i] != ACD_EDGE_NONE) acd_uf_union(parent, m.half[i] / 3, tw[i] / 3);
+            else cl = 0;
+            if (i + 1 < m.n && m.key[i + 1] == m.key[i]) cl = 0;
+        }
+        for (size_t t = 0; cl && t < c->nt; t++) {
+            const uint32_t *q = c->T + 3 * t;
+            if (keep[t] && (q[0] == q[1] || q[1] == q[2] || q[2] == q[0])) cl = 0;
+        }
+        closed[side > 0 ? 0 : 1] = cl;
         free(tw);
         acd_edge_map_free(&m);
     }
@@ -750,6 +763,7 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         }
         pc->mesh.ntriangles = k;
         pc->mesh.nvertices = nv;
+        pc->closed = closed[pc->side > 0 ? 0 : 1];
         pc->mesh.vertices = malloc((nv ? nv : 1) * 3 * sizeof(double));
         pc->source = malloc((nv ? nv : 1) * sizeof *pc->source);
         if (!pc->mesh.vertices || !pc->source) {
@@ -780,6 +794,11 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
 
 acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsigned flags, acd_cut_result *out,
                                acd_error *err) {
+    return acd_plane_cut_map(m, NULL, pl, flags, out, err);
+}
+
+acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const acd_cut_plane *pl, unsigned flags,
+                             acd_cut_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!m || !pl) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "plane cut: NULL mesh or plane");
     if (m->nvertices >= UINT32_MAX / 2 || m->ntriangles >= UINT32_MAX / 8)
@@ -793,13 +812,18 @@ acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsig
         if (m->triangles[t] >= m->nvertices)
             return acd_fail(err, ACD_ERR_INVALID_INPUT, "plane cut: triangle %zu uses vertex %u of %zu", t / 3,
                             m->triangles[t], m->nvertices);
-    acd_edge_map em;
-    acd_status st = acd_edge_map_build(m->triangles, m->ntriangles, NULL, &em, err);
-    if (st != ACD_OK) return st;
-    st = acd_edge_map_check_closed(&em, m->triangles, m->ntriangles, err);
-    if (st != ACD_OK) {
-        acd_edge_map_free(&em);
-        return st;
+    acd_edge_map own = {0};
+    const acd_edge_map *emp = map;
+    acd_status st = ACD_OK;
+    if (!emp) {
+        st = acd_edge_map_build(m->triangles, m->ntriangles, NULL, &own, err);
+        if (st != ACD_OK) return st;
+        st = acd_edge_map_check_closed(&own, m->triangles, m->ntriangles, err);
+        if (st != ACD_OK) {
+            acd_edge_map_free(&own);
+            return st;
+        }
+        emp = &own;
     }
     /* huge or tiny models: work on the input scaled by a power of two (exact, unless it flushes
      * coordinates below 2^-1074 of the largest one) so that the largest coordinate is about 1: the
@@ -824,7 +848,7 @@ acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsig
         if (acd_cut_plane_from_points(spl.a, spl.b, spl.c, &chk, NULL) != ACD_OK) {
             double plmax = 0;
             for (int k = 0; k < 3; k++) plmax = fmax(plmax, fmax(fabs(pl->a[k]), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
-            acd_edge_map_free(&em);
+            acd_edge_map_free(&own);
             return acd_fail(err, ACD_ERR_DEGENERATE,
                             "plane cut: the plane's points (up to %g) vanish next to the mesh's coordinates (up to %g)",
                             plmax, maxabs);
@@ -901,7 +925,7 @@ acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsig
                     for (int k = 0; k < 3; k++) c.V[3 * (size_t)nvx + k] = pa[k] + tt * (pb[k] - pa[k]);
                     c.src[nvx] = ACD_CUT_NEW_VERTEX;
                     xv[h] = nvx;
-                    uint32_t tw = acd_edge_map_find(&em, b, a);
+                    uint32_t tw = acd_edge_map_find(emp, b, a);
                     if (tw != ACD_EDGE_NONE) xv[tw] = nvx;
                 }
                 Pp[np_++] = xv[h];
@@ -915,7 +939,7 @@ acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsig
     if (st == ACD_OK) st = make_pieces(&c, out);
     out->section_area = ldexp(out->section_area, 2 * e2);
 fail:
-    acd_edge_map_free(&em);
+    acd_edge_map_free(&own);
     free(c.V);
     free(c.src);
     free(c.T);

@@ -17,6 +17,7 @@
 
 #include "acd/base.h"
 #include "acd/mesh.h"
+#include "geom3/edge_map.h"
 
 typedef struct acd_cut_plane {
     double a[3], b[3], c[3]; /* three points of the plane, not collinear */
@@ -39,6 +40,7 @@ typedef struct acd_cut_piece {
     uint8_t *is_cap;     /* mesh.ntriangles: 1 for triangles of the cap (the cross-section) */
     uint32_t *source;    /* mesh.nvertices: the input vertex, or ACD_CUT_NEW_VERTEX for a point made on
                             a crossing edge */
+    int closed;          /* 1: known to pass acd_edge_map_check_closed (checked by the cut); 0: not known */
 } acd_cut_piece;
 
 #define ACD_CUT_NEW_VERTEX UINT32_MAX
@@ -65,6 +67,10 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
 #define ACD_PLANE_CUT_DROP_SPECKS 1u
 acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsigned flags, acd_cut_result *out,
                                acd_error *err);
+/* The same with the mesh's edge map (acd_edge_map_build of all its triangles) already built and
+ * checked by acd_edge_map_check_closed (NULL: built and checked here): for several cuts of one mesh. */
+acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const acd_cut_plane *pl, unsigned flags,
+                             acd_cut_result *out, acd_error *err);
 void acd_cut_result_free(acd_cut_result *r);
 
 /* Signed volume of a closed mesh (divergence theorem about the bounding-box centre). */
