@@ -6,15 +6,17 @@
  * are moved along their directions to radii taken from the bytes, on a coarse grid (quarter units,
  * 0 allowed), so coplanar faces, flat stretches, spikes and vertices pinched together at the
  * centre are frequent. With positive radii the mesh is a star-shaped simple polyhedron; radius 0
- * makes it touch itself at the centre. Header bytes pick the mode, tau, and optionally faces to
- * delete (holes, closed again through acd_mesh_repair as `acd 3d` does in solid mode).
+ * makes it touch itself at the centre. Header bytes pick the mode, tau, the stopping test, and
+ * optionally faces to delete (holes, closed again through acd_mesh_repair as `acd 3d` does in solid
+ * mode).
  *
  * Checked on every accepted run (any violation aborts):
  *  - a failure carries a message;
  *  - solid: every part closed and consistently oriented, part volumes add up to the input's,
  *    every part meets tau unless its leaf reason says why not (no_cut, depth, merged by
  *    max_hulls), every part inside
- *    its hull's planes;
+ *    its hull's planes, a part kept whole by the hull test (hull_distance) with every vertex within
+ *    tau of its hull's boundary;
  *  - surface: the parts' faces add up to the input's;
  *  - the tree: every part's node is a leaf that points back to the part. */
 #include <math.h>
@@ -113,8 +115,11 @@ static void check(const acd_mesh *in, const acd3d_params *p, const acd3d_result 
         if (!(q->volume > 0)) abort();
         acd_hull h;
         if (acd_hull_compute(q->hull.vertices, q->hull.nvertices, &h, &e) != ACD_OK) abort();
-        for (size_t v = 0; v < q->mesh.nvertices; v++)
-            if (acd_hull_plane_distance(&h, q->mesh.vertices + 3 * v) > 1e-9 * r->scale) abort();
+        for (size_t v = 0; v < q->mesh.nvertices; v++) {
+            double pd = acd_hull_plane_distance(&h, q->mesh.vertices + 3 * v);
+            if (pd > 1e-9 * r->scale) abort();
+            if (nd->leaf_reason == ACD3D_LEAF_HULL && -pd > r->tau * (1 + 1e-9) + 1e-12 * r->scale) abort();
+        }
         acd_hull_free(&h);
     }
     if (solid && fabs(sum - r->input_volume) > 1e-9 * fabs(r->input_volume)) abort();
@@ -132,6 +137,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     p.tau = taus[data[1] % 8];
     p.max_depth = 6; /* bounds the work per input (at most 64 parts) */
     if (data[0] & 2) p.max_hulls = 1 + data[2] % 4;
+    if (data[0] & 8) p.stop = ACD3D_STOP_HULL;
     /* optional holes: the trailing bytes name faces to delete */
     if ((data[0] & 4) && size > FZ_HEADER + FZ_NV) {
         uint8_t *del = calloc(m.ntriangles, 1);
