@@ -855,7 +855,10 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
             out->st = (acd_status)(-split);
             split = 0;
         }
-        if (!split) reason = ACD3D_LEAF_NO_CUT;
+        /* no cut split it: whatever --stop says, the part is still a leaf within tau when it is
+         * within tau of its hull both ways (acd3/leaf_test); else it stays above tau, said so */
+        if (!split && out->st == ACD_OK)
+            reason = c->params->stop != ACD3D_STOP_HULL && hull_leaf(c, w, &cur.ms, out) ? ACD3D_LEAF_HULL : ACD3D_LEAF_NO_CUT;
     }
     measured_free(&cur);
     out->reason = reason;

@@ -103,6 +103,13 @@ SPOOL="$SRC/data/meshes/spool.off"
 if [ -f "$SPOOL" ]; then
   "$ACD" 3d "$SPOOL" -t 0.1 --verify >"$T/spool.out" 2>"$T/spool.err" ||
     fail "spool: exit $? $(cat "$T/spool.err")"
+  # --no-merge at tau 0.02: a chain of cuts chips crescents off a curved face, the last ones no
+  # cut can split (measured 1.2-2.1 tau by the patch measure); they are within tau of their hulls
+  # both ways, so they end as hull_distance leaves instead of no_cut parts above tau
+  "$ACD" 3d "$SPOOL" -t 0.02 --no-merge --verify --json "$T/spool.json" >"$T/spool.out" 2>"$T/spool.err" ||
+    fail "spool --no-merge: exit $? $(cat "$T/spool.err")"
+  grep -q '"no_cut"' "$T/spool.json" && fail "spool --no-merge: a no_cut leaf is left"
+  grep -q '"hull_distance"' "$T/spool.json" || fail "spool --no-merge: no hull_distance leaf (the case this checks is gone)"
 else
   echo "note: $SPOOL absent (run scripts/fetch-data.sh): spool check skipped"
 fi
