@@ -100,10 +100,10 @@ typedef struct heap {
     size_t n, cap;
 } heap;
 
+/* (evaluated without branches: the heap's comparisons are unpredictable) */
 static int item_less(const heap_item *x, const heap_item *y) {
-    if (x->err != y->err) return x->err < y->err;
-    if (x->facet != y->facet) return x->facet < y->facet;
-    return x->proxy < y->proxy;
+    int tie = (x->facet < y->facet) | ((x->facet == y->facet) & (x->proxy < y->proxy));
+    return (x->err < y->err) | ((x->err == y->err) & tie);
 }
 
 static int heap_push(heap *hp, heap_item it) {
@@ -137,7 +137,7 @@ static heap_item heap_pop(heap *hp) {
     for (;;) {
         size_t l = 2 * i + 1;
         if (l >= n) break;
-        size_t m = l + 1 < n && item_less(&hp->a[l + 1], &hp->a[l]) ? l + 1 : l;
+        size_t m = l + (size_t)(l + 1 < n && item_less(&hp->a[l + 1], &hp->a[l]));
         if (!item_less(&hp->a[m], &last)) break;
         hp->a[i] = hp->a[m];
         i = m;
