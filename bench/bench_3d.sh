@@ -34,9 +34,11 @@ ok_c() { awk -v c="$1" 'BEGIN { exit !(c != "fail" && c + 0 <= 0.02) }'; }
 # The tight pipeline (docs/acd3d.md "Hull tightness"): cut choice by hull volume, the merge ordered
 # by the hull volume a join adds and stopped at TIGHT_PARTS parts; the merge tolerance set so that the
 # merge bound (a two-sided distance per part) is 0.0195 of the bounding-box diagonal (the target's
-# 0.02 with a margin), i.e. 0.0195 x diagonal / radius in tau's units.
+# 0.02 with a margin), i.e. 0.0195 x diagonal / radius in tau's units; then up to TIGHT_REFINE
+# refinement steps at that part count (cuts by volume planes with joins, re-cuts of pairs).
 TIGHT_PARTS=${TIGHT_PARTS:-40}
-TIGHT="--cut-choice volume --merge-order volume --merge-parts $TIGHT_PARTS"
+TIGHT_REFINE=${TIGHT_REFINE:-40}
+TIGHT="--cut-choice volume --merge-order volume --merge-parts $TIGHT_PARTS --merge-refine $TIGHT_REFINE"
 diag_radius() { # FILE -> diagonal radius
   local f=$1 r d
   r=$("$ACD" 3d "$f" -t 100 --no-merge --threads 2 2>/dev/null | head -1 | sed 's/.*radius \([0-9.e+-]*\)).*/\1/')
