@@ -12,6 +12,8 @@
 #include "core/error.h"
 #include "geom3/dijkstra.h"
 
+/* Pairs measured at once when the cheapest bound is not measured yet (lazy joins). */
+#define ACD3_SURFACE_MERGE_BATCH 4
 /* Rounds of moves (refine) between rounds of joins. */
 #define ACD3_SURFACE_MERGE_ROUNDS 8
 /* Parts tried per nearly joinable pair (the witness's first). */
@@ -48,6 +50,7 @@ typedef struct pair {
     double cost;   /* the union's concavity; INFINITY when it could not be measured */
     int valid;
     uint32_t wpart; /* the part holding the union's witness */
+    int stale;      /* cost is a lower bound (the cost of a pair it grew from), not measured yet */
     acd_status st;
 } pair;
 
@@ -176,6 +179,40 @@ static acd_status score_all(const ctx *c, const uint32_t *gof, pair *prs, size_t
     return ACD_OK;
 }
 
+/* Measures the stale pairs among the valid ones with cost <= bound: the `batch` of smallest (cost,
+ * then ids) when batch > 0, else all. Returns how many were measured via *n. */
+static acd_status score_stale(const ctx *c, const uint32_t *gof, pair *prs, size_t npr, double bound, size_t batch,
+                              int threads, size_t *n) {
+    size_t *idx = malloc((npr ? npr : 1) * sizeof *idx), k = 0;
+    if (!idx) return ACD_ERR_NOMEM;
+    for (size_t i = 0; i < npr; i++) {
+        if (!prs[i].valid || !prs[i].stale || !(prs[i].cost <= bound)) continue;
+        size_t j = k++;
+        /* insertion by (cost, a, b); only the batch is kept */
+        while (j > 0 && (prs[idx[j - 1]].cost > prs[i].cost ||
+                         (prs[idx[j - 1]].cost == prs[i].cost &&
+                          (prs[idx[j - 1]].a > prs[i].a || (prs[idx[j - 1]].a == prs[i].a && prs[idx[j - 1]].b > prs[i].b))))) {
+            if (!batch || j < batch) idx[j] = idx[j - 1];
+            j--;
+        }
+        if (!batch || j < batch) idx[j] = i;
+        if (batch && k > batch) k = batch;
+    }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && k > 1)
+#endif
+    for (long i = 0; i < (long)k; i++) score(c, gof, &prs[idx[i]]);
+    (void)threads;
+    acd_status st = ACD_OK;
+    for (size_t i = 0; i < k; i++) {
+        prs[idx[i]].stale = 0;
+        if (prs[idx[i]].st != ACD_OK) st = prs[idx[i]].st;
+    }
+    free(idx);
+    *n = k;
+    return st;
+}
+
 /* Appends the pairs of group a with each neighbouring group (adj: the adjacent parts), by the
  * neighbours' lowest parts, each once (those already appended by this call). 0: out of memory. */
 static int add_pairs(const uint32_t *gof, const uint64_t *adj, size_t nadj, uint32_t a, pair **prs, size_t *npr,
@@ -195,7 +232,7 @@ static int add_pairs(const uint32_t *gof, const uint64_t *adj, size_t nadj, uint
             *prs = np, *cappr = nc;
         }
         pair *q = &(*prs)[(*npr)++];
-        q->a = lo, q->b = hi, q->valid = 1, q->st = ACD_OK, q->wpart = UINT32_MAX;
+        q->a = lo, q->b = hi, q->valid = 1, q->st = ACD_OK, q->wpart = UINT32_MAX, q->stale = 0;
     }
     return 1;
 }
@@ -316,7 +353,8 @@ static acd_status refine(const ctx *c, uint32_t *gof, double *gconc, const size_
         goto out;
     }
     for (size_t i = 0; i < npr; i++)
-        if (prs[i].valid && prs[i].cost > tau && prs[i].cost <= ACD3_SURFACE_MERGE_NEAR * tau && prs[i].wpart != UINT32_MAX)
+        if (prs[i].valid && !prs[i].stale && prs[i].cost > tau && prs[i].cost <= ACD3_SURFACE_MERGE_NEAR * tau &&
+            prs[i].wpart != UINT32_MAX)
             cand[nc++] = (refine_cand){i, prs[i].cost, prs[i].a, prs[i].b};
     qsort(cand, nc, sizeof *cand, cmp_refine_cand);
     for (size_t k = 0; k < nc; k++) {
@@ -380,8 +418,9 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
     size_t *nbo = calloc(nparts + 1, sizeof *nbo);
     uint32_t *nb = NULL;
     uint8_t *touched = calloc(nparts ? nparts : 1, 1);
+    double *lb = malloc((nparts ? nparts : 1) * sizeof *lb);
     acd_status st = ACD_OK;
-    if (!off || !vk || !gid || !partof || !dup || !ek || !gof || !gconc || !nbo || !touched || nv >= UINT32_MAX ||
+    if (!off || !vk || !gid || !partof || !dup || !ek || !gof || !gconc || !nbo || !touched || !lb || nv >= UINT32_MAX ||
         nparts >= UINT32_MAX) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory merging %zu surface parts", nparts);
         goto done;
@@ -475,7 +514,7 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
         }
         free(fill);
     }
-    for (size_t p = 0; p < nparts; p++) gof[p] = (uint32_t)p;
+    for (size_t p = 0; p < nparts; p++) gof[p] = (uint32_t)p, lb[p] = -1;
     const ctx c = {parts, nparts, off, gid, dup, ngid, eps, tol};
     /* the pairs of adjacent parts */
     cappr = nadj + 16;
@@ -489,6 +528,7 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
         prs[npr].b = (uint32_t)(adj[i] & 0xffffffffu);
         prs[npr].valid = 1;
         prs[npr].wpart = UINT32_MAX;
+        prs[npr].stale = 0;
         prs[npr++].st = ACD_OK;
     }
     st = score_all(&c, gof, prs, 0, npr, threads);
@@ -507,23 +547,40 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
                     best = i;
             }
             if (best == SIZE_MAX) break;
+            if (prs[best].stale) { /* the smallest bounds measured, a fixed batch (any thread count) */
+                size_t n;
+                st = score_stale(&c, gof, prs, npr, tau, ACD3_SURFACE_MERGE_BATCH, threads, &n);
+                if (st != ACD_OK) {
+                    st = acd_fail(err, st, "out of memory merging %zu surface parts", nparts);
+                    goto done;
+                }
+                continue;
+            }
             uint32_t a = prs[best].a, b = prs[best].b;
             gconc[a] = prs[best].cost;
             for (size_t p = 0; p < nparts; p++)
                 if (gof[p] == b) gof[p] = a;
             out->merges++;
+            /* the joined group's pair with a neighbour N is at least as concave as the pairs (A, N)
+             * and (B, N) were (their largest cost is its bound until it is measured) */
             for (size_t i = 0; i < npr; i++)
-                if (prs[i].a == a || prs[i].b == a || prs[i].a == b || prs[i].b == b) prs[i].valid = 0;
+                if (prs[i].valid && (prs[i].a == a || prs[i].b == a || prs[i].a == b || prs[i].b == b)) {
+                    uint32_t o = prs[i].a == a || prs[i].a == b ? prs[i].b : prs[i].a;
+                    if (o != a && o != b && (lb[o] < 0 || prs[i].cost > lb[o])) lb[o] = prs[i].cost;
+                    prs[i].valid = 0;
+                }
             size_t p0 = npr;
             if (!add_pairs(gof, adj, nadj, a, &prs, &npr, &cappr)) {
                 st = acd_fail(err, ACD_ERR_NOMEM, "out of memory merging %zu surface parts", nparts);
                 goto done;
             }
-            st = score_all(&c, gof, prs, p0, npr, threads);
-            if (st != ACD_OK) {
-                st = acd_fail(err, st, "out of memory merging %zu surface parts", nparts);
-                goto done;
+            for (size_t i = p0; i < npr; i++) {
+                uint32_t o = prs[i].a == a ? prs[i].b : prs[i].a;
+                if (lb[o] >= 0) prs[i].stale = 1, prs[i].cost = lb[o];
             }
+            for (size_t i = p0; i < npr; i++) lb[prs[i].a] = lb[prs[i].b] = -1;
+            for (size_t i = p0; i < npr; i++) /* (none without a bound: every adjacent pair has a pair) */
+                if (!prs[i].stale) prs[i].stale = 1, prs[i].cost = 0;
             /* drop the invalid pairs now and then */
             if (npr > 4 * nadj + 64) {
                 size_t u = 0;
@@ -534,6 +591,14 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
         }
         /* no pair joinable: move a part out of a pair that is nearly joinable (refine), then join again */
         if (round >= ACD3_SURFACE_MERGE_ROUNDS) break;
+        {
+            size_t n;
+            st = score_stale(&c, gof, prs, npr, ACD3_SURFACE_MERGE_NEAR * tau, 0, threads, &n);
+            if (st != ACD_OK) {
+                st = acd_fail(err, st, "out of memory merging %zu surface parts", nparts);
+                goto done;
+            }
+        }
         size_t moved = 0;
         st = refine(&c, gof, gconc, nbo, nb, prs, npr, tau, touched, &moved);
         if (st != ACD_OK) {
@@ -590,7 +655,7 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
     free(num);
 done:
     free(off), free(vk), free(gid), free(partof), free(dup), free(ek), free(adj), free(gof), free(gconc), free(prs);
-    free(nbo), free(nb), free(touched);
+    free(nbo), free(nb), free(touched), free(lb);
     if (st != ACD_OK) acd3_surface_merge_result_free(out);
     return st;
 }

@@ -9,7 +9,9 @@
  * and measured with the decomposition's own measure (acd3/measure, with eps given): the pair is
  * joinable when that concavity is <= tau, and its cost is the concavity. Cheapest first (ties:
  * the lower group ids), greedily, until no adjacent pair is joinable; a joined group is a new
- * group and its pairs with its neighbours are measured again. When no pair is joinable, moves
+ * group and its pairs with its neighbours are measured again, lazily: each starts at the larger
+ * cost of the two pairs it grew from (a lower bound where the measure does not drop as a patch
+ * grows) and is measured when it is the cheapest (4 such at once). When no pair is joinable, moves
  * (up to 8 rounds, each followed by joins again): a pair whose union measures above tau but within
  * 1.6 tau is joined when one of its parts (the one holding the union's witness first, then those
  * next to a third group; 12 at most) can go to a third adjacent group C, the rest staying
