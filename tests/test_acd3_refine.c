@@ -4,15 +4,20 @@
  * voxel shape whose best partition is known: the part count is kept, the hull volume falls to the
  * known optimum, the groups tile the input (volumes add up), every group is within tau, the pieces
  * name the atoms they were cut from, no refinement gives the greedy result unchanged, and the output
- * is the same for 1, 2 and 4 threads. */
+ * is the same for 1, 2 and 4 threads. Through acd3d_decompose (merge_refine): the pieces are tree
+ * nodes under the parts they were cut from, each in a joined record within the merge tolerance whose
+ * hull reaches out by no more than its bound. */
 #include "testutil.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd/acd3d.h"
 #include "acd/hull.h"
 #include "acd3/merge.h"
+#include "acd3d_check.h"
+#include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
 #include "shapes.h"
 
@@ -130,9 +135,117 @@ static void test_trade_on_voxels(void **state) {
     acd_mesh_free(&in);
 }
 
+/* How far the part's hull reaches out of the part: the largest distance from a hull vertex or facet
+ * centroid to the part's surface (a lower bound of the distance the part's bound bounds). */
+static double hull_reach(const acd3d_part *pt) {
+    acd_bvh b;
+    acd_error err;
+    assert_int_equal(acd_bvh_build(&b, pt->mesh.vertices, pt->mesh.nvertices, pt->mesh.triangles, pt->mesh.ntriangles, &err),
+                     ACD_OK);
+    double worst = 0;
+    const acd_mesh *h = &pt->hull;
+    for (size_t t = 0; t < h->ntriangles; t++)
+        for (int k = 0; k < 4; k++) {
+            double p[3];
+            for (int d = 0; d < 3; d++) {
+                const double *v0 = h->vertices + 3 * (size_t)h->triangles[3 * t], *v1 = h->vertices + 3 * (size_t)h->triangles[3 * t + 1],
+                             *v2 = h->vertices + 3 * (size_t)h->triangles[3 * t + 2];
+                p[d] = k == 0 ? v0[d] : k == 1 ? v1[d] : k == 2 ? v2[d] : (v0[d] + v1[d] + v2[d]) / 3.0;
+            }
+            acd_bvh_closest_result q;
+            if (acd_bvh_closest(&b, p, INFINITY, &q) && sqrt(q.dist2) > worst) worst = sqrt(q.dist2);
+        }
+    acd_bvh_free(&b);
+    return worst;
+}
+
+/* The refinement's invariants on a decomposition r of an input of volume vin; returns how many
+ * pieces it made. */
+static size_t check_refined(const acd3d_result *r, double vin) {
+    double sum = 0;
+    for (size_t i = 0; i < r->nparts; i++) {
+        const acd3d_part *pt = &r->parts[i];
+        const acd3d_node *nd = &r->nodes[pt->node];
+        double v = mg_volume(&pt->mesh);
+        assert_true(v > 0);
+        assert_true(fabs(v - pt->volume) <= 1e-9 * vin);
+        sum += v;
+        assert_true(pt->hull_volume >= v * (1 - 1e-9));
+        if (nd->leaf_reason != ACD3D_LEAF_JOINED) continue;
+        assert_true(pt->concavity <= r->merge_tau * (1 + 1e-12));
+        assert_true(hull_reach(pt) <= pt->concavity * (1 + 1e-9) + 1e-12);
+        double mv = 0;
+        for (size_t n = 0; n < r->nnodes; n++)
+            if (r->nodes[n].merged_into == pt->node) mv += r->nodes[n].volume;
+        assert_true(fabs(mv - nd->volume) <= 1e-9 * vin);
+    }
+    assert_true(fabs(sum - vin) <= 1e-9 * vin);
+    size_t pieces = 0;
+    for (size_t n = 0; n < r->nnodes; n++) {
+        const acd3d_node *nd = &r->nodes[n];
+        if (nd->leaf_reason != ACD3D_LEAF_REFINED) continue;
+        pieces++;
+        /* a child of the node cut, which is no longer a part; joined unless cut again */
+        assert_true(nd->parent >= 0);
+        const acd3d_node *pa = &r->nodes[nd->parent];
+        assert_true((int)n >= pa->first_child && (int)n < pa->first_child + pa->nchildren);
+        assert_int_equal(pa->part, -1);
+        assert_int_equal(pa->leaf_reason, ACD3D_LEAF_NONE);
+        double cv = 0;
+        for (int k = 0; k < pa->nchildren; k++) cv += r->nodes[pa->first_child + k].volume;
+        assert_true(fabs(cv - pa->volume) <= 1e-9 * vin);
+        if (nd->first_child < 0) assert_true(nd->merged_into >= 0);
+        assert_int_equal(nd->part, -1);
+    }
+    return pieces;
+}
+
+static double bumpy_r(double th, double ph, void *u) {
+    (void)u;
+    return 1.0 + 0.15 * sin(4 * th) * cos(3 * ph) + 0.6 * fabs(cos(th));
+}
+
+/* A bumpy, elongated blob decomposed, merged to 5 parts and refined. */
+static void test_decompose_refined(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 24, 12, bumpy_r, NULL));
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.05;
+    p.merge_tau = 0.15;
+    p.cut_choice = ACD3D_CHOICE_VOLUME;
+    p.merge_order = ACD3D_MERGE_VOLUME;
+    p.merge_parts = 5;
+    p.threads = 1;
+    acd3d_result plain, ref[3];
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &p, &plain, &err), ACD_OK);
+    p.merge_refine = 20;
+    const int threads[3] = {1, 2, 4};
+    for (int k = 0; k < 3; k++) {
+        p.threads = threads[k];
+        assert_int_equal(acd3d_decompose(&m, &p, &ref[k], &err), ACD_OK);
+    }
+    double vin = mg_volume(&m), hp = 0, hr = 0;
+    assert_int_equal(check_refined(&plain, vin), 0);
+    assert_true(check_refined(&ref[0], vin) > 0);
+    assert_int_equal(ref[0].nparts, plain.nparts);
+    for (size_t i = 0; i < plain.nparts; i++) hp += plain.parts[i].hull_volume;
+    for (size_t i = 0; i < ref[0].nparts; i++) hr += ref[0].parts[i].hull_volume;
+    assert_true(hr < hp);
+    for (int k = 1; k < 3; k++) {
+        ck3_same_parts(&ref[0], &ref[k]);
+        assert_int_equal(ref[k].nnodes, ref[0].nnodes);
+    }
+    acd3d_result_free(&plain);
+    for (int k = 0; k < 3; k++) acd3d_result_free(&ref[k]);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_trade_on_voxels),
+        cmocka_unit_test(test_decompose_refined),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
