@@ -114,7 +114,8 @@ typedef struct acd3d_params {
     size_t merge_refine;      /* solid mode's merge pass with merge_parts: at most this many refinement
                                  steps after the joins (0, default: none); a step cuts a joined part by
                                  the plane saving the most hull volume and joins the cheapest pair, when
-                                 the hulls' volume falls (docs/acd3d.md "Hull tightness") */
+                                 the hulls' volume falls (docs/acd3d.md "Hull tightness"); not with
+                                 max_hulls */
     acd3d_cut_choice cut_choice; /* solid mode: how a split's cut is chosen among the candidates */
     acd3d_surface_cut surface_cut; /* surface mode: plane strips only (default), or the global cut's
                                  cycle first */

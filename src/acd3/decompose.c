@@ -1199,7 +1199,10 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
 
     if (params->merge && solid) {
-        const acd3_merge_opts mo = {params->merge_order == ACD3D_MERGE_VOLUME, params->merge_parts, params->merge_refine};
+        /* (no refinement after max_hulls: its merged parts keep their dropped children, the pieces
+         * could not be their children) */
+        const acd3_merge_opts mo = {params->merge_order == ACD3D_MERGE_VOLUME, params->merge_parts,
+                                    params->max_hulls ? 0 : params->merge_refine};
         st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, &mo, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     } else if (params->merge) {
