@@ -180,6 +180,14 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
  * and the band of concavity (a fraction of the part's) within which the pieces' hull volume
  * decides. */
 #define ACD3_VOLUME_PLANES 1
+/* The volume plane is searched on an estimate (acd3_volume_planes_scored): at most this many of
+ * the part's vertices scored, 5 offsets refined twice. Against the full search (every vertex up to
+ * 4000, 9 offsets refined three times), same run: tight CPU armadillo 8.45 -> 5.35 s, bunny00
+ * 10.3 -> 7.35 s, knot1 3.13 -> 2.83, npm bunny 2.17 -> 1.92; IoU armadillo 0.9315 -> 0.9304,
+ * bunny00 0.9744 -> 0.9712, knot1 0.9674 -> 0.9678, npm bunny 0.9776 -> 0.9790, camel 0.9651 ->
+ * 0.9642, fandisk 0.9796 -> 0.9814 (the plane only joins the candidates: each is cut and measured
+ * exactly). */
+#define ACD3_VOLUME_PLANE_SCORED 400
 #define ACD3_VOLUME_BAND 0.5
 
 typedef struct split_choice {
@@ -679,7 +687,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     by_volume = by_volume && solid;
     if (by_volume && nc > 0) { /* the volume planes after the first candidate */
         acd3_plane_candidate vp[ACD3_VOLUME_PLANES];
-        int nv = acd3_volume_planes(m, ACD3_VOLUME_PLANES, vp);
+        int nv = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
         memmove(cand + 1 + nv, cand + 1, (size_t)(nc - 1) * sizeof *cand);
         memcpy(cand + 1, vp, (size_t)nv * sizeof *cand);
         nc += nv;
