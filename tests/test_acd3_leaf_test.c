@@ -168,6 +168,19 @@ static acd3d_params params(double tau, acd3d_stop stop) {
     return p;
 }
 
+/* Decomposes m (params above) and checks its parts (check_parts); returns how many parts,
+ * *hull_leaves how many of them the hull test accepted. */
+static size_t decompose_checked(const acd_mesh *m, double tau, acd3d_stop stop, int *hull_leaves) {
+    acd3d_params p = params(tau, stop);
+    acd3d_result r;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(m, &p, &r, &err), ACD_OK);
+    *hull_leaves = check_parts(&r);
+    size_t n = r.nparts;
+    acd3d_result_free(&r);
+    return n;
+}
+
 /* A roof so shallow that both slopes fall into one bridge patch (its drop 0.2 <= eps = tau/2): the
  * patch plane lies at the ridge, and a dent of depth 0.95 (under tau = 1 below the roof) near the
  * eave is measured 0.95 + 0.2 * 3/5 deep. The hull test keeps the block whole; the measure splits
@@ -189,20 +202,11 @@ static void test_overreport_kept_whole(void **state) {
     assert_true(sampled_reach(&hm, &m) <= tau);
     acd_hull_free(&h);
 
-    acd3d_params p = params(tau, ACD3D_STOP_HULL);
-    acd3d_result r;
-    acd_error err;
-    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
-    assert_int_equal(r.nparts, 1);
-    assert_int_equal(r.nodes[r.parts[0].node].leaf_reason, ACD3D_LEAF_HULL);
-    assert_int_equal(check_parts(&r), 1);
-    acd3d_result_free(&r);
-
-    p = params(tau, ACD3D_STOP_MEASURE);
-    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
-    assert_true(r.nparts >= 2);
-    assert_int_equal(check_parts(&r), 0);
-    acd3d_result_free(&r);
+    int hull_leaves;
+    assert_int_equal(decompose_checked(&m, tau, ACD3D_STOP_HULL, &hull_leaves), 1);
+    assert_int_equal(hull_leaves, 1); /* the one part is the hull test's leaf */
+    assert_true(decompose_checked(&m, tau, ACD3D_STOP_MEASURE, &hull_leaves) >= 2);
+    assert_int_equal(hull_leaves, 0);
     acd_mesh_free(&m);
 }
 
@@ -216,13 +220,8 @@ static void test_deep_dent_split(void **state) {
     double tau = 1.0, bound;
     assert_int_equal(leaf_ok(&m, tau, &bound), 0);
     assert_true(bound > tau);
-    acd3d_params p = params(tau, ACD3D_STOP_HULL);
-    acd3d_result r;
-    acd_error err;
-    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
-    assert_true(r.nparts >= 2);
-    check_parts(&r);
-    acd3d_result_free(&r);
+    int hull_leaves;
+    assert_true(decompose_checked(&m, tau, ACD3D_STOP_HULL, &hull_leaves) >= 2);
     acd_mesh_free(&m);
 }
 
@@ -245,13 +244,8 @@ static void test_bent_slab_refused(void **state) {
     assert_true(sampled_reach(&hm, &m) > 3 * tau); /* hull -> part: far */
     acd_hull_free(&h);
     assert_int_equal(leaf_ok(&m, tau, &bound), 0);
-    acd3d_params p = params(tau, ACD3D_STOP_HULL);
-    acd3d_result r;
-    acd_error err;
-    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
-    assert_true(r.nparts >= 2);
-    check_parts(&r);
-    acd3d_result_free(&r);
+    int hull_leaves;
+    assert_true(decompose_checked(&m, tau, ACD3D_STOP_HULL, &hull_leaves) >= 2);
     acd_mesh_free(&m);
 }
 

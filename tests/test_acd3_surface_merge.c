@@ -78,6 +78,24 @@ static double measure(const acd_mesh *m, double eps) {
     return c;
 }
 
+/* Every group of r (over n parts) of two parts or more within tau, as recorded and measured again
+ * (at eps), one connected piece (of genus 0 when genus0); the groups' sizes add up to n. */
+static void check_groups(const acd3_surface_merge_result *r, size_t n, double eps, double tau, int genus0) {
+    size_t total = 0;
+    for (size_t g = 0; g < r->ngroups; g++) {
+        total += r->group_size[g];
+        if (r->group_size[g] < 2) continue;
+        assert_true(r->concavity[g] <= tau);
+        assert_true(measure(&r->meshes[g], eps) <= tau);
+        acd3_topology t;
+        acd_error err;
+        assert_int_equal(acd3_topology_of(&r->meshes[g], &t, &err), ACD_OK);
+        assert_int_equal(t.components, 1);
+        if (genus0) assert_int_equal(t.genus, 0);
+    }
+    assert_int_equal(total, n);
+}
+
 static void free_parts(acd_mesh *p, size_t n) {
     for (size_t i = 0; i < n; i++) acd_mesh_free(&p[i]);
     free(p);
@@ -122,17 +140,7 @@ static void test_torus_groups_within_tau(void **state) {
     assert_true(r.ngroups < n);  /* a quarter of the ring: its inner wall 0.65 (1 - cos 45 deg) = 0.19 deep */
     assert_true(r.ngroups >= 3); /* three eighths: 0.40 */
     print_message("torus eighths: %zu groups\n", r.ngroups);
-    size_t total = 0;
-    for (size_t g = 0; g < r.ngroups; g++) {
-        total += r.group_size[g];
-        if (r.group_size[g] < 2) continue;
-        assert_true(r.concavity[g] <= tau);
-        assert_true(measure(&r.meshes[g], eps) <= tau);
-        acd3_topology t;
-        assert_int_equal(acd3_topology_of(&r.meshes[g], &t, &err), ACD_OK);
-        assert_true(t.components == 1 && t.genus == 0);
-    }
-    assert_int_equal(total, n);
+    check_groups(&r, n, eps, tau, 1);
     /* same groups with two threads */
     acd3_surface_merge_result r2;
     assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 2, &r2, &err), ACD_OK);
@@ -179,17 +187,7 @@ static void test_moves(void **state) {
         assert_int_equal(r2.ngroups, r.ngroups);
         assert_int_equal(r2.moves, r.moves);
         for (size_t k = 0; k < n; k++) assert_int_equal(r2.group_of[k], r.group_of[k]);
-        size_t total = 0;
-        for (size_t g = 0; g < r.ngroups; g++) {
-            total += r.group_size[g];
-            if (r.group_size[g] < 2) continue;
-            assert_true(r.concavity[g] <= tau);
-            assert_true(measure(&r.meshes[g], eps) <= tau);
-            acd3_topology t;
-            assert_int_equal(acd3_topology_of(&r.meshes[g], &t, &err), ACD_OK);
-            assert_int_equal(t.components, 1);
-        }
-        assert_int_equal(total, n);
+        check_groups(&r, n, eps, tau, 0);
         moves += r.moves;
         acd3_surface_merge_result_free(&r);
         acd3_surface_merge_result_free(&r2);
