@@ -22,6 +22,11 @@
 /* A vertex is on the input surface when within this fraction of the input's bounding-box
  * diagonal of it (cut vertices are interpolated on input edges: off by rounding only). */
 #define MERGE_ON_SURFACE_REL 1e-9
+/* A pair refused for a surface vertex deeper than tau in its joint hull refuses the pairs of the
+ * joined group too (the depth of a point inside a convex set only grows with the set), when the depth
+ * found exceeded tau by this fraction of the input's bounding-box diagonal (far above the rounding of
+ * the hulls' planes and of the hull vertices kept). */
+#define MERGE_DEPTH_SLACK_REL 1e-9
 
 /* The atoms the groups are made of: the input parts, then the pieces the refinement cuts. */
 typedef struct atoms {
@@ -67,6 +72,10 @@ typedef struct pair {
     double bound; /* max(d_in, bound of d_out) */
     double *ft, *fub; /* ok: the joined hull's facet table (as group.ft, fub), for the join */
     size_t nft;
+    double *hv; /* ok: the joined hull's vertices and volume, for the join */
+    size_t nhv;
+    double hvol;
+    double din_lo; /* refused by d_in: a lower bound of d_in (> tau), else 0 */
     int est;          /* refinement: as group.est, for the cut of the pair's union */
     double est_gain;  /* the hull volume that cut saves against the pair's two hulls (an estimate) */
     acd3_plane_candidate est_plane;
@@ -75,7 +84,8 @@ typedef struct pair {
 static void pair_free(pair *p) {
     free(p->ft);
     free(p->fub);
-    p->ft = p->fub = NULL;
+    free(p->hv);
+    p->ft = p->fub = p->hv = NULL;
 }
 
 static void group_free(group *g) {
@@ -372,15 +382,18 @@ static int set_facets(group *g, const group *A, const group *B, const acd_hull *
     return 1;
 }
 
-/* Scores the union of A and B (merge.h): ok and cost = max(d_in, bound of d_out). */
-static void score(const group *A, const group *B, double tau, int by_volume, pair *out) {
+/* Scores the union of A and B (merge.h): ok and cost = max(d_in, bound of d_out). A pair whose
+ * din_lo is above din_refuse (inherited, join_best) is refused without a hull. */
+static void score(const group *A, const group *B, double tau, double din_refuse, int by_volume, pair *out) {
     out->ok = 0;
     out->cost = INFINITY;
+    if (out->din_lo > din_refuse) return;
     acd_hull H;
     if (!joint_hull(A, B, &H)) return;
     size_t start = 0;
     double din = depth_in_hull(A, &H, 0.0, tau, &start);
     if (din <= tau) din = depth_in_hull(B, &H, din, tau, &start);
+    if (!(din <= tau)) out->din_lo = din;
     double dout = INFINITY, *key = NULL, *ub = NULL;
     size_t nf = H.ntriangles;
     double hvol = H.volume;
@@ -389,12 +402,19 @@ static void score(const group *A, const group *B, double tau, int by_volume, pai
         ub = malloc((nf ? nf : 1) * sizeof *ub);
         if (key && ub) dout = hull_facets_ub(A, B, &H, tau, 1, key, ub);
     }
+    double *hv = H.vertices;
+    size_t nhv = H.nvertices;
+    H.vertices = NULL;
     acd_hull_free(&H);
     if (!(din <= tau) || !(dout <= tau) || !sort_facets(key, ub, nf)) {
         free(key);
         free(ub);
+        free(hv);
         return;
     }
+    out->hv = hv;
+    out->nhv = nhv;
+    out->hvol = hvol;
     out->ok = 1;
     out->bound = fmax(din, dout);
     out->cost = by_volume ? hvol - A->hvol - B->hvol : out->bound;
@@ -539,12 +559,14 @@ static acd_status adjacent_pairs(const acd_mesh *M, const uint32_t *sel, size_t 
     return st;
 }
 
-/* Scores pairs [p0, p1) (independently: any thread count gives the same scores). */
-static void score_pairs(group *G, pair *P, size_t p0, size_t p1, double tau, int by_volume, int threads) {
+/* Scores pairs [p0, p1) (independently: any thread count gives the same scores); din_refuse: as
+ * score's. */
+static void score_pairs(group *G, pair *P, size_t p0, size_t p1, double tau, double din_refuse, int by_volume,
+                        int threads) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && p1 - p0 > 1)
 #endif
-    for (long i = (long)p0; i < (long)p1; i++) score(&G[P[i].a], &G[P[i].b], tau, by_volume, &P[i]);
+    for (long i = (long)p0; i < (long)p1; i++) score(&G[P[i].a], &G[P[i].b], tau, din_refuse, by_volume, &P[i]);
     (void)threads;
 }
 
@@ -570,18 +592,15 @@ static acd_status join(group *G, pair *pr, uint32_t c, acd_error *err) {
     double bound = pr->bound;
     group *A = &G[a], *B = &G[b], *C = &G[c];
     memset(C, 0, sizeof *C);
-    acd_hull H;
-    if (!joint_hull(A, B, &H)) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for a joined hull");
-    /* the facet table the pair's score made (the same hull) */
+    if (!pr->hv) return acd_fail(err, ACD_ERR_INTERNAL, "merge: a joined pair without its hull");
+    /* the hull and facet table the pair's score made */
     C->ft = pr->ft;
     C->fub = pr->fub;
     C->nft = pr->nft;
-    pr->ft = pr->fub = NULL;
-    C->hv = H.vertices;
-    C->nhv = H.nvertices;
-    C->hvol = H.volume;
-    H.vertices = NULL;
-    acd_hull_free(&H);
+    C->hv = pr->hv;
+    C->nhv = pr->nhv;
+    C->hvol = pr->hvol;
+    pr->ft = pr->fub = pr->hv = NULL;
     C->nsv = A->nsv + B->nsv;
     C->sv = malloc((C->nsv ? C->nsv : 1) * 3 * sizeof(double));
     C->nmembers = A->nmembers + B->nmembers;
@@ -705,8 +724,8 @@ static void atoms_free(atoms *at, size_t nparts) {
     memset(at, 0, sizeof *at);
 }
 
-/* Atom i's surface vertices (within on_tol of the input) and tree. */
-static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double on_tol, acd_error *err) {
+/* Atom i's surface vertices (within on_tol of the input). */
+static acd_status atom_surface(atoms *at, size_t i, const acd_bvh *in_bvh, double on_tol, acd_error *err) {
     const acd_mesh *m = &at->mesh[i];
     at->sv[i] = malloc((m->nvertices ? m->nvertices : 1) * 3 * sizeof(double));
     if (!at->sv[i]) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
@@ -715,6 +734,14 @@ static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double o
         const double *p = m->vertices + 3 * v;
         if (acd_bvh_closest(in_bvh, p, on_tol * on_tol, &q)) memcpy(at->sv[i] + 3 * at->nsv[i]++, p, sizeof(double[3]));
     }
+    return ACD_OK;
+}
+
+/* Atom i's surface vertices and tree. */
+static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double on_tol, acd_error *err) {
+    const acd_mesh *m = &at->mesh[i];
+    acd_status st = atom_surface(at, i, in_bvh, on_tol, err);
+    if (st != ACD_OK) return st;
     return acd_bvh_build(&at->bvh[i], m->vertices, m->nvertices, m->triangles, m->ntriangles, err);
 }
 
@@ -934,18 +961,35 @@ static size_t best_pair(const group *G, pair *P, size_t *np) {
     return best;
 }
 
-/* Joins pair best into a new group, its pairs with its neighbours pushed and scored. */
+/* Joins pair best into a new group, its pairs with its neighbours pushed and scored. A neighbour x
+ * whose pair with one of the joined groups was refused by a depth above din_refuse is refused with
+ * the new group too, without a hull (MERGE_DEPTH_SLACK_REL): score would find that depth or more. */
 static acd_status join_best(group **G, size_t *ng, size_t *capg, atoms *at, pair **P, size_t *np, size_t *capp,
-                            size_t best, double tau, int by_volume, int threads, acd_error *err) {
+                            size_t best, double tau, double din_refuse, int by_volume, int threads, acd_error *err) {
     if (!grow_groups(G, capg, *ng + 1)) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for groups");
     uint32_t c = (uint32_t)(*ng)++;
+    uint32_t a = (*P)[best].a, b = (*P)[best].b;
     acd_status st = join(*G, &(*P)[best], c, err);
     if (st != ACD_OK) return st;
     group *C = &(*G)[c];
     for (size_t k = 0; k < C->nmembers; k++) at->owner[C->members[k]] = c;
     size_t p0 = *np;
     for (size_t k = 0; k < C->nadj && st == ACD_OK; k++) st = push_pair(P, np, capp, C->adj[k], c, err);
-    if (st == ACD_OK) score_pairs(*G, *P, p0, *np, tau, by_volume, threads);
+    if (st != ACD_OK) return st;
+    /* the joined groups' pairs are still in P (best_pair drops them next) */
+    for (size_t i = 0; i < p0; i++) {
+        pair *q = &(*P)[i];
+        if (!(q->din_lo > din_refuse)) continue;
+        uint32_t x;
+        if (q->a == a || q->a == b) x = q->b;
+        else if (q->b == a || q->b == b) x = q->a;
+        else continue;
+        for (size_t j = p0; j < *np; j++) {
+            pair *r = &(*P)[j];
+            if (r->a == x && r->din_lo < q->din_lo) r->din_lo = q->din_lo; /* r->b == c > x */
+        }
+    }
+    score_pairs(*G, *P, p0, *np, tau, din_refuse, by_volume, threads);
     return st;
 }
 
@@ -1023,7 +1067,7 @@ static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, u
     for (int j = 0; j < 2 && st == ACD_OK; j++)
         for (size_t k = 0; k < G[s[j]].nadj && st == ACD_OK; k++)
             if (!(j == 1 && G[s[1]].adj[k] == s[0])) st = push_pair(P, np, capp, G[s[j]].adj[k], s[j], err);
-    if (st == ACD_OK) score_pairs(G, *P, p0, *np, tau, by_volume, threads);
+    if (st == ACD_OK) score_pairs(G, *P, p0, *np, tau, INFINITY, by_volume, threads);
     return st;
 }
 
@@ -1078,7 +1122,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for %zu parts", nparts);
     }
     at.n = nparts;
-    acd_status st = acd_bvh_build(&in_bvh, input->vertices, input->nvertices, input->triangles, input->ntriangles, err);
+    acd_status st = ACD_OK;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < input->nvertices; v++)
         for (int k = 0; k < 3; k++) {
@@ -1087,17 +1131,23 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         }
     const double diag = len3(lo, hi), on_tol = MERGE_ON_SURFACE_REL * diag;
     double in_vol = 0;
-    /* one group per part (independently: in parallel) */
+    /* one group per part (independently: in parallel): first the input's tree (task 0) and the parts'
+     * trees and hulls, then the parts' surface vertices (they need the input's tree) */
     ng = nparts;
-    acd_status *gst = calloc(nparts ? nparts : 1, sizeof *gst);
-    acd_error *gerr = calloc(nparts ? nparts : 1, sizeof *gerr);
-    if (st == ACD_OK && (!gst || !gerr)) st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for %zu parts", nparts);
+    acd_status *gst = calloc(nparts + 1, sizeof *gst);
+    acd_error *gerr = calloc(nparts + 1, sizeof *gerr);
+    if (!gst || !gerr) st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for %zu parts", nparts);
     if (st == ACD_OK) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1)
 #endif
-        for (long li = 0; li < (long)nparts; li++) {
-            size_t i = (size_t)li;
+        for (long li = 0; li <= (long)nparts; li++) {
+            if (li == 0) {
+                gst[nparts] = acd_bvh_build(&in_bvh, input->vertices, input->nvertices, input->triangles,
+                                            input->ntriangles, &gerr[nparts]);
+                continue;
+            }
+            size_t i = (size_t)li - 1;
             group *g = &G[i];
             at.mesh[i] = parts[i];
             at.owner[i] = (uint32_t)i;
@@ -1108,15 +1158,36 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
             g->vol = at.vol[i];
             g->nmembers = 1;
             g->members = malloc(sizeof *g->members);
-            acd_status s2 = atom_init(&at, i, &in_bvh, on_tol, &gerr[i]);
-            if (s2 == ACD_OK && g->members) {
+            acd_status s2 = acd_bvh_build(&at.bvh[i], parts[i].vertices, parts[i].nvertices, parts[i].triangles,
+                                          parts[i].ntriangles, &gerr[i]);
+            if (s2 == ACD_OK && !g->members) s2 = acd_fail(&gerr[i], ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
+            if (s2 == ACD_OK) {
                 g->members[0] = (uint32_t)i;
+                s2 = group_init_hull(g, parts[i].vertices, parts[i].nvertices, tau, &gerr[i]);
+            }
+            gst[i] = s2;
+        }
+        for (size_t i = 0; i <= nparts; i++)
+            if (gst[i] != ACD_OK) {
+                st = gst[i];
+                if (err) *err = gerr[i];
+                break;
+            }
+    }
+    if (st == ACD_OK) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1)
+#endif
+        for (long li = 0; li < (long)nparts; li++) {
+            size_t i = (size_t)li;
+            group *g = &G[i];
+            acd_status s2 = atom_surface(&at, i, &in_bvh, on_tol, &gerr[i]);
+            if (s2 == ACD_OK) {
                 g->nsv = at.nsv[i];
                 g->sv = malloc((g->nsv ? g->nsv : 1) * 3 * sizeof(double));
                 if (g->sv) memcpy(g->sv, at.sv[i], 3 * g->nsv * sizeof(double));
+                else s2 = acd_fail(&gerr[i], ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
             }
-            if (s2 == ACD_OK && (!g->members || !g->sv)) s2 = acd_fail(&gerr[i], ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
-            if (s2 == ACD_OK) s2 = group_init_hull(g, parts[i].vertices, parts[i].nvertices, tau, &gerr[i]);
             gst[i] = s2;
         }
         for (size_t i = 0; i < nparts; i++)
@@ -1144,13 +1215,14 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     for (size_t i = 0; i < nparts && st == ACD_OK; i++)
         for (size_t k = 0; k < G[i].nadj && st == ACD_OK; k++)
             if (G[i].adj[k] > i) st = push_pair(&P, &np, &capp, (uint32_t)i, G[i].adj[k], err);
-    if (st == ACD_OK) score_pairs(G, P, 0, np, tau, by_volume, threads);
+    const double din_refuse = tau + MERGE_DEPTH_SLACK_REL * diag;
+    if (st == ACD_OK) score_pairs(G, P, 0, np, tau, din_refuse, by_volume, threads);
     /* greedy: the cheapest joinable pair of live groups, ties by the lower ids */
     size_t nlive = nparts;
     while (st == ACD_OK && nlive > stop_at) {
         size_t best = best_pair(G, P, &np);
         if (best == SIZE_MAX) break;
-        st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, by_volume, threads, err);
+        st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
         if (st != ACD_OK) break;
         out->merges++;
         nlive--;
@@ -1235,7 +1307,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
             size_t best = st == ACD_OK ? best_pair(G, P, &np) : 0;
             if (st == ACD_OK && best == SIZE_MAX) /* cannot happen: the pair of cost c0x is still there */
                 st = acd_fail(err, ACD_ERR_INTERNAL, "merge: no join after a refinement cut");
-            if (st == ACD_OK) st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, by_volume, threads, err);
+            if (st == ACD_OK) st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
         }
         out->trades++;
     }
