@@ -363,22 +363,29 @@ static int sort_facets(double *key, double *ub, size_t nf) {
     return 1;
 }
 
-/* g's facet table from its hull H (one part: A = g, B = NULL). */
-static int set_facets(group *g, const group *A, const group *B, const acd_hull *H, double tau) {
+/* The facet table of H, the hull of A u B (B may be NULL): *worst = hull_facets_ub's largest bound,
+ * and the table (H->ntriangles facets, sorted by key) in *ft, *fub — with stop_early only when
+ * *worst <= tau, else *ft = *fub = NULL. Returns 0 out of memory (nothing kept). */
+static int facet_table(const group *A, const group *B, const acd_hull *H, double tau, int stop_early, double *worst,
+                       double **ft, double **fub) {
     size_t nf = H->ntriangles;
     double *key = malloc((nf ? nf : 1) * 9 * sizeof *key), *ub = malloc((nf ? nf : 1) * sizeof *ub);
+    *ft = *fub = NULL;
     if (!key || !ub) {
         free(key), free(ub);
         return 0;
     }
-    hull_facets_ub(A, B, H, tau, 0, key, ub);
+    *worst = hull_facets_ub(A, B, H, tau, stop_early, key, ub);
+    if (stop_early && !(*worst <= tau)) {
+        free(key), free(ub);
+        return 1;
+    }
     if (!sort_facets(key, ub, nf)) {
         free(key), free(ub);
         return 0;
     }
-    g->ft = key;
-    g->fub = ub;
-    g->nft = nf;
+    *ft = key;
+    *fub = ub;
     return 1;
 }
 
@@ -395,32 +402,24 @@ static void score(const group *A, const group *B, double tau, double din_refuse,
     if (din <= tau) din = depth_in_hull(B, &H, din, tau, &start);
     if (!(din <= tau)) out->din_lo = din;
     double dout = INFINITY, *key = NULL, *ub = NULL;
-    size_t nf = H.ntriangles;
-    double hvol = H.volume;
-    if (din <= tau) {
-        key = malloc((nf ? nf : 1) * 9 * sizeof *key);
-        ub = malloc((nf ? nf : 1) * sizeof *ub);
-        if (key && ub) dout = hull_facets_ub(A, B, &H, tau, 1, key, ub);
-    }
-    double *hv = H.vertices;
-    size_t nhv = H.nvertices;
-    H.vertices = NULL;
-    acd_hull_free(&H);
-    if (!(din <= tau) || !(dout <= tau) || !sort_facets(key, ub, nf)) {
+    if (din <= tau && !facet_table(A, B, &H, tau, 1, &dout, &key, &ub)) dout = INFINITY;
+    if (!(din <= tau) || !(dout <= tau)) {
         free(key);
         free(ub);
-        free(hv);
+        acd_hull_free(&H);
         return;
     }
-    out->hv = hv;
-    out->nhv = nhv;
-    out->hvol = hvol;
+    out->hv = H.vertices;
+    out->nhv = H.nvertices;
+    out->hvol = H.volume;
+    out->nft = H.ntriangles;
+    H.vertices = NULL;
+    acd_hull_free(&H);
     out->ok = 1;
     out->bound = fmax(din, dout);
-    out->cost = by_volume ? hvol - A->hvol - B->hvol : out->bound;
+    out->cost = by_volume ? out->hvol - A->hvol - B->hvol : out->bound;
     out->ft = key;
     out->fub = ub;
-    out->nft = nf;
 }
 
 static int adj_add(uint32_t **adj, size_t *n, uint32_t x) {
@@ -574,10 +573,12 @@ static acd_status group_init_hull(group *g, const double *pts, size_t n, double 
     acd_hull h;
     acd_status st = acd_hull_compute(pts, n, &h, err);
     if (st != ACD_OK) return st;
-    if (h.dim == 3 && !set_facets(g, g, NULL, &h, tau)) {
+    double worst;
+    if (h.dim == 3 && !facet_table(g, NULL, &h, tau, 0, &worst, &g->ft, &g->fub)) {
         acd_hull_free(&h);
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for a hull's facets");
     }
+    if (h.dim == 3) g->nft = h.ntriangles;
     g->hv = h.vertices;
     g->nhv = h.nvertices;
     g->hvol = h.dim == 3 ? h.volume : 0;
@@ -832,28 +833,16 @@ static int side_group(group *S, const atoms *at, const uint32_t *mem, size_t n, 
         group_free(S);
         return hs == ACD_ERR_NOMEM ? -1 : 0;
     }
-    size_t start = 0, nf = H.ntriangles;
+    size_t start = 0;
     double din = depth_in_hull(S, &H, 0.0, tau, &start), dout = INFINITY;
-    double *key = NULL, *ub = NULL;
-    int ret = 1;
-    if (din <= tau) {
-        key = malloc((nf ? nf : 1) * 9 * sizeof *key);
-        ub = malloc((nf ? nf : 1) * sizeof *ub);
-        if (!key || !ub) ret = -1;
-        else dout = hull_facets_ub(S, NULL, &H, tau, 1, key, ub);
-    }
-    if (ret == 1 && (!(din <= tau) || !(dout <= tau))) ret = 0;
-    if (ret == 1 && !sort_facets(key, ub, nf)) ret = -1;
+    int ret = 0;
+    if (din <= tau) ret = facet_table(S, NULL, &H, tau, 1, &dout, &S->ft, &S->fub) ? dout <= tau : -1;
     if (ret != 1) {
-        free(key);
-        free(ub);
         acd_hull_free(&H);
         group_free(S);
         return ret;
     }
-    S->ft = key;
-    S->fub = ub;
-    S->nft = nf;
+    S->nft = H.ntriangles;
     S->bound = fmax(din, dout);
     S->hv = H.vertices;
     S->nhv = H.nvertices;
