@@ -115,14 +115,22 @@ static acd_status weld_sel(const ctx *c, const uint8_t *sel, acd_mesh *out, uint
     return ACD_OK;
 }
 
+/* The selection of the parts whose group (gof) is a or b (b may be a), allocated; NULL out of
+ * memory. */
+static uint8_t *group_sel(const ctx *c, const uint32_t *gof, uint32_t a, uint32_t b) {
+    uint8_t *sel = malloc(c->nparts ? c->nparts : 1);
+    if (sel)
+        for (size_t p = 0; p < c->nparts; p++) sel[p] = gof[p] == a || gof[p] == b;
+    return sel;
+}
+
 /* The welded union of the parts whose group (gof) is a or b (b may be a). */
 static acd_status weld(const ctx *c, const uint32_t *gof, uint32_t a, uint32_t b, acd_mesh *out) {
-    uint8_t *sel = malloc(c->nparts ? c->nparts : 1);
+    uint8_t *sel = group_sel(c, gof, a, b);
     if (!sel) {
         memset(out, 0, sizeof *out);
         return ACD_ERR_NOMEM;
     }
-    for (size_t p = 0; p < c->nparts; p++) sel[p] = gof[p] == a || gof[p] == b;
     acd_status st = weld_sel(c, sel, out, NULL);
     free(sel);
     return st;
@@ -158,12 +166,11 @@ static acd_status measure_sel(const ctx *c, const uint8_t *sel, double *conc, ui
 static void score(const ctx *c, const uint32_t *gof, pair *pr) {
     pr->cost = INFINITY;
     pr->wpart = UINT32_MAX;
-    uint8_t *sel = malloc(c->nparts ? c->nparts : 1);
+    uint8_t *sel = group_sel(c, gof, pr->a, pr->b);
     if (!sel) {
         pr->st = ACD_ERR_NOMEM;
         return;
     }
-    for (size_t p = 0; p < c->nparts; p++) sel[p] = gof[p] == pr->a || gof[p] == pr->b;
     pr->st = measure_sel(c, sel, &pr->cost, &pr->wpart);
     free(sel);
 }
@@ -179,6 +186,11 @@ static acd_status score_all(const ctx *c, const uint32_t *gof, pair *prs, size_t
     return ACD_OK;
 }
 
+/* The order of the joins: cost, then the groups' ids. */
+static int pair_less(const pair *p, const pair *q) {
+    return p->cost < q->cost || (p->cost == q->cost && (p->a < q->a || (p->a == q->a && p->b < q->b)));
+}
+
 /* Measures the stale pairs among the valid ones with cost <= bound: the `batch` of smallest (cost,
  * then ids) when batch > 0, else all. Returns how many were measured via *n. */
 static acd_status score_stale(const ctx *c, const uint32_t *gof, pair *prs, size_t npr, double bound, size_t batch,
@@ -189,9 +201,7 @@ static acd_status score_stale(const ctx *c, const uint32_t *gof, pair *prs, size
         if (!prs[i].valid || !prs[i].stale || !(prs[i].cost <= bound)) continue;
         size_t j = k++;
         /* insertion by (cost, a, b); only the batch is kept */
-        while (j > 0 && (prs[idx[j - 1]].cost > prs[i].cost ||
-                         (prs[idx[j - 1]].cost == prs[i].cost &&
-                          (prs[idx[j - 1]].a > prs[i].a || (prs[idx[j - 1]].a == prs[i].a && prs[idx[j - 1]].b > prs[i].b))))) {
+        while (j > 0 && pair_less(&prs[i], &prs[idx[j - 1]])) {
             if (!batch || j < batch) idx[j] = idx[j - 1];
             j--;
         }
@@ -541,10 +551,7 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
             size_t best = SIZE_MAX;
             for (size_t i = 0; i < npr; i++) {
                 if (!prs[i].valid || !(prs[i].cost <= tau)) continue;
-                if (best == SIZE_MAX || prs[i].cost < prs[best].cost ||
-                    (prs[i].cost == prs[best].cost &&
-                     (prs[i].a < prs[best].a || (prs[i].a == prs[best].a && prs[i].b < prs[best].b))))
-                    best = i;
+                if (best == SIZE_MAX || pair_less(&prs[i], &prs[best])) best = i;
             }
             if (best == SIZE_MAX) break;
             if (prs[best].stale) { /* the smallest bounds measured, a fixed batch (any thread count) */
