@@ -10,6 +10,7 @@
 
 #include "acd/hull.h"
 #include "core/error.h"
+#include "core/u32vec.h"
 #include "acd3/volume_plane.h"
 #include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
@@ -661,18 +662,6 @@ static acd_status push_pair(pair **P, size_t *np, size_t *cap, uint32_t a, uint3
 /* A pair's union is re-cut across its first principal axes only (the groups lie along the first). */
 #define MERGE_REFINE_PAIR_AXES 1
 
-static int u32_push(uint32_t **a, size_t *n, size_t *cap, uint32_t x) {
-    if (*n == *cap) {
-        size_t nc = *cap ? 2 * *cap : 16;
-        uint32_t *na = realloc(*a, nc * sizeof *na);
-        if (!na) return 0;
-        *a = na;
-        *cap = nc;
-    }
-    (*a)[(*n)++] = x;
-    return 1;
-}
-
 static int atoms_reserve(atoms *at, size_t n) {
     if (n <= at->cap) return 1;
     size_t nc = at->cap ? 2 * at->cap : 16;
@@ -862,8 +851,7 @@ static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_b
     if (acd_cut_plane_from_normal(X->est_plane.point, X->est_plane.normal, diag, &cp, NULL) != ACD_OK) return 0;
     double d = -(cp.normal[0] * cp.a[0] + cp.normal[1] * cp.a[1] + cp.normal[2] * cp.a[2]);
     size_t n0 = at->n;
-    uint32_t *mem[2] = {NULL, NULL};
-    size_t nm[2] = {0, 0}, cm[2] = {0, 0};
+    acd_u32vec mem[2] = {{0}, {0}};
     int ret = 1;
     for (size_t k = 0; k < X->nmembers && ret == 1; k++) {
         uint32_t a = X->members[k];
@@ -875,7 +863,7 @@ static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_b
             neg |= s < 0;
         }
         if (!pos || !neg) {
-            if (!u32_push(&mem[neg ? 1 : 0], &nm[neg ? 1 : 0], &cm[neg ? 1 : 0], a)) ret = -(int)ACD_ERR_NOMEM;
+            if (!acd_u32vec_push(&mem[neg ? 1 : 0], a)) ret = -(int)ACD_ERR_NOMEM;
             continue;
         }
         acd_cut_result cr;
@@ -897,16 +885,15 @@ static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_b
             at->plane[i][3] = d;
             acd_status as = atom_init(at, i, in_bvh, on_tol, err);
             if (as != ACD_OK) ret = as == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
-            else if (!u32_push(&mem[cr.pieces[p].side > 0 ? 0 : 1], &nm[cr.pieces[p].side > 0 ? 0 : 1],
-                               &cm[cr.pieces[p].side > 0 ? 0 : 1], (uint32_t)i))
+            else if (!acd_u32vec_push(&mem[cr.pieces[p].side > 0 ? 0 : 1], (uint32_t)i))
                 ret = -(int)ACD_ERR_NOMEM;
         }
         acd_cut_result_free(&cr);
     }
-    if (ret == 1 && (!nm[0] || !nm[1])) ret = 0;
+    if (ret == 1 && (!mem[0].n || !mem[1].n)) ret = 0;
     if (ret == 1) {
-        int r0 = side_group(&S[0], at, mem[0], nm[0], tau);
-        int r1 = r0 == 1 ? side_group(&S[1], at, mem[1], nm[1], tau) : 0;
+        int r0 = side_group(&S[0], at, mem[0].a, mem[0].n, tau);
+        int r1 = r0 == 1 ? side_group(&S[1], at, mem[1].a, mem[1].n, tau) : 0;
         if (r0 == 1 && r1 != 1) group_free(&S[0]);
         ret = r0 < 0 || r1 < 0 ? -(int)ACD_ERR_NOMEM : r0 == 1 && r1 == 1;
     }
@@ -916,8 +903,8 @@ static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_b
         at->n = n0;
     }
     if (ret < 0) acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory cutting a part");
-    free(mem[0]);
-    free(mem[1]);
+    free(mem[0].a);
+    free(mem[1].a);
     return ret;
 }
 
@@ -1003,41 +990,40 @@ static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, u
     for (int j = 0; j < 2; j++)
         for (size_t k = 0; k < G[s[j]].nmembers; k++) at->owner[G[s[j]].members[k]] = s[j];
     /* the atoms whose adjacency may change: the pieces, the cut groups' members and their neighbours */
-    uint32_t *sel = NULL;
-    size_t nsel = 0, csel = 0;
+    acd_u32vec sel = {0};
     int ok = 1;
     for (int e = 0; e < ndy; e++)
         for (size_t k = 0; k < G[dy[e]].nmembers; k++)
             if (at->owner[G[dy[e]].members[k]] == dy[e]) at->owner[G[dy[e]].members[k]] = UINT32_MAX; /* cut */
-    for (size_t i = n0; i < at->n && ok; i++) ok = u32_push(&sel, &nsel, &csel, (uint32_t)i);
+    for (size_t i = n0; i < at->n && ok; i++) ok = acd_u32vec_push(&sel, (uint32_t)i);
     for (int e = 0; e < ndy; e++)
         for (size_t k = 0; k < G[dy[e]].nmembers && ok; k++) {
             uint32_t a = G[dy[e]].members[k];
-            if (at->owner[a] != UINT32_MAX) ok = u32_push(&sel, &nsel, &csel, a);
+            if (at->owner[a] != UINT32_MAX) ok = acd_u32vec_push(&sel, a);
             for (size_t j = 0; j < at->nadj[a] && ok; j++)
-                if (at->owner[at->adj[a][j]] != UINT32_MAX) ok = u32_push(&sel, &nsel, &csel, at->adj[a][j]);
+                if (at->owner[at->adj[a][j]] != UINT32_MAX) ok = acd_u32vec_push(&sel, at->adj[a][j]);
         }
     if (!ok) {
-        free(sel);
+        free(sel.a);
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
     }
-    qsort(sel, nsel, sizeof *sel, cmp_u32);
+    qsort(sel.a, sel.n, sizeof *sel.a, cmp_u32);
     size_t w = 0;
-    for (size_t i = 0; i < nsel; i++)
-        if (!w || sel[w - 1] != sel[i]) sel[w++] = sel[i];
-    nsel = w;
+    for (size_t i = 0; i < sel.n; i++)
+        if (!w || sel.a[w - 1] != sel.a[i]) sel.a[w++] = sel.a[i];
+    sel.n = w;
     uint32_t *pr;
     size_t npr;
-    acd_status st = adjacent_pairs(at->mesh, sel, nsel, tol, &pr, &npr, err);
+    acd_status st = adjacent_pairs(at->mesh, sel.a, sel.n, tol, &pr, &npr, err);
     for (size_t k = 0; k < npr && st == ACD_OK; k++) {
-        uint32_t a = sel[pr[2 * k]], b = sel[pr[2 * k + 1]];
+        uint32_t a = sel.a[pr[2 * k]], b = sel.a[pr[2 * k + 1]];
         if (a < n0 && b < n0) continue;
         if (at->owner[a] == UINT32_MAX || at->owner[b] == UINT32_MAX) continue;
         if (!adj_add(&at->adj[a], &at->nadj[a], b) || !adj_add(&at->adj[b], &at->nadj[b], a))
             st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
     }
     free(pr);
-    free(sel);
+    free(sel.a);
     /* group adjacency */
     for (int e = 0; e < ndy; e++)
         for (size_t k = 0; k < G[dy[e]].nadj; k++) remove_adj(&G[G[dy[e]].adj[k]], dy[e]);
@@ -1223,23 +1209,23 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     const double min_gain = MERGE_REFINE_MIN_GAIN_REL * in_vol;
     while (st == ACD_OK && out->trades < refine && fails <= MERGE_REFINE_FAILS_PER_STEP * refine) {
         best_pair(G, P, &np);
-        uint32_t *todo = NULL;
-        size_t ntodo = 0, ctodo = 0, ngt;
+        acd_u32vec todo = {0};
+        size_t ngt;
         for (size_t g = 0; g < ng && st == ACD_OK; g++)
-            if (G[g].alive && G[g].est == 0 && !u32_push(&todo, &ntodo, &ctodo, (uint32_t)g))
+            if (G[g].alive && G[g].est == 0 && !acd_u32vec_push(&todo, (uint32_t)g))
                 st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
-        ngt = ntodo;
+        ngt = todo.n;
         for (size_t i = 0; i < np && st == ACD_OK; i++)
-            if (P[i].est == 0 && !u32_push(&todo, &ntodo, &ctodo, (uint32_t)i))
+            if (P[i].est == 0 && !acd_u32vec_push(&todo, (uint32_t)i))
                 st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntodo > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && todo.n > 1)
 #endif
-        for (long k = 0; k < (long)ntodo; k++) {
-            if ((size_t)k < ngt) estimate(&G[todo[k]], G[todo[k]].hvol, 3);
-            else estimate_pair(G, &P[todo[k]]);
+        for (long k = 0; k < (long)todo.n; k++) {
+            if ((size_t)k < ngt) estimate(&G[todo.a[k]], G[todo.a[k]].hvol, 3);
+            else estimate_pair(G, &P[todo.a[k]]);
         }
-        free(todo);
+        free(todo.a);
         if (st != ACD_OK) break;
         /* the best move: a trade of group x (its gain less the cheapest join surviving it), or a
          * re-cut of pair q */
