@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/minheap.h"
 #include "geom3/pca.h"
+#include "geom3/vec3.h"
 
 /* Expansions of the cycle search before it gives up (spec §4.5). */
 #define CYCLE_MAX_EXPANSIONS 10000
@@ -22,11 +23,6 @@ void acd3_global_cut_free(acd3_global_cut *gc) {
     if (!gc) return;
     free(gc->v);
     memset(gc, 0, sizeof *gc);
-}
-
-static double dist3(const double *a, const double *b) {
-    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
-    return sqrt(d0 * d0 + d1 * d1 + d2 * d2);
 }
 
 /* The other region of knot k's chain than r (UINT32_MAX when r is not on it). */
@@ -511,7 +507,7 @@ acd_status acd3_global_cut_find(const acd_mesh *m, const acd_edge_graph *g, cons
         double d = INFINITY;
         for (size_t i = 0; i < pc->n; i++) {
             uint32_t v = cg->cut_v[pc->off + i];
-            double dv = dist3(m->vertices + 3 * (size_t)v, px);
+            double dv = acd_dist3(m->vertices + 3 * (size_t)v, px);
             if (dv < d) d = dv;
             if (!near) near = v == x || acd_edge_graph_find(g, v, x) != ACD_NO_VERTEX;
         }
@@ -598,7 +594,7 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
     int any_conc = 0;
     for (size_t i = 0; i + 1 < n; i++) {
         const double *a = m->vertices + 3 * (size_t)cv[i], *b = m->vertices + 3 * (size_t)cv[i + 1];
-        total_len += dist3(a, b);
+        total_len += acd_dist3(a, b);
         any_conc |= ms->vconc[cv[i]] > 0 || ms->vconc[cv[i + 1]] > 0;
     }
     if (!(total_len > 0)) goto done;
@@ -610,7 +606,7 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
         for (size_t i = 0; i + 1 < n; i++) {
             uint32_t va = cv[i], vb = cv[i + 1];
             const double *a = m->vertices + 3 * (size_t)va, *b = m->vertices + 3 * (size_t)vb;
-            double len = dist3(a, b), ca = any_conc ? ms->vconc[va] : 1, cb = any_conc ? ms->vconc[vb] : 1;
+            double len = acd_dist3(a, b), ca = any_conc ? ms->vconc[va] : 1, cb = any_conc ? ms->vconc[vb] : 1;
             for (int k = 0; k < 3; k++) {
                 pts[9 * i + k] = a[k];
                 pts[9 * i + 3 + k] = 0.5 * (a[k] + b[k]);

@@ -8,6 +8,7 @@
 #include "acd3/merge.h"
 #include "core/error.h"
 #include "geom3/bvh.h"
+#include "geom3/vec3.h"
 
 /* A triangle whose d_in bound is above the limit is subdivided, down to pieces of this
  * circumradius (a fraction of the limit); a piece that small still above it refuses the part. */
@@ -43,11 +44,6 @@ static double corners_bound(const acd_hull *H, const double *const *c, int nc, s
     return best;
 }
 
-static double len3(const double a[3], const double b[3]) {
-    double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-    return sqrt(x * x + y * y + z * z);
-}
-
 /* Subdivides triangle tri (9 coordinates) until every piece's bound is <= limit. Returns the
  * largest piece bound (<= limit), or INFINITY when a corner is deeper than the limit, a piece gets
  * too small or the budget runs out; NaN on allocation failure. */
@@ -76,7 +72,7 @@ static double subdivide(const acd_hull *H, const double tri0[9], double limit, s
         }
         double g[3];
         for (int k = 0; k < 3; k++) g[k] = (t[k] + t[3 + k] + t[6 + k]) / 3.0;
-        double r = fmax(len3(g, t), fmax(len3(g, t + 3), len3(g, t + 6)));
+        double r = fmax(acd_dist3(g, t), fmax(acd_dist3(g, t + 3), acd_dist3(g, t + 6)));
         if (r < LEAF_MIN_RADIUS_REL * limit || (*pieces += 4) > LEAF_MAX_PIECES) {
             free(stack);
             return INFINITY;

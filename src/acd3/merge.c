@@ -14,6 +14,7 @@
 #include "acd3/volume_plane.h"
 #include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
+#include "geom3/vec3.h"
 
 /* Closest-point queries allowed when scoring one pair; a pair needing more is refused. */
 #define MERGE_MAX_QUERIES 100000
@@ -136,11 +137,6 @@ static double dist_groups(const group *A, const group *B, const double p[3], dou
     return d;
 }
 
-static double len3(const double a[3], const double b[3]) {
-    double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-    return sqrt(x * x + y * y + z * z);
-}
-
 /* The hull of the two groups' hull vertices; 0 when flat or out of memory. */
 static int joint_hull(const group *A, const group *B, acd_hull *H) {
     size_t n = A->nhv + B->nhv;
@@ -228,7 +224,7 @@ static double cached_ub(const group *g, const double key[9]) {
 }
 
 static double max_corner_dist(const double tri[9], const double q[3]) {
-    return fmax(len3(tri, q), fmax(len3(tri + 3, q), len3(tri + 6, q)));
+    return fmax(acd_dist3(tri, q), fmax(acd_dist3(tri + 3, q), acd_dist3(tri + 6, q)));
 }
 
 /* An upper bound of the distance from the points of triangle tri to A u B (B may be NULL). For a
@@ -267,10 +263,10 @@ static double facet_ub(const group *A, const group *B, const double tri0[9], dou
         /* search limit: the distance is 1-Lipschitz, so the previous piece's distance bounds this
          * one's, and so does the parent's point (margins far above the rounding of the
          * closest-point computation) */
-        double lim = fmin(tau, (prev_d + len3(g, prev_g)) * (1 + 1e-9) + MERGE_WARM_SLACK_REL * tau);
+        double lim = fmin(tau, (prev_d + acd_dist3(g, prev_g)) * (1 + 1e-9) + MERGE_WARM_SLACK_REL * tau);
         double q[3], dq = INFINITY;
         if (has_pq) {
-            dq = len3(g, pq);
+            dq = acd_dist3(g, pq);
             lim = fmin(lim, dq * (1 + 1e-9) + MERGE_WARM_SLACK_REL * tau);
         }
         double d = dist_groups(A, B, g, lim, q);
@@ -286,7 +282,7 @@ static double facet_ub(const group *A, const group *B, const double tri0[9], dou
             if (b > ub) ub = b;
             continue;
         }
-        double r = fmax(len3(g, tri), fmax(len3(g, tri + 3), len3(g, tri + 6)));
+        double r = fmax(acd_dist3(g, tri), fmax(acd_dist3(g, tri + 3), acd_dist3(g, tri + 6)));
         if (r < MERGE_MIN_RADIUS_REL * tau) return INFINITY;
         if (n + 4 > cap) {
             double *ns = realloc(stack, 2 * cap * MERGE_ITEM * sizeof *ns);
@@ -525,7 +521,7 @@ static acd_status adjacent_pairs(const acd_mesh *M, const uint32_t *sel, size_t 
         for (size_t x = i + 1; x < j && !found; x++) {
             const double *q = vp[sh[x].pos].p;
             if (!p1) {
-                if (len3(p0, q) > tol) p1 = q;
+                if (acd_dist3(p0, q) > tol) p1 = q;
                 continue;
             }
             double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {q[0] - p0[0], q[1] - p0[1], q[2] - p0[2]};
@@ -1104,7 +1100,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
             lo[k] = fmin(lo[k], input->vertices[3 * v + k]);
             hi[k] = fmax(hi[k], input->vertices[3 * v + k]);
         }
-    const double diag = len3(lo, hi), on_tol = MERGE_ON_SURFACE_REL * diag;
+    const double diag = acd_dist3(lo, hi), on_tol = MERGE_ON_SURFACE_REL * diag;
     double in_vol = 0;
     /* one group per part (independently: in parallel): first the input's tree (task 0) and the parts'
      * trees and hulls, then the parts' surface vertices (they need the input's tree) */

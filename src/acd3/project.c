@@ -1,5 +1,6 @@
 /* acd3/project: A* shortest paths with reusable work arrays; see project.h. */
 #include "acd3/project.h"
+#include "geom3/vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -31,11 +32,6 @@ void acd3_pathfinder_free(acd3_pathfinder *pf) {
     memset(pf, 0, sizeof *pf);
 }
 
-static double dist3(const double *a, const double *b) {
-    double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-    return sqrt(x * x + y * y + z * z);
-}
-
 int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
     const acd_edge_graph *g = pf->g;
     if (++pf->cur == 0) { /* stamp wrapped: clear */
@@ -49,7 +45,7 @@ int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
     pf->dist[s] = 0;
     pf->pred[s] = UINT32_MAX;
     pf->closed[s] = 0;
-    if (!acd_minheap_push(&pf->heap, dist3(pf->coords + 3 * (size_t)s, tp), s)) return -1;
+    if (!acd_minheap_push(&pf->heap, acd_dist3(pf->coords + 3 * (size_t)s, tp), s)) return -1;
     int found = 0;
     while (pf->heap.n) {
         uint32_t v = acd_minheap_pop(&pf->heap).id;
@@ -71,7 +67,7 @@ int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
             if (d < pf->dist[u] || (d == pf->dist[u] && v < pf->pred[u])) {
                 pf->dist[u] = d;
                 pf->pred[u] = v;
-                if (!acd_minheap_push(&pf->heap, d + dist3(pf->coords + 3 * (size_t)u, tp), u)) return -1;
+                if (!acd_minheap_push(&pf->heap, d + acd_dist3(pf->coords + 3 * (size_t)u, tp), u)) return -1;
             }
         }
     }

@@ -32,6 +32,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "geom3/spatial.h"
+#include "geom3/vec3.h"
 
 /* ------------------------------------------------------------------------------------------ */
 /* the union of hulls */
@@ -339,11 +340,6 @@ static double closest_hinted(const acd_bvh *b, const double p[3], double hint, a
     return sqrt(q->dist2);
 }
 
-static double dist3(const double a[3], const double b[3]) {
-    double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-    return sqrt(x * x + y * y + z * z);
-}
-
 /* Distance from p to the boundary of the union (see the file comment). Returns the exact value,
  * or, with *exact = 0, the upper bound from the boundary test filter (the boundary samples are
  * consulted afterwards). hint: an upper bound of the distance to the hull surfaces or INFINITY. */
@@ -378,7 +374,7 @@ static void dist_to_mesh(const acd_spatial *mesh, const double *pts, size_t n, d
         double prev = INFINITY;
         for (size_t s = s0; s < s1; s++) {
             acd_bvh_closest_result q;
-            double hint = s > s0 ? prev + dist3(pts + 3 * s, pts + 3 * (s - 1)) : INFINITY;
+            double hint = s > s0 ? prev + acd_dist3(pts + 3 * s, pts + 3 * (s - 1)) : INFINITY;
             d[s] = prev = closest_hinted(&mesh->bvh, pts + 3 * s, hint, &q);
         }
     }
@@ -394,7 +390,7 @@ static void dist_to_boundary(const acd_hullset *hs, const double *pts, size_t n,
         size_t s0 = (size_t)ch * EVAL_CHUNK, s1 = s0 + EVAL_CHUNK < n ? s0 + EVAL_CHUNK : n;
         double prev = INFINITY;
         for (size_t s = s0; s < s1; s++) {
-            double hint = s > s0 ? prev + dist3(pts + 3 * s, pts + 3 * (s - 1)) : INFINITY;
+            double hint = s > s0 ? prev + acd_dist3(pts + 3 * s, pts + 3 * (s - 1)) : INFINITY;
             int ex;
             d[s] = dist_to_union_boundary(hs, pts + 3 * s, hint, &ex, &prev);
             exact[s] = (unsigned char)ex;

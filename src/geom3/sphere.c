@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "core/tolerance.h"
+#include "geom3/vec3.h"
 
 #define SPHERE_SHUFFLE_SEED 0x5748454c5aull
 /* a point is outside a trial ball when farther than radius + this (normalised units) */
@@ -31,22 +32,17 @@ typedef struct mtf_ctx {
 
 #define NIL UINT32_MAX
 
-static double dist3(const double *a, const double *b) {
-    double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-    return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-}
-
 static ball ball_diameter(const double *a, const double *b) {
     ball B;
     for (int k = 0; k < 3; k++) B.c[k] = 0.5 * (a[k] + b[k]);
-    B.r = 0.5 * dist3(a, b);
+    B.r = 0.5 * acd_dist3(a, b);
     return B;
 }
 
 /* Grows B to contain the support points exactly (floating point). */
 static void ball_cover(ball *B, const double *const *s, int k) {
     for (int i = 0; i < k; i++) {
-        double d = dist3(B->c, s[i]);
+        double d = acd_dist3(B->c, s[i]);
         if (d > B->r) B->r = d;
     }
 }
@@ -57,7 +53,7 @@ static ball ball_fallback(const double *const *s, int k) {
     double bd = -1;
     for (int i = 0; i < k; i++)
         for (int j = i + 1; j < k; j++) {
-            double d = dist3(s[i], s[j]);
+            double d = acd_dist3(s[i], s[j]);
             if (d > bd) bd = d, bi = i, bj = j;
         }
     ball B = ball_diameter(s[bi], s[bj]);
@@ -112,7 +108,7 @@ static ball ball_support(const double *const *s, int k) {
             for (int i = 0; i < 4; i++)
                 if (i != skip) q[m++] = s[i];
             ball C = ball_support(q, 3);
-            if (dist3(C.c, s[skip]) <= C.r + SPHERE_SLACK && (best.r < 0 || C.r < best.r)) best = C;
+            if (acd_dist3(C.c, s[skip]) <= C.r + SPHERE_SLACK && (best.r < 0 || C.r < best.r)) best = C;
         }
         if (best.r < 0) best = ball_fallback(s, 4);
         ball_cover(&best, s, 4);
@@ -148,7 +144,7 @@ static ball mtf_ball(mtf_ctx *x, uint32_t end, const double **s, int k) {
     while (i != end && i != NIL) {
         uint32_t nx = x->next[i];
         const double *p = x->w + 3 * (size_t)i;
-        if (B.r < 0 || dist3(B.c, p) > B.r + SPHERE_SLACK) {
+        if (B.r < 0 || acd_dist3(B.c, p) > B.r + SPHERE_SLACK) {
             s[k] = p;
             B = mtf_ball(x, i, s, k + 1);
             move_to_front(x, i);
