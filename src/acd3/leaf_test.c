@@ -86,15 +86,8 @@ static double subdivide(const acd_hull *H, const double tri0[9], double limit, s
             stack = ns;
             cap *= 2;
         }
-        double m[9]; /* midpoints ab, bc, ca */
-        for (int k = 0; k < 3; k++) {
-            m[k] = 0.5 * (t[k] + t[3 + k]);
-            m[3 + k] = 0.5 * (t[3 + k] + t[6 + k]);
-            m[6 + k] = 0.5 * (t[6 + k] + t[k]);
-        }
-        const double *sub[4][3] = {{t, m, m + 6}, {m, t + 3, m + 3}, {m + 6, m + 3, t + 6}, {m, m + 3, m + 6}};
-        for (int s = 0; s < 4; s++, n++)
-            for (int k = 0; k < 3; k++) memcpy(stack + 9 * n + 3 * k, sub[s][k], sizeof(double[3]));
+        acd_tri_split4(t, (double(*)[9])(stack + 9 * n));
+        n += 4;
     }
     free(stack);
     return worst;

@@ -290,15 +290,10 @@ static double facet_ub(const group *A, const group *B, const double tri0[9], dou
             stack = *stackp = ns;
             cap = *capp = 2 * cap;
         }
-        double m[9]; /* midpoints ab, bc, ca */
-        for (int k = 0; k < 3; k++) {
-            m[k] = 0.5 * (tri[k] + tri[3 + k]);
-            m[3 + k] = 0.5 * (tri[3 + k] + tri[6 + k]);
-            m[6 + k] = 0.5 * (tri[6 + k] + tri[k]);
-        }
-        const double *sub[4][3] = {{tri, m, m + 6}, {m, tri + 3, m + 3}, {m + 6, m + 3, tri + 6}, {m, m + 3, m + 6}};
+        double sub[4][9];
+        acd_tri_split4(tri, sub);
         for (int s = 0; s < 4; s++) {
-            for (int k = 0; k < 3; k++) memcpy(stack + MERGE_ITEM * n + 3 * k, sub[s][k], sizeof(double[3]));
+            memcpy(stack + MERGE_ITEM * n, sub[s], sizeof sub[s]);
             memcpy(stack + MERGE_ITEM * n + 9, q, sizeof q);
             n++;
         }
