@@ -514,6 +514,7 @@ int acd_cmd_3d(int argc, char **argv) {
         return acd_cli_report("3d", &err);
     }
     int code = ACD_EXIT_OK;
+    acd_error selfx = {0}; /* set when parts stay above tau because the solid crosses itself: bad input */
     size_t stuck = 0;
     for (size_t i = 0; i < r.nparts; i++) stuck += r.nodes[r.parts[i].node].leaf_reason == ACD3D_LEAF_NO_CUT ||
                                                    r.nodes[r.parts[i].node].leaf_reason == ACD3D_LEAF_DEPTH;
@@ -541,10 +542,11 @@ int acd_cmd_3d(int argc, char **argv) {
         acd_error serr;
         if (p.mode == ACD3D_SOLID && acd_mesh_self_intersections(&mesh, &npairs, pair, 1, &serr) == ACD_OK &&
             npairs > 0)
-            fprintf(stderr,
-                    "acd 3d: the %smesh intersects itself (%zu face pairs, first: faces %u and %u): solid mode "
-                    "cannot cut through crossing sheets; fix the mesh or use --mode surface\n",
-                    repaired ? "repaired " : "", npairs, pair[0], pair[1]);
+            acd_fail(&selfx, ACD_ERR_INVALID_INPUT,
+                     "the %smesh intersects itself (%zu face pairs, first: faces %u and %u), so %zu part(s) stay "
+                     "above tau: solid mode cannot cut through crossing sheets; fix the mesh or use --mode surface "
+                     "(the outputs are written, they do not meet tau)",
+                     repaired ? "repaired " : "", npairs, pair[0], pair[1], stuck);
     }
     if (hulls_path && (st = write_parts(hulls_path, &r, 1, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
     if (!code && parts_path && (st = write_parts(parts_path, &r, 0, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
@@ -564,6 +566,9 @@ int acd_cmd_3d(int argc, char **argv) {
         free(txt);
         cJSON_Delete(j);
     }
+    /* a result that cannot meet tau because the input is not a valid solid is refused as bad input
+     * (exit 2) after its outputs are written, with or without --verify */
+    if (!code && selfx.status != ACD_OK) code = acd_cli_report("3d", &selfx);
     if (!code && do_verify) {
         st = p.mode == ACD3D_SOLID ? verify(&r, &err) : verify_surface(&mesh, &r, &err);
         if (st != ACD_OK) code = acd_cli_report("3d", &err);
