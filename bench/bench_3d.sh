@@ -3,7 +3,7 @@
 # figures users compare with the peers (acd eval). Writes docs/results/3d.md.
 # usage: bench/bench_3d.sh [BUILD_DIR] [target]   (needs data/meshes: bash scripts/fetch-data.sh)
 # Environment (target table): ACD_EXTRA more acd 3d options for every run (e.g. "--cut-weight product"),
-# TARGET_OUT another file for the table.
+# TARGET_OUT another file for the table, TARGET_MESHES the meshes of data/meshes to run (default the six).
 # With "target", only the issue-target table (docs/results/3d-target.md) is made; without it, both
 # docs/results/3d.md and docs/results/3d-target.md.
 set -uo pipefail
@@ -38,7 +38,8 @@ ok_c() { awk -v c="$1" 'BEGIN { exit !(c != "fail" && c + 0 <= 0.02) }'; }
 # refinement steps at that part count (cuts by volume planes with joins, re-cuts of pairs).
 TIGHT_PARTS=${TIGHT_PARTS:-40}
 TIGHT_REFINE=${TIGHT_REFINE:-40}
-TIGHT="--cut-choice volume --merge-order volume --merge-parts $TIGHT_PARTS --merge-refine $TIGHT_REFINE"
+TIGHT0="--cut-choice volume --merge-order volume --merge-parts $TIGHT_PARTS"
+TIGHT="$TIGHT0 --merge-refine $TIGHT_REFINE"
 diag_radius() { # FILE -> diagonal radius
   local f=$1 r d
   r=$("$ACD" 3d "$f" -t 100 --no-merge --threads 2 2>/dev/null | head -1 | sed 's/.*radius \([0-9.e+-]*\)).*/\1/')
@@ -81,15 +82,17 @@ target_table() {
   echo "**Tight** (\`$TIGHT\`, docs/acd3d.md \"Hull tightness\"): merge tau = 0.0195 x bbox diagonal / radius"
   echo "(the merge bound, a two-sided distance per part, then stays under the target's 0.02 of the diagonal);"
   echo "of tau = 0.05, 0.045, ..., 0.025 the result with concavity_max <= 0.02 and at most $TIGHT_PARTS parts of highest IoU."
-  echo "**Fastest met**: of the same tight runs, the first (largest tau: the fewest splits) meeting the whole target"
-  echo "(concavity_max <= 0.02, at most $TIGHT_PARTS parts, IoU >= 0.95, coverage >= 0.999), its wall seconds and cpu; \"-\" when none does."
+  echo "**Fastest met**: of the same tight runs, and of tight runs without the refinement (\`$TIGHT0\`, same taus, scan"
+  echo "stopped at the first met), the first of each (largest tau: the fewest splits) meeting the whole target"
+  echo "(concavity_max <= 0.02, at most $TIGHT_PARTS parts, IoU >= 0.95, coverage >= 0.999); of the two the one of"
+  echo "least wall time, its setting (r0: no refinement, r$TIGHT_REFINE: refined), wall seconds and cpu; \"-\" when none does."
   echo "**No merge**: the default's tau with \`--no-merge\`. cpu: user CPU seconds of the run (both threads)."
   echo
-  echo "| model | triangles | default: tau / merge tau | parts | concavity_max | IoU | coverage | cpu | tight: tau / merge tau | parts | concavity_max | IoU | coverage | seconds | cpu | fastest met: tau | IoU | seconds | cpu | no merge: parts | concavity_max | IoU |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| model | triangles | default: tau / merge tau | parts | concavity_max | IoU | coverage | cpu | tight: tau / merge tau | parts | concavity_max | IoU | coverage | seconds | cpu | fastest met: tau | setting | IoU | seconds | cpu | no merge: parts | concavity_max | IoU |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   } > "$T/target.md"
   local mf f m tri best tau r
-  for mf in camel.off knot1.off fandisk.off armadillo.off bunny00.off bunny.obj; do
+  for mf in ${TARGET_MESHES:-camel.off knot1.off fandisk.off armadillo.off bunny00.off bunny.obj}; do
     f=$M/$mf
     [ -f "$f" ] || continue
     m=${mf%.*}
@@ -119,9 +122,19 @@ target_table() {
       tbest=$(pick_better "$tbest" "$tau $tmt $r")
       [ -z "$tfast" ] && meets "$tau $tmt $r" && tfast="$tau $tmt $r"
     done
+    local tfast0=""
+    for tau in 0.05 0.045 0.04 0.035 0.03 0.025; do
+      r=$(run_eval "$f" $tau --merge-tau $tmt $TIGHT0)
+      meets "$tau $tmt $r" && { tfast0="$tau $tmt $r"; break; }
+    done
+    local fset="r$TIGHT_REFINE"
+    if [ -n "$tfast0" ] && { [ -z "$tfast" ] || awk -v a="$(echo "$tfast0" | awk '{print $4}')" \
+        -v b="$(echo "$tfast" | awk '{print $4}')" 'BEGIN { exit !(a + 0 < b + 0) }'; }; then
+      tfast=$tfast0; fset=r0
+    fi
     set -- $tbest
     row="$row | $1 / $2 | $3 | $6 | $7 | $8 | $4 | $5"
-    if [ -n "$tfast" ]; then set -- $tfast; row="$row | $1 | $7 | $4 | $5"; else row="$row | - | | | "; fi
+    if [ -n "$tfast" ]; then set -- $tfast; row="$row | $1 | $fset | $7 | $4 | $5"; else row="$row | - | | | | "; fi
     set -- $(run_eval "$f" "$dtau" --no-merge)
     echo "$row | $1 | $4 | $5 |" >> "$T/target.md"
   done
