@@ -4,7 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int item_less(acd_minheap_item a, acd_minheap_item b) { return a.key < b.key || (a.key == b.key && a.id < b.id); }
+/* (evaluated without branches: the heap's comparisons are unpredictable) */
+static int item_less(acd_minheap_item a, acd_minheap_item b) { return (a.key < b.key) | ((a.key == b.key) & (a.id < b.id)); }
 
 int acd_minheap_push(acd_minheap *h, double key, uint32_t id) {
     if (h->n == h->cap) {
@@ -26,18 +27,36 @@ int acd_minheap_push(acd_minheap *h, double key, uint32_t id) {
     return 1;
 }
 
+/* Bottom-up deletion (Wegener): the hole left by the top walks down to a leaf along the smaller
+ * children (one comparison per level, without branches: its outcome is unpredictable), then the
+ * last item sifts up from there (it usually belongs near the bottom). The items are distinct under
+ * item_less's total order up to exact copies, so the pops come in the same order as with the
+ * classic sift-down. */
 acd_minheap_item acd_minheap_pop(acd_minheap *h) {
     acd_minheap_item top = h->a[0], x = h->a[--h->n];
-    size_t i = 0;
+    size_t n = h->n, i = 0;
+    if (n == 0) return top;
+    acd_minheap_item *a = h->a;
     for (;;) {
         size_t c = 2 * i + 1;
-        if (c >= h->n) break;
-        if (c + 1 < h->n && item_less(h->a[c + 1], h->a[c])) c++;
-        if (!item_less(h->a[c], x)) break;
-        h->a[i] = h->a[c];
+        if (c + 1 >= n) {
+            if (c < n) {
+                a[i] = a[c];
+                i = c;
+            }
+            break;
+        }
+        c += (size_t)item_less(a[c + 1], a[c]);
+        a[i] = a[c];
         i = c;
     }
-    if (h->n) h->a[i] = x;
+    while (i) {
+        size_t p = (i - 1) / 2;
+        if (!item_less(x, a[p])) break;
+        a[i] = a[p];
+        i = p;
+    }
+    a[i] = x;
     return top;
 }
 
