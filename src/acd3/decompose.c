@@ -254,6 +254,10 @@ static int surface_bridge_plane(const acd_mesh *m, const acd3_measure *ms, acd3_
  * measured independently of the others; the choice is replayed in candidate order (split_replay),
  * so it is the sequential loop's, whoever evaluated what. */
 
+/* Candidate slots of one split: the candidates in the sequential loop's order, and (while the
+ * global cut's plane is computed) the planes that do not depend on it, evaluated ahead. */
+#define ACD3_SPLIT_SLOTS (2 * (ACD3_MAX_CANDIDATES + 1 + ACD3_VOLUME_PLANES) + 1)
+
 /* One candidate's evaluation. */
 typedef struct cand_eval {
     int done;      /* evaluated, or abandoned (the replay no longer needs it) */
@@ -283,10 +287,18 @@ typedef struct split_state {
     double band;   /* its band of concavity */
     unsigned cut_flags; /* acd_plane_cut_flags */
     const acd_edge_map *em; /* solid mode: the part's edge map, checked closed (NULL: each cut builds it) */
+    /* The candidates are slots (cand[id], ev[id]); ord[i] is the slot of the i-th candidate in the
+     * sequential loop's order (pos[id]: its index there, -1 when not a candidate), set once
+     * `ordered` (try_split may start evaluating slots while it still computes the global cut's
+     * plane: an evaluation depends only on its plane, the order only decides which are used) */
     const acd3_plane_candidate *cand;
     int nc, nbridge;
     cand_eval *ev;
+    int ord[ACD3_SPLIT_SLOTS], pos[ACD3_SPLIT_SLOTS];
     /* shared, read and written only under the critical section "acd3_split" */
+    int ordered;      /* ord, pos, nc and nbridge are set */
+    int pre_next, pre_end; /* before that: the next slot to claim, and the end of those slots */
+    uint8_t claimed[ACD3_SPLIT_SLOTS];
     int next;    /* the next candidate to claim */
     int cursor;  /* the next candidate to replay */
     int stopped; /* the replay is over (a failure, an accepted cut, or no candidate left) */
@@ -359,7 +371,7 @@ static void split_replay(split_state *S) {
             S->cursor++;
             continue;
         }
-        cand_eval *e = &S->ev[i];
+        cand_eval *e = &S->ev[S->ord[i]];
         if (!e->done) return;
         S->cursor++;
         if (e->st != ACD_OK && e->failed_at == SIZE_MAX) { /* the cut itself failed */
@@ -419,17 +431,19 @@ static void split_replay(split_state *S) {
     if (S->cursor >= S->nc) S->stopped = 1;
 }
 
-/* Whether the replay no longer needs candidate i (*lost: a trial of concavity c has lost against
- * any best the replay can reach at i, so its other pieces need no measure; the replay finds the
- * same when it reaches i). */
-static int split_abandoned(split_state *S, int i, double c, int *lost) {
-    int gone;
+/* Whether the replay no longer needs the candidate of slot id (*lost: a trial of concavity c has
+ * lost against any best the replay can reach at its index i, so its other pieces need no measure;
+ * the replay finds the same when it reaches i). Before the order is known, every slot is needed. */
+static int split_abandoned(split_state *S, int id, double c, int *lost) {
+    int gone = 0;
+    *lost = 0;
 #ifdef _OPENMP
 #pragma omp critical(acd3_split)
 #endif
-    {
-        gone = S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i));
-        *lost = !gone && split_lost_at(S, &S->ev[i], c, i - S->cursor);
+    if (S->ordered) {
+        int i = S->pos[id];
+        gone = i < 0 || S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i));
+        *lost = !gone && split_lost_at(S, &S->ev[id], c, i - S->cursor);
     }
     return gone;
 }
@@ -494,8 +508,8 @@ static void split_screen(split_state *S, cand_eval *e) {
     e->hullvol = vol;
 }
 
-/* Cuts the part by candidate i and measures the pieces (largest first, stopping when the trial has
- * lost, or when the replay no longer needs it). */
+/* Cuts the part by the candidate of slot i and measures the pieces (largest first, stopping when the
+ * trial has lost, or when the replay no longer needs it). */
 static void split_evaluate(split_state *S, int i) {
     cand_eval *e = &S->ev[i];
     e->failed_at = SIZE_MAX;
@@ -576,28 +590,39 @@ static void split_evaluate(split_state *S, int i) {
     }
 }
 
-/* Claims candidates in order and evaluates them until the replay is over. */
+/* Claims candidates in order (before the order is known: the slots evaluated ahead) and evaluates
+ * them until the replay is over. */
 static void split_work(split_state *S) {
     for (;;) {
-        int i = -1;
+        int id = -1;
 #ifdef _OPENMP
 #pragma omp critical(acd3_split)
 #endif
         {
-            while (!S->stopped && S->next < S->nc && S->next < S->cursor) S->next++; /* skipped already */
-            if (!S->stopped && S->next < S->nc) i = S->next++;
+            if (S->ordered) {
+                /* skipped already, or claimed ahead */
+                while (!S->stopped && S->next < S->nc && (S->next < S->cursor || S->claimed[S->ord[S->next]])) S->next++;
+                if (!S->stopped && S->next < S->nc) id = S->ord[S->next++];
+            } else if (S->pre_next < S->pre_end) {
+                id = S->pre_next++;
+            }
+            if (id >= 0) S->claimed[id] = 1;
         }
-        if (i < 0) return;
+        if (id < 0) return;
         int lost;
-        if (!split_abandoned(S, i, 0, &lost)) split_evaluate(S, i);
+        if (!split_abandoned(S, id, 0, &lost)) split_evaluate(S, id);
 #ifdef _OPENMP
 #pragma omp critical(acd3_split)
 #endif
         {
-            S->ev[i].done = 1;
-            split_replay(S);
+            S->ev[id].done = 1;
+            if (S->ordered) split_replay(S);
         }
     }
+}
+
+static int same_candidate(const acd3_plane_candidate *a, const acd3_plane_candidate *b) {
+    return a->kind == b->kind && !memcmp(a->point, b->point, sizeof a->point) && !memcmp(a->normal, b->normal, sizeof a->normal);
 }
 
 /* Surface mode's cut along the global cut's cycle (acd3/global_cut with the dynamic geodesic
@@ -669,7 +694,50 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
                      unsigned cut_flags, const acd3_resolve_opts *ro, int by_volume, int helpers, split_choice *best,
                      acd_error *err) {
-    acd3_plane_candidate cand[ACD3_MAX_CANDIDATES + 1 + ACD3_VOLUME_PLANES];
+    /* slots: [0, npre) the planes evaluated ahead (if any), then the candidates in order */
+    acd3_plane_candidate slot[ACD3_SPLIT_SLOTS];
+    cand_eval ev[ACD3_SPLIT_SLOTS];
+    memset(ev, 0, sizeof ev);
+    split_state S;
+    memset(&S, 0, sizeof S);
+    by_volume = by_volume && solid;
+    /* solid mode: the part's edge map once for all the cuts (when it cannot be built or the part is
+     * not closed, each cut builds and checks it and reports that as before) */
+    acd_edge_map em;
+    int have_em = 0;
+    if (solid && ms->witness != UINT32_MAX && acd_edge_map_build(m->triangles, m->ntriangles, NULL, &em, NULL) == ACD_OK) {
+        have_em = acd_edge_map_check_closed(&em, m->triangles, m->ntriangles, NULL) == ACD_OK;
+        if (!have_em) acd_edge_map_free(&em);
+    }
+    S.m = m, S.g = g, S.ms = ms, S.extent = extent, S.eps = eps, S.tau = tau, S.tol = tol;
+    S.min_piece_volume = min_piece_volume, S.solid = solid, S.restrict_cut = restrict_cut;
+    S.by_volume = by_volume, S.band = ACD3_VOLUME_BAND * ms->concavity;
+    S.cut_flags = cut_flags;
+    S.em = have_em ? &em : NULL;
+    S.cand = slot, S.ev = ev;
+    /* solid mode with the global cut and a thread to spare: the candidates that do not depend on the
+     * global cut's plane (the volume planes, the witness planes acd3_cut_candidates lists after
+     * it) are evaluated by the helpers while this thread computes that plane (the part's serial
+     * step, the root's above all) */
+    int npre = 0, nvp = 0;
+    acd3_plane_candidate vp[ACD3_VOLUME_PLANES];
+    int ahead = solid && ro && ro->global && helpers > 0 && ms->witness != UINT32_MAX;
+    if (ahead) {
+        if (by_volume) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
+        acd3_resolve_opts r2 = *ro;
+        r2.global = r2.notch = 0;
+        memcpy(slot, vp, (size_t)nvp * sizeof *slot);
+        npre = nvp + acd3_cut_candidates(m, g, ms, &r2, slot + nvp);
+        S.pre_end = npre;
+#ifdef _OPENMP
+        int nh = helpers < npre ? helpers : npre;
+        for (int h = 0; h < nh; h++) {
+#pragma omp task default(shared)
+            split_work(&S);
+        }
+#endif
+    }
+    acd3_plane_candidate *cand = slot + npre;
     /* surface mode with acd3d_params.surface_cut: the global cut's cycle first */
     split_choice cyc;
     memset(&cyc, 0, sizeof cyc);
@@ -684,51 +752,53 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     } else {
         nc = acd3_cut_candidates(m, g, ms, ro, cand);
     }
-    by_volume = by_volume && solid;
     if (by_volume && nc > 0) { /* the volume planes after the first candidate */
-        acd3_plane_candidate vp[ACD3_VOLUME_PLANES];
-        int nv = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
-        memmove(cand + 1 + nv, cand + 1, (size_t)(nc - 1) * sizeof *cand);
-        memcpy(cand + 1, vp, (size_t)nv * sizeof *cand);
-        nc += nv;
+        if (!ahead) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
+        memmove(cand + 1 + nvp, cand + 1, (size_t)(nc - 1) * sizeof *cand);
+        memcpy(cand + 1, vp, (size_t)nvp * sizeof *cand);
+        nc += nvp;
     }
     /* surface mode: the bridge plane last (tried when no candidate before it makes progress) */
     int nbridge = nc;
     if (!solid && nc > 0 && surface_bridge_plane(m, ms, &cand[nc])) nc++;
     memset(best, 0, sizeof *best);
-    cand_eval ev[ACD3_MAX_CANDIDATES + 1 + ACD3_VOLUME_PLANES];
-    memset(ev, 0, sizeof ev);
-    split_state S;
-    memset(&S, 0, sizeof S);
-    S.m = m, S.g = g, S.ms = ms, S.extent = extent, S.eps = eps, S.tau = tau, S.tol = tol;
-    S.min_piece_volume = min_piece_volume, S.solid = solid, S.restrict_cut = restrict_cut;
-    S.by_volume = by_volume, S.band = ACD3_VOLUME_BAND * ms->concavity;
-    S.cut_flags = cut_flags;
-    S.cand = cand, S.nc = nc, S.nbridge = nbridge, S.ev = ev;
-    /* solid mode: the part's edge map once for all the cuts (when it cannot be built or the part is
-     * not closed, each cut builds and checks it and reports that as before) */
-    acd_edge_map em;
-    int have_em = 0;
-    if (solid && nc > 0 && acd_edge_map_build(m->triangles, m->ntriangles, NULL, &em, NULL) == ACD_OK) {
-        have_em = acd_edge_map_check_closed(&em, m->triangles, m->ntriangles, NULL) == ACD_OK;
-        if (!have_em) acd_edge_map_free(&em);
-    }
-    S.em = have_em ? &em : NULL;
-    if (have_cyc) S.best = cyc, S.found = S.best_progress = S.compared = 1;
-    if (helpers > nc - 1) helpers = nc - 1;
+    /* the order: each candidate in the slot evaluated ahead for it (the same plane, matched in
+     * order), else in its own */
 #ifdef _OPENMP
-    for (int h = 0; h < helpers; h++) {
+#pragma omp critical(acd3_split)
+#endif
+    {
+        for (int id = 0; id < npre + nc; id++) S.pos[id] = -1;
+        int p = 0;
+        for (int i = 0; i < nc; i++) {
+            int id = npre + i;
+            for (int q = p; q < npre; q++)
+                if (S.pos[q] < 0 && same_candidate(&slot[q], &cand[i])) {
+                    id = q, p = q + 1;
+                    break;
+                }
+            S.ord[i] = id;
+            S.pos[id] = i;
+        }
+        S.nc = nc, S.nbridge = nbridge;
+        if (have_cyc) S.best = cyc, S.found = S.best_progress = S.compared = 1;
+        S.ordered = 1;
+        split_replay(&S); /* the slots evaluated ahead so far */
+    }
+    if (!ahead && helpers > nc - 1) helpers = nc - 1;
+#ifdef _OPENMP
+    for (int h = 0; !ahead && h < helpers; h++) {
 #pragma omp task default(shared)
         split_work(&S);
     }
 #endif
     split_work(&S);
 #ifdef _OPENMP
-    if (helpers > 0) {
+    if (ahead || helpers > 0) {
 #pragma omp taskwait
     }
 #endif
-    for (int i = 0; i < nc; i++) cand_eval_free(&ev[i]);
+    for (int i = 0; i < npre + nc; i++) cand_eval_free(&ev[i]);
     if (have_em) acd_edge_map_free(&em);
     if (S.fail) {
         if (S.found) choice_free(&S.best);
