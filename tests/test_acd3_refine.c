@@ -16,6 +16,7 @@
 #include "acd/acd3d.h"
 #include "acd/hull.h"
 #include "acd3/merge.h"
+#include "acd3/volume_plane.h"
 #include "acd3d_check.h"
 #include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
@@ -200,6 +201,30 @@ static size_t check_refined(const acd3d_result *r, double vin) {
     return pieces;
 }
 
+/* The refinement measures a plane's saving by acd3_volume_plane_sides: the hulls of the two pieces
+ * the cut gives. On the inverted T (hull 8, volume 6): the plane on top of the bar leaves a bar and a
+ * cell (5 + 1: the saving a cut there makes); a plane across the bar through the middle of the top cell leaves two halves of hull 4
+ * each (no saving); a plane missing the part leaves it whole (its hull). Every plane's sides hold the
+ * part's volume (the bound the lazy estimates rely on). */
+static void test_plane_sides(void **state) {
+    (void)state;
+    const int tx[] = {0, 1, 2, 3, 4, 2}, ty[] = {0, 0, 0, 0, 0, 1};
+    acd_mesh t;
+    voxels(&t, tx, ty, 6);
+    const double up[3] = {0, 1, 0}, right[3] = {1, 0, 0};
+    /* (just above the bar's top face: a vertex on the plane counts on the upper side only) */
+    const double top[3] = {0, 1 + 1e-6, 0}, mid[3] = {2.5, 0, 0}, off[3] = {0, 5, 0};
+    assert_true(fabs(acd3_volume_plane_sides(&t, up, top) - 6) <= 1e-5);
+    assert_true(fabs(acd3_volume_plane_sides(&t, right, mid) - 8) <= 1e-9);
+    assert_true(fabs(acd3_volume_plane_sides(&t, up, off) - 8) <= 1e-9);
+    for (int k = 0; k < 20; k++) {
+        double a = 0.3 * k, n[3] = {cos(a), sin(a) * cos(2 * a), sin(a) * sin(2 * a)}, p[3] = {0.25 * k, 0.1 * k, 0.5};
+        double s = acd3_volume_plane_sides(&t, n, p);
+        assert_true(s >= 6 - 1e-9 && s <= 16 + 1e-9);
+    }
+    acd_mesh_free(&t);
+}
+
 static double bumpy_r(double th, double ph, void *u) {
     (void)u;
     return 1.0 + 0.15 * sin(4 * th) * cos(3 * ph) + 0.6 * fabs(cos(th));
@@ -245,6 +270,7 @@ static void test_decompose_refined(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_trade_on_voxels),
+        cmocka_unit_test(test_plane_sides),
         cmocka_unit_test(test_decompose_refined),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -645,11 +645,14 @@ static acd_status push_pair(pair **P, size_t *np, size_t *cap, uint32_t a, uint3
 
 /* Refinement (merge.h, docs/acd3d.md "Hull tightness"). A step must save at least this fraction of
  * the input's volume (hull volume saved by the cut minus hull volume added by the join). */
-#define MERGE_REFINE_MIN_GAIN_REL 1e-4
+#define MERGE_REFINE_MIN_GAIN_REL 2e-5
 /* Cuts refused (a side beyond tau, or not saving enough) allowed per step allowed, over the pass. */
 #define MERGE_REFINE_FAILS_PER_STEP 2
 /* The volume planes of the estimates are scored on at most this many vertices (acd3/volume_plane). */
 #define MERGE_REFINE_SCORED 300
+/* Moves estimated at a time (in parallel), largest upper bound first; a constant, so that the
+ * moves estimated do not depend on the thread count. */
+#define MERGE_REFINE_BATCH 8
 /* A pair's union is re-cut across its first principal axes only (the groups lie along the first). */
 #define MERGE_REFINE_PAIR_AXES 1
 
@@ -726,9 +729,9 @@ static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double o
     return acd_bvh_build(&at->bvh[i], m->vertices, m->nvertices, m->triangles, m->ntriangles, err);
 }
 
-/* The group's volume plane and the hull volume it saves against g->hvol (estimated:
- * acd3_volume_planes_scored); whole: the volume of the hull of all its members. */
-static void estimate(group *g, double whole, int naxes) {
+/* The group's volume plane (searched on a sample: acd3_volume_planes_scored) and the hull volume it
+ * saves against g->hvol (exact: the hulls of its two sides, every vertex). */
+static void estimate(group *g, int naxes) {
     const atoms *at = g->at;
     g->est = 1;
     g->est_gain = -INFINITY;
@@ -749,11 +752,13 @@ static void estimate(group *g, double whole, int naxes) {
             m.nvertices += s->nvertices;
             m.ntriangles += s->ntriangles;
         }
-        /* the saving of the sampled hulls (sampling shrinks the hulls: compared with the whole's
-         * sampled hull, the scores scaled by the ratio of the exact hull to it) */
-        double sc, wh = -1;
-        if (acd3_volume_planes_scored(&m, 1, MERGE_REFINE_SCORED, naxes, &g->est_plane, &sc, &wh) == 1 && wh > 0)
-            g->est_gain = g->hvol - sc * (whole / wh);
+        /* the plane searched on a sample, its saving measured on every vertex (the sides' exact
+         * hulls) */
+        double sc;
+        if (acd3_volume_planes_scored(&m, 1, MERGE_REFINE_SCORED, naxes, &g->est_plane, &sc, NULL) == 1) {
+            double ex = acd3_volume_plane_sides(&m, g->est_plane.normal, g->est_plane.point);
+            if (ex >= 0) g->est_gain = g->hvol - ex;
+        }
     }
     acd_mesh_free(&m);
 }
@@ -766,11 +771,7 @@ static void estimate_pair(const group *G, pair *p) {
     p->est = 1;
     p->est_gain = -INFINITY;
     if (!pair_union(&G[p->a], &G[p->b], &U)) return;
-    acd_hull H;
-    if (joint_hull(&G[p->a], &G[p->b], &H)) {
-        estimate(&U, H.volume, MERGE_REFINE_PAIR_AXES);
-        acd_hull_free(&H);
-    }
+    estimate(&U, MERGE_REFINE_PAIR_AXES);
     p->est_gain = U.est_gain;
     p->est_plane = U.est_plane;
     free(U.members);
@@ -1052,6 +1053,55 @@ static int pair_union(const group *A, const group *B, group *U) {
     return 1;
 }
 
+/* The cheapest joinable pair (i1, INFINITY without one) and, for each of its two groups, the cheapest
+ * joinable pair without it: what a trade of a group joins after its cut. */
+typedef struct cheapest_join {
+    size_t i1;
+    double c0ab[2];
+} cheapest_join;
+
+static void cheapest_join_init(cheapest_join *cj, const pair *P, size_t np) {
+    cj->i1 = SIZE_MAX;
+    cj->c0ab[0] = cj->c0ab[1] = INFINITY;
+    for (size_t i = 0; i < np; i++)
+        if (P[i].ok && (cj->i1 == SIZE_MAX || P[i].cost < P[cj->i1].cost)) cj->i1 = i;
+    for (int s = 0; s < 2 && cj->i1 != SIZE_MAX; s++) {
+        uint32_t g = s ? P[cj->i1].b : P[cj->i1].a;
+        for (size_t i = 0; i < np; i++)
+            if (P[i].ok && P[i].a != g && P[i].b != g && P[i].cost < cj->c0ab[s]) cj->c0ab[s] = P[i].cost;
+    }
+}
+
+/* The cost of the cheapest joinable pair not involving group g. */
+static double cheapest_join_without(const cheapest_join *cj, const pair *P, uint32_t g) {
+    if (cj->i1 == SIZE_MAX) return INFINITY;
+    return g == P[cj->i1].a ? cj->c0ab[0] : g == P[cj->i1].b ? cj->c0ab[1] : P[cj->i1].cost;
+}
+
+/* A move to estimate (the refinement's lazy estimates): a group's cut or (pair) a pair's re-cut,
+ * with an upper bound of what it can save. */
+typedef struct refine_cand {
+    double ub;
+    uint32_t i;
+    int pair;
+} refine_cand;
+
+static int cmp_refine_cand(const void *x, const void *y) {
+    const refine_cand *a = x, *b = y;
+    if (a->ub != b->ub) return a->ub > b->ub ? -1 : 1;
+    if (a->pair != b->pair) return a->pair - b->pair;
+    return (a->i > b->i) - (a->i < b->i);
+}
+
+static int grow_cands(refine_cand **c, size_t *cap) {
+    size_t nc = *cap ? 2 * *cap : 64;
+    refine_cand *n2 = realloc(*c, nc * sizeof *n2);
+    if (!n2) return 0;
+    *c = n2;
+    *cap = nc;
+    return 1;
+}
+
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
                                const acd3_merge_opts *opts, int threads, acd3_merge_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
@@ -1196,27 +1246,49 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     /* refinement: the move of largest estimated gain, made when its actual gain is positive: a trade
      * (a group cut by its volume plane, the cheapest other pair joined) or a re-cut (the union of an
      * adjacent pair cut anew by its volume plane) */
-    size_t fails = 0;
+    size_t fails = 0, capc = 0;
+    refine_cand *cands = NULL;
     const double min_gain = MERGE_REFINE_MIN_GAIN_REL * in_vol;
     while (st == ACD_OK && out->trades < refine && fails <= MERGE_REFINE_FAILS_PER_STEP * refine) {
         best_pair(G, P, &np);
-        acd_u32vec todo = {0};
-        size_t ngt;
-        for (size_t g = 0; g < ng && st == ACD_OK; g++)
-            if (G[g].alive && G[g].est == 0 && !acd_u32vec_push(&todo, (uint32_t)g))
-                st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
-        ngt = todo.n;
-        for (size_t i = 0; i < np && st == ACD_OK; i++)
-            if (P[i].est == 0 && !acd_u32vec_push(&todo, (uint32_t)i))
-                st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
+        cheapest_join cj;
+        cheapest_join_init(&cj, P, np);
+        /* estimates made lazily, largest upper bound first, until no unestimated move can beat the
+         * best estimated one: a cut saves at most the excess of the hull over the volume (the sides'
+         * hulls hold the sides), a trade that less the join */
+        for (;;) {
+            double bv = min_gain;
+            for (size_t g = 0; g < ng; g++)
+                if (G[g].alive && G[g].est == 1) bv = fmax(bv, G[g].est_gain - cheapest_join_without(&cj, P, (uint32_t)g));
+            for (size_t i = 0; i < np; i++)
+                if (P[i].est == 1) bv = fmax(bv, P[i].est_gain);
+            size_t nc = 0;
+            for (size_t g = 0; g < ng && st == ACD_OK; g++) {
+                double ub = G[g].hvol - G[g].vol - cheapest_join_without(&cj, P, (uint32_t)g);
+                if (G[g].alive && G[g].est == 0 && ub > bv) {
+                    if (nc == capc && !grow_cands(&cands, &capc)) st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
+                    else cands[nc++] = (refine_cand){ub, (uint32_t)g, 0};
+                }
+            }
+            for (size_t i = 0; i < np && st == ACD_OK; i++) {
+                const group *A = &G[P[i].a], *B = &G[P[i].b];
+                double ub = A->hvol + B->hvol - A->vol - B->vol;
+                if (P[i].est == 0 && ub > bv) {
+                    if (nc == capc && !grow_cands(&cands, &capc)) st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory");
+                    else cands[nc++] = (refine_cand){ub, (uint32_t)i, 1};
+                }
+            }
+            if (st != ACD_OK || !nc) break;
+            qsort(cands, nc, sizeof *cands, cmp_refine_cand);
+            if (nc > MERGE_REFINE_BATCH) nc = MERGE_REFINE_BATCH;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && todo.n > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nc > 1)
 #endif
-        for (long k = 0; k < (long)todo.n; k++) {
-            if ((size_t)k < ngt) estimate(&G[todo.a[k]], G[todo.a[k]].hvol, 3);
-            else estimate_pair(G, &P[todo.a[k]]);
+            for (long k = 0; k < (long)nc; k++) {
+                if (!cands[k].pair) estimate(&G[cands[k].i], 3);
+                else estimate_pair(G, &P[cands[k].i]);
+            }
         }
-        free(todo.a);
         if (st != ACD_OK) break;
         /* the best move: a trade of group x (its gain less the cheapest join surviving it), or a
          * re-cut of pair q */
@@ -1224,9 +1296,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         double bestv = min_gain, c0x = INFINITY;
         for (size_t g = 0; g < ng; g++) {
             if (!G[g].alive || G[g].est != 1) continue;
-            double c0 = INFINITY;
-            for (size_t i = 0; i < np; i++)
-                if (P[i].ok && P[i].a != g && P[i].b != g && P[i].cost < c0) c0 = P[i].cost;
+            double c0 = cheapest_join_without(&cj, P, (uint32_t)g);
             if (G[g].est_gain - c0 > bestv) bestv = G[g].est_gain - c0, x = g, c0x = c0;
         }
         for (size_t i = 0; i < np; i++)
@@ -1277,6 +1347,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         }
         out->trades++;
     }
+    free(cands);
     if (st == ACD_OK) {
         /* groups numbered by their lowest atom; the cut atoms in none */
         size_t na = at.n;

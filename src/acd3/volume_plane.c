@@ -137,3 +137,13 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, in
     }
     return n;
 }
+
+double acd3_volume_plane_sides(const acd_mesh *m, const double normal[3], const double point[3]) {
+    size_t cap = m->nvertices + 3 * m->ntriangles + 1;
+    double *bufa = malloc(3 * cap * sizeof *bufa), *bufb = malloc(3 * cap * sizeof *bufb), s = -1;
+    if (bufa && bufb)
+        s = score_plane(m, 1, 1, normal, normal[0] * point[0] + normal[1] * point[1] + normal[2] * point[2], bufa, bufb);
+    free(bufa);
+    free(bufb);
+    return s;
+}

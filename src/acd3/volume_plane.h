@@ -25,5 +25,8 @@ int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out);
  * whole - score). */
 int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, int naxes, acd3_plane_candidate *out,
                               double *score, double *whole);
+/* The sum of the two sides' hull volumes of the plane through point with unit normal `normal`, on
+ * every vertex and crossing (the hulls of the two pieces a cut there gives); -1 on failure. */
+double acd3_volume_plane_sides(const acd_mesh *m, const double normal[3], const double point[3]);
 
 #endif
