@@ -78,12 +78,17 @@ typedef struct pair {
     size_t nhv;
     double hvol;
     double din_lo; /* refused by d_in: a lower bound of d_in (> tau), else 0 */
+    int pend;      /* by_volume: d_in within tau, d_out not bounded yet (finish_pair); H kept */
+    acd_hull H;
+    double din;
     int est;          /* refinement: as group.est, for the cut of the pair's union */
     double est_gain;  /* the hull volume that cut saves against the pair's two hulls (an estimate) */
     acd3_plane_candidate est_plane;
 } pair;
 
 static void pair_free(pair *p) {
+    if (p->pend) acd_hull_free(&p->H);
+    p->pend = 0;
     free(p->ft);
     free(p->fub);
     free(p->hv);
@@ -381,8 +386,38 @@ static int facet_table(const group *A, const group *B, const acd_hull *H, double
     return 1;
 }
 
+/* The pair's d_out bounded on its hull H (score's second half): ok when within tau. */
+static void score_dout(const group *A, const group *B, double tau, int by_volume, acd_hull *H, double din, pair *out) {
+    double dout = INFINITY, *key = NULL, *ub = NULL;
+    if (!facet_table(A, B, H, tau, 1, &dout, &key, &ub)) dout = INFINITY;
+    if (!(dout <= tau)) {
+        free(key);
+        free(ub);
+        acd_hull_free(H);
+        out->ok = 0;
+        out->cost = INFINITY;
+        return;
+    }
+    acd_hull Hc = *H;
+    memset(H, 0, sizeof *H);
+    out->hv = Hc.vertices;
+    out->nhv = Hc.nvertices;
+    out->hvol = Hc.volume;
+    out->nft = Hc.ntriangles;
+    Hc.vertices = NULL;
+    acd_hull_free(&Hc);
+    out->ok = 1;
+    out->bound = fmax(din, dout);
+    out->cost = by_volume ? out->hvol - A->hvol - B->hvol : out->bound;
+    out->ft = key;
+    out->fub = ub;
+}
+
 /* Scores the union of A and B (merge.h): ok and cost = max(d_in, bound of d_out). A pair whose
- * din_lo is above din_refuse (inherited, join_best) is refused without a hull. */
+ * din_lo is above din_refuse (inherited, join_best) is refused without a hull. By volume, the cost
+ * (the hull volume the join adds) does not depend on d_out: a pair within tau by d_in is left
+ * pending (its hull kept), its d_out bounded when it comes up as the cheapest (finish_pair): the
+ * same choices, without the facet bounds of the pairs never chosen. */
 static void score(const group *A, const group *B, double tau, double din_refuse, int by_volume, pair *out) {
     out->ok = 0;
     out->cost = INFINITY;
@@ -392,26 +427,28 @@ static void score(const group *A, const group *B, double tau, double din_refuse,
     size_t start = 0;
     double din = depth_in_hull(A, &H, 0.0, tau, &start);
     if (din <= tau) din = depth_in_hull(B, &H, din, tau, &start);
-    if (!(din <= tau)) out->din_lo = din;
-    double dout = INFINITY, *key = NULL, *ub = NULL;
-    if (din <= tau && !facet_table(A, B, &H, tau, 1, &dout, &key, &ub)) dout = INFINITY;
-    if (!(din <= tau) || !(dout <= tau)) {
-        free(key);
-        free(ub);
+    if (!(din <= tau)) {
+        out->din_lo = din;
         acd_hull_free(&H);
         return;
     }
-    out->hv = H.vertices;
-    out->nhv = H.nvertices;
-    out->hvol = H.volume;
-    out->nft = H.ntriangles;
-    H.vertices = NULL;
-    acd_hull_free(&H);
-    out->ok = 1;
-    out->bound = fmax(din, dout);
-    out->cost = by_volume ? out->hvol - A->hvol - B->hvol : out->bound;
-    out->ft = key;
-    out->fub = ub;
+    if (by_volume) {
+        out->pend = 1;
+        out->H = H;
+        out->din = din;
+        out->cost = H.volume - A->hvol - B->hvol;
+        return;
+    }
+    score_dout(A, B, tau, by_volume, &H, din, out);
+}
+
+/* A pending pair's d_out (score): ok or refused. */
+static void finish_pair(const group *G, pair *p, double tau) {
+    if (!p->pend) return;
+    p->pend = 0;
+    acd_hull H = p->H;
+    memset(&p->H, 0, sizeof p->H);
+    score_dout(&G[p->a], &G[p->b], tau, 1, &H, p->din, p);
 }
 
 static int adj_add(uint32_t **adj, size_t *n, uint32_t x) {
@@ -912,21 +949,34 @@ static int grow_groups(group **G, size_t *capg, size_t need) {
     return 1;
 }
 
+/* The cheapest joinable pair involving neither group x nor y (ties: the earlier), SIZE_MAX if none;
+ * pending pairs (score) are finished cheapest first until the cheapest is joinable. */
+static size_t cheapest_ok(const group *G, pair *P, size_t np, uint32_t x, uint32_t y, double tau) {
+    for (;;) {
+        size_t best = SIZE_MAX;
+        for (size_t i = 0; i < np; i++) {
+            if (!P[i].ok && !P[i].pend) continue;
+            if (P[i].a == x || P[i].b == x || P[i].a == y || P[i].b == y) continue;
+            if (best == SIZE_MAX || P[i].cost < P[best].cost) best = i;
+        }
+        if (best == SIZE_MAX || P[best].ok) return best;
+        finish_pair(G, &P[best], tau);
+    }
+}
+
 /* Drops the pairs of dead groups; returns the cheapest joinable pair (ties: the earlier), SIZE_MAX if
  * none. */
-static size_t best_pair(const group *G, pair *P, size_t *np) {
-    size_t best = SIZE_MAX, w = 0;
+static size_t best_pair(const group *G, pair *P, size_t *np, double tau) {
+    size_t w = 0;
     for (size_t i = 0; i < *np; i++) {
         if (!G[P[i].a].alive || !G[P[i].b].alive) {
             pair_free(&P[i]);
             continue;
         }
         P[w++] = P[i];
-        if (!P[w - 1].ok) continue;
-        if (best == SIZE_MAX || P[w - 1].cost < P[best].cost) best = w - 1;
     }
     *np = w;
-    return best;
+    return cheapest_ok(G, P, w, UINT32_MAX, UINT32_MAX, tau);
 }
 
 /* Joins pair best into a new group, its pairs with its neighbours pushed and scored. A neighbour x
@@ -1060,15 +1110,12 @@ typedef struct cheapest_join {
     double c0ab[2];
 } cheapest_join;
 
-static void cheapest_join_init(cheapest_join *cj, const pair *P, size_t np) {
-    cj->i1 = SIZE_MAX;
+static void cheapest_join_init(cheapest_join *cj, const group *G, pair *P, size_t np, double tau) {
+    cj->i1 = cheapest_ok(G, P, np, UINT32_MAX, UINT32_MAX, tau);
     cj->c0ab[0] = cj->c0ab[1] = INFINITY;
-    for (size_t i = 0; i < np; i++)
-        if (P[i].ok && (cj->i1 == SIZE_MAX || P[i].cost < P[cj->i1].cost)) cj->i1 = i;
     for (int s = 0; s < 2 && cj->i1 != SIZE_MAX; s++) {
-        uint32_t g = s ? P[cj->i1].b : P[cj->i1].a;
-        for (size_t i = 0; i < np; i++)
-            if (P[i].ok && P[i].a != g && P[i].b != g && P[i].cost < cj->c0ab[s]) cj->c0ab[s] = P[i].cost;
+        size_t i = cheapest_ok(G, P, np, s ? P[cj->i1].b : P[cj->i1].a, UINT32_MAX, tau);
+        if (i != SIZE_MAX) cj->c0ab[s] = P[i].cost;
     }
 }
 
@@ -1236,7 +1283,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     /* greedy: the cheapest joinable pair of live groups, ties by the lower ids */
     size_t nlive = nparts;
     while (st == ACD_OK && nlive > stop_at) {
-        size_t best = best_pair(G, P, &np);
+        size_t best = best_pair(G, P, &np, tau);
         if (best == SIZE_MAX) break;
         st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
         if (st != ACD_OK) break;
@@ -1250,9 +1297,9 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     refine_cand *cands = NULL;
     const double min_gain = MERGE_REFINE_MIN_GAIN_REL * in_vol;
     while (st == ACD_OK && out->trades < refine && fails <= MERGE_REFINE_FAILS_PER_STEP * refine) {
-        best_pair(G, P, &np);
+        best_pair(G, P, &np, tau);
         cheapest_join cj;
-        cheapest_join_init(&cj, P, np);
+        cheapest_join_init(&cj, G, P, np, tau);
         /* estimates made lazily, largest upper bound first, until no unestimated move can beat the
          * best estimated one: a cut saves at most the excess of the hull over the volume (the sides'
          * hulls hold the sides), a trade that less the join */
@@ -1340,7 +1387,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         } else {
             st = commit_cut(&G, &ng, &capg, (uint32_t)x, UINT32_MAX, &at, n0, S, tol, &P, &np, &capp, tau, by_volume,
                             threads, err);
-            size_t best = st == ACD_OK ? best_pair(G, P, &np) : 0;
+            size_t best = st == ACD_OK ? best_pair(G, P, &np, tau) : 0;
             if (st == ACD_OK && best == SIZE_MAX) /* cannot happen: the pair of cost c0x is still there */
                 st = acd_fail(err, ACD_ERR_INTERNAL, "merge: no join after a refinement cut");
             if (st == ACD_OK) st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
