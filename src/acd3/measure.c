@@ -9,7 +9,10 @@
 #include "acd3/project.h"
 #include "core/error.h"
 
-acd_status acd3_edge_faces(const acd_mesh *m, const acd_edge_graph *g, uint32_t **face_of, acd_error *err) {
+/* acd3_edge_faces, and when fe is not NULL the edge of every face side (fe[3f + k]: the edge from
+ * corner k to k + 1, ACD_NO_VERTEX when none), looked up once for the pocket flood. */
+static acd_status edge_faces(const acd_mesh *m, const acd_edge_graph *g, uint32_t **face_of, uint32_t *fe,
+                             acd_error *err) {
     uint32_t *fo = malloc((2 * g->nedges + 1) * sizeof *fo);
     if (!fo) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu edges", g->nedges);
     for (size_t i = 0; i < 2 * g->nedges; i++) fo[i] = UINT32_MAX;
@@ -17,12 +20,17 @@ acd_status acd3_edge_faces(const acd_mesh *m, const acd_edge_graph *g, uint32_t 
         for (int k = 0; k < 3; k++) {
             uint32_t u = m->triangles[3 * f + k], v = m->triangles[3 * f + (k + 1) % 3];
             uint32_t e = acd_edge_graph_find(g, u, v);
+            if (fe) fe[3 * f + (size_t)k] = e;
             if (e == ACD_NO_VERTEX) continue;
             size_t slot = 2 * (size_t)e + (u > v);
             if (fo[slot] == UINT32_MAX) fo[slot] = (uint32_t)f;
         }
     *face_of = fo;
     return ACD_OK;
+}
+
+acd_status acd3_edge_faces(const acd_mesh *m, const acd_edge_graph *g, uint32_t **face_of, acd_error *err) {
+    return edge_faces(m, g, face_of, NULL, err);
 }
 
 void acd3_measure_free(acd3_measure *ms) {
@@ -135,8 +143,8 @@ static size_t open_path(open_rule *os, uint32_t v, int reversed) {
 }
 
 /* Regions: faces connected across non-barrier edges. Returns the count. */
-static size_t flood_regions(const acd_mesh *m, const acd_edge_graph *g, const uint32_t *face_of,
-                            const uint8_t *barrier, uint32_t *face_region, uint32_t *queue) {
+static size_t flood_regions(const acd_mesh *m, const uint32_t *fe, const uint32_t *face_of, const uint8_t *barrier,
+                            uint32_t *face_region, uint32_t *queue) {
     size_t nf = m->ntriangles, nr = 0;
     for (size_t f = 0; f < nf; f++) face_region[f] = UINT32_MAX;
     for (size_t s = 0; s < nf; s++) {
@@ -147,8 +155,7 @@ static size_t flood_regions(const acd_mesh *m, const acd_edge_graph *g, const ui
         while (qh < qt) {
             uint32_t f = queue[qh++];
             for (int k = 0; k < 3; k++) {
-                uint32_t u = m->triangles[3 * f + k], v = m->triangles[3 * f + (k + 1) % 3];
-                uint32_t e = acd_edge_graph_find(g, u, v);
+                uint32_t e = fe[3 * (size_t)f + (size_t)k];
                 if (e == ACD_NO_VERTEX || barrier[e]) continue;
                 for (int side = 0; side < 2; side++) {
                     uint32_t h = face_of[2 * (size_t)e + side];
@@ -161,7 +168,6 @@ static size_t flood_regions(const acd_mesh *m, const acd_edge_graph *g, const ui
         }
         nr++;
     }
-    (void)g;
     return nr;
 }
 
@@ -176,7 +182,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
     out->witness = UINT32_MAX;
     size_t nv = m->nvertices, nf = m->ntriangles;
     acd_status st;
-    uint32_t *face_of = NULL, *queue = NULL;
+    uint32_t *face_of = NULL, *queue = NULL, *fe = NULL;
     acd3_pathfinder pf;
     memset(&pf, 0, sizeof pf);
     open_rule os;
@@ -205,7 +211,12 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
     }
     st = acd3_patches_build(&out->hull, eps, tol, &out->patches, err);
     if (st != ACD_OK) goto fail;
-    st = acd3_edge_faces(m, g, &face_of, err);
+    fe = malloc((nf ? 3 * nf : 1) * sizeof *fe);
+    if (!fe) {
+        st = acd_fail(err, ACD_ERR_NOMEM, "out of memory measuring a mesh of %zu faces", nf);
+        goto fail;
+    }
+    st = edge_faces(m, g, &face_of, fe, err);
     if (st != ACD_OK) goto fail;
     if (!acd3_pathfinder_init(&pf, g, m->vertices)) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory projecting hull edges");
@@ -284,7 +295,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory labelling pockets");
         goto fail;
     }
-    out->nregions = flood_regions(m, g, face_of, out->edge_barrier, out->face_region, queue);
+    out->nregions = flood_regions(m, fe, face_of, out->edge_barrier, out->face_region, queue);
     size_t np = out->patches.npatches, nr = out->nregions;
     out->region_patch = malloc((nr ? nr : 1) * sizeof *out->region_patch);
     if (!out->region_patch) {
@@ -400,6 +411,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
             out->witness = (uint32_t)v;
         }
     free(face_of);
+    free(fe);
     free(queue);
     acd3_pathfinder_free(&pf);
     open_rule_free(&os);
@@ -407,6 +419,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
     return ACD_OK;
 fail:
     free(face_of);
+    free(fe);
     free(queue);
     acd3_pathfinder_free(&pf);
     open_rule_free(&os);
