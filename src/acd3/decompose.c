@@ -723,11 +723,9 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     acd3_plane_candidate vp[ACD3_VOLUME_PLANES];
     int ahead = solid && ro && ro->global && helpers > 0 && ms->witness != UINT32_MAX;
     if (ahead) {
-        if (by_volume) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
         acd3_resolve_opts r2 = *ro;
         r2.global = r2.notch = 0;
-        memcpy(slot, vp, (size_t)nvp * sizeof *slot);
-        npre = nvp + acd3_cut_candidates(m, g, ms, &r2, slot + nvp);
+        npre = acd3_cut_candidates(m, g, ms, &r2, slot);
         S.pre_end = npre;
 #ifdef _OPENMP
         int nh = helpers < npre ? helpers : npre;
@@ -736,6 +734,18 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
             split_work(&S);
         }
 #endif
+        /* the volume planes too, while the helpers start on those */
+        if (by_volume) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
+        if (nvp > 0) {
+#ifdef _OPENMP
+#pragma omp critical(acd3_split)
+#endif
+            {
+                memcpy(slot + npre, vp, (size_t)nvp * sizeof *slot);
+                npre += nvp;
+                S.pre_end = npre;
+            }
+        }
     }
     acd3_plane_candidate *cand = slot + npre;
     /* surface mode with acd3d_params.surface_cut: the global cut's cycle first */
@@ -762,19 +772,18 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     int nbridge = nc;
     if (!solid && nc > 0 && surface_bridge_plane(m, ms, &cand[nc])) nc++;
     memset(best, 0, sizeof *best);
-    /* the order: each candidate in the slot evaluated ahead for it (the same plane, matched in
-     * order), else in its own */
+    /* the order: each candidate in a slot evaluated ahead for the same plane (the first one not
+     * matched yet), else in its own */
 #ifdef _OPENMP
 #pragma omp critical(acd3_split)
 #endif
     {
         for (int id = 0; id < npre + nc; id++) S.pos[id] = -1;
-        int p = 0;
         for (int i = 0; i < nc; i++) {
             int id = npre + i;
-            for (int q = p; q < npre; q++)
+            for (int q = 0; q < npre; q++)
                 if (S.pos[q] < 0 && same_candidate(&slot[q], &cand[i])) {
-                    id = q, p = q + 1;
+                    id = q;
                     break;
                 }
             S.ord[i] = id;
