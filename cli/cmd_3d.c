@@ -20,7 +20,7 @@ static void usage(FILE *f) {
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
             "              [--no-merge] [--merge-tau T] [--merge-order bound|volume] [--merge-parts N]\n"
             "              [--merge-refine N]\n"
-            "              [--cut-choice concavity|volume] [--no-close-holes] [--resolver global|witness|notch]\n"
+            "              [--cut-choice concavity|volume|band] [--no-close-holes] [--resolver global|witness|notch]\n"
             "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--eps-ratio R]\n"
             "              [--no-feature-grouping] [--stop measure|hull] [--verify] [-v]\n"
             "\n"
@@ -66,7 +66,8 @@ static void usage(FILE *f) {
             "                      the cheapest pair, while the hulls' volume falls (default 0)\n"
             "  --cut-choice concavity  solid mode: the candidate cut of least piece concavity (default);\n"
             "                      'volume': planes chosen for tight hulls join the candidates, and the\n"
-            "                      smallest sum of the pieces' hull volumes wins within a band of concavity\n"
+            "                      smallest sum of the pieces' hull volumes wins within a band of concavity;\n"
+            "                      'band': that rule on the default's candidates (no extra cost)\n"
             "  --stop measure      a part is a leaf when its measure (depth below its bridge patch's plane,\n"
             "                      the paper's) is at most TAU (default)\n"
             "  --stop hull         also when its surface and its hull's boundary are within TAU of each\n"
@@ -356,8 +357,9 @@ int acd_cmd_3d(int argc, char **argv) {
         } else if (!strcmp(a, "--cut-choice")) {
             if (val && !strcmp(val, "concavity")) p.cut_choice = ACD3D_CHOICE_CONCAVITY;
             else if (val && !strcmp(val, "volume")) p.cut_choice = ACD3D_CHOICE_VOLUME;
+            else if (val && !strcmp(val, "band")) p.cut_choice = ACD3D_CHOICE_BAND;
             else {
-                fprintf(stderr, "acd 3d: --cut-choice takes concavity or volume\n");
+                fprintf(stderr, "acd 3d: --cut-choice takes concavity, volume or band\n");
                 return ACD_EXIT_USAGE;
             }
             i++;

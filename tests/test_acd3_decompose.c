@@ -395,6 +395,46 @@ static void test_hull_tightness(void **state) {
     acd_mesh_free(&m);
 }
 
+/* The cut choice by band (docs/acd3d.md "Cut choice by band"): the default's candidates compared by
+ * the volume choice's rule keep every property of a solid decomposition, give the same tree and parts
+ * for 1 and 2 threads, and choose other cuts than the default on the torus (the option is used). */
+static void test_cut_choice_band(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_torus(&m, 32, 16, 1.0, 0.35));
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.05;
+    p.merge = 0;
+    acd3d_result conc, band, band2;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &p, &conc, &err), ACD_OK);
+    p.cut_choice = ACD3D_CHOICE_BAND;
+    p.threads = 1;
+    assert_int_equal(acd3d_decompose(&m, &p, &band, &err), ACD_OK);
+    p.threads = 2;
+    assert_int_equal(acd3d_decompose(&m, &p, &band2, &err), ACD_OK);
+    check_solid(&m, &band, &p);
+    assert_int_equal(band2.nnodes, band.nnodes);
+    for (size_t n = 0; n < band.nnodes; n++) {
+        assert_memory_equal(band2.nodes[n].cut_plane, band.nodes[n].cut_plane, sizeof band.nodes[n].cut_plane);
+        assert_true(band2.nodes[n].concavity == band.nodes[n].concavity);
+    }
+    assert_int_equal(band2.nparts, band.nparts);
+    for (size_t i = 0; i < band.nparts; i++) {
+        assert_int_equal(band2.parts[i].mesh.nvertices, band.parts[i].mesh.nvertices);
+        assert_memory_equal(band2.parts[i].mesh.vertices, band.parts[i].mesh.vertices,
+                            3 * band.parts[i].mesh.nvertices * sizeof(double));
+    }
+    int differs = band.nnodes != conc.nnodes;
+    for (size_t n = 0; n < band.nnodes && !differs; n++)
+        differs = memcmp(band.nodes[n].cut_plane, conc.nodes[n].cut_plane, sizeof band.nodes[n].cut_plane) != 0;
+    assert_true(differs);
+    acd3d_result_free(&conc);
+    acd3d_result_free(&band);
+    acd3d_result_free(&band2);
+    acd_mesh_free(&m);
+}
+
 static void check_surface(const acd_mesh *in, const acd3d_result *r, const acd3d_params *p) {
     size_t faces = 0;
     double area = 0;
@@ -609,6 +649,7 @@ int main(void) {
         cmocka_unit_test(test_torus_finishes),
         cmocka_unit_test(test_merge_pass),
         cmocka_unit_test(test_hull_tightness),
+        cmocka_unit_test(test_cut_choice_band),
         cmocka_unit_test(test_surface_mode),
         cmocka_unit_test(test_spiky_stars_within_tau),
         cmocka_unit_test(test_parallel_candidates_same_tree),

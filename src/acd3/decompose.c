@@ -174,11 +174,13 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
 /* How many splitting candidates are compared (each costs a measure of its pieces). */
 #define ACD3_COMPARED_CANDIDATES 6
 /* With the cut choice by volume (every candidate compared up to this budget): 9 gave higher IoU at
- * 40 parts than 6 on all six target meshes (docs/acd3d.md "Hull tightness"). */
+ * 40 parts than 6 on all six target meshes (docs/acd3d.md "Hull tightness"). The cut choice by band
+ * has the same budget (it is measured so; with its early acceptance it is seldom reached). */
 #define ACD3_COMPARED_CANDIDATES_VOLUME 9
 /* Cut choice by hull volume (ACD3D_CHOICE_VOLUME): how many volume planes join the candidates,
  * and the band of concavity (a fraction of the part's) within which the pieces' hull volume
- * decides. */
+ * decides (also by band, ACD3D_CHOICE_BAND: on the armadillo at tau 0.02 a band of 0.1 to 1 gave
+ * 120-123 parts, 0.03 152, 0.001 156; an absolute band of eps, the measure's slack, 149). */
 #define ACD3_VOLUME_PLANES 1
 /* The volume plane is searched on an estimate (acd3_volume_planes_scored): at most this many of
  * the part's vertices scored, 5 offsets refined twice. Against the full search (every vertex up to
@@ -283,7 +285,8 @@ typedef struct split_state {
     const acd3_measure *ms;
     double extent, eps, tau, tol, min_piece_volume;
     int solid, restrict_cut;
-    int by_volume; /* ACD3D_CHOICE_VOLUME (solid mode) */
+    int by_volume; /* ACD3D_CHOICE_VOLUME or ACD3D_CHOICE_BAND (solid mode): the band rule */
+    int early;     /* ACD3D_CHOICE_BAND: a cut meeting tau or halving the concavity is still taken at once */
     double band;   /* its band of concavity */
     unsigned cut_flags; /* acd_plane_cut_flags */
     const acd_edge_map *em; /* solid mode: the part's edge map, checked closed (NULL: each cut builds it) */
@@ -423,8 +426,8 @@ static void split_replay(split_state *S) {
             S->best_progress = progress;
         }
         cand_eval_free(e);
-        /* (by volume, every candidate is compared, up to the budget) */
-        if (!S->by_volume && S->best_progress &&
+        /* (by volume, every candidate is compared, up to the budget; by band, as by concavity) */
+        if ((!S->by_volume || S->early) && S->best_progress &&
             (S->best.concavity <= S->tau + S->tol || S->best.concavity <= 0.5 * S->ms->concavity))
             S->stopped = 1;
     }
@@ -689,10 +692,13 @@ static int surface_cycle_cut(const acd_mesh *m, const acd_edge_graph *g, const a
  * restrict_cut, each plane cuts only its section region nearest the witness (acd3/region_cut). The pieces'
  * measures are kept for when they are processed. helpers: how many other threads may join the
  * evaluation of the candidates (the result is the same). Returns 1 if split, 0 if no candidate
- * splits, or -(status) on failure. */
+ * splits, or -(status) on failure. choice: by concavity as above; by volume (solid mode) the volume
+ * plane joins the candidates, every candidate is compared (up to its budget) and split_better's band
+ * rule decides; by band (solid mode) the band rule on the same candidates, with the early acceptance
+ * kept (docs/acd3d.md "Cut choice by band"). */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
-                     unsigned cut_flags, const acd3_resolve_opts *ro, int by_volume, int helpers, split_choice *best,
+                     unsigned cut_flags, const acd3_resolve_opts *ro, acd3d_cut_choice choice, int helpers, split_choice *best,
                      acd_error *err) {
     /* slots: [0, npre) the planes evaluated ahead (if any), then the candidates in order */
     acd3_plane_candidate slot[ACD3_SPLIT_SLOTS];
@@ -700,7 +706,8 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     memset(ev, 0, sizeof ev);
     split_state S;
     memset(&S, 0, sizeof S);
-    by_volume = by_volume && solid;
+    int by_volume = solid && (choice == ACD3D_CHOICE_VOLUME || choice == ACD3D_CHOICE_BAND);
+    int vplanes = by_volume && choice == ACD3D_CHOICE_VOLUME; /* the volume planes join the candidates */
     /* solid mode: the part's edge map once for all the cuts (when it cannot be built or the part is
      * not closed, each cut builds and checks it and reports that as before) */
     acd_edge_map em;
@@ -711,7 +718,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     }
     S.m = m, S.g = g, S.ms = ms, S.extent = extent, S.eps = eps, S.tau = tau, S.tol = tol;
     S.min_piece_volume = min_piece_volume, S.solid = solid, S.restrict_cut = restrict_cut;
-    S.by_volume = by_volume, S.band = ACD3_VOLUME_BAND * ms->concavity;
+    S.by_volume = by_volume, S.early = choice == ACD3D_CHOICE_BAND, S.band = ACD3_VOLUME_BAND * ms->concavity;
     S.cut_flags = cut_flags;
     S.em = have_em ? &em : NULL;
     S.cand = slot, S.ev = ev;
@@ -735,7 +742,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
         }
 #endif
         /* the volume planes too, while the helpers start on those */
-        if (by_volume) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
+        if (vplanes) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
         if (nvp > 0) {
 #ifdef _OPENMP
 #pragma omp critical(acd3_split)
@@ -762,7 +769,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     } else {
         nc = acd3_cut_candidates(m, g, ms, ro, cand);
     }
-    if (by_volume && nc > 0) { /* the volume planes after the first candidate */
+    if (vplanes && nc > 0) { /* the volume planes after the first candidate */
         if (!ahead) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
         memmove(cand + 1 + nvp, cand + 1, (size_t)(nc - 1) * sizeof *cand);
         memcpy(cand + 1, vp, (size_t)nvp * sizeof *cand);
@@ -928,15 +935,15 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         const double vol = c->solid ? acd_geom3_signed_volume(&w->mesh) : -INFINITY;
         if (c->params->region_cuts || !c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
-                              ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice == ACD3D_CHOICE_VOLUME, c->helpers, &out->choice,
+                              ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, &out->choice,
                               &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
-                              ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice == ACD3D_CHOICE_VOLUME, c->helpers, &out->choice,
+                              ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, &out->choice,
                               &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
-                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, ACD_PLANE_CUT_DROP_SPECKS, &ro, c->params->cut_choice == ACD3D_CHOICE_VOLUME, c->helpers, &out->choice,
+                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, ACD_PLANE_CUT_DROP_SPECKS, &ro, c->params->cut_choice, c->helpers, &out->choice,
                               &out->err);
         if (split < 0) {
             out->st = (acd_status)(-split);
