@@ -949,24 +949,50 @@ static int grow_groups(group **G, size_t *capg, size_t need) {
     return 1;
 }
 
-/* The cheapest joinable pair involving neither group x nor y (ties: the earlier), SIZE_MAX if none;
- * pending pairs (score) are finished cheapest first until the cheapest is joinable. */
-static size_t cheapest_ok(const group *G, pair *P, size_t np, uint32_t x, uint32_t y, double tau) {
+static int pair_before(const pair *P, size_t i, size_t j) {
+    return P[i].cost < P[j].cost || (P[i].cost == P[j].cost && i < j);
+}
+
+/* The cheapest joinable pair involving neither group x nor y (ties: the earlier), SIZE_MAX if none.
+ * Pending pairs (score) are finished cheapest first until the cheapest is joinable: when the
+ * cheapest is pending, it and the next pending ones cheaper than the cheapest joinable (at most
+ * MERGE_FINISH_BATCH: a constant, the same work for any thread count) in parallel. */
+#define MERGE_FINISH_BATCH 4
+static size_t cheapest_ok(const group *G, pair *P, size_t np, uint32_t x, uint32_t y, double tau, int threads) {
     for (;;) {
-        size_t best = SIZE_MAX;
+        size_t best = SIZE_MAX, bok = SIZE_MAX, pend[MERGE_FINISH_BATCH];
+        int npend = 0;
         for (size_t i = 0; i < np; i++) {
             if (!P[i].ok && !P[i].pend) continue;
             if (P[i].a == x || P[i].b == x || P[i].a == y || P[i].b == y) continue;
-            if (best == SIZE_MAX || P[i].cost < P[best].cost) best = i;
+            if (best == SIZE_MAX || pair_before(P, i, best)) best = i;
+            if (P[i].ok && (bok == SIZE_MAX || pair_before(P, i, bok))) bok = i;
         }
         if (best == SIZE_MAX || P[best].ok) return best;
-        finish_pair(G, &P[best], tau);
+        /* the cheapest pending pairs before bok, in order (insertion into a short sorted list) */
+        for (size_t i = 0; i < np; i++) {
+            if (!P[i].pend || (bok != SIZE_MAX && !pair_before(P, i, bok))) continue;
+            if (P[i].a == x || P[i].b == x || P[i].a == y || P[i].b == y) continue;
+            int k = npend < MERGE_FINISH_BATCH ? npend++ : MERGE_FINISH_BATCH;
+            if (k == MERGE_FINISH_BATCH && !pair_before(P, i, pend[k - 1])) continue;
+            if (k == MERGE_FINISH_BATCH) k--;
+            while (k > 0 && pair_before(P, i, pend[k - 1])) {
+                pend[k] = pend[k - 1];
+                k--;
+            }
+            pend[k] = i;
+        }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && npend > 1)
+#endif
+        for (int k = 0; k < npend; k++) finish_pair(G, &P[pend[k]], tau);
+        (void)threads;
     }
 }
 
 /* Drops the pairs of dead groups; returns the cheapest joinable pair (ties: the earlier), SIZE_MAX if
  * none. */
-static size_t best_pair(const group *G, pair *P, size_t *np, double tau) {
+static size_t best_pair(const group *G, pair *P, size_t *np, double tau, int threads) {
     size_t w = 0;
     for (size_t i = 0; i < *np; i++) {
         if (!G[P[i].a].alive || !G[P[i].b].alive) {
@@ -976,7 +1002,7 @@ static size_t best_pair(const group *G, pair *P, size_t *np, double tau) {
         P[w++] = P[i];
     }
     *np = w;
-    return cheapest_ok(G, P, w, UINT32_MAX, UINT32_MAX, tau);
+    return cheapest_ok(G, P, w, UINT32_MAX, UINT32_MAX, tau, threads);
 }
 
 /* Joins pair best into a new group, its pairs with its neighbours pushed and scored. A neighbour x
@@ -1110,11 +1136,11 @@ typedef struct cheapest_join {
     double c0ab[2];
 } cheapest_join;
 
-static void cheapest_join_init(cheapest_join *cj, const group *G, pair *P, size_t np, double tau) {
-    cj->i1 = cheapest_ok(G, P, np, UINT32_MAX, UINT32_MAX, tau);
+static void cheapest_join_init(cheapest_join *cj, const group *G, pair *P, size_t np, double tau, int threads) {
+    cj->i1 = cheapest_ok(G, P, np, UINT32_MAX, UINT32_MAX, tau, threads);
     cj->c0ab[0] = cj->c0ab[1] = INFINITY;
     for (int s = 0; s < 2 && cj->i1 != SIZE_MAX; s++) {
-        size_t i = cheapest_ok(G, P, np, s ? P[cj->i1].b : P[cj->i1].a, UINT32_MAX, tau);
+        size_t i = cheapest_ok(G, P, np, s ? P[cj->i1].b : P[cj->i1].a, UINT32_MAX, tau, threads);
         if (i != SIZE_MAX) cj->c0ab[s] = P[i].cost;
     }
 }
@@ -1283,7 +1309,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     /* greedy: the cheapest joinable pair of live groups, ties by the lower ids */
     size_t nlive = nparts;
     while (st == ACD_OK && nlive > stop_at) {
-        size_t best = best_pair(G, P, &np, tau);
+        size_t best = best_pair(G, P, &np, tau, threads);
         if (best == SIZE_MAX) break;
         st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
         if (st != ACD_OK) break;
@@ -1297,9 +1323,9 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     refine_cand *cands = NULL;
     const double min_gain = MERGE_REFINE_MIN_GAIN_REL * in_vol;
     while (st == ACD_OK && out->trades < refine && fails <= MERGE_REFINE_FAILS_PER_STEP * refine) {
-        best_pair(G, P, &np, tau);
+        best_pair(G, P, &np, tau, threads);
         cheapest_join cj;
-        cheapest_join_init(&cj, G, P, np, tau);
+        cheapest_join_init(&cj, G, P, np, tau, threads);
         /* estimates made lazily, largest upper bound first, until no unestimated move can beat the
          * best estimated one: a cut saves at most the excess of the hull over the volume (the sides'
          * hulls hold the sides), a trade that less the join */
@@ -1387,7 +1413,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
         } else {
             st = commit_cut(&G, &ng, &capg, (uint32_t)x, UINT32_MAX, &at, n0, S, tol, &P, &np, &capp, tau, by_volume,
                             threads, err);
-            size_t best = st == ACD_OK ? best_pair(G, P, &np, tau) : 0;
+            size_t best = st == ACD_OK ? best_pair(G, P, &np, tau, threads) : 0;
             if (st == ACD_OK && best == SIZE_MAX) /* cannot happen: the pair of cost c0x is still there */
                 st = acd_fail(err, ACD_ERR_INTERNAL, "merge: no join after a refinement cut");
             if (st == ACD_OK) st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
