@@ -43,70 +43,83 @@ static void box_empty(double lo[3], double hi[3]) {
     }
 }
 
+/* (stored unconditionally: a conditional store was a branch, mispredicted about half the time; the
+ * same selection, min/max instructions) */
 static void box_grow(double lo[3], double hi[3], const double l2[3], const double h2[3]) {
     for (int k = 0; k < 3; k++) {
-        if (l2[k] < lo[k]) lo[k] = l2[k];
-        if (h2[k] > hi[k]) hi[k] = h2[k];
+        lo[k] = l2[k] < lo[k] ? l2[k] : lo[k];
+        hi[k] = h2[k] > hi[k] ? h2[k] : hi[k];
     }
 }
 
-static double *tbox_sorted(const acd_bvh *b, size_t i) { return b->boxes + 6 * i; }
+static const double *tbox_sorted(const acd_bvh *b, size_t i) { return b->boxes + 6 * i; }
+
+/* One triangle during the build: its box, its box's centre and its index. The items are permuted
+ * in place (the order the tree ends with), so every pass over a node's triangles reads them in
+ * sequence. */
+typedef struct bvh_item {
+    double lo[3], hi[3], c[3];
+    uint32_t t;
+} bvh_item;
 
 typedef struct build_item {
     uint32_t node;
     uint32_t start, end;
     uint32_t depth;
+    double clo[3], chi[3]; /* the bounds of the node's centroids (its box is in the node) */
 } build_item;
 
 /* Below this depth SAH chooses the split; deeper, the median split bounds the depth by
  * BVH_SAH_DEPTH + log2(n) whatever the distribution of the triangles. */
 #define BVH_SAH_DEPTH 48
 
-/* Partitions order[start, end) by the split; returns the first index of the right half. */
-static uint32_t partition(uint32_t *order, const double *cent, uint32_t start, uint32_t end, int axis,
-                          double split) {
+static void item_swap(bvh_item *a, bvh_item *b) {
+    bvh_item x = *a;
+    *a = *b;
+    *b = x;
+}
+
+/* Partitions it[start, end) by the split; returns the first index of the right half. */
+static uint32_t partition(bvh_item *it, uint32_t start, uint32_t end, int axis, double split) {
     uint32_t i = start, j = end;
     while (i < j) {
-        if (cent[3 * (size_t)order[i] + axis] < split) {
+        if (it[i].c[axis] < split) {
             i++;
         } else {
             j--;
-            uint32_t t = order[i];
-            order[i] = order[j];
-            order[j] = t;
+            item_swap(&it[i], &it[j]);
         }
     }
     return i;
 }
 
-static int cmp_u32(const void *a, const void *b) {
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+static int cmp_item_t(const void *a, const void *b) {
+    uint32_t x = ((const bvh_item *)a)->t, y = ((const bvh_item *)b)->t;
     return (x > y) - (x < y);
 }
 
 /* (centroid[axis], index) order: a strict total order, so the split is deterministic. */
-static int cent_less(const double *cent, int axis, uint32_t a, uint32_t b) {
-    double ka = cent[3 * (size_t)a + axis], kb = cent[3 * (size_t)b + axis];
-    return ka < kb || (ka == kb && a < b);
+static int cent_less(int axis, const bvh_item *a, const bvh_item *b) {
+    double ka = a->c[axis], kb = b->c[axis];
+    return ka < kb || (ka == kb && a->t < b->t);
 }
 
 /* Puts the element of rank k (within [start, end)) at position k, smaller ones before it,
  * larger after (quickselect with a median-of-three pivot). */
-static void median_split(uint32_t *order, const double *cent, uint32_t start, uint32_t end, int axis, uint32_t k) {
+static void median_split(bvh_item *it, uint32_t start, uint32_t end, int axis, uint32_t k) {
     uint32_t lo = start, hi = end - 1;
     while (lo < hi) {
         uint32_t mid = lo + (hi - lo) / 2;
-        uint32_t a = order[lo], b = order[mid], c = order[hi], piv;
-        if (cent_less(cent, axis, a, b)) piv = cent_less(cent, axis, b, c) ? b : (cent_less(cent, axis, a, c) ? c : a);
-        else piv = cent_less(cent, axis, a, c) ? a : (cent_less(cent, axis, b, c) ? c : b);
+        const bvh_item *a = &it[lo], *b = &it[mid], *c = &it[hi];
+        bvh_item piv;
+        if (cent_less(axis, a, b)) piv = cent_less(axis, b, c) ? *b : (cent_less(axis, a, c) ? *c : *a);
+        else piv = cent_less(axis, a, c) ? *a : (cent_less(axis, b, c) ? *c : *b);
         uint32_t i = lo, j = hi;
         while (i <= j) {
-            while (cent_less(cent, axis, order[i], piv)) i++;
-            while (cent_less(cent, axis, piv, order[j])) j--;
+            while (cent_less(axis, &it[i], &piv)) i++;
+            while (cent_less(axis, &piv, &it[j])) j--;
             if (i <= j) {
-                uint32_t t = order[i];
-                order[i] = order[j];
-                order[j] = t;
+                item_swap(&it[i], &it[j]);
                 i++;
                 if (j == 0) break;
                 j--;
@@ -115,6 +128,17 @@ static void median_split(uint32_t *order, const double *cent, uint32_t start, ui
         if (k <= j) hi = j;
         else if (k >= i) lo = i;
         else break;
+    }
+}
+
+/* The box of it[start, end) and the bounds of their centroids. */
+static void range_bounds(const bvh_item *it, uint32_t start, uint32_t end, double lo[3], double hi[3], double clo[3],
+                         double chi[3]) {
+    box_empty(lo, hi);
+    box_empty(clo, chi);
+    for (uint32_t i = start; i < end; i++) {
+        box_grow(lo, hi, it[i].lo, it[i].hi);
+        box_grow(clo, chi, it[i].c, it[i].c);
     }
 }
 
@@ -147,81 +171,91 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
     bvh->nodes = malloc(maxnodes * sizeof *bvh->nodes);
     bvh->order = malloc(ntriangles * sizeof *bvh->order);
     bvh->boxes = malloc(ntriangles * 6 * sizeof(double));
-    double *tbox = malloc(ntriangles * 6 * sizeof(double));
-    double *cent = malloc(ntriangles * 3 * sizeof(double));
+    bvh_item *items = malloc(ntriangles * sizeof *items);
     build_item *stack = malloc(maxnodes * sizeof *stack);
-    if (!bvh->nodes || !bvh->order || !bvh->boxes || !tbox || !cent || !stack) {
-        free(tbox);
-        free(cent);
+    if (!bvh->nodes || !bvh->order || !bvh->boxes || !items || !stack) {
+        free(items);
         free(stack);
         acd_bvh_free(bvh);
         return acd_fail(err, ACD_ERR_NOMEM, "bvh: out of memory for %zu triangles", ntriangles);
     }
     for (uint32_t t = 0; t < (uint32_t)ntriangles; t++) {
-        tri_box(bvh, t, tbox + 6 * (size_t)t, tbox + 6 * (size_t)t + 3);
-        for (int k = 0; k < 3; k++) cent[3 * (size_t)t + k] = 0.5 * (tbox[6 * (size_t)t + k] + tbox[6 * (size_t)t + 3 + k]);
-        bvh->order[t] = t;
+        bvh_item *x = &items[t];
+        tri_box(bvh, t, x->lo, x->hi);
+        for (int k = 0; k < 3; k++) x->c[k] = 0.5 * (x->lo[k] + x->hi[k]);
+        x->t = t;
     }
     size_t nnodes = 1, sp = 0;
-    stack[sp++] = (build_item){0, 0, (uint32_t)ntriangles, 0};
+    {
+        build_item root = {0, 0, (uint32_t)ntriangles, 0, {0, 0, 0}, {0, 0, 0}};
+        range_bounds(items, 0, (uint32_t)ntriangles, bvh->nodes[0].lo, bvh->nodes[0].hi, root.clo, root.chi);
+        stack[sp++] = root;
+    }
     while (sp > 0) {
         build_item it = stack[--sp];
         acd_bvh_node *nd = &bvh->nodes[it.node];
-        double clo[3], chi[3];
-        box_empty(nd->lo, nd->hi);
-        box_empty(clo, chi);
-        for (uint32_t i = it.start; i < it.end; i++) {
-            uint32_t t = bvh->order[i];
-            box_grow(nd->lo, nd->hi, tbox + 6 * (size_t)t, tbox + 6 * (size_t)t + 3);
-            box_grow(clo, chi, cent + 3 * (size_t)t, cent + 3 * (size_t)t);
-        }
+        const double *clo = it.clo, *chi = it.chi;
         uint32_t n = it.end - it.start;
         if (n <= 2) {
             nd->first = it.start;
             nd->count = n;
             continue;
         }
-        /* binned SAH over the three axes */
+        /* binned SAH over the three axes (the bins of all three filled in one pass) */
         int best_axis = -1;
         double best_cost = INFINITY, best_split = 0;
+        double blo[3][BVH_BINS][3], bhi[3][BVH_BINS][3], scale[3];
+        uint32_t bcnt[3][BVH_BINS];
+        int active[3], nactive = 0;
         for (int ax = 0; ax < 3; ax++) {
             double ext = chi[ax] - clo[ax];
+            active[ax] = 0;
             if (!(ext > 0) || it.depth >= BVH_SAH_DEPTH) continue;
-            double blo[BVH_BINS][3], bhi[BVH_BINS][3];
-            uint32_t bcnt[BVH_BINS] = {0};
-            for (int b = 0; b < BVH_BINS; b++) box_empty(blo[b], bhi[b]);
-            double scale = BVH_BINS / ext;
-            if (!isfinite(scale)) continue; /* a subnormal extent: no binning on this axis */
-            for (uint32_t i = it.start; i < it.end; i++) {
-                uint32_t t = bvh->order[i];
-                /* clamp in floating point before converting (NaN and overflow go to a bin too) */
-                double fb = (cent[3 * (size_t)t + ax] - clo[ax]) * scale;
-                int b = fb >= BVH_BINS ? BVH_BINS - 1 : fb > 0 ? (int)fb : 0;
-                bcnt[b]++;
-                box_grow(blo[b], bhi[b], tbox + 6 * (size_t)t, tbox + 6 * (size_t)t + 3);
+            scale[ax] = BVH_BINS / ext;
+            if (!isfinite(scale[ax])) continue; /* a subnormal extent: no binning on this axis */
+            active[ax] = 1;
+            nactive++;
+            for (int b = 0; b < BVH_BINS; b++) {
+                box_empty(blo[ax][b], bhi[ax][b]);
+                bcnt[ax][b] = 0;
             }
+        }
+        if (nactive > 0)
+            for (uint32_t i = it.start; i < it.end; i++) {
+                const bvh_item *x = &items[i];
+                for (int ax = 0; ax < 3; ax++) {
+                    if (!active[ax]) continue;
+                    /* clamp in floating point before converting (NaN and overflow go to a bin too) */
+                    double fb = (x->c[ax] - clo[ax]) * scale[ax];
+                    int b = fb >= BVH_BINS ? BVH_BINS - 1 : fb > 0 ? (int)fb : 0;
+                    bcnt[ax][b]++;
+                    box_grow(blo[ax][b], bhi[ax][b], x->lo, x->hi);
+                }
+            }
+        for (int ax = 0; ax < 3; ax++) {
+            if (!active[ax]) continue;
             double rarea[BVH_BINS];
             uint32_t rcnt[BVH_BINS];
             double lo[3], hi[3];
             box_empty(lo, hi);
             uint32_t c = 0;
             for (int b = BVH_BINS - 1; b > 0; b--) {
-                box_grow(lo, hi, blo[b], bhi[b]);
-                c += bcnt[b];
+                box_grow(lo, hi, blo[ax][b], bhi[ax][b]);
+                c += bcnt[ax][b];
                 rarea[b] = box_area(lo, hi);
                 rcnt[b] = c;
             }
             box_empty(lo, hi);
             c = 0;
             for (int b = 0; b < BVH_BINS - 1; b++) {
-                box_grow(lo, hi, blo[b], bhi[b]);
-                c += bcnt[b];
+                box_grow(lo, hi, blo[ax][b], bhi[ax][b]);
+                c += bcnt[ax][b];
                 if (c == 0 || rcnt[b + 1] == 0) continue;
                 double cost = box_area(lo, hi) * c + rarea[b + 1] * rcnt[b + 1];
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_axis = ax;
-                    best_split = clo[ax] + (b + 1) / scale;
+                    best_split = clo[ax] + (b + 1) / scale[ax];
                 }
             }
         }
@@ -233,17 +267,17 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
                 nd->count = n;
                 continue;
             }
-            mid = partition(bvh->order, cent, it.start, it.end, best_axis, best_split);
+            mid = partition(items, it.start, it.end, best_axis, best_split);
             if (mid == it.start || mid == it.end) { /* rounding at the bin edge: fall back */
                 mid = it.start + n / 2;
-                median_split(bvh->order, cent, it.start, it.end, best_axis, mid);
+                median_split(items, it.start, it.end, best_axis, mid);
             }
         } else if (it.depth >= BVH_SAH_DEPTH && n > ACD_BVH_LEAF_MAX) {
             int ax = 0;
             for (int k = 1; k < 3; k++)
                 if (chi[k] - clo[k] > chi[ax] - clo[ax]) ax = k;
             mid = it.start + n / 2;
-            median_split(bvh->order, cent, it.start, it.end, ax, mid);
+            median_split(items, it.start, it.end, ax, mid);
         } else {
             /* all centroids coincide: split the index range in half (sorted for determinism) */
             if (n <= ACD_BVH_LEAF_MAX) {
@@ -251,22 +285,30 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
                 nd->count = n;
                 continue;
             }
-            qsort(bvh->order + it.start, n, sizeof(uint32_t), cmp_u32);
+            qsort(items + it.start, n, sizeof *items, cmp_item_t);
             mid = it.start + n / 2;
         }
         uint32_t left = (uint32_t)nnodes;
         nnodes += 2;
         nd->first = left;
         nd->count = 0;
-        /* push right first so the left subtree is built (and numbered) first */
-        stack[sp++] = (build_item){left + 1, mid, it.end, it.depth + 1};
-        stack[sp++] = (build_item){left, it.start, mid, it.depth + 1};
+        /* the children's boxes and centroid bounds; push right first so the left subtree is built
+         * (and numbered) first */
+        build_item r = {left + 1, mid, it.end, it.depth + 1, {0, 0, 0}, {0, 0, 0}};
+        build_item l = {left, it.start, mid, it.depth + 1, {0, 0, 0}, {0, 0, 0}};
+        range_bounds(items, mid, it.end, bvh->nodes[left + 1].lo, bvh->nodes[left + 1].hi, r.clo, r.chi);
+        range_bounds(items, it.start, mid, bvh->nodes[left].lo, bvh->nodes[left].hi, l.clo, l.chi);
+        stack[sp++] = r;
+        stack[sp++] = l;
     }
     bvh->nnodes = nnodes;
-    /* triangle boxes in leaf order, for the queries */
-    for (size_t i = 0; i < ntriangles; i++) memcpy(tbox_sorted(bvh, i), tbox + 6 * (size_t)bvh->order[i], 6 * sizeof(double));
-    free(tbox);
-    free(cent);
+    /* triangles and their boxes in leaf order, for the queries */
+    for (size_t i = 0; i < ntriangles; i++) {
+        bvh->order[i] = items[i].t;
+        memcpy(bvh->boxes + 6 * i, items[i].lo, 3 * sizeof(double));
+        memcpy(bvh->boxes + 6 * i + 3, items[i].hi, 3 * sizeof(double));
+    }
+    free(items);
     free(stack);
     return ACD_OK;
 }
@@ -369,12 +411,18 @@ double acd_closest_point_triangle(const double p[3], const double a[3], const do
     return best;
 }
 
+/* The gap along axis k between p and the box [lo, hi] (lo <= hi): lo - p below it, p - hi above
+ * it, else 0 (the larger of the two differences when positive: the same values, without branches). */
+static inline double axis_gap(double p, double lo, double hi) {
+    double a = lo - p, b = p - hi;
+    double e = a > b ? a : b;
+    return e > 0 ? e : 0;
+}
+
 static double box_dist2(const acd_bvh_node *n, const double p[3]) {
     double d = 0;
     for (int k = 0; k < 3; k++) {
-        double e = 0;
-        if (p[k] < n->lo[k]) e = n->lo[k] - p[k];
-        else if (p[k] > n->hi[k]) e = p[k] - n->hi[k];
+        double e = axis_gap(p[k], n->lo[k], n->hi[k]);
         d += e * e;
     }
     return d;
@@ -401,7 +449,7 @@ int acd_bvh_closest_filtered(const acd_bvh *bvh, const double p[3], double max_d
                 const double *bx = bvh->boxes + 6 * ((size_t)n->first + i);
                 double e2 = 0;
                 for (int k = 0; k < 3; k++) {
-                    double e = p[k] < bx[k] ? bx[k] - p[k] : p[k] > bx[3 + k] ? p[k] - bx[3 + k] : 0;
+                    double e = axis_gap(p[k], bx[k], bx[3 + k]);
                     e2 += e * e;
                 }
                 if (e2 > best) continue;
