@@ -63,7 +63,7 @@ typedef struct group {
     size_t nft;
     double vol;      /* the members' volume */
     int est;         /* refinement: 0 its volume plane not searched yet, 1 searched, 2 its cut refused */
-    double est_gain; /* the hull volume its volume plane saves (an estimate) */
+    double est_gain; /* the hull volume its volume plane saves (the plane found on a sample, its saving exact) */
     acd3_plane_candidate est_plane;
 } group;
 
@@ -82,7 +82,7 @@ typedef struct pair {
     acd_hull H;
     double din;
     int est;          /* refinement: as group.est, for the cut of the pair's union */
-    double est_gain;  /* the hull volume that cut saves against the pair's two hulls (an estimate) */
+    double est_gain;  /* the hull volume that cut saves against the pair's two hulls (as group.est_gain) */
     acd3_plane_candidate est_plane;
 } pair;
 
