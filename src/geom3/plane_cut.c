@@ -180,6 +180,13 @@ typedef struct cut_ctx {
     const double *orig;     /* the input vertices */
     unsigned flags;         /* ACD_PLANE_CUT_* */
     acd_error *err;
+    /* the + side's edge map before the caps and its twins (cap_sections'), kept for make_pieces:
+     * with the caps' half-edges merged in it is that side's map (have_pm: kept; pm_nt: the
+     * triangles it covers) */
+    acd_edge_map pm;
+    uint32_t *ptw;
+    int have_pm;
+    size_t pm_nt;
 } cut_ctx;
 
 static acd_status push_tri(cut_ctx *c, uint32_t a, uint32_t b, uint32_t d, int side, int cap) {
@@ -304,8 +311,10 @@ static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
             nb++;
         }
     }
-    free(ptw);
-    acd_edge_map_free(&pm);
+    c->pm = pm;
+    c->ptw = ptw;
+    c->have_pm = 1;
+    c->pm_nt = c->nt;
     if (nb == 0) {
         free(bfrom);
         free(bto);
@@ -665,6 +674,55 @@ out:
     return st;
 }
 
+/* The + side's map after the caps: cap_sections' map of the triangles before them merged with the
+ * caps' half-edges (all of higher index: among equal keys they come last, as in the map built
+ * over all of them), and its twins: a half-edge that had one keeps it (the first of its key), the
+ * others (the sections' boundary, the caps) are looked up. keep: the + side's triangles. The same
+ * map and twins as acd_edge_map_build and acd_edge_map_twins give. */
+static acd_status plus_side_map(cut_ctx *c, const uint8_t *keep, acd_edge_map *m, uint32_t **twin) {
+    memset(m, 0, sizeof *m);
+    *twin = NULL;
+    const acd_edge_map *pm = &c->pm;
+    acd_edge_map cm;
+    /* the caps' half-edges (triangles from pm_nt on) */
+    acd_status st = acd_edge_map_build(c->T + 3 * c->pm_nt, c->nt - c->pm_nt, keep + c->pm_nt, &cm, c->err);
+    if (st != ACD_OK) return st;
+    size_t n = pm->n + cm.n;
+    m->key = malloc((n ? n : 1) * sizeof *m->key);
+    m->half = malloc((n ? n : 1) * sizeof *m->half);
+    uint32_t *from = malloc((n ? n : 1) * sizeof *from); /* pm's index, or UINT32_MAX for a cap's */
+    uint32_t *tw = malloc((n ? n : 1) * sizeof *tw);
+    if (!m->key || !m->half || !from || !tw) {
+        acd_edge_map_free(&cm);
+        acd_edge_map_free(m);
+        free(from), free(tw);
+        return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for the cut's half-edges");
+    }
+    const uint32_t off = (uint32_t)(3 * c->pm_nt);
+    size_t i = 0, j = 0, k = 0;
+    while (i < pm->n || j < cm.n) {
+        if (j == cm.n || (i < pm->n && pm->key[i] <= cm.key[j])) {
+            m->key[k] = pm->key[i], m->half[k] = pm->half[i], from[k++] = (uint32_t)i++;
+        } else {
+            m->key[k] = cm.key[j], m->half[k] = cm.half[j] + off, from[k++] = UINT32_MAX, j++;
+        }
+    }
+    m->n = n;
+    acd_edge_map_free(&cm);
+    for (k = 0; k < n; k++) {
+        uint32_t p = from[k];
+        if (p != UINT32_MAX && c->ptw[p] != ACD_EDGE_NONE) {
+            tw[k] = c->ptw[p];
+        } else {
+            uint32_t a = (uint32_t)(m->key[k] >> 32), b = (uint32_t)m->key[k];
+            tw[k] = acd_edge_map_find(m, b, a);
+        }
+    }
+    free(from);
+    *twin = tw;
+    return ACD_OK;
+}
+
 static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     acd_error *err = c->err;
     uint32_t *parent = malloc((c->nt ? c->nt : 1) * sizeof *parent);
@@ -684,10 +742,15 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     for (int side = 1; side >= -1 && st == ACD_OK; side -= 2) {
         for (size_t t = 0; t < c->nt; t++) keep[t] = c->tside[t] == side;
         acd_edge_map m;
-        st = acd_edge_map_build(c->T, c->nt, keep, &m, err);
-        if (st != ACD_OK) break;
         uint32_t *tw = NULL;
-        st = acd_edge_map_twins(&m, &tw, err);
+        if (side > 0 && c->have_pm) {
+            st = plus_side_map(c, keep, &m, &tw);
+        } else {
+            st = acd_edge_map_build(c->T, c->nt, keep, &m, err);
+            if (st != ACD_OK) break;
+            st = acd_edge_map_twins(&m, &tw, err);
+        }
+        if (st != ACD_OK && !m.key) break;
         int cl = st == ACD_OK;
         for (size_t i = 0; st == ACD_OK && i < m.n; i++) {
             if (tw[i] != ACD_EDGE_NONE) acd_uf_union(parent, m.half[i] / 3, tw[i] / 3);
@@ -940,6 +1003,8 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
     out->section_area = ldexp(out->section_area, 2 * e2);
 fail:
     acd_edge_map_free(&own);
+    if (c.have_pm) acd_edge_map_free(&c.pm);
+    free(c.ptw);
     free(c.V);
     free(c.src);
     free(c.T);
