@@ -3,7 +3,8 @@
 # figures users compare with the peers (acd eval). Writes docs/results/3d.md.
 # usage: bench/bench_3d.sh [BUILD_DIR] [target]   (needs data/meshes: bash scripts/fetch-data.sh)
 # Environment (target table): ACD_EXTRA more acd 3d options for every run (e.g. "--cut-weight product"),
-# TARGET_OUT another file for the table, TARGET_MESHES the meshes of data/meshes to run (default the six).
+# TARGET_OUT another file for the table, TARGET_MESHES the meshes of data/meshes to run (default the six),
+# SKIP_TARGET=1 makes only docs/results/3d.md.
 # With "target", only the issue-target table (docs/results/3d-target.md) is made; without it, both
 # docs/results/3d.md and docs/results/3d-target.md.
 set -uo pipefail
@@ -153,10 +154,12 @@ echo
 echo "## Table 5 (parts), solid and surface, tau 0.2 and 0.02"
 echo
 echo "Solid columns use the default resolver (global cuts); 'witness' is the baseline resolver"
-echo "(\`--resolver witness\`, planes through the most concave vertex) measured in the same run."
+echo "(\`--resolver witness\`, planes through the most concave vertex) measured in the same run; 'band' is solid"
+echo "mode with \`--cut-choice band\` (the cut of least hull volume within a concavity band, docs/acd3d.md"
+echo "\"Cut choice by band\", docs/results/3d-table5.md)."
 echo
-echo "| model | triangles | solid 0.2 | solid 0.02 | surface 0.2 | surface 0.02 | witness 0.2 | witness 0.02 | paper (solid 0.2/0.02, surface 0.2/0.02) | seconds (solid 0.02) |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| model | triangles | solid 0.2 | solid 0.02 | surface 0.2 | surface 0.02 | witness 0.2 | witness 0.02 | band 0.2 | band 0.02 | paper (solid 0.2/0.02, surface 0.2/0.02) | seconds (solid 0.02) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$T/out.md"
 paper() {
   case $1 in
@@ -181,6 +184,11 @@ for m in elephant bull bunny00 armadillo camel dino; do
   done
   for tau in 0.2 0.02; do
     line=$(timeout 900 "$ACD" 3d "$f" --resolver witness -t $tau 2>/dev/null | head -1)
+    parts=$(echo "$line" | awk '{print $1}')
+    row="$row | ${parts:-fail}"
+  done
+  for tau in 0.2 0.02; do
+    line=$(timeout 900 "$ACD" 3d "$f" --cut-choice band -t $tau 2>/dev/null | head -1)
     parts=$(echo "$line" | awk '{print $1}')
     row="$row | ${parts:-fail}"
   done
@@ -213,4 +221,4 @@ for m in camel knot1 fandisk armadillo bunny00; do
 done
 cp "$T/out.md" "$OUT"
 cat "$OUT"
-target_table
+[ "${SKIP_TARGET:-0}" = 1 ] || target_table
