@@ -19,7 +19,8 @@ int acd3_volume_planes(const acd_mesh *m, int nmax, acd3_plane_candidate *out);
 /* The same, with the score of each plane returned (score may be NULL): the sum of the two sides'
  * hull volumes as scored above (on every k-th vertex of a large part: an estimate). max_scored > 0
  * makes it a coarser, cheaper estimate: at most that many vertices and the crossings of at most
- * twice as many triangles scored, 5 offsets refined twice; 0: as acd3_volume_planes. Only the
+ * twice as many triangles scored, 5 offsets refined twice (only on the axes whose best coarse
+ * score is within 2% of the best axis's); 0: as acd3_volume_planes. Only the
  * first naxes (1-3) principal axes are tried (the first: the largest extent). whole (may be NULL):
  * the hull volume of the scored vertices (what the scores compare with: a plane saves
  * whole - score). */
