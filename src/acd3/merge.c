@@ -142,6 +142,14 @@ static double dist_groups(const group *A, const group *B, const double p[3], dou
     return d;
 }
 
+/* Moves hull H's vertices to *hv, *nhv (a group's or a pair's record) and frees the rest of H. */
+static void take_hull_vertices(acd_hull *H, double **hv, size_t *nhv) {
+    *hv = H->vertices;
+    *nhv = H->nvertices;
+    H->vertices = NULL;
+    acd_hull_free(H);
+}
+
 /* The hull of the two groups' hull vertices; 0 when flat or out of memory. */
 static int joint_hull(const group *A, const group *B, acd_hull *H) {
     size_t n = A->nhv + B->nhv;
@@ -398,14 +406,9 @@ static void score_dout(const group *A, const group *B, double tau, int by_volume
         out->cost = INFINITY;
         return;
     }
-    acd_hull Hc = *H;
-    memset(H, 0, sizeof *H);
-    out->hv = Hc.vertices;
-    out->nhv = Hc.nvertices;
-    out->hvol = Hc.volume;
-    out->nft = Hc.ntriangles;
-    Hc.vertices = NULL;
-    acd_hull_free(&Hc);
+    out->hvol = H->volume;
+    out->nft = H->ntriangles;
+    take_hull_vertices(H, &out->hv, &out->nhv);
     out->ok = 1;
     out->bound = fmax(din, dout);
     out->cost = by_volume ? out->hvol - A->hvol - B->hvol : out->bound;
@@ -608,11 +611,8 @@ static acd_status group_init_hull(group *g, const double *pts, size_t n, double 
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for a hull's facets");
     }
     if (h.dim == 3) g->nft = h.ntriangles;
-    g->hv = h.vertices;
-    g->nhv = h.nvertices;
     g->hvol = h.dim == 3 ? h.volume : 0;
-    h.vertices = NULL;
-    acd_hull_free(&h);
+    take_hull_vertices(&h, &g->hv, &g->nhv);
     return ACD_OK;
 }
 
@@ -862,11 +862,8 @@ static int side_group(group *S, const atoms *at, const uint32_t *mem, size_t n, 
     }
     S->nft = H.ntriangles;
     S->bound = fmax(din, dout);
-    S->hv = H.vertices;
-    S->nhv = H.nvertices;
     S->hvol = H.volume;
-    H.vertices = NULL;
-    acd_hull_free(&H);
+    take_hull_vertices(&H, &S->hv, &S->nhv);
     S->alive = 1;
     return 1;
 }
