@@ -791,8 +791,7 @@ static void estimate(group *g, int naxes) {
         }
         /* the plane searched on a sample, its saving measured on every vertex (the sides' exact
          * hulls) */
-        double sc;
-        if (acd3_volume_planes_scored(&m, 1, MERGE_REFINE_SCORED, naxes, &g->est_plane, &sc, NULL) == 1) {
+        if (acd3_volume_planes_scored(&m, 1, MERGE_REFINE_SCORED, naxes, &g->est_plane, NULL, NULL) == 1) {
             double ex = acd3_volume_plane_sides(&m, g->est_plane.normal, g->est_plane.point);
             if (ex >= 0) g->est_gain = g->hvol - ex;
         }
