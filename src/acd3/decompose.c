@@ -191,6 +191,8 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
  * 0.9642, fandisk 0.9796 -> 0.9814 (the plane only joins the candidates: each is cut and measured
  * exactly). */
 #define ACD3_VOLUME_PLANE_SCORED 400
+/* ... on all three principal axes */
+#define ACD3_VOLUME_PLANE_AXES 3
 #define ACD3_VOLUME_BAND 0.5
 /* By volume (not by band): once the best cut makes progress, a candidate whose pieces' hull volume
  * (known from the screen's hulls) is not below the best's is dropped without measuring its pieces,
@@ -697,6 +699,12 @@ static int surface_cycle_cut(const acd_mesh *m, const acd_edge_graph *g, const a
     return nc;
 }
 
+/* The volume planes that join m's candidates (ACD3D_CHOICE_VOLUME) into vp; returns how many. */
+static int split_volume_planes(const acd_mesh *m, acd3_plane_candidate vp[ACD3_VOLUME_PLANES]) {
+    return acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, ACD3_VOLUME_PLANE_AXES, vp, NULL,
+                                     NULL);
+}
+
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
  * piece concavity (up to tol), then the fewest pieces, then the candidates' order. A cut whose
  * pieces all meet tau, or that at least halves the concavity, is taken at once. With
@@ -753,7 +761,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
         }
 #endif
         /* the volume planes too, while the helpers start on those */
-        if (vplanes) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
+        if (vplanes) nvp = split_volume_planes(m, vp);
         if (nvp > 0) {
 #ifdef _OPENMP
 #pragma omp critical(acd3_split)
@@ -781,7 +789,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
         nc = acd3_cut_candidates(m, g, ms, ro, cand);
     }
     if (vplanes && nc > 0) { /* the volume planes after the first candidate */
-        if (!ahead) nvp = acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, 3, vp, NULL, NULL);
+        if (!ahead) nvp = split_volume_planes(m, vp);
         memmove(cand + 1 + nvp, cand + 1, (size_t)(nc - 1) * sizeof *cand);
         memcpy(cand + 1, vp, (size_t)nvp * sizeof *cand);
         nc += nvp;
