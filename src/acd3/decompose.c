@@ -705,20 +705,30 @@ static int split_volume_planes(const acd_mesh *m, acd3_plane_candidate vp[ACD3_V
                                      NULL);
 }
 
+/* Solid mode: m's edge map, built once for all the cuts of its splits; returns 1 when built and m is
+ * closed, else 0 (nothing to free: each cut then builds and checks the map and reports that). */
+static int part_edge_map(const acd_mesh *m, acd_edge_map *em) {
+    if (acd_edge_map_build(m->triangles, m->ntriangles, NULL, em, NULL) != ACD_OK) return 0;
+    if (acd_edge_map_check_closed(em, m->triangles, m->ntriangles, NULL) == ACD_OK) return 1;
+    acd_edge_map_free(em);
+    return 0;
+}
+
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
  * piece concavity (up to tol), then the fewest pieces, then the candidates' order. A cut whose
  * pieces all meet tau, or that at least halves the concavity, is taken at once. With
  * restrict_cut, each plane cuts only its section region nearest the witness (acd3/region_cut). The pieces'
  * measures are kept for when they are processed. helpers: how many other threads may join the
- * evaluation of the candidates (the result is the same). Returns 1 if split, 0 if no candidate
+ * evaluation of the candidates (the result is the same). em (solid mode, may be NULL): m's edge map,
+ * checked closed (part_edge_map). Returns 1 if split, 0 if no candidate
  * splits, or -(status) on failure. choice: by concavity as above; by volume (solid mode) the volume
  * plane joins the candidates, every candidate is compared (up to its budget) and split_better's band
  * rule decides; by band (solid mode) the band rule on the same candidates, with the early acceptance
  * kept (docs/acd3d.md "Cut choice by band"). */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
-                     unsigned cut_flags, const acd3_resolve_opts *ro, acd3d_cut_choice choice, int helpers, split_choice *best,
-                     acd_error *err) {
+                     unsigned cut_flags, const acd3_resolve_opts *ro, acd3d_cut_choice choice, int helpers,
+                     const acd_edge_map *em, split_choice *best, acd_error *err) {
     /* slots: [0, npre) the planes evaluated ahead (if any), then the candidates in order */
     acd3_plane_candidate slot[ACD3_SPLIT_SLOTS];
     cand_eval ev[ACD3_SPLIT_SLOTS];
@@ -727,19 +737,11 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     memset(&S, 0, sizeof S);
     int by_volume = solid && (choice == ACD3D_CHOICE_VOLUME || choice == ACD3D_CHOICE_BAND);
     int vplanes = by_volume && choice == ACD3D_CHOICE_VOLUME; /* the volume planes join the candidates */
-    /* solid mode: the part's edge map once for all the cuts (when it cannot be built or the part is
-     * not closed, each cut builds and checks it and reports that as before) */
-    acd_edge_map em;
-    int have_em = 0;
-    if (solid && ms->witness != UINT32_MAX && acd_edge_map_build(m->triangles, m->ntriangles, NULL, &em, NULL) == ACD_OK) {
-        have_em = acd_edge_map_check_closed(&em, m->triangles, m->ntriangles, NULL) == ACD_OK;
-        if (!have_em) acd_edge_map_free(&em);
-    }
     S.m = m, S.g = g, S.ms = ms, S.extent = extent, S.eps = eps, S.tau = tau, S.tol = tol;
     S.min_piece_volume = min_piece_volume, S.solid = solid, S.restrict_cut = restrict_cut;
     S.by_volume = by_volume, S.early = choice == ACD3D_CHOICE_BAND, S.band = ACD3_VOLUME_BAND * ms->concavity;
     S.cut_flags = cut_flags;
-    S.em = have_em ? &em : NULL;
+    S.em = solid ? em : NULL;
     S.cand = slot, S.ev = ev;
     /* solid mode with the global cut and a thread to spare: the candidates that do not depend on the
      * global cut's plane (the volume planes, the witness planes acd3_cut_candidates lists after
@@ -834,7 +836,6 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     }
 #endif
     for (int i = 0; i < npre + nc; i++) cand_eval_free(&ev[i]);
-    if (have_em) acd_edge_map_free(&em);
     if (S.fail) {
         if (S.found) choice_free(&S.best);
         if (err) *err = S.err;
@@ -952,18 +953,23 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
          * slivers; its section cut already tries the strips nearest the witness in turn) */
         /* surface parts have no volume: every piece passes the sliver test */
         const double vol = c->solid ? acd_geom3_signed_volume(&w->mesh) : -INFINITY;
+        /* solid mode: the part's edge map once for all its tries (every try cuts this same mesh) */
+        acd_edge_map em;
+        const int have_em = c->solid && cur.ms.witness != UINT32_MAX && part_edge_map(&w->mesh, &em);
+        const acd_edge_map *emp = have_em ? &em : NULL;
         if (c->params->region_cuts || !c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
-                              ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, &out->choice,
-                              &out->err);
+                              ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
+                              &out->choice, &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
-                              ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, &out->choice,
-                              &out->err);
+                              ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
+                              &out->choice, &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
-                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, ACD_PLANE_CUT_DROP_SPECKS, &ro, c->params->cut_choice, c->helpers, &out->choice,
-                              &out->err);
+                              ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, ACD_PLANE_CUT_DROP_SPECKS, &ro,
+                              c->params->cut_choice, c->helpers, emp, &out->choice, &out->err);
+        if (have_em) acd_edge_map_free(&em);
         if (split < 0) {
             out->st = (acd_status)(-split);
             split = 0;
