@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/minheap.h"
 
 /* Lloyd iterations: the first clustering runs up to 20 (spec §3.3); after a patch split only the
  * neighbourhood changes, and a few iterations settle it. After SPLIT_ROUNDS_MAX split rounds the
@@ -89,83 +90,29 @@ static double support(const acd_hull *h, const vadj *va, uint32_t start, const d
     }
 }
 
-/* ---- a binary min-heap of (error, facet, proxy), ties broken by facet then proxy ---- */
-typedef struct heap_item {
-    double err;
-    uint32_t facet, proxy;
-} heap_item;
-
-typedef struct heap {
-    heap_item *a;
-    size_t n, cap;
-} heap;
-
-/* (evaluated without branches: the heap's comparisons are unpredictable) */
-static int item_less(const heap_item *x, const heap_item *y) {
-    int tie = (x->facet < y->facet) | ((x->facet == y->facet) & (x->proxy < y->proxy));
-    return (x->err < y->err) | ((x->err == y->err) & tie);
-}
-
-static int heap_push(heap *hp, heap_item it) {
-    if (hp->n == hp->cap) {
-        size_t nc = hp->cap ? 2 * hp->cap : 64;
-        heap_item *na = realloc(hp->a, nc * sizeof *na);
-        if (!na) return 0;
-        hp->a = na;
-        hp->cap = nc;
-    }
-    /* sift up: parents move down into the hole */
-    size_t i = hp->n++;
-    while (i > 0) {
-        size_t p = (i - 1) / 2;
-        if (!item_less(&it, &hp->a[p])) break;
-        hp->a[i] = hp->a[p];
-        i = p;
-    }
-    hp->a[i] = it;
-    return 1;
-}
-
-/* (the items are distinct under item_less's total order, so the pops come in one order whatever
- * the heap's layout) */
-static heap_item heap_pop(heap *hp) {
-    heap_item top = hp->a[0];
-    heap_item last = hp->a[--hp->n];
-    size_t n = hp->n, i = 0;
-    if (n == 0) return top;
-    /* sift the last item down from the root: smaller children move up into the hole */
-    for (;;) {
-        size_t l = 2 * i + 1;
-        if (l >= n) break;
-        size_t m = l + (size_t)(l + 1 < n && item_less(&hp->a[l + 1], &hp->a[l]));
-        if (!item_less(&hp->a[m], &last)) break;
-        hp->a[i] = hp->a[m];
-        i = m;
-    }
-    hp->a[i] = last;
-    return top;
-}
-
 static double l21_error(const facet_info *fi, size_t f, const double N[3]) {
     double d0 = fi[f].n[0] - N[0], d1 = fi[f].n[1] - N[1], d2 = fi[f].n[2] - N[2];
     return fi[f].area * (d0 * d0 + d1 * d1 + d2 * d2);
 }
 
-/* One VSA partition: flood from the seeds. label[] gets the proxy of every facet. */
+/* One VSA partition: flood from the seeds. label[] gets the proxy of every facet. The queue holds
+ * core/minheap items (key: the error, id: the facet, tie: the proxy), so equal errors pop by facet,
+ * then proxy. */
 /* An item that does not precede the best one already queued for its facet can never label it
- * (the facet takes its first pop): it is not queued, which leaves the partition unchanged. */
-static int flood_push(heap *hp, heap_item *best, heap_item it) {
-    if (best[it.facet].facet != UINT32_MAX && !item_less(&it, &best[it.facet])) return 1;
-    best[it.facet] = it;
-    return heap_push(hp, it);
+ * (the facet takes its first pop): it is not queued, which leaves the partition unchanged (and
+ * the queued items distinct, so they pop in one order whatever the heap's layout). */
+static int flood_push(acd_minheap *hp, acd_minheap_item *best, acd_minheap_item it) {
+    if (best[it.id].id != UINT32_MAX && !acd_minheap_less(it, best[it.id])) return 1;
+    best[it.id] = it;
+    return acd_minheap_push_item(hp, it);
 }
 
 static int flood(const acd_hull *h, const facet_info *fi, const double *N, const uint32_t *seeds, size_t k,
-                 uint32_t *label, heap *hp, heap_item *best) {
+                 uint32_t *label, acd_minheap *hp, acd_minheap_item *best) {
     size_t nf = h->ntriangles;
     for (size_t f = 0; f < nf; f++) {
         label[f] = UINT32_MAX;
-        best[f].facet = UINT32_MAX;
+        best[f].id = UINT32_MAX;
     }
     hp->n = 0;
     for (size_t i = 0; i < k; i++) label[seeds[i]] = (uint32_t)i;
@@ -174,17 +121,17 @@ static int flood(const acd_hull *h, const facet_info *fi, const double *N, const
         for (int e = 0; e < 3; e++) {
             uint32_t g = h->neighbors[3 * s + e];
             if (g < nf && label[g] == UINT32_MAX)
-                if (!flood_push(hp, best, (heap_item){l21_error(fi, g, N + 3 * i), g, (uint32_t)i})) return 0;
+                if (!flood_push(hp, best, (acd_minheap_item){l21_error(fi, g, N + 3 * i), g, (uint32_t)i})) return 0;
         }
     }
     while (hp->n) {
-        heap_item it = heap_pop(hp);
-        if (label[it.facet] != UINT32_MAX) continue;
-        label[it.facet] = it.proxy;
+        acd_minheap_item it = acd_minheap_pop(hp);
+        if (label[it.id] != UINT32_MAX) continue;
+        label[it.id] = it.tie;
         for (int e = 0; e < 3; e++) {
-            uint32_t g = h->neighbors[3 * it.facet + e];
+            uint32_t g = h->neighbors[3 * it.id + e];
             if (g < nf && label[g] == UINT32_MAX)
-                if (!flood_push(hp, best, (heap_item){l21_error(fi, g, N + 3 * it.proxy), g, it.proxy})) return 0;
+                if (!flood_push(hp, best, (acd_minheap_item){l21_error(fi, g, N + 3 * it.tie), g, it.tie})) return 0;
         }
     }
     return 1;
@@ -247,8 +194,8 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
     uint32_t *seeds = malloc(nf * sizeof *seeds), *queue = malloc(nf * sizeof *queue);
     double *N = malloc(3 * nf * sizeof *N), *prevN = malloc(3 * nf * sizeof *prevN);
     uint32_t *prev_seeds = malloc(nf * sizeof *prev_seeds);
-    heap_item *fbest = malloc(nf * sizeof *fbest);
-    heap hp = {0};
+    acd_minheap_item *fbest = malloc(nf * sizeof *fbest);
+    acd_minheap hp = {0};
     vadj va = {0};
     uint32_t *label1 = NULL, *seeds1 = NULL; /* the step-1 grouping, kept as the fallback */
     double *N1 = NULL;
@@ -385,7 +332,8 @@ acd_status acd3_patches_build(const acd_hull *h, double eps, double tol, acd3_pa
         out->seed[i] = seeds[i];
     }
 done:
-    free(fi), free(order), free(tmp), free(label), free(prev), free(seeds), free(queue), free(N), free(hp.a), free(fbest);
+    free(fi), free(order), free(tmp), free(label), free(prev), free(seeds), free(queue), free(N), free(fbest);
+    acd_minheap_free(&hp);
     free(prevN), free(prev_seeds);
     free(va.row), free(va.adj);
     free(label1), free(seeds1), free(N1);

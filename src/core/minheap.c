@@ -4,10 +4,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* (evaluated without branches: the heap's comparisons are unpredictable) */
-static int item_less(acd_minheap_item a, acd_minheap_item b) { return (a.key < b.key) | ((a.key == b.key) & (a.id < b.id)); }
-
 int acd_minheap_push(acd_minheap *h, double key, uint32_t id) {
+    return acd_minheap_push_item(h, (acd_minheap_item){key, id, 0});
+}
+
+int acd_minheap_push_item(acd_minheap *h, acd_minheap_item x) {
     if (h->n == h->cap) {
         size_t nc = h->cap ? 2 * h->cap : 256;
         acd_minheap_item *na = realloc(h->a, nc * sizeof *na);
@@ -15,11 +16,10 @@ int acd_minheap_push(acd_minheap *h, double key, uint32_t id) {
         h->a = na;
         h->cap = nc;
     }
-    acd_minheap_item x = {key, id};
     size_t i = h->n++;
     while (i) {
         size_t p = (i - 1) / 2;
-        if (!item_less(x, h->a[p])) break;
+        if (!acd_minheap_less(x, h->a[p])) break;
         h->a[i] = h->a[p];
         i = p;
     }
@@ -30,7 +30,7 @@ int acd_minheap_push(acd_minheap *h, double key, uint32_t id) {
 /* Bottom-up deletion (Wegener): the hole left by the top walks down to a leaf along the smaller
  * children (one comparison per level, without branches: its outcome is unpredictable), then the
  * last item sifts up from there (it usually belongs near the bottom). The items are distinct under
- * item_less's total order up to exact copies, so the pops come in the same order as with the
+ * acd_minheap_less's total order up to exact copies, so the pops come in the same order as with the
  * classic sift-down. */
 acd_minheap_item acd_minheap_pop(acd_minheap *h) {
     acd_minheap_item top = h->a[0], x = h->a[--h->n];
@@ -46,13 +46,13 @@ acd_minheap_item acd_minheap_pop(acd_minheap *h) {
             }
             break;
         }
-        c += (size_t)item_less(a[c + 1], a[c]);
+        c += (size_t)acd_minheap_less(a[c + 1], a[c]);
         a[i] = a[c];
         i = c;
     }
     while (i) {
         size_t p = (i - 1) / 2;
-        if (!item_less(x, a[p])) break;
+        if (!acd_minheap_less(x, a[p])) break;
         a[i] = a[p];
         i = p;
     }

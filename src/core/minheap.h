@@ -1,6 +1,7 @@
-/* core/minheap: a growable binary min-heap of (key, id) pairs ordered by key, then id, so that
- * equal keys pop in a fixed order (deterministic shortest paths and best-first searches). Used by
- * acd3/project (A*), acd3/pocket_cut (region Dijkstra) and acd3/global_cut (cycle growth). */
+/* core/minheap: a growable binary min-heap of (key, id, tie) items ordered by key, then id, then tie,
+ * so that equal keys pop in a fixed order (deterministic shortest paths and best-first searches).
+ * Used by acd3/project (A*), acd3/pocket_cut (region Dijkstra), acd3/global_cut (cycle growth) and
+ * acd3/patches (VSA flooding, by (error, facet, proxy)). */
 #ifndef ACD_CORE_MINHEAP_H
 #define ACD_CORE_MINHEAP_H
 
@@ -10,6 +11,7 @@
 typedef struct acd_minheap_item {
     double key;
     uint32_t id;
+    uint32_t tie; /* the last tie-break (0 from acd_minheap_push); it fills what would be padding */
 } acd_minheap_item;
 
 typedef struct acd_minheap {
@@ -17,7 +19,16 @@ typedef struct acd_minheap {
     size_t n, cap;
 } acd_minheap;
 
-/* Adds (key, id); returns 0 when out of memory (the heap is unchanged). */
+/* Whether a precedes b: by key, then id, then tie (evaluated without branches: the heap's
+ * comparisons are unpredictable). */
+static inline int acd_minheap_less(acd_minheap_item a, acd_minheap_item b) {
+    uint64_t ia = (uint64_t)a.id << 32 | a.tie, ib = (uint64_t)b.id << 32 | b.tie;
+    return (a.key < b.key) | ((a.key == b.key) & (ia < ib));
+}
+
+/* Adds x; returns 0 when out of memory (the heap is unchanged). */
+int acd_minheap_push_item(acd_minheap *h, acd_minheap_item x);
+/* Adds (key, id) (tie 0); the same. */
 int acd_minheap_push(acd_minheap *h, double key, uint32_t id);
 /* Removes and returns the smallest item; h->n must be > 0. */
 acd_minheap_item acd_minheap_pop(acd_minheap *h);
