@@ -1,11 +1,14 @@
 /* geom3/edge_map: the map's keys sorted, repeated half-edges in triangle order, the twins and
  * finds agreeing with a brute-force reference, on dense and sparse vertex ids (the radix sort's
  * packed key a * (maxid + 1) + b takes 2 to 5 digit passes), a vertex of high degree, a keep
- * mask, no half-edge at all. */
+ * mask, no half-edge at all; acd_edge_map_check_closed and its one-at-a-time conditions on a
+ * tetrahedron, one with a triangle missing, one flipped, one repeating a vertex. */
 #include "testutil.h"
 
 #include <stdlib.h>
+#include <string.h>
 
+#include "core/error.h"
 #include "core/rng.h"
 #include "geom3/edge_map.h"
 
@@ -97,12 +100,49 @@ static void test_empty(void **state) {
     acd_edge_map_free(&m);
 }
 
+/* check_closed on the nt triangles tri, against the conditions one at a time; returns its status
+ * (its report in *err) */
+static acd_status closed_status(const uint32_t *tri, size_t nt, acd_error *err) {
+    acd_edge_map m;
+    assert_int_equal(acd_edge_map_build(tri, nt, NULL, &m, err), ACD_OK);
+    uint32_t *tw = NULL;
+    assert_int_equal(acd_edge_map_twins(&m, &tw, err), ACD_OK);
+    int ok = 1;
+    for (size_t i = 0; i < m.n; i++) ok &= acd_edge_map_entry_closed(&m, tw, i);
+    for (size_t t = 0; t < nt; t++) ok &= acd_edge_map_triangle_proper(tri + 3 * t);
+    acd_error_clear(err);
+    acd_status st = acd_edge_map_check_closed(&m, tri, nt, err);
+    assert_int_equal(st == ACD_OK, ok);
+    free(tw);
+    acd_edge_map_free(&m);
+    return st;
+}
+
+static void test_check_closed(void **state) {
+    (void)state;
+    acd_error err;
+    uint32_t tet[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+    assert_int_equal(closed_status(tet, 4, &err), ACD_OK);
+    /* a triangle missing: its edges' opposites have none */
+    assert_int_equal(closed_status(tet, 3, &err), ACD_ERR_NON_MANIFOLD);
+    assert_non_null(strstr(err.message, "no opposite edge"));
+    /* the last triangle flipped: its half-edges repeat the others' */
+    uint32_t flip[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 2, 3};
+    assert_int_equal(closed_status(flip, 4, &err), ACD_ERR_NON_MANIFOLD);
+    assert_non_null(strstr(err.message, "same direction"));
+    /* a triangle repeating a vertex (its half-edges paired: only that condition fails) */
+    uint32_t rep[15] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 4, 4, 5};
+    assert_int_equal(closed_status(rep, 5, &err), ACD_ERR_NON_MANIFOLD);
+    assert_non_null(strstr(err.message, "repeats a vertex"));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dense_ids),
         cmocka_unit_test(test_sparse_ids),
         cmocka_unit_test(test_high_degree),
         cmocka_unit_test(test_empty),
+        cmocka_unit_test(test_check_closed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -183,29 +183,26 @@ acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *tria
                                      acd_error *err) {
     for (size_t t = 0; t < ntriangles; t++) {
         const uint32_t *q = triangles + 3 * t;
-        if (q[0] == q[1] || q[1] == q[2] || q[2] == q[0])
+        if (!acd_edge_map_triangle_proper(q))
             return acd_fail(err, ACD_ERR_NON_MANIFOLD, "triangle %zu (%u, %u, %u) repeats a vertex", t, q[0], q[1], q[2]);
     }
     uint32_t *tw = NULL;
     acd_status st = acd_edge_map_twins(m, &tw, err);
     if (st != ACD_OK) return st;
     for (size_t i = 0; i < m->n; i++) {
+        if (acd_edge_map_entry_closed(m, tw, i)) continue;
         uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
         size_t t = m->half[i] / 3;
-        if (i + 1 < m->n && m->key[i + 1] == m->key[i]) {
-            free(tw);
-            return acd_fail(err, ACD_ERR_NON_MANIFOLD,
-                            "edge (%u, %u) is used in the same direction by triangles %zu and %u (not a consistently "
-                            "oriented manifold)",
-                            a, b, t, m->half[i + 1] / 3);
-        }
-        if (tw[i] == ACD_EDGE_NONE) {
-            free(tw);
-            return acd_fail(err, ACD_ERR_NON_MANIFOLD, "edge (%u, %u) of triangle %zu has no opposite edge (mesh not closed)",
-                            a, b, t);
-        }
+        if (acd_edge_map_repeated(m, i))
+            st = acd_fail(err, ACD_ERR_NON_MANIFOLD,
+                          "edge (%u, %u) is used in the same direction by triangles %zu and %u (not a consistently "
+                          "oriented manifold)",
+                          a, b, t, m->half[i + 1] / 3);
+        else
+            st = acd_fail(err, ACD_ERR_NON_MANIFOLD, "edge (%u, %u) of triangle %zu has no opposite edge (mesh not closed)",
+                          a, b, t);
+        break;
     }
     free(tw);
-    (void)triangles;
-    return ACD_OK;
+    return st;
 }

@@ -36,5 +36,17 @@ acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error 
  * ACD_ERR_NON_MANIFOLD naming the triangle and the edge. */
 acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *triangles, size_t ntriangles,
                                      acd_error *err);
+/* Its conditions one at a time (for a caller that walks the map anyway, as geom3/plane_cut): entry
+ * i of m (twin: acd_edge_map_twins of m) is the only half-edge of its key (not repeated) and has an
+ * opposite; the triangle q repeats no vertex. */
+static inline int acd_edge_map_repeated(const acd_edge_map *m, size_t i) {
+    return i + 1 < m->n && m->key[i + 1] == m->key[i];
+}
+static inline int acd_edge_map_entry_closed(const acd_edge_map *m, const uint32_t *twin, size_t i) {
+    return twin[i] != ACD_EDGE_NONE && !acd_edge_map_repeated(m, i);
+}
+static inline int acd_edge_map_triangle_proper(const uint32_t *q) {
+    return q[0] != q[1] && q[1] != q[2] && q[2] != q[0];
+}
 
 #endif

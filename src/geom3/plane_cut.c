@@ -735,9 +735,10 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     }
     for (size_t t = 0; t < c->nt; t++) parent[t] = (uint32_t)t;
     acd_status st = ACD_OK;
-    /* per side: every half-edge unique with its opposite present and no triangle repeating a vertex
-     * (acd_edge_map_check_closed's conditions): then so is every piece of that side (a piece is a
-     * union of components joined across twins, its vertices renumbered one to one) */
+    /* per side: closed as acd_edge_map_check_closed says (its conditions checked here in the walk
+     * that joins the twins: every half-edge unique with its opposite present, no triangle repeating
+     * a vertex): then so is every piece of that side (a piece is a union of components joined across
+     * twins, its vertices renumbered one to one) */
     int closed[2] = {0, 0};
     for (int side = 1; side >= -1 && st == ACD_OK; side -= 2) {
         for (size_t t = 0; t < c->nt; t++) keep[t] = c->tside[t] == side;
@@ -754,13 +755,10 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         int cl = st == ACD_OK;
         for (size_t i = 0; st == ACD_OK && i < m.n; i++) {
             if (tw[i] != ACD_EDGE_NONE) acd_uf_union(parent, m.half[i] / 3, tw[i] / 3);
-            else cl = 0;
-            if (i + 1 < m.n && m.key[i + 1] == m.key[i]) cl = 0;
+            cl &= acd_edge_map_entry_closed(&m, tw, i);
         }
-        for (size_t t = 0; cl && t < c->nt; t++) {
-            const uint32_t *q = c->T + 3 * t;
-            if (keep[t] && (q[0] == q[1] || q[1] == q[2] || q[2] == q[0])) cl = 0;
-        }
+        for (size_t t = 0; cl && t < c->nt; t++)
+            if (keep[t]) cl = acd_edge_map_triangle_proper(c->T + 3 * t);
         closed[side > 0 ? 0 : 1] = cl;
         free(tw);
         acd_edge_map_free(&m);
