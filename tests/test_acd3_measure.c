@@ -6,6 +6,7 @@
 
 #include "acd3/measure.h"
 #include "acd3/patches.h"
+#include "geom3/bvh.h"
 #include "shapes.h"
 
 static double sphere_r(double th, double ph, void *u) { (void)th, (void)ph, (void)u; return 1.0; }
@@ -216,6 +217,48 @@ static void test_torus_hole_is_a_handle_pocket(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Spec decision A5 at a cap's rim (docs/results/3d-table5.md, "Measure variants"): a box
+ * [0,2] x [0,1] x [0,1] with a tetrahedral dent A B C D cut from its top front edge, as a plane
+ * cut through a dent leaves it: A, B on that edge, C on the top, the dent's bottom D on the front
+ * face. D lies on the hull (the box), so its distance to the hull is 0; but it is the point
+ * farthest below the lid (the top), and the lid is far from the surface over the dent: the hull
+ * point (1, 0, 1) between A and B is about 0.30 from every face. A5 gives D the larger of its
+ * regions' depths, 0.5: the measure sees the gap. The smaller depth (the front's, 0), or 0 for a
+ * vertex on the hull, would call the part convex (on the target meshes these variants let hulls
+ * 0.025-0.032 of the diagonal away from the surface through). */
+static void test_dent_bottom_on_the_hull_keeps_its_depth(void **state) {
+    (void)state;
+    double v[] = {0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, /* bottom 0-3 */
+                  0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, /* top 4-7 */
+                  0.5, 0, 1, 1.5, 0, 1, 1, 0.6, 1, 1, 0, 0.5}; /* A B C D: 8-11 */
+    uint32_t t[] = {0, 2, 1, 0, 3, 2,                                          /* bottom */
+                    3, 6, 2, 3, 7, 6,                                          /* back */
+                    0, 7, 3, 0, 4, 7,                                          /* left */
+                    1, 2, 6, 1, 6, 5,                                          /* right */
+                    4, 8, 7, 8, 10, 7, 10, 6, 7, 10, 9, 6, 9, 5, 6,            /* top minus ABC */
+                    0, 1, 11, 1, 5, 9, 1, 9, 11, 0, 11, 8, 0, 8, 4,            /* front minus ABD */
+                    8, 11, 10, 9, 10, 11};                                     /* the dent's walls */
+    acd_mesh m = {v, 12, t, 20};
+    /* the gap: the hull point over the dent is this far from the surface */
+    const double hp[3] = {1, 0, 1};
+    double gap2 = INFINITY, q[3];
+    for (size_t f = 0; f < m.ntriangles; f++) {
+        double d2 = acd_closest_point_triangle(hp, v + 3 * t[3 * f], v + 3 * t[3 * f + 1], v + 3 * t[3 * f + 2], q);
+        if (d2 < gap2) gap2 = d2;
+    }
+    assert_true(sqrt(gap2) > 0.3 && sqrt(gap2) < 0.31);
+    for (int e = 0; e < 2; e++) {
+        double eps = e ? 0.1 : 0.0;
+        acd3_measure ms;
+        measure(&m, eps, &ms);
+        assert_int_equal(ms.witness, 11); /* D, on the hull's front face */
+        assert_true(ms.concavity >= sqrt(gap2));
+        assert_true(fabs(ms.concavity - 0.5) <= eps + 1e-9);
+        assert_true(ms.vconc[8] <= eps + 1e-9 && ms.vconc[9] <= eps + 1e-9 && ms.vconc[10] <= eps + 1e-9);
+        acd3_measure_free(&ms);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_patches_of_a_cube_are_its_faces),
@@ -226,6 +269,7 @@ int main(void) {
         cmocka_unit_test(test_open_bowl_is_convex_either_side),
         cmocka_unit_test(test_open_bowl_with_dimple),
         cmocka_unit_test(test_torus_hole_is_a_handle_pocket),
+        cmocka_unit_test(test_dent_bottom_on_the_hull_keeps_its_depth),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
