@@ -524,6 +524,16 @@ static void split_screen(split_state *S, cand_eval *e) {
     e->hullvol = vol;
 }
 
+/* m's edge map, checked closed (acd_edge_map_check_closed); returns 1 when built and m is closed,
+ * else 0 (nothing to free). A part's, built once for all the cuts of its splits (process_node;
+ * without it, each cut builds and checks the map and reports that). */
+static int part_edge_map(const acd_mesh *m, acd_edge_map *em) {
+    if (acd_edge_map_build(m->triangles, m->ntriangles, NULL, em, NULL) != ACD_OK) return 0;
+    if (acd_edge_map_check_closed(em, m->triangles, m->ntriangles, NULL) == ACD_OK) return 1;
+    acd_edge_map_free(em);
+    return 0;
+}
+
 /* Cuts the part by the candidate of slot i and measures the pieces (largest first, stopping when the
  * trial has lost, or when the replay no longer needs it). */
 static void split_evaluate(split_state *S, int i) {
@@ -559,12 +569,10 @@ static void split_evaluate(split_state *S, int i) {
          * otherwise is not used */
         if (ok && trial->cut.pieces[k].closed && !S->restrict_cut) continue; /* checked by the cut */
         acd_edge_map em;
-        if (ok && acd_edge_map_build(pm->triangles, pm->ntriangles, NULL, &em, NULL) == ACD_OK) {
-            if (acd_edge_map_check_closed(&em, pm->triangles, pm->ntriangles, NULL) != ACD_OK) ok = 0;
+        if (ok && part_edge_map(pm, &em))
             acd_edge_map_free(&em);
-        } else {
+        else
             ok = 0;
-        }
     }
     if (!ok) {
         choice_free(trial);
@@ -703,15 +711,6 @@ static int surface_cycle_cut(const acd_mesh *m, const acd_edge_graph *g, const a
 static int split_volume_planes(const acd_mesh *m, acd3_plane_candidate vp[ACD3_VOLUME_PLANES]) {
     return acd3_volume_planes_scored(m, ACD3_VOLUME_PLANES, ACD3_VOLUME_PLANE_SCORED, ACD3_VOLUME_PLANE_AXES, vp, NULL,
                                      NULL);
-}
-
-/* Solid mode: m's edge map, built once for all the cuts of its splits; returns 1 when built and m is
- * closed, else 0 (nothing to free: each cut then builds and checks the map and reports that). */
-static int part_edge_map(const acd_mesh *m, acd_edge_map *em) {
-    if (acd_edge_map_build(m->triangles, m->ntriangles, NULL, em, NULL) != ACD_OK) return 0;
-    if (acd_edge_map_check_closed(em, m->triangles, m->ntriangles, NULL) == ACD_OK) return 1;
-    acd_edge_map_free(em);
-    return 0;
 }
 
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
