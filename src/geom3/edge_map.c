@@ -108,40 +108,33 @@ acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error 
     uint64_t *rk = malloc((n ? n : 1) * sizeof *rk), *tk = malloc((n ? n : 1) * sizeof *tk);
     uint32_t *ri = malloc((n ? n : 1) * sizeof *ri), *tv = malloc((n ? n : 1) * sizeof *tv);
     uint32_t *tw = malloc((n ? n : 1) * sizeof *tw);
-    if (!rk || !tk || !ri || !tv || !tw) {
-        free(rk);
-        free(tk);
-        free(ri);
-        free(tv);
-        free(tw);
-        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the twins of %zu half-edges", n);
+    int ok = rk && tk && ri && tv && tw;
+    if (ok) {
+        uint32_t maxid = 0;
+        for (size_t i = 0; i < n; i++) {
+            uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
+            if (a > maxid) maxid = a;
+            if (b > maxid) maxid = b;
+            rk[i] = ((uint64_t)b << 32) | a;
+            ri[i] = (uint32_t)i;
+        }
+        ok = radix_sort(rk, ri, tk, tv, n, maxid);
     }
-    uint32_t maxid = 0;
-    for (size_t i = 0; i < n; i++) {
-        uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
-        if (a > maxid) maxid = a;
-        if (b > maxid) maxid = b;
-        rk[i] = ((uint64_t)b << 32) | a;
-        ri[i] = (uint32_t)i;
-    }
-    if (!radix_sort(rk, ri, tk, tv, n, maxid)) {
-        free(rk);
-        free(tk);
-        free(ri);
-        free(tv);
-        free(tw);
-        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the twins of %zu half-edges", n);
-    }
-    /* merge walk: the first index p with key[p] == rk[j] */
-    size_t p = 0;
-    for (size_t j = 0; j < n; j++) {
-        while (p < n && m->key[p] < rk[j]) p++;
-        tw[ri[j]] = p < n && m->key[p] == rk[j] ? m->half[p] : ACD_EDGE_NONE;
+    if (ok) { /* merge walk: the first index p with key[p] == rk[j] */
+        size_t p = 0;
+        for (size_t j = 0; j < n; j++) {
+            while (p < n && m->key[p] < rk[j]) p++;
+            tw[ri[j]] = p < n && m->key[p] == rk[j] ? m->half[p] : ACD_EDGE_NONE;
+        }
     }
     free(rk);
     free(tk);
     free(ri);
     free(tv);
+    if (!ok) {
+        free(tw);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the twins of %zu half-edges", n);
+    }
     *twin = tw;
     return ACD_OK;
 }
