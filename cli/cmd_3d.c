@@ -113,6 +113,7 @@ static const char *leaf_reason_name(acd3d_leaf_reason r) {
     case ACD3D_LEAF_JOINED: return "joined";
     case ACD3D_LEAF_HULL: return "hull_distance";
     case ACD3D_LEAF_REFINED: return "refined";
+    case ACD3D_LEAF_BUDGET: return "budget";
     }
     return "unknown";
 }
@@ -350,6 +351,9 @@ int acd_cmd_3d(int argc, char **argv) {
             i++;
         } else if (!strcmp(a, "--merge-parts")) {
             if (!acd_cli_parse_size("3d", a, val, &p.merge_parts)) return ACD_EXIT_USAGE;
+            i++;
+        } else if (!strcmp(a, "--budget")) {
+            if (!acd_cli_parse_size("3d", a, val, &p.budget_parts)) return ACD_EXIT_USAGE;
             i++;
         } else if (!strcmp(a, "--merge-refine")) {
             if (!acd_cli_parse_size("3d", a, val, &p.merge_refine)) return ACD_EXIT_USAGE;

@@ -123,6 +123,11 @@ typedef struct acd3d_params {
                                  the plane saving the most hull volume and joins the cheapest pair, when
                                  the hulls' volume falls (docs/acd3d.md "Hull tightness"); not with
                                  max_hulls */
+    size_t budget_parts;      /* solid mode: 0 (default) off; else after the decomposition the parts
+                                 are split further, best first by the hull volume a cut saves, until
+                                 this many exist, and every part until its surface and hull are
+                                 within merge_tau of each other both ways (docs/acd3d.md
+                                 "Excess-driven budget"); then the merge pass. Not with max_hulls */
     acd3d_cut_choice cut_choice; /* solid mode: how a split's cut is chosen among the candidates */
     acd3d_surface_cut surface_cut; /* surface mode: plane strips only (default), or the global cut's
                                  cycle first */
@@ -153,9 +158,12 @@ typedef enum acd3d_leaf_reason {
     ACD3D_LEAF_HULL,          /* measure above tau, but (ACD3D_STOP_HULL) the part's surface and its hull's
                                  boundary are within tau of each other both ways; its concavity is
                                  that distance's upper bound (<= tau), not the measure */
-    ACD3D_LEAF_REFINED        /* a piece cut from a part by the merge pass's refinement (merge_refine):
+    ACD3D_LEAF_REFINED,       /* a piece cut from a part by the merge pass's refinement (merge_refine):
                                  a child of that part's node, always joined into an ACD3D_LEAF_JOINED
                                  node (merged_into set), its concavity that node's bound */
+    ACD3D_LEAF_BUDGET         /* a piece cut from a part by the part budget (budget_parts); its
+                                 concavity is its two-sided hull distance bound (acd3/leaf_test),
+                                 <= merge_tau unless no cut could split it */
 } acd3d_leaf_reason;
 
 typedef struct acd3d_node {

@@ -20,6 +20,7 @@
 #endif
 
 #include "acd/hull.h"
+#include "acd3/budget.h"
 #include "acd3/global_cut.h"
 #include "acd3/leaf_test.h"
 #include "acd3/measure.h"
@@ -1137,6 +1138,64 @@ static acd_status join_surface(tree *t, double eps, double tau, double tol, int 
     return st;
 }
 
+/* The part budget (params.budget_parts, acd3/budget): the parts are split further, best first by
+ * the hull volume a split saves, the pieces children of the parts they were cut from
+ * (ACD3D_LEAF_BUDGET, their concavity the two-sided bound). */
+static acd_status split_to_budget(tree *t, size_t budget, double limit, double min_gain, double extent,
+                                  int threads, size_t *nparts, acd_error *err) {
+    size_t np, *idx;
+    acd_mesh *meshes;
+    acd_status st = collect_parts(t, &np, &idx, &meshes, err);
+    if (st != ACD_OK) return st;
+    if (np < 2) { /* the root alone */
+        free(idx);
+        free(meshes);
+        np = 0;
+        for (size_t n = 0; n < t->n; n++)
+            if (node_is_part(&t->a[n].node)) np = n + 1;
+        if (!np) return ACD_OK;
+        idx = malloc(sizeof *idx);
+        meshes = malloc(sizeof *meshes);
+        if (!idx || !meshes) {
+            free(idx);
+            free(meshes);
+            return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+        }
+        idx[0] = np - 1;
+        meshes[0] = t->a[np - 1].mesh;
+        np = 1;
+    }
+    acd3_budget_result br;
+    st = acd3_budget_split(meshes, np, budget, limit, min_gain, extent, threads, &br, err);
+    free(meshes);
+    size_t na = np + br.nnew, *idx2 = st == ACD_OK ? realloc(idx, na * sizeof *idx) : NULL;
+    if (st == ACD_OK && !idx2) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    if (idx2) idx = idx2;
+    for (size_t k = 0; st == ACD_OK && k < br.nnew; k++) {
+        size_t pn = idx[br.new_parent[k]];
+        if (!tree_push(t, (int)pn, &br.new_parts[k], t->a[pn].depth + 1, 1)) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            break;
+        }
+        memset(&br.new_parts[k], 0, sizeof br.new_parts[k]);
+        idx[np + k] = t->n - 1;
+        acd3d_node *pa = &t->a[pn].node, *nd = &t->a[t->n - 1].node;
+        if (pa->first_child < 0) {
+            pa->first_child = (int)(t->n - 1);
+            memcpy(pa->cut_plane, br.new_plane[k], sizeof pa->cut_plane);
+            pa->leaf_reason = ACD3D_LEAF_NONE;
+            acd_mesh_free(&t->a[pn].mesh);
+        }
+        pa->nchildren++;
+        nd->leaf_reason = ACD3D_LEAF_BUDGET;
+        nd->concavity = br.new_bound[k];
+    }
+    if (st == ACD_OK) *nparts = br.nalive;
+    acd3_budget_result_free(&br);
+    free(idx);
+    return st;
+}
+
 acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!params || params->cookie != ACD3D_PARAMS_COOKIE)
@@ -1315,6 +1374,12 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         }
     for (size_t n = 0; n < t.n; n++)
         if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
+
+    if (params->budget_parts > 0 && solid && !params->max_hulls) {
+        st = split_to_budget(&t, params->budget_parts, out->merge_tau, 2e-5 * vol, sc.extent,
+                             nthreads, &nleaves, err);
+        if (st != ACD_OK) goto fail;
+    }
 
     if (params->merge && solid) {
         /* (no refinement after max_hulls: its merged parts keep their dropped children, the pieces

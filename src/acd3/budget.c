@@ -1,0 +1,413 @@
+/* acd3/budget: splitting under a part budget by hull excess; see budget.h. */
+#include "acd3/budget.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/hull.h"
+#include "acd3/leaf_test.h"
+#include "acd3/resolve.h"
+#include "core/error.h"
+#include "geom3/pca.h"
+#include "geom3/plane_cut.h"
+
+/* A cut leaving a piece below this fraction of the part's volume is refused (a sliver), as in the
+ * decomposition's own splits. */
+#define BUDGET_MIN_PIECE_FRACTION 1e-6
+/* Safety net on the number of atoms (parts and pieces). */
+#define BUDGET_MAX_ATOMS 20000
+
+typedef struct atom {
+    acd_mesh mesh;   /* owned for pieces, a shallow copy for input parts */
+    double vol, hvol, bound;
+    int ok;          /* bound <= limit (or not checked) */
+    int alive;       /* a part of the current decomposition (not cut) */
+    double gain;     /* hull volume its best split saves; -INFINITY: no split */
+    acd_cut_result cut; /* that split's pieces (npieces >= 2), or none */
+    double plane[4];
+    acd_status st;
+    size_t parent;   /* pieces: the atom cut */
+    int evaluated;   /* gain and cut computed (lazily: only when the atom may be the next cut) */
+} atom;
+
+typedef struct budget_state {
+    atom *a;
+    size_t n, cap, nparts;
+    double limit, extent;
+    int ndir, nexact;
+} budget_state;
+
+static double hull_volume_of(const acd_mesh *m, acd_hull *keep) {
+    acd_hull h;
+    if (acd_hull_compute(m->vertices, m->nvertices, &h, NULL) != ACD_OK) return -1;
+    double v = h.dim == 3 ? h.volume : 0;
+    if (keep) *keep = h;
+    else acd_hull_free(&h);
+    return v;
+}
+
+
+/* Vertices scored at most by the plane search (every k-th beyond; every crossing of the sampled
+ * triangles' edges too). */
+#define BUDGET_MAX_DIRS 80
+#define BUDGET_DIRS 40
+#define BUDGET_EXACT 3
+#define BUDGET_REFINE_DIRS 3
+#define BUDGET_BATCH 4
+#define BUDGET_MAX_SCORED 1000
+#define BUDGET_OFFSETS 9
+#define BUDGET_REFINE 3
+
+static double hull_volume_pts(const double *pts, size_t n) {
+    if (n < 4) return 0;
+    acd_hull h;
+    if (acd_hull_compute(pts, n, &h, NULL) != ACD_OK) return -1;
+    double v = h.dim == 3 ? h.volume : 0;
+    acd_hull_free(&h);
+    return v;
+}
+
+static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, const double nrm[3], double c, double *bufa,
+                          double *bufb) {
+    size_t na = 0, nb = 0;
+    for (size_t v = 0; v < m->nvertices; v += stride) {
+        const double *p = m->vertices + 3 * v;
+        double s = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2] - c;
+        memcpy(s >= 0 ? bufa + 3 * na++ : bufb + 3 * nb++, p, sizeof(double[3]));
+    }
+    for (size_t t = 0; t < m->ntriangles; t += tstride)
+        for (int k = 0; k < 3; k++) {
+            uint32_t i = m->triangles[3 * t + k], j = m->triangles[3 * t + (k + 1) % 3];
+            const double *p = m->vertices + 3 * (size_t)i, *q = m->vertices + 3 * (size_t)j;
+            double sp = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2] - c;
+            double sq = nrm[0] * q[0] + nrm[1] * q[1] + nrm[2] * q[2] - c;
+            if ((sp >= 0) == (sq >= 0)) continue;
+            double a = sp / (sp - sq), x[3];
+            for (int d = 0; d < 3; d++) x[d] = p[d] + a * (q[d] - p[d]);
+            memcpy(bufa + 3 * na++, x, sizeof x);
+            memcpy(bufb + 3 * nb++, x, sizeof x);
+        }
+    double va = hull_volume_pts(bufa, na), vb = hull_volume_pts(bufb, nb);
+    return va < 0 || vb < 0 ? -1 : va + vb;
+}
+
+/* Up to nmax planes, best first by their sampled score, one per direction: the part's principal
+ * axes and (ndir 13) the diagonals between them. */
+static int budget_planes(const acd_mesh *m, int ndir, int nmax, int nrefine_dirs, acd3_plane_candidate *out) {
+    if (m->nvertices < 4) return 0;
+    acd_pca pca;
+    if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return 0;
+    double dirs[BUDGET_MAX_DIRS][3];
+    int nd = 0;
+    for (int a = 0; a < 3; a++) memcpy(dirs[nd++], pca.axes[a], sizeof(double[3]));
+    if (ndir > 3) {
+        static const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+        for (int q = 0; q < 3; q++)
+            for (int sg = -1; sg <= 1; sg += 2) {
+                for (int k = 0; k < 3; k++)
+                    dirs[nd][k] = (pca.axes[pairs[q][0]][k] + sg * pca.axes[pairs[q][1]][k]) / sqrt(2.0);
+                nd++;
+            }
+        for (int s1 = -1; s1 <= 1; s1 += 2)
+            for (int s2 = -1; s2 <= 1; s2 += 2) {
+                for (int k = 0; k < 3; k++)
+                    dirs[nd][k] = (pca.axes[0][k] + s1 * pca.axes[1][k] + s2 * pca.axes[2][k]) / sqrt(3.0);
+                nd++;
+            }
+    }
+    if (ndir > 13) { /* more: a Fibonacci half-sphere in the principal frame */
+        int extra = ndir - 13;
+        if (extra > BUDGET_MAX_DIRS - 13) extra = BUDGET_MAX_DIRS - 13;
+        for (int i = 0; i < extra; i++) {
+            double z = 1 - (i + 0.5) / extra, r = sqrt(fmax(0, 1 - z * z)), ph = 2.399963229728653 * i;
+            double l[3] = {r * cos(ph), r * sin(ph), z};
+            for (int k = 0; k < 3; k++)
+                dirs[nd][k] = l[0] * pca.axes[0][k] + l[1] * pca.axes[1][k] + l[2] * pca.axes[2][k];
+            nd++;
+        }
+    }
+    size_t cap = m->nvertices + 3 * m->ntriangles + 1;
+    double *bufa = malloc(3 * cap * sizeof *bufa), *bufb = malloc(3 * cap * sizeof *bufb);
+    if (!bufa || !bufb) {
+        free(bufa), free(bufb);
+        return 0;
+    }
+    size_t stride = (m->nvertices + BUDGET_MAX_SCORED - 1) / BUDGET_MAX_SCORED;
+    size_t tstride = (m->ntriangles + 2 * BUDGET_MAX_SCORED - 1) / (2 * BUDGET_MAX_SCORED);
+    if (tstride < 1) tstride = 1;
+    double bs[BUDGET_MAX_DIRS], bc[BUDGET_MAX_DIRS], st[BUDGET_MAX_DIRS];
+    int ord[BUDGET_MAX_DIRS];
+    for (int d = 0; d < nd; d++) {
+        const double *ax = dirs[d];
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t v = 0; v < m->nvertices; v++) {
+            const double *p = m->vertices + 3 * v;
+            double s = ax[0] * p[0] + ax[1] * p[1] + ax[2] * p[2];
+            lo = fmin(lo, s), hi = fmax(hi, s);
+        }
+        bs[d] = INFINITY, bc[d] = 0, st[d] = (hi - lo) / (BUDGET_OFFSETS + 1);
+        ord[d] = d;
+        if (!(hi > lo)) continue;
+        for (int i = 1; i <= BUDGET_OFFSETS; i++) {
+            double c = lo + st[d] * i, sc = score_plane(m, stride, tstride, ax, c, bufa, bufb);
+            if (sc >= 0 && sc < bs[d]) bs[d] = sc, bc[d] = c;
+        }
+    }
+    for (int i = 1; i < nd; i++)
+        for (int j = i; j > 0 && bs[ord[j]] < bs[ord[j - 1]]; j--) {
+            int x = ord[j];
+            ord[j] = ord[j - 1];
+            ord[j - 1] = x;
+        }
+    for (int q = 0; q < nd && q < nrefine_dirs; q++) {
+        int d = ord[q];
+        double step = st[d];
+        for (int r = 0; r < BUDGET_REFINE && bs[d] < INFINITY; r++) {
+            step *= 0.5;
+            double c0 = bc[d];
+            for (int sg = -1; sg <= 1; sg += 2) {
+                double c = c0 + sg * step, sc = score_plane(m, stride, tstride, dirs[d], c, bufa, bufb);
+                if (sc >= 0 && sc < bs[d]) bs[d] = sc, bc[d] = c;
+            }
+        }
+    }
+    int lim = nd < nrefine_dirs ? nd : nrefine_dirs;
+    for (int i = 1; i < lim; i++)
+        for (int j = i; j > 0 && bs[ord[j]] < bs[ord[j - 1]]; j--) {
+            int x = ord[j];
+            ord[j] = ord[j - 1];
+            ord[j - 1] = x;
+        }
+    int n = 0;
+    for (int q = 0; q < lim && n < nmax; q++) {
+        int d = ord[q];
+        if (!(bs[d] < INFINITY)) continue;
+        const double *ax = dirs[d];
+        double cc = ax[0] * pca.centroid[0] + ax[1] * pca.centroid[1] + ax[2] * pca.centroid[2];
+        for (int k = 0; k < 3; k++) {
+            out[n].normal[k] = ax[k];
+            out[n].point[k] = pca.centroid[k] + (bc[d] - cc) * ax[k];
+        }
+        out[n].kind = "volume";
+        n++;
+    }
+    free(bufa);
+    free(bufb);
+    return n;
+}
+
+/* The atom's hull volume and bound (touches only the atom). */
+static void prepare(const budget_state *S, size_t i) {
+    atom *A = &S->a[i];
+    A->st = ACD_OK;
+    A->gain = -INFINITY;
+    acd_hull H;
+    memset(&H, 0, sizeof H);
+    A->hvol = hull_volume_of(&A->mesh, &H);
+    if (A->hvol < 0) {
+        A->st = ACD_ERR_NOMEM;
+        return;
+    }
+    A->ok = 1;
+    A->bound = 0;
+    {
+        if (H.dim == 3) {
+            int acc = 0;
+            acd_error e;
+            A->st = acd3_leaf_test(&A->mesh, &H, S->limit, UINT32_MAX, &acc, &A->bound, &e);
+            A->ok = acc;
+        }
+    }
+    acd_hull_free(&H);
+}
+
+/* The atom's best split (touches only the atom). */
+static void evaluate(const budget_state *S, size_t i) {
+    atom *A = &S->a[i];
+    A->evaluated = 1;
+    if (A->st != ACD_OK) return;
+    acd3_plane_candidate cand[BUDGET_MAX_DIRS];
+    int nc = budget_planes(&A->mesh, S->ndir, S->nexact, BUDGET_REFINE_DIRS, cand);
+    double best = INFINITY;
+    for (int k = 0; k < nc; k++) {
+        acd_cut_plane cp;
+        if (acd_cut_plane_from_normal(cand[k].point, cand[k].normal, S->extent, &cp, NULL) != ACD_OK) continue;
+        acd_cut_result cr;
+        acd_error ce;
+        acd_status cs = acd_plane_cut_flags(&A->mesh, &cp, ACD_PLANE_CUT_DROP_SPECKS, &cr, &ce);
+        if (cs != ACD_OK) {
+            if (cs == ACD_ERR_NOMEM) A->st = cs;
+            continue;
+        }
+        double sum = 0;
+        int good = cr.npieces >= 2;
+        for (size_t p = 0; p < cr.npieces && good; p++) {
+            double pv = acd_geom3_signed_volume(&cr.pieces[p].mesh);
+            double hv = hull_volume_of(&cr.pieces[p].mesh, NULL);
+            if (!(pv > BUDGET_MIN_PIECE_FRACTION * A->vol) || hv < 0) good = 0;
+            sum += hv;
+        }
+        if (good && sum < best) {
+            best = sum;
+            acd_cut_result_free(&A->cut);
+            A->cut = cr;
+            memcpy(A->plane, cp.normal, sizeof(double[3]));
+            A->plane[3] = -(cp.normal[0] * cp.a[0] + cp.normal[1] * cp.a[1] + cp.normal[2] * cp.a[2]);
+        } else
+            acd_cut_result_free(&cr);
+    }
+    if (isfinite(best)) A->gain = A->hvol - best;
+}
+
+static void prepare_range(const budget_state *S, size_t b0, size_t b1, int threads) {
+    (void)threads;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && b1 - b0 > 1)
+#endif
+    for (long j = (long)b0; j < (long)b1; j++) prepare(S, (size_t)j);
+}
+
+void acd3_budget_result_free(acd3_budget_result *r) {
+    if (!r) return;
+    for (size_t k = 0; k < r->nnew; k++) acd_mesh_free(&r->new_parts[k]);
+    free(r->new_parts);
+    free(r->new_parent);
+    free(r->new_plane);
+    free(r->new_volume);
+    free(r->new_bound);
+    memset(r, 0, sizeof *r);
+}
+
+acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget, double limit,
+                             double min_gain, double extent, int threads, acd3_budget_result *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    budget_state S = {0};
+    S.nparts = nparts;
+    S.limit = limit;
+    S.extent = extent;
+    S.ndir = BUDGET_DIRS;
+    S.nexact = BUDGET_EXACT;
+    S.cap = 2 * nparts + 16;
+    S.a = calloc(S.cap, sizeof *S.a);
+    if (!S.a) return acd_fail(err, ACD_ERR_NOMEM, "budget: out of memory");
+    acd_status st = ACD_OK;
+    for (size_t i = 0; i < nparts; i++) {
+        S.a[i].mesh = parts[i];
+        S.a[i].vol = acd_geom3_signed_volume(&parts[i]);
+        S.a[i].alive = 1;
+    }
+    S.n = nparts;
+    prepare_range(&S, 0, nparts, threads);
+    size_t nalive = nparts;
+    for (;;) {
+        for (size_t i = 0; i < S.n && st == ACD_OK; i++)
+            if (S.a[i].st != ACD_OK) st = acd_fail(err, S.a[i].st, "budget: out of memory");
+        if (st != ACD_OK) break;
+        /* the next cut: while under the budget, the largest saving above min_gain; an atom not
+         * evaluated yet may save at most its excess (hull volume less volume: each piece's hull
+         * holds the piece), so those whose excess reaches the best saving found are evaluated
+         * first (largest excess first, BUDGET_BATCH at a time in parallel; the choice is the same
+         * as evaluating all). Then, the budget spent, a part above the limit (largest saving). */
+        size_t pick = SIZE_MAX, batch[BUDGET_BATCH];
+        int nb = 0;
+        for (int phase = 0; phase < 2 && pick == SIZE_MAX && nb == 0; phase++) {
+            if (phase == 0 && nalive >= budget) continue;
+            for (size_t i = 0; i < S.n; i++) {
+                const atom *A = &S.a[i];
+                if (!A->alive || !A->evaluated || A->cut.npieces < 2) continue;
+                if (phase == 0 ? !(A->gain > min_gain) : A->ok) continue;
+                if (pick == SIZE_MAX || A->gain > S.a[pick].gain) pick = i;
+            }
+            double floor = pick == SIZE_MAX ? (phase == 0 ? min_gain : -INFINITY) : S.a[pick].gain;
+            for (size_t i = 0; i < S.n; i++) { /* the unevaluated candidates of largest excess */
+                const atom *A = &S.a[i];
+                if (!A->alive || A->evaluated || (phase == 1 && A->ok)) continue;
+                double ex = A->hvol - A->vol;
+                if (phase == 0 && !(ex >= floor)) continue;
+                int at = nb < BUDGET_BATCH ? nb++ : BUDGET_BATCH;
+                while (at > 0) {
+                    const atom *B = &S.a[batch[at - 1]];
+                    if (B->hvol - B->vol >= ex) break;
+                    if (at < BUDGET_BATCH) batch[at] = batch[at - 1];
+                    at--;
+                }
+                if (at < BUDGET_BATCH) batch[at] = i;
+            }
+        }
+        if (nb > 0) {
+            pick = SIZE_MAX;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nb > 1)
+#endif
+            for (int j = 0; j < nb; j++) evaluate(&S, batch[j]);
+            continue;
+        }
+        if (pick == SIZE_MAX) break;
+        size_t np = S.a[pick].cut.npieces;
+        if (S.n + np > BUDGET_MAX_ATOMS) break;
+        if (S.n + np > S.cap) {
+            size_t nc = 2 * S.cap + np;
+            atom *na = realloc(S.a, nc * sizeof *na);
+            if (!na) {
+                st = acd_fail(err, ACD_ERR_NOMEM, "budget: out of memory");
+                break;
+            }
+            memset(na + S.cap, 0, (nc - S.cap) * sizeof *na);
+            S.a = na;
+            S.cap = nc;
+        }
+        atom *P = &S.a[pick];
+        size_t b0 = S.n;
+        for (size_t p = 0; p < np; p++) {
+            atom *A = &S.a[S.n++];
+            A->mesh = P->cut.pieces[p].mesh;
+            memset(&P->cut.pieces[p].mesh, 0, sizeof A->mesh);
+            A->vol = acd_geom3_signed_volume(&A->mesh);
+            A->alive = 1;
+            A->parent = pick;
+        }
+        acd_cut_result_free(&P->cut);
+        P->alive = 0;
+        if (pick >= nparts) acd_mesh_free(&P->mesh);
+        nalive += np - 1;
+        out->cuts++;
+        prepare_range(&S, b0, S.n, threads);
+    }
+    /* the pieces out; the atoms' cached splits freed */
+    size_t nnew = S.n - nparts;
+    if (st == ACD_OK && nnew) {
+        out->new_parts = calloc(nnew, sizeof *out->new_parts);
+        out->new_parent = malloc(nnew * sizeof *out->new_parent);
+        out->new_plane = malloc(nnew * sizeof *out->new_plane);
+        out->new_volume = malloc(nnew * sizeof *out->new_volume);
+        out->new_bound = malloc(nnew * sizeof *out->new_bound);
+        if (!out->new_parts || !out->new_parent || !out->new_plane || !out->new_volume || !out->new_bound)
+            st = acd_fail(err, ACD_ERR_NOMEM, "budget: out of memory");
+    }
+    if (st == ACD_OK) {
+        /* parents: recorded as the cut order made them (each cut's pieces consecutive) */
+        size_t k = 0;
+        out->nnew = nnew;
+        out->nalive = nalive;
+        for (size_t i = nparts; i < S.n; i++, k++) {
+            out->new_parts[k] = S.a[i].mesh;
+            memset(&S.a[i].mesh, 0, sizeof S.a[i].mesh);
+            out->new_volume[k] = S.a[i].vol;
+            out->new_bound[k] = S.a[i].bound;
+            out->new_parent[k] = (uint32_t)S.a[i].parent;
+            memcpy(out->new_plane[k], S.a[S.a[i].parent].plane, sizeof out->new_plane[k]);
+        }
+        for (size_t i = 0; i < S.n; i++) {
+            out->over += S.a[i].alive && !S.a[i].ok;
+            out->hull_volume += S.a[i].alive ? S.a[i].hvol : 0;
+        }
+    }
+    for (size_t i = 0; i < S.n; i++) {
+        acd_cut_result_free(&S.a[i].cut);
+        if (i >= nparts) acd_mesh_free(&S.a[i].mesh);
+    }
+    free(S.a);
+    if (st != ACD_OK) acd3_budget_result_free(out);
+    return st;
+}

@@ -1,0 +1,44 @@
+/* acd3/budget: splitting under a part budget by hull excess (CoACD's objective; issue 4 item 6,
+ * docs/acd3d.md "Hull tightness", "Excess-driven budget").
+ *
+ * The decomposition's leaves (or the input alone) are split further, best first by the hull
+ * volume a split saves: each part's best split is the cut, among its volume planes
+ * (acd3/volume_plane, one across each principal axis), of smallest sum of the pieces' exact hull
+ * volumes; the part whose best split saves the most is cut, until `budget` parts exist. Every part
+ * must also meet `limit` both ways (acd3/leaf_test: its surface and its hull's boundary within
+ * limit of each other, the merge pass's kind of bound): a part that does not is cut (its best
+ * split, whatever it saves) even beyond the budget. A part no cut splits (slivers refused) stays
+ * as it is (counted in `over` when above limit). Deterministic for any thread count (the
+ * candidate planes are scored in parallel, every choice is sequential). */
+#ifndef ACD_ACD3_BUDGET_H
+#define ACD_ACD3_BUDGET_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "acd/base.h"
+#include "acd/mesh.h"
+
+typedef struct acd3_budget_result {
+    /* pieces, numbered after the input parts (atom nparts + k is new_parts[k]); the pieces of one
+     * cut are consecutive */
+    size_t nnew;
+    acd_mesh *new_parts;    /* owned */
+    uint32_t *new_parent;   /* per piece: the atom it was cut from */
+    double (*new_plane)[4]; /* per piece: its parent's cut plane n.x + d = 0 */
+    double *new_volume;     /* per piece: its volume */
+    double *new_bound;      /* per piece: its leaf_test bound (<= limit unless it is in `over`) */
+    size_t nalive;          /* parts after the splits (input parts not cut and pieces not cut) */
+    size_t over;            /* of them, parts above limit that no cut could split */
+    size_t cuts;            /* cuts made */
+    double hull_volume;     /* the sum of the parts' hull volumes */
+} acd3_budget_result;
+
+/* parts: the closed parts tiling a closed input (every one tested against limit too); limit in
+ * model units; extent: the model's extent (plane construction); min_gain: a split made for the
+ * budget must save more than this much hull volume. threads: OpenMP workers (<= 1: one). */
+acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget, double limit,
+                             double min_gain, double extent, int threads, acd3_budget_result *out, acd_error *err);
+void acd3_budget_result_free(acd3_budget_result *r);
+
+#endif
