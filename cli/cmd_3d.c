@@ -19,7 +19,7 @@ static void usage(FILE *f) {
             "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
             "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
             "              [--no-merge] [--merge-tau T] [--merge-order bound|volume] [--merge-parts N]\n"
-            "              [--merge-refine N]\n"
+            "              [--merge-refine N] [--budget N]\n"
             "              [--cut-choice concavity|volume|band] [--no-close-holes] [--resolver global|witness|notch]\n"
             "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--eps-ratio R]\n"
             "              [--no-feature-grouping] [--stop measure|hull] [--verify] [-v]\n"
@@ -64,6 +64,10 @@ static void usage(FILE *f) {
             "  --merge-refine N    with --merge-parts: up to N refinement steps after the joins, each a cut\n"
             "                      of the part whose volume plane saves the most hull volume and a join of\n"
             "                      the cheapest pair, while the hulls' volume falls (default 0)\n"
+            "  --budget N          solid mode: after the decomposition, split the parts further, best first\n"
+            "                      by the hull volume a plane cut saves, until N parts exist, and every\n"
+            "                      part until it is within the merge tolerance of its hull both ways; then\n"
+            "                      the merge pass (with a large TAU the input alone is split; default 0: off)\n"
             "  --cut-choice concavity  solid mode: the candidate cut of least piece concavity (default);\n"
             "                      'volume': planes chosen for tight hulls join the candidates, and the\n"
             "                      smallest sum of the pieces' hull volumes wins within a band of concavity;\n"
@@ -281,7 +285,10 @@ static int verify(const acd3d_result *r, acd_error *err) {
         if (n->leaf_reason == ACD3D_LEAF_JOINED && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
             return acd_fail(err, ACD_ERR_VERIFY, "joined part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
                             p->concavity, r->merge_tau);
-        if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT &&
+        if (n->leaf_reason == ACD3D_LEAF_BUDGET && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
+            return acd_fail(err, ACD_ERR_VERIFY, "budget part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
+                            p->concavity, r->merge_tau);
+        if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT && n->leaf_reason != ACD3D_LEAF_BUDGET &&
             n->leaf_reason != ACD3D_LEAF_MERGED && n->leaf_reason != ACD3D_LEAF_JOINED && p->concavity > r->tau)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g (%s)", i, p->concavity,
                             r->tau, leaf_reason_name(n->leaf_reason));

@@ -369,7 +369,6 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
         }
         acd_cut_result_free(&P->cut);
         P->alive = 0;
-        if (pick >= nparts) acd_mesh_free(&P->mesh);
         nalive += np - 1;
         out->cuts++;
         prepare_range(&S, b0, S.n, threads);

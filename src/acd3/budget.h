@@ -23,7 +23,7 @@ typedef struct acd3_budget_result {
     /* pieces, numbered after the input parts (atom nparts + k is new_parts[k]); the pieces of one
      * cut are consecutive */
     size_t nnew;
-    acd_mesh *new_parts;    /* owned */
+    acd_mesh *new_parts;    /* owned (pieces cut again too) */
     uint32_t *new_parent;   /* per piece: the atom it was cut from */
     double (*new_plane)[4]; /* per piece: its parent's cut plane n.x + d = 0 */
     double *new_volume;     /* per piece: its volume */

@@ -1,0 +1,189 @@
+/* Tests of the part budget (acd3/budget, acd3d_params.budget_parts; docs/acd3d.md "Excess-driven
+ * budget"): parts split best first by the hull volume a cut saves. The module on a voxel U (volume
+ * 7, hull 9): the pieces tile the input (volumes add up, each on one side of its parent's plane),
+ * their hulls' volume falls with the budget and stays at least the input's, each piece's bound
+ * meets the limit, and the output is the same for 1, 2 and 4 threads. Through acd3d_decompose on a
+ * bumpy star: at most N parts, volumes add up, the pieces are tree nodes under the parts they were
+ * cut from, every budget part within the merge tolerance, and the sum of the hulls' volumes below
+ * that of the tau-driven tree merged to the same N. */
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/acd3d.h"
+#include "acd3/budget.h"
+#include "shapes.h"
+
+/* A U of unit voxels in a 3 x 3 grid: the bottom row and the two side columns. */
+static void voxel_u(acd_mesh *m) {
+    unsigned char occ[9] = {1, 1, 1, 1, 0, 1, 1, 0, 1};
+    assert_true(mg_voxels(m, occ, 3, 3, 1));
+}
+
+static void test_module_on_voxels(void **state) {
+    (void)state;
+    acd_mesh u;
+    voxel_u(&u);
+    const double vin = mg_volume(&u);
+    assert_true(fabs(vin - 7) <= 1e-9);
+    acd_error err;
+    double prev = 9 + 1e-9;
+    for (size_t budget = 1; budget <= 4; budget++) {
+        acd3_budget_result r[3];
+        const int threads[3] = {1, 2, 4};
+        for (int t = 0; t < 3; t++)
+            assert_int_equal(acd3_budget_split(&u, 1, budget, 10.0, 0, 10.0, threads[t], &r[t], &err), ACD_OK);
+        const acd3_budget_result *b = &r[0];
+        double hv = b->hull_volume;
+        print_message("budget %zu: %zu cuts, %zu parts, hull volume %.9g\n", budget, b->cuts, b->nalive, hv);
+        assert_true(b->nalive >= (budget < 2 ? 1 : budget) || b->cuts == 0);
+        assert_int_equal(b->over, 0);
+        /* the hulls hold the pieces; more parts, tighter hulls (a cut is made only when it saves) */
+        assert_true(hv >= vin * (1 - 1e-9));
+        assert_true(hv <= prev);
+        if (budget >= 2) assert_true(hv < 9 - 0.5);
+        prev = hv;
+        /* pieces: the parts not cut tile the input; each on one side of its parent's plane; bounds */
+        uint8_t *cut = calloc(1 + b->nnew, 1);
+        assert_non_null(cut);
+        for (size_t k = 0; k < b->nnew; k++) {
+            assert_true(b->new_parent[k] < 1 + k);
+            cut[b->new_parent[k]] = 1;
+            assert_true(fabs(mg_volume(&b->new_parts[k]) - b->new_volume[k]) <= 1e-9 * vin);
+            assert_true(b->new_bound[k] <= 10.0);
+            const double *pl = b->new_plane[k];
+            const acd_mesh *m = &b->new_parts[k];
+            double lo = INFINITY, hi = -INFINITY;
+            for (size_t v = 0; v < m->nvertices; v++) {
+                double s = pl[0] * m->vertices[3 * v] + pl[1] * m->vertices[3 * v + 1] + pl[2] * m->vertices[3 * v + 2] + pl[3];
+                lo = fmin(lo, s), hi = fmax(hi, s);
+            }
+            assert_true(lo >= -1e-9 || hi <= 1e-9);
+        }
+        double sum = cut[0] ? 0 : vin;
+        size_t alive = !cut[0];
+        for (size_t k = 0; k < b->nnew; k++)
+            if (!cut[1 + k]) sum += b->new_volume[k], alive++;
+        assert_int_equal(alive, b->nalive);
+        assert_true(fabs(sum - vin) <= 1e-9 * vin);
+        free(cut);
+        /* the same for any thread count */
+        for (int t = 1; t < 3; t++) {
+            assert_int_equal(r[t].nnew, b->nnew);
+            assert_int_equal(r[t].cuts, b->cuts);
+            assert_true(r[t].hull_volume == b->hull_volume);
+            for (size_t k = 0; k < b->nnew; k++) {
+                assert_int_equal(r[t].new_parts[k].nvertices, b->new_parts[k].nvertices);
+                assert_memory_equal(r[t].new_parts[k].vertices, b->new_parts[k].vertices,
+                                    3 * b->new_parts[k].nvertices * sizeof(double));
+            }
+        }
+        for (int t = 0; t < 3; t++) acd3_budget_result_free(&r[t]);
+    }
+    /* a tight limit forces cuts beyond the budget: every part then meets it (or is counted over) */
+    acd3_budget_result r;
+    assert_int_equal(acd3_budget_split(&u, 1, 1, 0.2, 0, 10.0, 2, &r, &err), ACD_OK);
+    print_message("limit 0.2: %zu cuts, %zu parts, %zu over\n", r.cuts, r.nalive, r.over);
+    assert_true(r.cuts >= 1);
+    uint8_t cutk[64] = {0};
+    assert_true(r.nnew < 63);
+    for (size_t k = 0; k < r.nnew; k++) cutk[r.new_parent[k]] = 1;
+    size_t over = 0;
+    for (size_t k = 0; k < r.nnew; k++)
+        if (!cutk[1 + k]) over += !(r.new_bound[k] <= 0.2);
+    assert_int_equal(over, r.over);
+    acd3_budget_result_free(&r);
+    acd_mesh_free(&u);
+}
+
+/* A sphere with bumps: hull excess everywhere, as a scanned surface's relief. */
+static double bumpy_r(double theta, double phi, void *user) {
+    (void)user;
+    return 1 + 0.25 * sin(3 * theta) * cos(4 * phi) + 0.1 * cos(5 * theta);
+}
+
+static double hull_total(const acd3d_result *r) {
+    double s = 0;
+    for (size_t i = 0; i < r->nparts; i++) s += r->parts[i].hull_volume;
+    return s;
+}
+
+static void test_decompose_budget(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 32, bumpy_r, NULL));
+    const double vin = mg_volume(&m);
+    enum { N = 6 };
+    acd3d_params p = acd3d_default_params();
+    p.cut_choice = ACD3D_CHOICE_VOLUME;
+    p.merge_order = ACD3D_MERGE_VOLUME;
+    p.merge_parts = N;
+    p.merge_tau = 0.3;
+    p.threads = 2;
+    /* the tau-driven tree merged to N */
+    acd3d_result tr, br;
+    acd_error err;
+    p.tau = 0.05;
+    assert_int_equal(acd3d_decompose(&m, &p, &tr, &err), ACD_OK);
+    /* the budget from the input alone (a tau at which it is a leaf), merged to N */
+    p.tau = 10;
+    p.budget_parts = N;
+    assert_int_equal(acd3d_decompose(&m, &p, &br, &err), ACD_OK);
+    print_message("tau-driven: %zu parts, hulls %.6g; budget: %zu parts, hulls %.6g (volume %.6g)\n", tr.nparts,
+                  hull_total(&tr), br.nparts, hull_total(&br), vin);
+    assert_true(fabs(br.merge_tau - tr.merge_tau) <= 1e-12 * tr.merge_tau);
+    assert_true(tr.nparts <= N);
+    assert_true(br.nparts <= N && br.nparts >= 2);
+    assert_true(hull_total(&br) < hull_total(&tr));
+    double sum = 0;
+    size_t budget_nodes = 0;
+    for (size_t i = 0; i < br.nparts; i++) {
+        const acd3d_part *pt = &br.parts[i];
+        const acd3d_node *nd = &br.nodes[pt->node];
+        sum += mg_volume(&pt->mesh);
+        assert_true(pt->hull_volume >= pt->volume * (1 - 1e-9));
+        if (nd->leaf_reason == ACD3D_LEAF_BUDGET || nd->leaf_reason == ACD3D_LEAF_JOINED)
+            assert_true(pt->concavity <= br.merge_tau * (1 + 1e-12));
+    }
+    assert_true(fabs(sum - vin) <= 1e-9 * vin);
+    for (size_t n = 0; n < br.nnodes; n++) {
+        const acd3d_node *nd = &br.nodes[n];
+        if (nd->leaf_reason != ACD3D_LEAF_BUDGET) continue;
+        budget_nodes++;
+        assert_true(nd->parent >= 0);
+        const acd3d_node *pa = &br.nodes[nd->parent];
+        assert_true((int)n >= pa->first_child && (int)n < pa->first_child + pa->nchildren);
+        assert_int_equal(pa->leaf_reason, ACD3D_LEAF_NONE);
+        double cv = 0;
+        for (int k = 0; k < pa->nchildren; k++) cv += br.nodes[pa->first_child + k].volume;
+        assert_true(fabs(cv - pa->volume) <= 1e-9 * vin);
+        assert_true(nd->concavity <= br.merge_tau * (1 + 1e-12));
+    }
+    assert_true(budget_nodes >= N);
+    /* the same parts for 1 and 4 threads */
+    for (int t = 1; t <= 4; t += 3) {
+        acd3d_result o;
+        p.threads = t;
+        assert_int_equal(acd3d_decompose(&m, &p, &o, &err), ACD_OK);
+        assert_int_equal(o.nparts, br.nparts);
+        for (size_t i = 0; i < o.nparts; i++) {
+            assert_int_equal(o.parts[i].hull.nvertices, br.parts[i].hull.nvertices);
+            assert_memory_equal(o.parts[i].hull.vertices, br.parts[i].hull.vertices,
+                                3 * o.parts[i].hull.nvertices * sizeof(double));
+        }
+        acd3d_result_free(&o);
+    }
+    acd3d_result_free(&tr);
+    acd3d_result_free(&br);
+    acd_mesh_free(&m);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_module_on_voxels),
+        cmocka_unit_test(test_decompose_budget),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
