@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include "acd/mesh.h"
 #include "core/rng.h"
@@ -397,6 +398,26 @@ static void test_stl_ascii_and_weld(void **state) {
     s = acd_mesh_read_memory(data, size, ACD_MESH_FORMAT_AUTO, "nan.stl", &m, &err);
     assert_int_equal(s, ACD_ERR_PARSE);
     assert_non_null(strstr(err.message, "byte offset 212"));
+    /* a count lower than the triangles the file holds (a streaming writer's unpatched 0, or a
+     * lie): an error naming the count's offset, not a mesh missing its last triangles */
+    memcpy((char *)data + 84 + 50 * 2 + 12 + 4 * 4, (char *)data + 84 + 50 * 2 + 12 + 4 * 3, 4);
+    const unsigned char six[4] = {6, 0, 0, 0};
+    memcpy((char *)data + 80, six, 4);
+    s = acd_mesh_read_memory(data, size, ACD_MESH_FORMAT_STL, "low.stl", &m, &err);
+    assert_int_equal(s, ACD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "header says 6 triangles"));
+    assert_non_null(strstr(err.message, "room for 8"));
+    /* a few trailing bytes (padding) are tolerated */
+    memcpy((char *)data + 80, (const unsigned char[4]){8, 0, 0, 0}, 4);
+    char *padded = malloc(size + 10);
+    assert_non_null(padded);
+    memcpy(padded, data, size);
+    memset(padded + size, 0, 10);
+    s = acd_mesh_read_memory(padded, size + 10, ACD_MESH_FORMAT_STL, "pad.stl", &m, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.ntriangles, 8);
+    acd_mesh_free(&m);
+    free(padded);
     free(data);
     acd_mesh_free(&o);
 }
@@ -546,6 +567,35 @@ static void test_gzip_errors(void **state) {
     assert_int_equal(s, ACD_ERR_PARSE);
     assert_non_null(strstr(err.message, "gzip"));
     free(raw);
+    /* a gzip bomb (80 MiB of spaces in ~80 KB, a ratio near deflate's limit of 1032) is refused
+     * with a message, before it expands to its full size */
+    size_t bomb_out = (size_t)80 << 20, cap = 1 << 20, blen = 0;
+    unsigned char *bomb = malloc(cap), *spaces = malloc(1 << 20);
+    assert_non_null(bomb);
+    assert_non_null(spaces);
+    memset(spaces, ' ', 1 << 20);
+    z_stream z;
+    memset(&z, 0, sizeof z);
+    assert_int_equal(deflateInit2(&z, 9, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
+    for (size_t done = 0; done < bomb_out; done += 1 << 20) {
+        z.next_in = spaces;
+        z.avail_in = 1 << 20;
+        int flush = done + (1 << 20) >= bomb_out ? Z_FINISH : Z_NO_FLUSH;
+        do {
+            z.next_out = bomb + blen;
+            z.avail_out = (uInt)(cap - blen);
+            deflate(&z, flush);
+            blen = cap - z.avail_out;
+        } while (z.avail_out == 0 && blen < cap);
+        assert_true(blen < cap);
+    }
+    deflateEnd(&z);
+    s = acd_mesh_read_memory(bomb, blen, ACD_MESH_FORMAT_OBJ, "bomb.obj.gz", &m, &err);
+    assert_int_equal(s, ACD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "bomb.obj.gz"));
+    assert_non_null(strstr(err.message, "gzip bomb"));
+    free(bomb);
+    free(spaces);
     /* a missing file is an I/O error naming the file */
     s = acd_mesh_read("/nonexistent/dir/x.obj", &m, &err);
     assert_int_equal(s, ACD_ERR_IO);

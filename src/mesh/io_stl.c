@@ -2,7 +2,8 @@
  *
  * Binary: 80-byte header, uint32 little-endian triangle count, 50 bytes per triangle (normal,
  * three float32 vertices, uint16 attribute). A file is binary when its size is exactly
- * 84 + 50 * count, whatever its header says (many binary files start with "solid").
+ * 84 + 50 * count, whatever its header says (many binary files start with "solid"); room for
+ * more triangles than the count is an error (up to 49 trailing bytes are tolerated).
  * ASCII: solid / facet normal / outer loop / vertex x y z (3 or more, fanned) / endloop /
  * endfacet / endsolid, keywords case-insensitive, several solids allowed.
  * STL stores a triangle soup; the reader welds it on exact coordinates. */
@@ -83,6 +84,14 @@ static acd_status read_binary(const unsigned char *buf, size_t len, const char *
                         "%llu cut at byte offset %zu)",
                         name, (unsigned long long)n, (unsigned long long)(84 + 50 * n), len,
                         (unsigned long long)((len - 84) / 50), 84 + (len - 84) / 50 * 50);
+    /* more whole triangles than the count: a count left unpatched (0 by streaming writers) or
+     * lowered; reading only the first n would silently drop the rest */
+    if ((uint64_t)len - (84 + 50 * n) >= 50)
+        return acd_fail(err, ACD_ERR_PARSE,
+                        "%s: binary STL: header says %llu triangles (%llu bytes) but the file has %zu bytes, room for "
+                        "%llu triangles: the count at byte offset 80 is wrong or other data follows the triangles",
+                        name, (unsigned long long)n, (unsigned long long)(84 + 50 * n), len,
+                        (unsigned long long)((len - 84) / 50));
     if (b->nv + 3 * n > UINT32_MAX) return acd_fail(err, ACD_ERR_UNSUPPORTED, "%s: more than 2^32-1 vertices", name);
     if (!acd_grow((void **)&b->v, &b->vcap, b->nv + 3 * n, 3 * sizeof(double)) ||
         !acd_grow((void **)&b->t, &b->tcap, b->nt + n, 3 * sizeof(uint32_t)))

@@ -50,6 +50,14 @@ acd_mesh_format acd_mesh_format_from_path(const char *path) {
     return ACD_MESH_FORMAT_AUTO;
 }
 
+/* A gzip bomb guard: decompressed data larger than ACD_GZIP_BOMB_MIN_BYTES that is more than
+ * ACD_GZIP_MAX_RATIO times the compressed size is refused. Mesh files compress by 2-10 (binary
+ * coordinates less, text more); deflate's limit is about 1032, reached only by long runs of one
+ * byte or pattern, which no real mesh consists of. The output never grows past that limit (a file
+ * of a few MB would otherwise expand to many GB and be killed by the OOM killer). */
+#define ACD_GZIP_MAX_RATIO 100
+#define ACD_GZIP_BOMB_MIN_BYTES ((size_t)64 << 20)
+
 /* Decompresses a gzip buffer into a malloc'd, NUL-terminated buffer. */
 static acd_status gunzip(const unsigned char *in, size_t n, const char *name, char **out, size_t *outlen,
                          acd_error *err) {
@@ -63,8 +71,18 @@ static acd_status gunzip(const unsigned char *in, size_t n, const char *name, ch
         return acd_fail(err, ACD_ERR_NOMEM, "%s: out of memory decompressing", name);
     }
     size_t consumed = 0;
+    size_t limit = n > SIZE_MAX / ACD_GZIP_MAX_RATIO ? SIZE_MAX - 1 : n * ACD_GZIP_MAX_RATIO;
+    if (limit < ACD_GZIP_BOMB_MIN_BYTES) limit = ACD_GZIP_BOMB_MIN_BYTES;
     int ret = Z_OK;
     while (ret != Z_STREAM_END) {
+        if (len > limit) {
+            free(buf);
+            inflateEnd(&z);
+            return acd_fail(err, ACD_ERR_PARSE,
+                            "%s: gzip data expands more than %d times (%zu compressed bytes gave over %zu bytes by "
+                            "compressed byte offset %zu): refused as a likely gzip bomb, not a mesh",
+                            name, ACD_GZIP_MAX_RATIO, n, limit, consumed);
+        }
         if (cap - len < 2) {
             size_t c2 = cap;
             if (!acd_grow((void **)&buf, &c2, cap + 1, 1)) {
@@ -76,6 +94,7 @@ static acd_status gunzip(const unsigned char *in, size_t n, const char *name, ch
         }
         size_t chunk_in = n - consumed > (1u << 30) ? (1u << 30) : n - consumed;
         size_t chunk_out = cap - len - 1 > (1u << 30) ? (1u << 30) : cap - len - 1;
+        if (chunk_out > limit + 1 - len) chunk_out = limit + 1 - len; /* one byte past: refused above */
         z.next_in = (unsigned char *)(uintptr_t)(in + consumed);
         z.avail_in = (uInt)chunk_in;
         z.next_out = (unsigned char *)buf + len;
