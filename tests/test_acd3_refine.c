@@ -19,6 +19,7 @@
 #include "acd3/volume_plane.h"
 #include "acd3d_check.h"
 #include "geom3/bvh.h"
+#include "geom3/edge_map.h"
 #include "geom3/plane_cut.h"
 #include "shapes.h"
 
@@ -294,12 +295,76 @@ static void test_decompose_refined(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Found by fuzz/fuzz_acd3d_tight: a star-shaped solid pinched at the origin (seven distinct vertices
+ * at the same point), cut by volume planes, merged to 7 parts at merge tau 4 x tau and refined. A
+ * refinement cut of a part with coincident vertices left two pieces with an edge used twice in the
+ * same direction, and the joined parts holding them were not closed. The refinement now refuses
+ * such a cut (as decompose.c refuses its own): every part is closed and consistently oriented. */
+static void test_refine_pinched_closed(void **state) {
+    (void)state;
+    static const double v[26][3] = {
+        {2.2265625, 0, 3.046875}, {1.11328125, 1.93359375, 3.046875}, {-0.4453125, 0.7734375, 1.21875},
+        {-0.890625, 0, 1.21875}, {-0, -0, 0}, {0, -0, 0},
+        {1.4296875, 0, 0.46875}, {0.703125, 1.2421875, 0.46875}, {-0.703125, 1.2421875, 0.46875},
+        {-1.4296875, 0, 0.46875}, {-0, -0, 0}, {1.171875, -2.0703125, 0.78125},
+        {2.14453125, 0, -0.703125}, {0.9375, 1.65625, -0.625}, {-0.703125, 1.2421875, -0.46875},
+        {-0, 0, -0}, {-0.703125, -1.2421875, -0.46875}, {0.703125, -1.2421875, -0.46875},
+        {0.890625, 0, -1.21875}, {0.4453125, 0.7734375, -1.21875}, {-0.4453125, 0.7734375, -1.21875},
+        {-0.890625, 0, -1.21875}, {-0.4453125, -0.7734375, -1.21875}, {0.4453125, -0.7734375, -1.21875},
+        {0, 0, 1.5}, {0, 0, -0},
+    };
+    static const uint32_t t[48][3] = {
+        {24, 0, 1}, {25, 19, 18}, {24, 1, 2}, {25, 20, 19}, {24, 2, 3}, {25, 21, 20}, {24, 3, 4}, {25, 22, 21},
+        {24, 4, 5}, {25, 23, 22}, {24, 5, 0}, {25, 18, 23}, {0, 6, 7}, {0, 7, 1}, {1, 7, 8}, {1, 8, 2},
+        {2, 8, 9}, {2, 9, 3}, {3, 9, 10}, {3, 10, 4}, {4, 10, 11}, {4, 11, 5}, {5, 11, 6}, {5, 6, 0},
+        {6, 12, 13}, {6, 13, 7}, {7, 13, 14}, {7, 14, 8}, {8, 14, 15}, {8, 15, 9}, {9, 15, 16}, {9, 16, 10},
+        {10, 16, 17}, {10, 17, 11}, {11, 17, 12}, {11, 12, 6}, {12, 18, 19}, {12, 19, 13}, {13, 19, 20}, {13, 20, 14},
+        {14, 20, 21}, {14, 21, 15}, {15, 21, 22}, {15, 22, 16}, {16, 22, 23}, {16, 23, 17}, {17, 23, 18}, {17, 18, 12},
+    };
+    acd_mesh m = {0};
+    m.nvertices = 26;
+    m.ntriangles = 48;
+    m.vertices = malloc(sizeof v);
+    m.triangles = malloc(sizeof t);
+    assert_non_null(m.vertices);
+    assert_non_null(m.triangles);
+    memcpy(m.vertices, v, sizeof v);
+    memcpy(m.triangles, t, sizeof t);
+    acd3d_params p = acd3d_default_params();
+    p.tau = 0.05;
+    p.merge_tau = 0.2;
+    p.max_depth = 5;
+    p.cut_choice = ACD3D_CHOICE_VOLUME;
+    p.stop = ACD3D_STOP_HULL;
+    p.merge_parts = 7;
+    p.merge_refine = 2;
+    p.max_hull_vertices = 10;
+    p.threads = 1;
+    acd3d_result r;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    double sum = 0;
+    for (size_t i = 0; i < r.nparts; i++) {
+        const acd_mesh *q = &r.parts[i].mesh;
+        acd_edge_map em;
+        assert_int_equal(acd_edge_map_build(q->triangles, q->ntriangles, NULL, &em, &err), ACD_OK);
+        acd_status cs = acd_edge_map_check_closed(&em, q->triangles, q->ntriangles, &err);
+        acd_edge_map_free(&em);
+        if (cs != ACD_OK) fail_msg("part %zu: %s", i, err.message);
+        sum += r.parts[i].volume;
+    }
+    assert_true(fabs(sum - r.input_volume) <= 1e-9 * r.input_volume);
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_trade_on_voxels),
         cmocka_unit_test(test_plane_sides),
         cmocka_unit_test(test_volume_plane_estimate),
         cmocka_unit_test(test_decompose_refined),
+        cmocka_unit_test(test_refine_pinched_closed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

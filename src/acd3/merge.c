@@ -13,6 +13,7 @@
 #include "core/u32vec.h"
 #include "acd3/volume_plane.h"
 #include "geom3/bvh.h"
+#include "geom3/edge_map.h"
 #include "geom3/plane_cut.h"
 #include "geom3/vec3.h"
 
@@ -896,6 +897,25 @@ static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_b
         acd_status cs = acd_plane_cut_flags(M, &cp, ACD_PLANE_CUT_DROP_SPECKS, &cr, &ce);
         if (cs != ACD_OK) {
             ret = cs == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
+            break;
+        }
+        /* every piece must be closed and consistently oriented, as decompose.c asks of its cuts: on
+         * a part whose distinct vertices share a point (an input pinched at a vertex) the cut may
+         * leave a piece with an edge used twice in one direction; such a cut is refused */
+        for (size_t p = 0; p < cr.npieces && ret == 1; p++) {
+            const acd_mesh *pm = &cr.pieces[p].mesh;
+            acd_edge_map em;
+            if (cr.pieces[p].closed) continue;
+            acd_status es = acd_edge_map_build(pm->triangles, pm->ntriangles, NULL, &em, NULL);
+            if (es == ACD_OK) {
+                if (acd_edge_map_check_closed(&em, pm->triangles, pm->ntriangles, NULL) != ACD_OK) ret = 0;
+                acd_edge_map_free(&em);
+            } else {
+                ret = es == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
+            }
+        }
+        if (ret != 1) {
+            acd_cut_result_free(&cr);
             break;
         }
         if (!atoms_reserve(at, at->n + cr.npieces)) ret = -(int)ACD_ERR_NOMEM;
