@@ -264,27 +264,37 @@ int acd3_region_sp_init(acd3_region_sp *r, size_t nv) {
     r->dist = malloc((nv ? nv : 1) * sizeof *r->dist);
     r->pred = malloc((nv ? nv : 1) * sizeof *r->pred);
     r->stamp = calloc(nv ? nv : 1, sizeof *r->stamp);
+    r->tstamp = calloc(nv ? nv : 1, sizeof *r->tstamp);
     r->done = malloc(nv ? nv : 1);
-    if (r->dist && r->pred && r->stamp && r->done) return 1;
+    if (r->dist && r->pred && r->stamp && r->tstamp && r->done) return 1;
     acd3_region_sp_free(r);
     return 0;
 }
 
 void acd3_region_sp_free(acd3_region_sp *r) {
-    free(r->dist), free(r->pred), free(r->stamp), free(r->done);
+    free(r->dist), free(r->pred), free(r->stamp), free(r->tstamp), free(r->done);
     acd_minheap_free(&r->heap);
     memset(r, 0, sizeof *r);
 }
 
 double acd3_region_sp_dist(const acd3_region_sp *r, uint32_t v) { return r->stamp[v] == r->cur ? r->dist[v] : INFINITY; }
 
-int acd3_region_sp_run(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src) {
+/* targets NULL: every allowed vertex reachable from src is settled */
+static int region_sp(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src,
+                     const uint32_t *targets, size_t nt) {
     if (++r->cur == 0) {
         memset(r->stamp, 0, g->nvertices * sizeof *r->stamp);
+        memset(r->tstamp, 0, g->nvertices * sizeof *r->tstamp);
         r->cur = 1;
     }
     uint32_t cur = r->cur;
     r->heap.n = 0;
+    size_t pending = 0; /* targets not settled yet (each vertex once) */
+    if (targets) {
+        for (size_t i = 0; i < nt; i++)
+            if (r->tstamp[targets[i]] != cur) r->tstamp[targets[i]] = cur, pending++;
+        if (!pending) return 1;
+    }
     if (!allowed[src]) return 1;
     r->stamp[src] = cur;
     r->dist[src] = 0;
@@ -296,6 +306,7 @@ int acd3_region_sp_run(acd3_region_sp *r, const acd_edge_graph *g, const double 
         uint32_t u = it.id;
         if (r->done[u] || it.key != r->dist[u]) continue; /* stale */
         r->done[u] = 1;
+        if (targets && r->tstamp[u] == cur && --pending == 0) break;
         for (size_t k = g->row[u]; k < g->row[u + 1]; k++) {
             uint32_t v = g->adj[k], e = g->adj_edge[k];
             if (!allowed[v]) continue;
@@ -317,6 +328,15 @@ int acd3_region_sp_run(acd3_region_sp *r, const acd_edge_graph *g, const double 
         }
     }
     return 1;
+}
+
+int acd3_region_sp_run(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src) {
+    return region_sp(r, g, w, allowed, src, NULL, 0);
+}
+
+int acd3_region_sp_run_to(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed,
+                          uint32_t src, const uint32_t *targets, size_t nt) {
+    return region_sp(r, g, w, allowed, src, targets, nt);
 }
 
 /* Flood-fills the faces of region r (listed in rf[0..nrf)) without crossing the edges marked in
@@ -440,15 +460,21 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
         pool.n = 0;
         double *wm = malloc(K * K * sizeof *wm);
         size_t *cid = malloc(K * K * sizeof *cid);
-        if (!wm || !cid) {
-            free(wm), free(cid);
+        uint32_t *tgt = malloc(K * sizeof *tgt);
+        if (!wm || !cid || !tgt) {
+            free(wm), free(cid), free(tgt);
             ok = 0;
             break;
         }
         for (size_t i = 0; i < K * K; i++) wm[i] = NO_PATH_COST, cid[i] = SIZE_MAX;
         for (size_t i = 0; i < K && ok; i++) {
             uint32_t src = out->knot_v[kr[i].knot];
-            if (!weights_ok || !acd3_region_sp_run(&sp, g, wcost, allowed, src)) {
+            /* the search stops once the knots it pairs with (below) are settled */
+            size_t nt = 0;
+            for (size_t j = i + 1; j < K; j++)
+                if (out->knot_chain[kr[j].knot] != out->knot_chain[kr[i].knot] && out->knot_v[kr[j].knot] != src)
+                    tgt[nt++] = out->knot_v[kr[j].knot];
+            if (!weights_ok || !acd3_region_sp_run_to(&sp, g, wcost, allowed, src, tgt, nt)) {
                 ok = 0;
                 break;
             }
@@ -525,7 +551,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                 free(cm), free(rc);
             }
         }
-        free(wm), free(cid);
+        free(wm), free(cid), free(tgt);
         if (!ok) break;
         /* crossing cuts deleted, heaviest first */
         kept.n = 0;

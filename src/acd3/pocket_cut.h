@@ -103,6 +103,7 @@ uint32_t acd3_vertex_region(const acd_mesh *m, const acd3_measure *ms, const acd
 typedef struct acd3_region_sp {
     double *dist;
     uint32_t *pred, *stamp;
+    uint32_t *tstamp; /* the targets of acd3_region_sp_run_to: stamp == cur */
     uint8_t *done;
     uint32_t cur;
     acd_minheap heap; /* (distance, vertex) */
@@ -113,6 +114,11 @@ int acd3_region_sp_init(acd3_region_sp *r, size_t nvertices);
 void acd3_region_sp_free(acd3_region_sp *r);
 /* Runs from src (nothing when src is not allowed); 0 when out of memory. */
 int acd3_region_sp_run(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src);
+/* The same, stopped once every target (targets[0..nt)) is settled: their distances and the
+ * predecessors along their paths are those of the full run (a settled vertex's are final, and its
+ * predecessor was settled before it); other vertices' are not. nt = 0: nothing is run. */
+int acd3_region_sp_run_to(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed,
+                          uint32_t src, const uint32_t *targets, size_t nt);
 /* Distance of v from the last source (INFINITY when not reached); pred[v] its predecessor. */
 double acd3_region_sp_dist(const acd3_region_sp *r, uint32_t v);
 
