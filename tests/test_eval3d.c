@@ -216,6 +216,20 @@ static void test_json_and_errors(void **state) {
     assert_int_equal(acd_hull_compute(flat, 4, &fh, NULL), ACD_OK);
     assert_int_equal(acd_eval_hulls(&m, &fh, 1, &p, &r, &err), ACD_ERR_DEGENERATE);
     acd_hull_free(&fh);
+    /* coordinates beyond ACD_COORD_MAX, in the mesh or a hull: refused, not "the mesh encloses no
+     * volume (no sample of 1 fell inside)" */
+    double big[12] = {0, 0, 0, 1e300, 0, 0, 0, 1e300, 0, 0, 0, 1e300};
+    acd_hull bh;
+    assert_int_equal(acd_hull_compute(big, 4, &bh, NULL), ACD_OK);
+    assert_int_equal(acd_eval_hulls(&m, &bh, 1, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+    assert_non_null(strstr(err.message, "hull of part 0"));
+    assert_non_null(strstr(err.message, "magnitude"));
+    acd_hull_free(&bh);
+    double keep = cube.v[3];
+    cube.v[3] = -1e300;
+    assert_int_equal(acd_eval_hulls(&m, &h, 1, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+    assert_non_null(strstr(err.message, "magnitude"));
+    cube.v[3] = keep;
     acd_hull_free(&h);
     tm_free(&cube);
 }

@@ -285,6 +285,11 @@ static void test_bad_params(void **state) {
     double keep = m.vertices[5];
     m.vertices[5] = NAN;
     assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+    /* beyond ACD_COORD_MAX: refused (a 1e300 tetrahedron was segmented with scale 1 and null
+     * volumes) */
+    m.vertices[5] = 1e300;
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+    assert_non_null(strstr(err.message, "magnitude"));
     m.vertices[5] = keep;
     size_t nt = m.ntriangles;
     m.ntriangles = 0;

@@ -62,7 +62,8 @@ typedef struct acd_eval_report {
 
 /* Scores the decomposition `parts` of `mesh`: the convex hull of each part's vertices is taken.
  * Fails on an empty mesh or one enclosing no volume (ACD_ERR_DEGENERATE), bad indices or
- * non-finite coordinates (ACD_ERR_INVALID_INPUT), no part with a solid hull (ACD_ERR_DEGENERATE). */
+ * non-finite coordinates or coordinates beyond 1e60 in the mesh or the parts (ACD_ERR_INVALID_INPUT),
+ * no part with a solid hull (ACD_ERR_DEGENERATE). */
 acd_status acd_eval_parts(const acd_mesh *mesh, const acd_mesh_parts *parts, const acd_eval_params *params,
                           acd_eval_report *out, acd_error *err);
 

@@ -134,7 +134,7 @@ typedef struct acd_segment_result {
  * from the faces' orientation) into nearly convex parts. Every face gets a label; parts are
  * edge-connected. out is caller-owned, freed with acd_segment_result_free (also safe after a
  * failure). Bad params: ACD_ERR_INVALID_ARGUMENT; no faces: ACD_ERR_DEGENERATE; indices out of
- * range or non-finite coordinates: ACD_ERR_INVALID_INPUT. */
+ * range, non-finite coordinates or coordinates beyond 1e60: ACD_ERR_INVALID_INPUT. */
 acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, acd_segment_result *out,
                        acd_error *err);
 void acd_segment_result_free(acd_segment_result *r);

@@ -12,6 +12,7 @@
 
 #include "acd/hull.h"
 #include "core/error.h"
+#include "core/tolerance.h"
 #include "corise/corise.h"
 #include "corise/valley.h"
 #ifdef _OPENMP
@@ -92,6 +93,13 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
                         params->concave_weight);
     if (params->max_depth == 0)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: max_depth must be at least 1");
+    /* coordinates beyond ACD_COORD_MAX overflow the radius and volumes (a 1e300 tetrahedron gave
+     * scale 1 and null volumes): refused as acd3d_decompose and acd_mesh_validate refuse them */
+    if (mesh->nvertices && mesh->vertices) {
+        acd_error ce;
+        if (acd_check_coordinates(mesh->vertices, mesh->nvertices, 3, &ce) != ACD_OK)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "segment: %s", ce.message);
+    }
     double t0 = now_seconds();
     acd_corise_params c = acd_corise_default_params();
     c.tau = params->tau;

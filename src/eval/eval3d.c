@@ -31,6 +31,7 @@
 #include "acd/eval.h"
 #include "core/error.h"
 #include "core/rng.h"
+#include "core/tolerance.h"
 #include "geom3/spatial.h"
 #include "geom3/vec3.h"
 
@@ -519,12 +520,11 @@ static int used_vertex_ok(const acd_mesh *m, acd_error *err, acd_status *st) {
                                m->triangles[3 * t + k], m->nvertices);
                 return 0;
             }
-    for (size_t v = 0; v < m->nvertices; v++)
-        for (int k = 0; k < 3; k++)
-            if (!isfinite(m->vertices[3 * v + k])) {
-                *st = acd_fail(err, ACD_ERR_INVALID_INPUT, "eval: mesh vertex %zu has a non-finite coordinate", v);
-                return 0;
-            }
+    acd_error ce;
+    if (m->nvertices && acd_check_coordinates(m->vertices, m->nvertices, 3, &ce) != ACD_OK) {
+        *st = acd_fail(err, ACD_ERR_INVALID_INPUT, "eval: mesh %s", ce.message);
+        return 0;
+    }
     return 1;
 }
 
@@ -542,6 +542,13 @@ acd_status acd_eval_hulls(const acd_mesh *mesh, const acd_hull *hulls, size_t nh
     acd_status st = ACD_OK;
     if (!used_vertex_ok(mesh, err, &st)) return st;
 
+    /* hulls beyond ACD_COORD_MAX overflow the sampling box (a 1e300 part was reported as "the mesh
+     * encloses no volume (no sample of 1 fell inside)") */
+    for (size_t i = 0; i < nhulls; i++) {
+        acd_error ce;
+        if (hulls[i].nvertices && acd_check_coordinates(hulls[i].vertices, hulls[i].nvertices, 3, &ce) != ACD_OK)
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "eval: hull of part %zu: %s", i, ce.message);
+    }
     out->parts = nhulls;
     out->seed = prm.seed;
     for (size_t i = 0; i < nhulls; i++) {
@@ -621,7 +628,8 @@ acd_status acd_eval_parts(const acd_mesh *mesh, const acd_mesh_parts *parts, con
     for (i = 0; i < parts->count; i++) {
         const acd_mesh *pm = &parts->parts[i].mesh;
         acd_error e2;
-        st = acd_hull_compute(pm->vertices, pm->nvertices, &hulls[i], &e2);
+        st = pm->nvertices ? acd_check_coordinates(pm->vertices, pm->nvertices, 3, &e2) : ACD_OK;
+        if (st == ACD_OK) st = acd_hull_compute(pm->vertices, pm->nvertices, &hulls[i], &e2);
         if (st != ACD_OK) {
             st = acd_fail(err, st, "eval: hull of part %zu ('%s'): %s", i, parts->parts[i].name ? parts->parts[i].name : "",
                           e2.message);
