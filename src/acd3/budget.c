@@ -92,13 +92,27 @@ static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, cons
     return va < 0 || vb < 0 ? -1 : va + vb;
 }
 
-/* Up to nmax planes, best first by their sampled score, one per direction: the part's principal
- * axes and (ndir 13) the diagonals between them. */
-static int budget_planes(const acd_mesh *m, int ndir, int nmax, int nrefine_dirs, acd3_plane_candidate *out) {
-    if (m->nvertices < 4) return 0;
-    acd_pca pca;
-    if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return 0;
+/* The plane search of one atom: its directions (the part's principal axes, the diagonals between
+ * them and a Fibonacci half-sphere in the principal frame), the sample's strides and, per
+ * direction, the projection's range and the best offset found. Filled by plan_init, then each
+ * direction is scored on its own (score_dir, refine_dir: parallel tasks over the batch's atoms and
+ * directions, each computing exactly what the sequential search did). */
+typedef struct plan {
+    int nd, ok;
     double dirs[BUDGET_MAX_DIRS][3];
+    double centroid[3];
+    size_t stride, tstride, cap;
+    double lo[BUDGET_MAX_DIRS], st[BUDGET_MAX_DIRS], bs[BUDGET_MAX_DIRS], bc[BUDGET_MAX_DIRS];
+    int ord[BUDGET_MAX_DIRS];
+} plan;
+
+static void plan_init(const acd_mesh *m, int ndir, plan *P) {
+    P->ok = 0;
+    P->nd = 0;
+    if (m->nvertices < 4) return;
+    acd_pca pca;
+    if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return;
+    double (*dirs)[3] = P->dirs;
     int nd = 0;
     for (int a = 0; a < 3; a++) memcpy(dirs[nd++], pca.axes[a], sizeof(double[3]));
     if (ndir > 3) {
@@ -127,17 +141,14 @@ static int budget_planes(const acd_mesh *m, int ndir, int nmax, int nrefine_dirs
             nd++;
         }
     }
-    size_t cap = m->nvertices + 3 * m->ntriangles + 1;
-    double *bufa = malloc(3 * cap * sizeof *bufa), *bufb = malloc(3 * cap * sizeof *bufb);
-    if (!bufa || !bufb) {
-        free(bufa), free(bufb);
-        return 0;
-    }
-    size_t stride = (m->nvertices + BUDGET_MAX_SCORED - 1) / BUDGET_MAX_SCORED;
-    size_t tstride = (m->ntriangles + 2 * BUDGET_MAX_SCORED - 1) / (2 * BUDGET_MAX_SCORED);
-    if (tstride < 1) tstride = 1;
-    double bs[BUDGET_MAX_DIRS], bc[BUDGET_MAX_DIRS], st[BUDGET_MAX_DIRS];
-    int ord[BUDGET_MAX_DIRS];
+    P->nd = nd;
+    memcpy(P->centroid, pca.centroid, sizeof P->centroid);
+    P->stride = (m->nvertices + BUDGET_MAX_SCORED - 1) / BUDGET_MAX_SCORED;
+    P->tstride = (m->ntriangles + 2 * BUDGET_MAX_SCORED - 1) / (2 * BUDGET_MAX_SCORED);
+    if (P->tstride < 1) P->tstride = 1;
+    /* points one side can receive: the sampled vertices and two crossings per sampled triangle
+     * (three kept for safety) */
+    P->cap = (m->nvertices + P->stride - 1) / P->stride + 3 * ((m->ntriangles + P->tstride - 1) / P->tstride) + 1;
     for (int d = 0; d < nd; d++) {
         const double *ax = dirs[d];
         double lo = INFINITY, hi = -INFINITY;
@@ -146,54 +157,71 @@ static int budget_planes(const acd_mesh *m, int ndir, int nmax, int nrefine_dirs
             double s = ax[0] * p[0] + ax[1] * p[1] + ax[2] * p[2];
             lo = fmin(lo, s), hi = fmax(hi, s);
         }
-        bs[d] = INFINITY, bc[d] = 0, st[d] = (hi - lo) / (BUDGET_OFFSETS + 1);
-        ord[d] = d;
-        if (!(hi > lo)) continue;
-        for (int i = 1; i <= BUDGET_OFFSETS; i++) {
-            double c = lo + st[d] * i, sc = score_plane(m, stride, tstride, ax, c, bufa, bufb);
-            if (sc >= 0 && sc < bs[d]) bs[d] = sc, bc[d] = c;
+        P->bs[d] = INFINITY, P->bc[d] = 0, P->st[d] = (hi - lo) / (BUDGET_OFFSETS + 1);
+        P->lo[d] = hi > lo ? lo : NAN;
+        P->ord[d] = d;
+    }
+    P->ok = 1;
+}
+
+static double *plan_buffers(const plan *P) { return malloc(2 * 3 * P->cap * sizeof(double)); }
+
+/* Direction d's best of the fixed offsets (touches only P->bs[d], P->bc[d]); 0 when out of memory. */
+static int score_dir(const acd_mesh *m, plan *P, int d) {
+    if (!(P->lo[d] == P->lo[d])) return 1; /* flat along d */
+    double *buf = plan_buffers(P);
+    if (!buf) return 0;
+    for (int i = 1; i <= BUDGET_OFFSETS; i++) {
+        double c = P->lo[d] + P->st[d] * i, sc = score_plane(m, P->stride, P->tstride, P->dirs[d], c, buf, buf + 3 * P->cap);
+        if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = c;
+    }
+    free(buf);
+    return 1;
+}
+
+/* Direction d's offset refined around its best (touches only P->bs[d], P->bc[d]). */
+static int refine_dir(const acd_mesh *m, plan *P, int d) {
+    double *buf = plan_buffers(P);
+    if (!buf) return 0;
+    double step = P->st[d];
+    for (int r = 0; r < BUDGET_REFINE && P->bs[d] < INFINITY; r++) {
+        step *= 0.5;
+        double c0 = P->bc[d];
+        for (int sg = -1; sg <= 1; sg += 2) {
+            double c = c0 + sg * step, sc = score_plane(m, P->stride, P->tstride, P->dirs[d], c, buf, buf + 3 * P->cap);
+            if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = c;
         }
     }
-    for (int i = 1; i < nd; i++)
-        for (int j = i; j > 0 && bs[ord[j]] < bs[ord[j - 1]]; j--) {
-            int x = ord[j];
-            ord[j] = ord[j - 1];
-            ord[j - 1] = x;
-        }
-    for (int q = 0; q < nd && q < nrefine_dirs; q++) {
-        int d = ord[q];
-        double step = st[d];
-        for (int r = 0; r < BUDGET_REFINE && bs[d] < INFINITY; r++) {
-            step *= 0.5;
-            double c0 = bc[d];
-            for (int sg = -1; sg <= 1; sg += 2) {
-                double c = c0 + sg * step, sc = score_plane(m, stride, tstride, dirs[d], c, bufa, bufb);
-                if (sc >= 0 && sc < bs[d]) bs[d] = sc, bc[d] = c;
-            }
-        }
-    }
-    int lim = nd < nrefine_dirs ? nd : nrefine_dirs;
+    free(buf);
+    return 1;
+}
+
+static void sort_dirs(plan *P, int lim) {
     for (int i = 1; i < lim; i++)
-        for (int j = i; j > 0 && bs[ord[j]] < bs[ord[j - 1]]; j--) {
-            int x = ord[j];
-            ord[j] = ord[j - 1];
-            ord[j - 1] = x;
+        for (int j = i; j > 0 && P->bs[P->ord[j]] < P->bs[P->ord[j - 1]]; j--) {
+            int x = P->ord[j];
+            P->ord[j] = P->ord[j - 1];
+            P->ord[j - 1] = x;
         }
+}
+
+/* Up to nmax planes, best first by their sampled score, one per direction (after the refinement of
+ * the best nrefine_dirs directions). */
+static int plan_planes(const plan *P, int nmax, int nrefine_dirs, acd3_plane_candidate *out) {
+    int lim = P->nd < nrefine_dirs ? P->nd : nrefine_dirs;
     int n = 0;
     for (int q = 0; q < lim && n < nmax; q++) {
-        int d = ord[q];
-        if (!(bs[d] < INFINITY)) continue;
-        const double *ax = dirs[d];
-        double cc = ax[0] * pca.centroid[0] + ax[1] * pca.centroid[1] + ax[2] * pca.centroid[2];
+        int d = P->ord[q];
+        if (!(P->bs[d] < INFINITY)) continue;
+        const double *ax = P->dirs[d];
+        double cc = ax[0] * P->centroid[0] + ax[1] * P->centroid[1] + ax[2] * P->centroid[2];
         for (int k = 0; k < 3; k++) {
             out[n].normal[k] = ax[k];
-            out[n].point[k] = pca.centroid[k] + (bc[d] - cc) * ax[k];
+            out[n].point[k] = P->centroid[k] + (P->bc[d] - cc) * ax[k];
         }
         out[n].kind = "volume";
         n++;
     }
-    free(bufa);
-    free(bufb);
     return n;
 }
 
@@ -222,42 +250,135 @@ static void prepare(const budget_state *S, size_t i) {
     acd_hull_free(&H);
 }
 
-/* The atom's best split (touches only the atom). */
-static void evaluate(const budget_state *S, size_t i) {
-    atom *A = &S->a[i];
-    A->evaluated = 1;
-    if (A->st != ACD_OK) return;
-    acd3_plane_candidate cand[BUDGET_MAX_DIRS];
-    int nc = budget_planes(&A->mesh, S->ndir, S->nexact, BUDGET_REFINE_DIRS, cand);
-    double best = INFINITY;
-    for (int k = 0; k < nc; k++) {
-        acd_cut_plane cp;
-        if (acd_cut_plane_from_normal(cand[k].point, cand[k].normal, S->extent, &cp, NULL) != ACD_OK) continue;
-        acd_cut_result cr;
-        acd_error ce;
-        acd_status cs = acd_plane_cut_flags(&A->mesh, &cp, ACD_PLANE_CUT_DROP_SPECKS, &cr, &ce);
-        if (cs != ACD_OK) {
-            if (cs == ACD_ERR_NOMEM) A->st = cs;
+/* One exact cut of an atom by a candidate plane: its pieces and the sum of their hull volumes. */
+typedef struct exact_cut {
+    acd_status cs;
+    int good;
+    double sum;
+    acd_cut_plane cp;
+    acd_cut_result cr;
+} exact_cut;
+
+static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_candidate *cand, exact_cut *X) {
+    memset(X, 0, sizeof *X);
+    X->cs = acd_cut_plane_from_normal(cand->point, cand->normal, S->extent, &X->cp, NULL);
+    if (X->cs != ACD_OK) {
+        X->cs = ACD_ERR_DEGENERATE; /* skipped, as a failed cut */
+        return;
+    }
+    acd_error ce;
+    X->cs = acd_plane_cut_flags(&A->mesh, &X->cp, ACD_PLANE_CUT_DROP_SPECKS, &X->cr, &ce);
+    if (X->cs != ACD_OK) return;
+    double sum = 0;
+    int good = X->cr.npieces >= 2;
+    for (size_t p = 0; p < X->cr.npieces && good; p++) {
+        double pv = acd_geom3_signed_volume(&X->cr.pieces[p].mesh);
+        double hv = hull_volume_of(&X->cr.pieces[p].mesh, NULL);
+        if (!(pv > BUDGET_MIN_PIECE_FRACTION * A->vol) || hv < 0) good = 0;
+        sum += hv;
+    }
+    X->good = good;
+    X->sum = sum;
+}
+
+/* The best splits of a batch of atoms (touches only those atoms): the directions of all of them
+ * scored as parallel tasks, then the best directions refined, then the candidates cut exactly; every
+ * choice is made in the order of the sequential search, so the result is the same for any thread
+ * count. */
+static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int threads) {
+    (void)threads;
+    plan *P = malloc((size_t)nb * sizeof *P);
+    if (!P) {
+        for (int j = 0; j < nb; j++) S->a[idx[j]].evaluated = 1, S->a[idx[j]].st = ACD_ERR_NOMEM;
+        return;
+    }
+    int live = 0;
+    for (int j = 0; j < nb; j++) {
+        atom *A = &S->a[idx[j]];
+        A->evaluated = 1;
+        P[j].ok = 0, P[j].nd = 0;
+        if (A->st == ACD_OK) live = 1;
+    }
+    if (!live) {
+        free(P);
+        return;
+    }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nb > 1)
+#endif
+    for (int j = 0; j < nb; j++)
+        if (S->a[idx[j]].st == ACD_OK) plan_init(&S->a[idx[j]].mesh, S->ndir, &P[j]);
+    /* tasks: (atom, direction) pairs */
+    int ntask = 0, tj[BUDGET_BATCH * BUDGET_MAX_DIRS], td[BUDGET_BATCH * BUDGET_MAX_DIRS];
+    for (int j = 0; j < nb; j++)
+        for (int d = 0; d < (P[j].ok ? P[j].nd : 0); d++) tj[ntask] = j, td[ntask] = d, ntask++;
+    int fail[BUDGET_BATCH] = {0};
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
+#endif
+    for (int t = 0; t < ntask; t++)
+        if (!score_dir(&S->a[idx[tj[t]]].mesh, &P[tj[t]], td[t])) {
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+            fail[tj[t]] = 1;
+        }
+    ntask = 0;
+    for (int j = 0; j < nb; j++) {
+        if (!P[j].ok) continue;
+        sort_dirs(&P[j], P[j].nd);
+        for (int q = 0; q < P[j].nd && q < BUDGET_REFINE_DIRS; q++) tj[ntask] = j, td[ntask] = P[j].ord[q], ntask++;
+    }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
+#endif
+    for (int t = 0; t < ntask; t++)
+        if (!refine_dir(&S->a[idx[tj[t]]].mesh, &P[tj[t]], td[t])) {
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+            fail[tj[t]] = 1;
+        }
+    acd3_plane_candidate cand[BUDGET_BATCH][BUDGET_EXACT];
+    int nc[BUDGET_BATCH] = {0};
+    ntask = 0;
+    for (int j = 0; j < nb; j++) {
+        if (!P[j].ok) continue;
+        if (fail[j]) {
+            S->a[idx[j]].st = ACD_ERR_NOMEM;
             continue;
         }
-        double sum = 0;
-        int good = cr.npieces >= 2;
-        for (size_t p = 0; p < cr.npieces && good; p++) {
-            double pv = acd_geom3_signed_volume(&cr.pieces[p].mesh);
-            double hv = hull_volume_of(&cr.pieces[p].mesh, NULL);
-            if (!(pv > BUDGET_MIN_PIECE_FRACTION * A->vol) || hv < 0) good = 0;
-            sum += hv;
-        }
-        if (good && sum < best) {
-            best = sum;
-            acd_cut_result_free(&A->cut);
-            A->cut = cr;
-            memcpy(A->plane, cp.normal, sizeof(double[3]));
-            A->plane[3] = -(cp.normal[0] * cp.a[0] + cp.normal[1] * cp.a[1] + cp.normal[2] * cp.a[2]);
-        } else
-            acd_cut_result_free(&cr);
+        int lim = P[j].nd < BUDGET_REFINE_DIRS ? P[j].nd : BUDGET_REFINE_DIRS;
+        sort_dirs(&P[j], lim);
+        nc[j] = plan_planes(&P[j], S->nexact, BUDGET_REFINE_DIRS, cand[j]);
+        for (int k = 0; k < nc[j]; k++) tj[ntask] = j, td[ntask] = k, ntask++;
     }
-    if (isfinite(best)) A->gain = A->hvol - best;
+    free(P);
+    exact_cut X[BUDGET_BATCH][BUDGET_EXACT];
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
+#endif
+    for (int t = 0; t < ntask; t++) exact_cut_do(S, &S->a[idx[tj[t]]], &cand[tj[t]][td[t]], &X[tj[t]][td[t]]);
+    for (int j = 0; j < nb; j++) {
+        atom *A = &S->a[idx[j]];
+        double best = INFINITY;
+        for (int k = 0; k < nc[j]; k++) {
+            exact_cut *x = &X[j][k];
+            if (x->cs != ACD_OK) {
+                if (x->cs == ACD_ERR_NOMEM) A->st = x->cs;
+                continue;
+            }
+            if (x->good && x->sum < best) {
+                best = x->sum;
+                acd_cut_result_free(&A->cut);
+                A->cut = x->cr;
+                memcpy(A->plane, x->cp.normal, sizeof(double[3]));
+                A->plane[3] = -(x->cp.normal[0] * x->cp.a[0] + x->cp.normal[1] * x->cp.a[1] + x->cp.normal[2] * x->cp.a[2]);
+            } else
+                acd_cut_result_free(&x->cr);
+        }
+        if (isfinite(best) && A->st == ACD_OK) A->gain = A->hvol - best;
+    }
 }
 
 static void prepare_range(const budget_state *S, size_t b0, size_t b1, int threads) {
@@ -337,10 +458,7 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
         }
         if (nb > 0) {
             pick = SIZE_MAX;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nb > 1)
-#endif
-            for (int j = 0; j < nb; j++) evaluate(&S, batch[j]);
+            evaluate_batch(&S, batch, nb, threads);
             continue;
         }
         if (pick == SIZE_MAX) break;
