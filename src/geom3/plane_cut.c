@@ -784,7 +784,11 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     for (int side = 1; side >= -1; side -= 2)
         for (size_t t = 0; t < c->nt; t++)
             if (c->tside[t] == side && acd_uf_find(parent, (uint32_t)t) == t) pidx[t] = flat[t] ? NONE : (uint32_t)np++;
-    for (size_t t = 0; t < c->nt; t++) res->ndropped += pidx[acd_uf_find(parent, (uint32_t)t)] == NONE;
+    /* each triangle's root, then (below) its piece: parent[t] = the root is a valid compression */
+    for (size_t t = 0; t < c->nt; t++) parent[t] = acd_uf_find(parent, (uint32_t)t);
+    for (size_t t = 0; t < c->nt; t++) parent[t] = pidx[parent[t]];
+    uint32_t *const tpiece = parent;
+    for (size_t t = 0; t < c->nt; t++) res->ndropped += tpiece[t] == NONE;
     free(flat);
     res->pieces = calloc(np ? np : 1, sizeof *res->pieces);
     if (!res->pieces) {
@@ -794,16 +798,28 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu cut pieces", np);
     }
     res->npieces = np;
-    size_t *ntri = calloc(np ? np : 1, sizeof *ntri);
-    if (!ntri) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu cut pieces", np);
-    for (size_t t = 0; t < c->nt && st == ACD_OK; t++) {
-        uint32_t q = pidx[acd_uf_find(parent, (uint32_t)t)];
-        if (q != NONE) ntri[q]++;
+    /* the pieces' triangles in order (a counting sort by piece): ptri[poff[p] .. poff[p + 1]) */
+    size_t *poff = calloc(np + 1, sizeof *poff);
+    uint32_t *ptri = malloc((c->nt ? c->nt : 1) * sizeof *ptri), *vlist = malloc((c->nv ? c->nv : 1) * sizeof *vlist);
+    if (!poff || !ptri || !vlist) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu cut pieces", np);
+    for (size_t t = 0; t < c->nt && st == ACD_OK; t++)
+        if (tpiece[t] != NONE) poff[tpiece[t] + 1]++;
+    for (size_t p = 0; p < np && st == ACD_OK; p++) poff[p + 1] += poff[p];
+    if (st == ACD_OK) {
+        size_t *fill = malloc((np ? np : 1) * sizeof *fill);
+        if (!fill) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu cut pieces", np);
+        else {
+            memcpy(fill, poff, np * sizeof *fill);
+            for (size_t t = 0; t < c->nt; t++)
+                if (tpiece[t] != NONE) ptri[fill[tpiece[t]]++] = (uint32_t)t;
+            free(fill);
+        }
     }
     for (size_t p = 0; p < np && st == ACD_OK; p++) {
         acd_cut_piece *pc = &res->pieces[p];
-        pc->mesh.triangles = malloc(ntri[p] * 3 * sizeof *pc->mesh.triangles);
-        pc->is_cap = malloc(ntri[p] ? ntri[p] : 1);
+        size_t ntri = poff[p + 1] - poff[p];
+        pc->mesh.triangles = malloc(ntri * 3 * sizeof *pc->mesh.triangles);
+        pc->is_cap = malloc(ntri ? ntri : 1);
         if (!pc->mesh.triangles || !pc->is_cap) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for a cut piece");
     }
     /* fill triangles with piece-local vertex ids in order of first use */
@@ -811,12 +827,12 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     for (size_t p = 0; p < np && st == ACD_OK; p++) {
         acd_cut_piece *pc = &res->pieces[p];
         size_t nv = 0, k = 0;
-        for (size_t t = 0; t < c->nt; t++) {
-            if (pidx[acd_uf_find(parent, (uint32_t)t)] != p) continue;
+        for (size_t q = poff[p]; q < poff[p + 1]; q++) {
+            size_t t = ptri[q];
             pc->side = c->tside[t];
             for (int i = 0; i < 3; i++) {
                 uint32_t v = c->T[3 * t + i];
-                if (vmap[v] == NONE) vmap[v] = (uint32_t)nv++;
+                if (vmap[v] == NONE) vlist[nv] = v, vmap[v] = (uint32_t)nv++;
                 pc->mesh.triangles[3 * k + i] = vmap[v];
             }
             pc->is_cap[k] = c->tcap[t];
@@ -831,18 +847,20 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for a cut piece of %zu vertices", nv);
             break;
         }
-        for (size_t v = 0; v < c->nv; v++) {
-            if (vmap[v] == NONE) continue;
-            double *dst = pc->mesh.vertices + 3 * (size_t)vmap[v];
+        for (size_t i = 0; i < nv; i++) {
+            uint32_t v = vlist[i];
+            double *dst = pc->mesh.vertices + 3 * i;
             if (c->src[v] != ACD_CUT_NEW_VERTEX)
                 memcpy(dst, c->orig + 3 * (size_t)c->src[v], 3 * sizeof(double));
             else
                 for (int k = 0; k < 3; k++) dst[k] = ldexp(c->V[3 * v + k], -c->scale_exp);
-            pc->source[vmap[v]] = c->src[v];
+            pc->source[i] = c->src[v];
             vmap[v] = NONE;
         }
     }
-    free(ntri);
+    free(poff);
+    free(ptri);
+    free(vlist);
     free(parent);
     free(pidx);
     free(vmap);
