@@ -401,6 +401,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
              *queue = malloc((nf ? nf : 1) * sizeof *queue), *fe = malloc((nf ? 3 * nf : 1) * sizeof *fe);
     double *wcost = malloc((ne ? ne : 1) * sizeof *wcost);
     uint8_t *allowed = calloc(nv ? nv : 1, 1), *cut_edge = calloc(ne ? ne : 1, 1);
+    uint8_t *on_cut = calloc(nv ? nv : 1, 1); /* the vertices of the kept cut being compared (below) */
     acd_u32vec pool = {0}, kept = {0};
     acd3_region_sp sp;
     memset(&sp, 0, sizeof sp);
@@ -408,7 +409,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     size_t ncand = 0, capcand = 0;
     acd3_pocket_cut *cuts = NULL;
     size_t ncuts = 0, capcuts = 0, ncutv = 0;
-    int ok = rks && rrow && rface && label && queue && fe && wcost && allowed && cut_edge;
+    int ok = rks && rrow && rface && label && queue && fe && wcost && allowed && cut_edge && on_cut;
     if (!ok) goto build_done;
     int fe_ready = 0; /* fe: the edge of each face side, found once when first needed (the floods
                          below visit a region's faces per kept cut) */
@@ -582,15 +583,14 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                 uint32_t e = acd_edge_graph_find(g, p[k], p[k + 1]);
                 if (e != ACD_NO_VERTEX) cut_edge[e] = 0;
             }
+            for (size_t q = 0; q < ci->n; q++) on_cut[p[q]] = 1;
             for (size_t j = 0; j < nk; j++) {
                 if (j == i) continue;
                 const cand *cj = &cands[kept.a[j]];
                 uint32_t side = UINT32_MAX;
                 for (size_t k = 1; k + 1 < cj->n; k++) {
                     uint32_t v = pool.a[cj->off + k];
-                    int on = 0;
-                    for (size_t q = 0; q < ci->n && !on; q++) on = p[q] == v;
-                    if (on) continue;
+                    if (on_cut[v]) continue;
                     uint32_t l = UINT32_MAX;
                     for (size_t q = out->vf_row[v]; q < out->vf_row[v + 1] && l == UINT32_MAX; q++)
                         if (ms->face_region[out->vf[q]] == r) l = label[out->vf[q]];
@@ -602,6 +602,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                     }
                 }
             }
+            for (size_t q = 0; q < ci->n; q++) on_cut[p[q]] = 0;
         }
         for (;;) {
             /* the cut crossing the most others goes first, the heavier on ties */
@@ -647,6 +648,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     }
 build_done:
     free(rks), free(rrow), free(rface), free(label), free(queue), free(fe), free(wcost), free(allowed), free(cut_edge);
+    free(on_cut);
     free(pool.a), free(kept.a), free(cands);
     acd3_region_sp_free(&sp);
     out->cuts = cuts;
