@@ -602,6 +602,46 @@ static void test_gzip_errors(void **state) {
     assert_non_null(strstr(err.message, "/nonexistent/dir/x.obj"));
 }
 
+/* A face of n corners on a circle (alternate radii 1 and 1.5 when star: not convex), as OBJ. */
+static char *big_face_obj(size_t n, int star) {
+    size_t cap = n * 64 + 64, len = 0;
+    char *s = malloc(cap);
+    assert_non_null(s);
+    for (size_t i = 0; i < n; i++) {
+        double a = 2 * 3.14159265358979323846 * (double)i / (double)n, r = star && i % 2 ? 1.5 : 1;
+        len += (size_t)snprintf(s + len, cap - len, "v %.9f %.9f 0\n", r * cos(a), r * sin(a));
+    }
+    len += (size_t)snprintf(s + len, cap - len, "f");
+    for (size_t i = 0; i < n; i++) len += (size_t)snprintf(s + len, cap - len, " %zu", i + 1);
+    snprintf(s + len, cap - len, "\n");
+    return s;
+}
+
+/* A non-convex face of 200000 corners kept `acd info` busy for minutes (ear clipping is
+ * quadratic); beyond 10000 corners it is refused with the line. A convex one of that size is still
+ * fanned, and a small non-convex one ear-clipped. */
+static void test_huge_nonconvex_face(void **state) {
+    (void)state;
+    acd_mesh m;
+    acd_error err;
+    char *s = big_face_obj(10001, 1);
+    assert_int_equal(read_str(s, ACD_MESH_FORMAT_OBJ, &m, &err), ACD_ERR_UNSUPPORTED);
+    assert_non_null(strstr(err.message, ":10002: a face of 10001 corners is not convex"));
+    free(s);
+    s = big_face_obj(20000, 0);
+    acd_status st = read_str(s, ACD_MESH_FORMAT_OBJ, &m, &err);
+    if (st != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.ntriangles, 19998);
+    acd_mesh_free(&m);
+    free(s);
+    s = big_face_obj(100, 1);
+    st = read_str(s, ACD_MESH_FORMAT_OBJ, &m, &err);
+    if (st != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.ntriangles, 98);
+    acd_mesh_free(&m);
+    free(s);
+}
+
 static void test_write_checks(void **state) {
     (void)state;
     acd_mesh m;
@@ -662,6 +702,7 @@ int main(void) {
         cmocka_unit_test(test_malformed),
         cmocka_unit_test(test_text_encodings),
         cmocka_unit_test(test_gzip_errors),
+        cmocka_unit_test(test_huge_nonconvex_face),
         cmocka_unit_test(test_write_checks),
         cmocka_unit_test(test_number_parsing_exact),
     };

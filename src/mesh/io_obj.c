@@ -122,7 +122,8 @@ acd_status acd_obj_read(const char *buf, size_t len, const char *name, acd_mesh_
             if (b->npoly < 3)
                 return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: face with %zu vertices (at least 3 needed)", name, t.line,
                                 b->npoly);
-            if (!acd_builder_fan(b)) return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory", name, t.line);
+            acd_status fs = acd_builder_fan_or_fail(b, name, t.line, err);
+            if (fs != ACD_OK) return fs;
             t.p = p;
             acd_text_next_line(&t);
             continue;

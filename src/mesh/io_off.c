@@ -126,7 +126,7 @@ acd_status acd_off_read(const char *buf, size_t len, const char *name, acd_mesh_
                 return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory", name, t.line);
             t.p = q;
         }
-        if (!acd_builder_fan(b)) return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory", name, t.line);
+        if ((s = acd_builder_fan_or_fail(b, name, t.line, err)) != ACD_OK) return s;
         acd_text_next_line(&t); /* a face colour may follow */
     }
     return ACD_OK;

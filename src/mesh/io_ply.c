@@ -364,7 +364,7 @@ acd_status acd_ply_read(const char *buf, size_t len, const char *name, acd_mesh_
             if (s != ACD_OK) break;
             if (is_vertex && !acd_builder_vertex(b, xyz[0], xyz[1], xyz[2]))
                 s = acd_fail(err, ACD_ERR_NOMEM, "%s: out of memory", name);
-            if (is_face && !acd_builder_fan(b)) s = acd_fail(err, ACD_ERR_NOMEM, "%s: out of memory", name);
+            if (is_face) s = acd_builder_fan_or_fail(b, name, 0, err);
         }
     }
     free(elems);

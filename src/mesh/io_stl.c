@@ -187,7 +187,7 @@ static acd_status read_ascii(const char *buf, size_t len, const char *name, acd_
             if (b->npoly < 3)
                 return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: facet with %zu vertices (at least 3 needed)", name, t.line,
                                 b->npoly);
-            if (!acd_builder_fan(b)) return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory", name, t.line);
+            if ((s = acd_builder_fan_or_fail(b, name, t.line, err)) != ACD_OK) return s;
             if ((s = expect(&t, "endfacet", err)) != ACD_OK) return s;
         }
     }

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/error.h"
 #include "core/predicates.h"
 #include "geom2/triangulate.h"
 
@@ -77,7 +78,8 @@ int acd_builder_poly_push(acd_mesh_builder *b, uint32_t i) {
  * corner_poly.off and mpi.off). It is projected on the coordinate plane its Newell normal is
  * most perpendicular to and ear-clipped (geom2/triangulate, exact predicates); each triangle
  * keeps the polygon's orientation. Returns 1 if emitted that way, 0 to fan instead (convex, or
- * not a simple polygon in projection: the fan is then as good as anything), -1 out of memory. */
+ * not a simple polygon in projection: the fan is then as good as anything), -1 out of memory, 2
+ * when not convex and larger than ACD_MESH_EARCLIP_MAX_CORNERS. */
 static int builder_ear_clip(acd_mesh_builder *b) {
     const size_t n = b->npoly;
     for (size_t i = 0; i < n; i++)
@@ -111,6 +113,10 @@ static int builder_ear_clip(acd_mesh_builder *b) {
         free(pts);
         return 0;
     }
+    if (n > ACD_MESH_EARCLIP_MAX_CORNERS) { /* ear clipping is quadratic: refused, not a hang */
+        free(pts);
+        return 2;
+    }
     const size_t ring[2] = {0, n};
     size_t *tris = NULL, ntris = 0;
     acd_status st = acd_triangulate_rings(pts, ring, 1, 0, &tris, &ntris, NULL, NULL, NULL);
@@ -132,6 +138,7 @@ static int builder_ear_clip(acd_mesh_builder *b) {
 int acd_builder_fan(acd_mesh_builder *b) {
     if (b->npoly > 3) {
         int r = builder_ear_clip(b);
+        if (r == 2) return -1;
         if (r < 0) return 0;
         if (r > 0) {
             b->npoly = 0;
@@ -343,4 +350,24 @@ void acd_obuf_u64(acd_obuf *o, uint64_t v) {
         v /= 10;
     } while (v);
     acd_obuf_write(o, s + i, (size_t)(24 - i));
+}
+
+acd_status acd_builder_fan_or_fail(acd_mesh_builder *b, const char *name, size_t line, acd_error *err) {
+    size_t n = b->npoly;
+    int r = acd_builder_fan(b);
+    if (r > 0) return ACD_OK;
+    if (r == 0) {
+        if (line) return acd_fail(err, ACD_ERR_NOMEM, "%s:%zu: out of memory", name, line);
+        return acd_fail(err, ACD_ERR_NOMEM, "%s: out of memory", name);
+    }
+    b->npoly = 0;
+    if (line)
+        return acd_fail(err, ACD_ERR_UNSUPPORTED,
+                        "%s:%zu: a face of %zu corners is not convex and too large to triangulate (ear clipping, "
+                        "quadratic in time, is limited to %d corners): split it into smaller faces",
+                        name, line, n, ACD_MESH_EARCLIP_MAX_CORNERS);
+    return acd_fail(err, ACD_ERR_UNSUPPORTED,
+                    "%s: a face of %zu corners is not convex and too large to triangulate (ear clipping, quadratic in "
+                    "time, is limited to %d corners): split it into smaller faces",
+                    name, n, ACD_MESH_EARCLIP_MAX_CORNERS);
 }

@@ -36,7 +36,13 @@ int acd_builder_group(acd_mesh_builder *b, const char *name, size_t len);
  * not read yet, or it is not simple in projection), ear clipping otherwise (no overlapping
  * triangles from a non-convex face). */
 int acd_builder_poly_push(acd_mesh_builder *b, uint32_t i);
+/* Non-convex polygons of more corners than this are refused (ear clipping is quadratic: 10000
+ * corners take about 2 s, 200000 would take many minutes). */
+#define ACD_MESH_EARCLIP_MAX_CORNERS 10000
+/* 1 done, 0 out of memory, -1 a non-convex polygon beyond ACD_MESH_EARCLIP_MAX_CORNERS. */
 int acd_builder_fan(acd_mesh_builder *b);
+/* acd_builder_fan with the failures as messages ("NAME:LINE: ..."; line 0: no line). */
+acd_status acd_builder_fan_or_fail(acd_mesh_builder *b, const char *name, size_t line, acd_error *err);
 /* Moves the arrays into out (shrinks them); b is left empty except for groups. */
 void acd_builder_take_mesh(acd_mesh_builder *b, acd_mesh *out);
 
