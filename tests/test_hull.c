@@ -443,6 +443,47 @@ static void test_nan_rejected(void **state) {
     acd_hull_free(&h);
 }
 
+/* acd_hull_volume: the volume of acd_hull_compute's hull, to the bit, without the hull: random
+ * clouds (spheres: every point on the hull), the cube with coplanar points and duplicates (merged
+ * facets), a nearly flat slab, and lower-dimensional sets (0). */
+static void test_volume_only(void **state) {
+    (void)state;
+    acd_rng r;
+    acd_rng_seed(&r, 21);
+    for (int trial = 0; trial < 60; trial++) {
+        size_t n = trial < 6 ? (size_t)trial : 4 + (size_t)acd_rng_below(&r, 400);
+        double *p = malloc(3 * (n > 200 ? n : 200) * sizeof *p); /* (cube_cloud: 118 points) */
+        assert_non_null(p);
+        int kind = trial % 4;
+        if (kind == 3 && n >= 4) {
+            n = cube_cloud(p, &r, 1e3, 7.5);
+        } else {
+            for (size_t i = 0; i < n; i++) {
+                for (int k = 0; k < 3; k++) p[3 * i + k] = 2 * acd_rng_uniform(&r) - 1;
+                if (kind == 0) { /* on a sphere */
+                    double l = sqrt(p[3 * i] * p[3 * i] + p[3 * i + 1] * p[3 * i + 1] + p[3 * i + 2] * p[3 * i + 2]);
+                    for (int k = 0; k < 3; k++) p[3 * i + k] /= l;
+                }
+                if (kind == 1) p[3 * i + 2] *= 1e-9; /* a slab: dim 3 or 2 */
+                if (kind == 2 && trial % 8 == 2) p[3 * i + 2] = 0.25; /* coplanar: dim 2 */
+            }
+        }
+        acd_hull h;
+        acd_error err;
+        double v = -1;
+        assert_int_equal(acd_hull_compute(p, n, &h, &err), ACD_OK);
+        assert_int_equal(acd_hull_volume(p, n, &v, &err), ACD_OK);
+        double expect = h.dim == 3 ? h.volume : 0;
+        assert_memory_equal(&v, &expect, sizeof v);
+        if (n >= 4 && kind == 0) assert_true(v > 0);
+        acd_hull_free(&h);
+        free(p);
+    }
+    double q[3] = {0, 0, NAN}, v;
+    acd_error err;
+    assert_int_equal(acd_hull_volume(q, 1, &v, &err), ACD_ERR_INVALID_INPUT);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_random_vs_brute_force),
@@ -454,6 +495,7 @@ int main(void) {
         cmocka_unit_test(test_nearly_flat),
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_nan_rejected),
+        cmocka_unit_test(test_volume_only),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

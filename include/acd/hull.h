@@ -37,6 +37,9 @@ typedef struct acd_hull {
  * acd_hull_free (also safe after a failure). */
 acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_error *err);
 void acd_hull_free(acd_hull *h);
+/* The volume of the same hull (acd_hull_compute's out.volume, the same bits: 0 unless dim 3)
+ * without building it. */
+acd_status acd_hull_volume(const double *points, size_t n, double *volume, acd_error *err);
 
 /* dim 3: max over facets of n.p + d (<= 0 inside; a lower bound of the signed distance outside).
  * dim 0, 1, 2: the Euclidean distance from p to the point, segment or polygon (>= 0).

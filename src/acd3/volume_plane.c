@@ -27,11 +27,8 @@
 
 static double hull_volume(const double *pts, size_t n) {
     if (n < 4) return 0;
-    acd_hull h;
-    if (acd_hull_compute(pts, n, &h, NULL) != ACD_OK) return -1;
-    double v = h.dim == 3 ? h.volume : 0;
-    acd_hull_free(&h);
-    return v;
+    double v;
+    return acd_hull_volume(pts, n, &v, NULL) == ACD_OK ? v : -1;
 }
 
 /* Sum of the two sides' hull volumes of the plane (unit normal nrm, offset c: n.x = c); -1 on

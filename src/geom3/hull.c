@@ -388,12 +388,69 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
     return ACD_OK;
 }
 
-static acd_status hull_solid(const double *points, double *w, size_t n, double s, acd_hull *out, acd_error *err) {
+/* The volume alone (acd_hull_volume): the same facets, orientation and sum as hull_from_qhull, in
+ * the same order (so the same bits), without building the hull. */
+static acd_status volume_from_qhull(qhull_run *r, const double *w, size_t n, double s, double *volume,
+                                    acd_error *err) {
+    qhT *qh = r->qh;
+    facetT *facet;
+    vertexT *vertex, **vertexp;
+    facetT *neighbor, **neighborp;
+    int apex = INT_MAX; /* hull_from_qhull's out->source[0]: the hull vertex of least input index */
+    FORALLfacets {
+        int nv = 0, nn = 0;
+        FOREACHvertex_(facet->vertices) {
+            int pid = qh_pointid(qh, vertex->point);
+            if (pid < 0 || (size_t)pid >= n)
+                return acd_fail(err, ACD_ERR_INTERNAL, "qhull facet f%u has a vertex that is no input point", facet->id);
+            if (pid < apex) apex = pid;
+            nv++;
+        }
+        FOREACHneighbor_(facet) nn++;
+        if (nv != 3 || nn != 3)
+            return acd_fail(err, ACD_ERR_INTERNAL, "qhull facet f%u is not a triangle (%d vertices, %d neighbours)",
+                            facet->id, nv, nn);
+    }
+    int flip = 0;
+    double bestdot = -1;
+    FORALLfacets {
+        const double *pv[3];
+        int i = 0;
+        FOREACHvertex_(facet->vertices) pv[i++] = w + 3 * qh_pointid(qh, vertex->point);
+        double e1[3], e2[3], cr[3];
+        sub3(pv[1], pv[0], e1);
+        sub3(pv[2], pv[0], e2);
+        cross3(e1, e2, cr);
+        double dt = dot3(cr, facet->normal);
+        if (fabs(dt) > bestdot) {
+            bestdot = fabs(dt);
+            flip = (dt > 0) != (facet->toporient != 0);
+        }
+    }
+    double vol = 0;
+    const double *pa = w + 3 * (size_t)apex;
+    FORALLfacets {
+        int v[3], i = 0;
+        FOREACHvertex_(facet->vertices) v[i++] = qh_pointid(qh, vertex->point);
+        if ((facet->toporient != 0) == flip) {
+            int x = v[0];
+            v[0] = v[1];
+            v[1] = x;
+        }
+        vol += acd_orient3d(w + 3 * (size_t)v[0], w + 3 * (size_t)v[1], w + 3 * (size_t)v[2], pa) / 6.0;
+    }
+    *volume = vol > 0 ? vol * s * s * s : 0.0;
+    return ACD_OK;
+}
+
+/* Runs qhull on w (joggled copies if it fails) and builds out, or (out NULL) the volume alone. */
+static acd_status hull_solid(const double *points, double *w, size_t n, double s, acd_hull *out, double *volume,
+                             acd_error *err) {
     qhull_run r;
     int code = qhull_run_do(&r, w, n);
     char msg[200] = "";
     if (code == 0) {
-        acd_status st = hull_from_qhull(&r, points, w, n, s, out, err);
+        acd_status st = out ? hull_from_qhull(&r, points, w, n, s, out, err) : volume_from_qhull(&r, w, n, s, volume, err);
         qhull_run_free(&r);
         return st;
     }
@@ -410,7 +467,8 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
         for (size_t i = 0; i < 3 * n; i++) j[i] = w[i] + amp * (2.0 * acd_rng_uniform(&rng) - 1.0);
         code = qhull_run_do(&r, j, n);
         if (code == 0) {
-            acd_status st = hull_from_qhull(&r, points, w, n, s, out, err);
+            acd_status st =
+                out ? hull_from_qhull(&r, points, w, n, s, out, err) : volume_from_qhull(&r, w, n, s, volume, err);
             qhull_run_free(&r);
             free(j);
             return st;
@@ -423,10 +481,14 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
                     msg[0] ? msg : "no message");
 }
 
-acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_error *err) {
-    if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_hull_compute: out is NULL");
-    memset(out, 0, sizeof *out);
-    out->dim = -1;
+/* The hull into out, or (out NULL) its volume alone into *volume (0 unless dim 3). */
+static acd_status hull_compute(const double *points, size_t n, acd_hull *out, double *volume, acd_error *err) {
+    if (out) {
+        memset(out, 0, sizeof *out);
+        out->dim = -1;
+    } else {
+        *volume = 0;
+    }
     if (n > 0 && !points) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_hull_compute: points is NULL");
     if (n > (size_t)INT_MAX || n >= UINT32_MAX)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_hull_compute: %zu points exceed the limit %d", n, INT_MAX);
@@ -452,6 +514,7 @@ acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_e
         if (side > s) s = side;
         c[k] = lo[k] + 0.5 * side;
     }
+    if (!out && (s == 0 || n < 4)) return ACD_OK; /* volume 0 */
     if (s == 0 || n == 1) { /* all points identical */
         acd_status st = hull_alloc(out, 1, 0, err);
         if (st != ACD_OK) return st;
@@ -472,6 +535,10 @@ acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_e
     double zero[3] = {0, 0, 0}, dist;
     size_t ia = farthest_from_point(w, n, zero, &dist);
     size_t ib = farthest_from_point(w, n, w + 3 * ia, &dist);
+    if (dist <= tol && !out) {
+        free(w);
+        return ACD_OK;
+    }
     if (dist <= tol) {
         st = hull_alloc(out, 1, 0, err);
         if (st == ACD_OK) {
@@ -493,6 +560,10 @@ acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_e
         cross3(u, d, cr);
         double v = norm3(cr);
         if (v > best) best = v, ic = i;
+    }
+    if (best <= tol && !out) {
+        free(w);
+        return ACD_OK;
     }
     if (best <= tol) { /* collinear: the extreme points along u */
         size_t imin = 0, imax = 0;
@@ -528,13 +599,24 @@ acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_e
         if (v > best) best = v;
     }
     if (best <= tol)
-        st = hull_planar(points, w, n, nrm, s, out, err);
+        st = out ? hull_planar(points, w, n, nrm, s, out, err) : ACD_OK;
     else
-        st = hull_solid(points, w, n, s, out, err);
+        st = hull_solid(points, w, n, s, out, volume, err);
     free(w);
-    if (st != ACD_OK) acd_hull_free(out);
+    if (st != ACD_OK && out) acd_hull_free(out);
     return st;
 }
+
+acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_error *err) {
+    if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_hull_compute: out is NULL");
+    return hull_compute(points, n, out, NULL, err);
+}
+
+acd_status acd_hull_volume(const double *points, size_t n, double *volume, acd_error *err) {
+    if (!volume) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_hull_volume: volume is NULL");
+    return hull_compute(points, n, NULL, volume, err);
+}
+
 
 /* Distance from p to the segment [a, b]. */
 static double seg_dist(const double *p, const double *a, const double *b) {
