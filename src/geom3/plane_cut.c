@@ -754,7 +754,11 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
         if (st != ACD_OK && !m.key) break;
         int cl = st == ACD_OK;
         for (size_t i = 0; st == ACD_OK && i < m.n; i++) {
-            if (tw[i] != ACD_EDGE_NONE) acd_uf_union(parent, m.half[i] / 3, tw[i] / 3);
+            /* a -> b with a > b, the only one of its key: the first b -> a (its twin) joins the
+             * same two triangles (the sets do not depend on the unions' order) */
+            int dup = i > 0 && m.key[i - 1] == m.key[i];
+            int redundant = (uint32_t)(m.key[i] >> 32) > (uint32_t)m.key[i] && !dup && !acd_edge_map_repeated(&m, i);
+            if (tw[i] != ACD_EDGE_NONE && !redundant) acd_uf_union(parent, m.half[i] / 3, tw[i] / 3);
             cl &= acd_edge_map_entry_closed(&m, tw, i);
         }
         for (size_t t = 0; cl && t < c->nt; t++)
