@@ -124,6 +124,20 @@ static void test_holes_refused(void **state) {
     acd_polygon_free(&p);
 }
 
+/* Found by fuzz_exact2d (corpus exact2d/ub-null-option-offset): an invalid ring that revisits
+ * (0, 0) three times made the DP offset its still NULL option array (undefined behaviour under
+ * UBSan, "applying zero offset to null pointer"). It must merely return, either way. */
+static void test_invalid_ring_no_ub(void **state) {
+    (void)state;
+    acd_vec2 v[] = {{0, 0}, {2, -6}, {0, 0}, {6, -111}, {0, 0}, {4, 0}, {10, -111}, {0, 9}, {-1, 20}, {-8, 10}, {0, 5}};
+    acd_polygon p = ring_polygon(v, sizeof v / sizeof v[0]);
+    acd_exact2d_result r;
+    acd_error err;
+    if (acd_exact2d_decompose(&p, ACD_EXACT2D_MCD, &r, &err) == ACD_OK) acd_exact2d_result_free(&r);
+    else assert_true(err.message[0] != '\0');
+    acd_polygon_free(&p);
+}
+
 /* The dissertation's MCD sizes (Fig. 13: monkey 340; Fig. 27: heron 263) and texas (38, back-derived
  * from Table 3, spec §7.4). */
 static void test_dissertation_counts(void **state) {
@@ -215,6 +229,7 @@ int main(void) {
         cmocka_unit_test(test_simple_cases),        cmocka_unit_test(test_brute_force_general),
         cmocka_unit_test(test_brute_force_collinear), cmocka_unit_test(test_holes_refused),
         cmocka_unit_test(test_dissertation_counts), cmocka_unit_test(test_data_polygons),
+        cmocka_unit_test(test_invalid_ring_no_ub),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -570,10 +570,10 @@ static int compute_options(mcd *m, size_t i, size_t k, mcd_entry *out, int prune
     out->w = -1;
     out->first = (uint32_t)m->npool;
     out->count = 0;
-    mcd_opt *opt = m->opt + base;
     size_t nopt = m->nopt - base;
     m->nopt = base;
     if (!nopt) return 1; /* no decomposition of this kind: the entry stays unusable */
+    mcd_opt *opt = m->opt + base; /* (after the check: m->opt is still NULL when no option was ever made) */
     long best = opt[0].cost;
     for (size_t q = 1; q < nopt; q++)
         if (opt[q].cost < best) best = opt[q].cost;
