@@ -427,6 +427,10 @@ int acd_cmd_3d(int argc, char **argv) {
         } else if (!strcmp(a, "--threads")) {
             size_t n;
             if (!acd_cli_parse_size("3d", a, val, &n)) return ACD_EXIT_USAGE;
+            if (n > 1024) { /* as acd segment: --threads 100000 crashed inside libgomp */
+                fprintf(stderr, "acd 3d: %s takes 0 (all cores) to 1024\n", a);
+                return ACD_EXIT_USAGE;
+            }
             p.threads = (int)n; /* results never depend on it */
             i++;
         } else if (!strcmp(a, "--merge-tau")) {

@@ -93,7 +93,7 @@ nn=$(head -1 "$T/nm.txt" | awk '{print $1}')
 # the cut choice by band (docs/acd3d.md "Cut choice by band"): --verify passes with it
 "$ACD" 3d "$SRC/tests/data/meshes/sliver_part.off" -t 0.05 --cut-choice band --verify > /dev/null 2> "$T/band.err" ||
   fail "--cut-choice band: exit $? $(cat "$T/band.err")"
-for bad in "--cut-choice x" "--merge-order x" "--merge-parts -1"; do
+for bad in "--cut-choice x" "--merge-order x" "--merge-parts -1" "--threads 100000"; do
   "$ACD" 3d "$T/l.obj" $bad > /dev/null 2>&1; rc=$?
   [ $rc = 1 ] || fail "$bad: exit $rc"
 done
