@@ -637,6 +637,10 @@ static void test_bad_input(void **state) {
     acd3d_params bad = p;
     bad.cookie = 0;
     assert_int_equal(acd3d_decompose(&m, &bad, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    bad = p;
+    bad.threads = 100000; /* crashed inside libgomp */
+    assert_int_equal(acd3d_decompose(&m, &bad, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(err.message, "threads 100000"));
     acd_mesh_free(&m);
 }
 

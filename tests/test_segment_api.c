@@ -275,6 +275,10 @@ static void test_bad_params(void **state) {
     p.max_depth = 0;
     assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
     p = acd_segment_default_params();
+    p.threads = 100000; /* crashed inside libgomp */
+    assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(err.message, "threads"));
+    p = acd_segment_default_params();
     assert_int_equal(acd_segment(NULL, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
     assert_int_equal(acd_segment(&m, &p, NULL, &err), ACD_ERR_INVALID_ARGUMENT);
     /* bad mesh: index out of range, NaN coordinate, no faces */

@@ -103,7 +103,7 @@ typedef struct acd3d_params {
                                  remain; result.max_concavity is the concavity reached */
     size_t max_hull_vertices; /* 0: no limit; else (>= 4) each hull is replaced, when it has more
                                  vertices, by an enclosing polytope with at most this many */
-    int threads;              /* 0: as many as cores (OpenMP); results are identical for any count */
+    int threads;              /* 0: as many as cores (OpenMP), at most 1024; results are identical for any count */
     size_t max_depth;         /* recursion guard (default 48), raised by twice the input's genus
                                  (a handle may take a cut that only opens it) */
     int merge;                /* non-zero (default 1): after the decomposition, adjacent parts are

@@ -1210,6 +1210,8 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown mode %d", (int)params->mode);
     if (params->stop != ACD3D_STOP_MEASURE && params->stop != ACD3D_STOP_HULL)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown stopping test %d", (int)params->stop);
+    if (params->threads > 1024) /* 100000 crashed inside libgomp */
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "threads %d: at most 1024 (0: as many as cores)", params->threads);
     int solid = params->mode == ACD3D_SOLID;
     acd_status st = check_input(mesh, err);
     if (st != ACD_OK) return st;

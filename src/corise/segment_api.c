@@ -93,6 +93,9 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
                         params->concave_weight);
     if (params->max_depth == 0)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: max_depth must be at least 1");
+    if (params->threads > 1024) /* as acd3d_decompose: a huge count crashes inside libgomp */
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: threads %d: at most 1024 (0: as many as cores)",
+                        params->threads);
     /* coordinates beyond ACD_COORD_MAX overflow the radius and volumes (a 1e300 tetrahedron gave
      * scale 1 and null volumes): refused as acd3d_decompose and acd_mesh_validate refuse them */
     if (mesh->nvertices && mesh->vertices) {
