@@ -718,6 +718,15 @@ static void prepare_range(const budget_state *S, size_t b0, size_t b1, int threa
     for (long j = (long)b0; j < (long)b1; j++) prepare(S, (size_t)j);
 }
 
+double acd3_budget_hull_volume(const double *pts, size_t n, int *fallback) {
+    hv_ws w;
+    memset(&w, 0, sizeof w);
+    double v = hull_volume_qh(pts, n, &w);
+    hv_ws_free(&w);
+    if (fallback) *fallback = v == -2;
+    return v == -2 ? hull_volume_pts(pts, n) : v;
+}
+
 void acd3_budget_result_free(acd3_budget_result *r) {
     if (!r) return;
     for (size_t k = 0; k < r->nnew; k++) acd_mesh_free(&r->new_parts[k]);
