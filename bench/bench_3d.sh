@@ -41,6 +41,11 @@ TIGHT_PARTS=${TIGHT_PARTS:-40}
 TIGHT_REFINE=${TIGHT_REFINE:-40}
 TIGHT0="--cut-choice volume --merge-order volume --merge-parts $TIGHT_PARTS"
 TIGHT="$TIGHT0 --merge-refine $TIGHT_REFINE"
+# The budget pipeline (docs/acd3d.md "Excess-driven budget"): no tau-driven splitting (-t 10 keeps the
+# input whole), then best-first plane cuts by the hull volume they save up to BUDGET_PARTS parts, every
+# part brought within the merge tolerance, then the tight merge and refinement at that count.
+BUDGET_PARTS=${BUDGET_PARTS:-$TIGHT_PARTS}
+BUDGET="--budget $BUDGET_PARTS --cut-choice volume --merge-order volume --merge-parts $BUDGET_PARTS --merge-refine $TIGHT_REFINE"
 diag_radius() { # FILE -> diagonal radius
   local f=$1 r d
   r=$("$ACD" 3d "$f" -t 100 --no-merge --threads 2 2>/dev/null | head -1 | sed 's/.*radius \([0-9.e+-]*\)).*/\1/')
@@ -87,10 +92,11 @@ target_table() {
   echo "stopped at the first met), the first of each (largest tau: the fewest splits) meeting the whole target"
   echo "(concavity_max <= 0.02, at most $TIGHT_PARTS parts, IoU >= 0.95, coverage >= 0.999); of the two the one of"
   echo "least wall time, its setting (r0: no refinement, r$TIGHT_REFINE: refined), wall seconds and cpu; \"-\" when none does."
+  echo "**Budget** (\`-t 10 $BUDGET\`, docs/acd3d.md \"Excess-driven budget\"): the tight column's merge tau; one run."
   echo "**No merge**: the default's tau with \`--no-merge\`. cpu: user CPU seconds of the run (both threads)."
   echo
-  echo "| model | triangles | default: tau / merge tau | parts | concavity_max | IoU | coverage | cpu | tight: tau / merge tau | parts | concavity_max | IoU | coverage | seconds | cpu | fastest met: tau | setting | IoU | seconds | cpu | no merge: parts | concavity_max | IoU |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| model | triangles | default: tau / merge tau | parts | concavity_max | IoU | coverage | cpu | tight: tau / merge tau | parts | concavity_max | IoU | coverage | seconds | cpu | fastest met: tau | setting | IoU | seconds | cpu | budget: parts | concavity_max | IoU | coverage | seconds | cpu | no merge: parts | concavity_max | IoU |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   } > "$T/target.md"
   local mf f m tri best tau r
   for mf in ${TARGET_MESHES:-camel.off knot1.off fandisk.off armadillo.off bunny00.off bunny.obj}; do
@@ -136,6 +142,9 @@ target_table() {
     set -- $tbest
     row="$row | $1 / $2 | $3 | $6 | $7 | $8 | $4 | $5"
     if [ -n "$tfast" ]; then set -- $tfast; row="$row | $1 | $fset | $7 | $4 | $5"; else row="$row | - | | | | "; fi
+    # budget
+    set -- $(run_eval "$f" 10 --merge-tau $tmt $BUDGET)
+    row="$row | $1 | $4 | $5 | $6 | $2 | $3"
     set -- $(run_eval "$f" "$dtau" --no-merge)
     echo "$row | $1 | $4 | $5 |" >> "$T/target.md"
   done
