@@ -41,9 +41,4 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
                              double min_gain, double extent, int threads, acd3_budget_result *out, acd_error *err);
 void acd3_budget_result_free(acd3_budget_result *r);
 
-/* The volume of the convex hull of n points (xyz), as the plane scores compute it (our own
- * Quickhull, qhull as fallback; 0 for fewer than 4 points or a flat set, -1 when out of memory).
- * fallback (optional): set when qhull gave it. Exposed for the tests. */
-double acd3_budget_hull_volume(const double *pts, size_t n, int *fallback);
-
 #endif
