@@ -8,7 +8,8 @@
  *            bit 3 stop hull, bit 4 holes (trailing bytes name faces to delete; closed again by
  *            acd_mesh_repair as `acd 3d` does), bit 5 max_hulls, bit 6 no merge pass;
  *   data[1]: tau; data[2]: merge_parts (bits 0-2), merge_refine (bits 3-4), max_hull_vertices
- *            (bits 5-7: none, 4 .. 10); data[3]: max_hulls (bits 0-1, 1 .. 4), merge_tau (bits 4-5).
+ *            (bits 5-7: none, 4 .. 10); data[3]: max_hulls (bits 0-1, 1 .. 4), budget_parts (bits
+ *            2-3: off, off, 2, 4), merge_tau (bits 4-5).
  *
  * Checked on every accepted run (any violation aborts):
  *  - a failure carries a message;
@@ -16,7 +17,8 @@
  *  - every part inside its hull (the hull's own planes, rebuilt by qhull from its vertices), at
  *    most max_hull_vertices hull vertices, the hull's volume at least the part's;
  *  - every part meets tau unless its leaf reason says why not (no_cut, depth, merged by
- *    max_hulls); joined and refined parts meet merge_tau; max_concavity is the parts' maximum;
+ *    max_hulls, budget: its bound is merge_tau's unless no cut could split it); joined and refined
+ *    parts meet merge_tau; max_concavity is the parts' maximum;
  *  - at most max_hulls parts;
  *  - the tree: every part's node points back to it, merged_into points to a joined node.
  * (Not the thread count: OpenMP's waits on a loaded machine made single inputs take seconds.) */
@@ -52,7 +54,8 @@ static void check(const acd3d_params *p, const acd3d_result *r) {
         if (nd->leaf_reason == ACD3D_LEAF_JOINED) {
             if (q->concavity > r->merge_tau * (1 + 1e-9) + slack) abort();
         } else if (q->concavity > r->tau * (1 + 1e-9) + slack && nd->leaf_reason != ACD3D_LEAF_NO_CUT &&
-                   nd->leaf_reason != ACD3D_LEAF_DEPTH && nd->leaf_reason != ACD3D_LEAF_MERGED) {
+                   nd->leaf_reason != ACD3D_LEAF_DEPTH && nd->leaf_reason != ACD3D_LEAF_MERGED &&
+                   nd->leaf_reason != ACD3D_LEAF_BUDGET) {
             abort();
         }
         sum += q->volume;
@@ -107,6 +110,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     p.max_hull_vertices = (data[2] >> 5) ? 3 + (size_t)(data[2] >> 5) : 0;
     static const double mtaus[4] = {0, 0.5, 2, 4}; /* in units of tau; 0: tau */
     p.merge_tau = mtaus[(data[3] >> 4) & 3] * p.tau;
+    static const size_t budgets[4] = {0, 0, 2, 4}; /* 8 took 5 s under ASan on a seed */
+    p.budget_parts = budgets[(data[3] >> 2) & 3];
     if ((data[0] & 16) && size > FZ_HEADER + FZ_NV) fz_delete_faces(&m, data + FZ_HEADER + FZ_NV, size - FZ_HEADER - FZ_NV);
     acd3d_result r;
     acd_error err;
