@@ -27,6 +27,7 @@
 #include "acd/acd3d.h"
 #include "acd/hull.h"
 #include "acd/mesh.h"
+#include "fuzz_sphere.h"
 #include "geom3/edge_map.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -35,48 +36,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 #define FZ_SEGS 8
 #define FZ_NV (FZ_RINGS * FZ_SEGS + 2)
 #define FZ_HEADER 3
-
-static void build_sphere(const uint8_t *r, acd_mesh *m) {
-    const double pi = 3.14159265358979323846;
-    m->nvertices = FZ_NV;
-    m->ntriangles = 2 * FZ_SEGS * FZ_RINGS;
-    m->vertices = malloc(FZ_NV * 3 * sizeof(double));
-    m->triangles = malloc(m->ntriangles * 3 * sizeof(uint32_t));
-    if (!m->vertices || !m->triangles) abort();
-    for (int v = 0; v < FZ_NV; v++) {
-        double theta, phi;
-        if (v < FZ_RINGS * FZ_SEGS) {
-            theta = pi * (v / FZ_SEGS + 1) / (FZ_RINGS + 1);
-            phi = 2 * pi * (v % FZ_SEGS) / FZ_SEGS;
-        } else {
-            theta = v == FZ_NV - 2 ? 0 : pi;
-            phi = 0;
-        }
-        double rad = 0.25 * (r[v] % 16);
-        /* directions rounded to a 1/64 grid: exact coplanarities are common */
-        double d[3] = {sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta)};
-        for (int k = 0; k < 3; k++) m->vertices[3 * v + k] = rad * round(64 * d[k]) / 64;
-    }
-    size_t t = 0;
-    uint32_t north = FZ_NV - 2, south = FZ_NV - 1;
-    for (int s = 0; s < FZ_SEGS; s++) {
-        uint32_t a = (uint32_t)s, b = (uint32_t)((s + 1) % FZ_SEGS);
-        uint32_t tn[3] = {north, a, b};
-        memcpy(m->triangles + 3 * t++, tn, sizeof tn);
-        uint32_t la = (uint32_t)((FZ_RINGS - 1) * FZ_SEGS) + a, lb = (uint32_t)((FZ_RINGS - 1) * FZ_SEGS) + b;
-        uint32_t ts[3] = {south, lb, la};
-        memcpy(m->triangles + 3 * t++, ts, sizeof ts);
-    }
-    for (int i = 0; i + 1 < FZ_RINGS; i++)
-        for (int s = 0; s < FZ_SEGS; s++) {
-            uint32_t a = (uint32_t)(i * FZ_SEGS + s), b = (uint32_t)(i * FZ_SEGS + (s + 1) % FZ_SEGS);
-            uint32_t c = a + FZ_SEGS, d = b + FZ_SEGS;
-            uint32_t t1[3] = {a, c, d}, t2[3] = {a, d, b};
-            memcpy(m->triangles + 3 * t++, t1, sizeof t1);
-            memcpy(m->triangles + 3 * t++, t2, sizeof t2);
-        }
-    m->ntriangles = t;
-}
 
 static double mesh_volume(const acd_mesh *m) {
     double v = 0;
@@ -129,7 +88,7 @@ static void check(const acd_mesh *in, const acd3d_params *p, const acd3d_result 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (size < FZ_HEADER + FZ_NV) return 0;
     acd_mesh m;
-    build_sphere(data + FZ_HEADER, &m);
+    fz_build_sphere(data + FZ_HEADER, FZ_RINGS, FZ_SEGS, &m);
     acd3d_params p = acd3d_default_params();
     p.mode = (data[0] & 1) ? ACD3D_SURFACE : ACD3D_SOLID;
     p.threads = 1;

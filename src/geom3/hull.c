@@ -266,6 +266,31 @@ static void qhull_first_line(const qhull_run *r, char *buf, size_t size) {
     buf[k] = '\0';
 }
 
+/* qhull's toporient gives a consistent orientation of the simplicial facets; which parity means
+ * outward is read off the facet whose (unoriented) triangle normal agrees best, in magnitude, with
+ * qhull's outward normal. 1: a facet with toporient set is reversed to face outward. */
+static int outward_flip(qhT *qh, const double *w) {
+    facetT *facet;
+    vertexT *vertex, **vertexp;
+    int flip = 0;
+    double bestdot = -1;
+    FORALLfacets {
+        const double *pv[3];
+        int i = 0;
+        FOREACHvertex_(facet->vertices) pv[i++] = w + 3 * qh_pointid(qh, vertex->point);
+        double e1[3], e2[3], cr[3];
+        sub3(pv[1], pv[0], e1);
+        sub3(pv[2], pv[0], e2);
+        cross3(e1, e2, cr);
+        double dt = dot3(cr, facet->normal);
+        if (fabs(dt) > bestdot) {
+            bestdot = fabs(dt);
+            flip = (dt > 0) != (facet->toporient != 0);
+        }
+    }
+    return flip;
+}
+
 static acd_status hull_from_qhull(qhull_run *r, const double *points, const double *w, size_t n, double s,
                                   acd_hull *out, acd_error *err) {
     qhT *qh = r->qh;
@@ -317,24 +342,7 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
     out->dim = 3;
     for (size_t i = 0; i < n; i++)
         if (vmap[i] != UINT32_MAX) set_vertex(out, vmap[i], points, i);
-    /* qhull's toporient gives a consistent orientation; which parity means outward is read off the
-     * facet whose (unoriented) triangle normal agrees best, in magnitude, with qhull's outward normal */
-    int flip = 0;
-    double bestdot = -1;
-    FORALLfacets {
-        const double *pv[3];
-        int i = 0;
-        FOREACHvertex_(facet->vertices) pv[i++] = w + 3 * qh_pointid(qh, vertex->point);
-        double e1[3], e2[3], cr[3];
-        sub3(pv[1], pv[0], e1);
-        sub3(pv[2], pv[0], e2);
-        cross3(e1, e2, cr);
-        double dt = dot3(cr, facet->normal);
-        if (fabs(dt) > bestdot) {
-            bestdot = fabs(dt);
-            flip = (dt > 0) != (facet->toporient != 0);
-        }
-    }
+    int flip = outward_flip(qh, w);
     double vol = 0, area = 0;
     const double *apex = w + 3 * out->source[0];
     t = 0;
@@ -411,22 +419,7 @@ static acd_status volume_from_qhull(qhull_run *r, const double *w, size_t n, dou
             return acd_fail(err, ACD_ERR_INTERNAL, "qhull facet f%u is not a triangle (%d vertices, %d neighbours)",
                             facet->id, nv, nn);
     }
-    int flip = 0;
-    double bestdot = -1;
-    FORALLfacets {
-        const double *pv[3];
-        int i = 0;
-        FOREACHvertex_(facet->vertices) pv[i++] = w + 3 * qh_pointid(qh, vertex->point);
-        double e1[3], e2[3], cr[3];
-        sub3(pv[1], pv[0], e1);
-        sub3(pv[2], pv[0], e2);
-        cross3(e1, e2, cr);
-        double dt = dot3(cr, facet->normal);
-        if (fabs(dt) > bestdot) {
-            bestdot = fabs(dt);
-            flip = (dt > 0) != (facet->toporient != 0);
-        }
-    }
+    int flip = outward_flip(qh, w);
     double vol = 0;
     const double *pa = w + 3 * (size_t)apex;
     FORALLfacets {
