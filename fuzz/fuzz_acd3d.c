@@ -37,17 +37,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 #define FZ_NV (FZ_RINGS * FZ_SEGS + 2)
 #define FZ_HEADER 3
 
-static double mesh_volume(const acd_mesh *m) {
-    double v = 0;
-    for (size_t t = 0; t < m->ntriangles; t++) {
-        const double *a = m->vertices + 3 * (size_t)m->triangles[3 * t];
-        const double *b = m->vertices + 3 * (size_t)m->triangles[3 * t + 1];
-        const double *c = m->vertices + 3 * (size_t)m->triangles[3 * t + 2];
-        v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-    }
-    return v / 6;
-}
-
 static void check(const acd_mesh *in, const acd3d_params *p, const acd3d_result *r) {
     int solid = p->mode == ACD3D_SOLID;
     double sum = 0;
@@ -99,14 +88,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (data[0] & 8) p.stop = ACD3D_STOP_HULL;
     /* optional holes: the trailing bytes name faces to delete */
     if ((data[0] & 4) && size > FZ_HEADER + FZ_NV) {
-        uint8_t *del = calloc(m.ntriangles, 1);
-        if (!del) abort();
-        for (size_t i = FZ_HEADER + FZ_NV; i < size; i++) del[data[i] % m.ntriangles] = 1;
-        size_t k = 0;
-        for (size_t t = 0; t < m.ntriangles; t++)
-            if (!del[t]) memmove(m.triangles + 3 * k++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
-        m.ntriangles = k;
-        free(del);
+        fz_delete_faces(&m, data + FZ_HEADER + FZ_NV, size - FZ_HEADER - FZ_NV);
     }
     acd3d_result r;
     acd_error err;
@@ -130,7 +112,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         acd_mesh_free(&m);
         return 0;
     }
-    if (p.mode == ACD3D_SOLID && fabs(r.input_volume - mesh_volume(&m)) > 1e-9 * fabs(r.input_volume) + 1e-300)
+    if (p.mode == ACD3D_SOLID && fabs(r.input_volume - fz_mesh_volume(&m)) > 1e-9 * fabs(r.input_volume) + 1e-300)
         abort();
     check(&m, &p, &r);
     acd3d_result_free(&r);
