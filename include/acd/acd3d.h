@@ -127,7 +127,8 @@ typedef struct acd3d_params {
                                  are split further, best first by the hull volume a cut saves, until
                                  this many exist, and every part until its surface and hull are
                                  within merge_tau of each other both ways (docs/acd3d.md
-                                 "Excess-driven budget"); then the merge pass. Not with max_hulls */
+                                 "Excess-driven budget"); then the merge pass. Solid mode only, not with max_hulls
+                                 (acd3d_decompose: ACD_ERR_INVALID_ARGUMENT) */
     acd3d_cut_choice cut_choice; /* solid mode: how a split's cut is chosen among the candidates */
     acd3d_surface_cut surface_cut; /* surface mode: plane strips only (default), or the global cut's
                                  cycle first */

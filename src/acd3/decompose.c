@@ -1212,6 +1212,12 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown stopping test %d", (int)params->stop);
     if (params->threads > 1024) /* 100000 crashed inside libgomp */
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "threads %d: at most 1024 (0: as many as cores)", params->threads);
+    if (params->budget_parts > 0 && params->mode != ACD3D_SOLID)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "budget_parts (--budget) is for solid mode only");
+    if (params->budget_parts > 0 && params->max_hulls > 0)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT,
+                        "budget_parts (--budget) and max_hulls (--max-hulls) exclude each other: use merge_parts "
+                        "(--merge-parts) to end the merge at a part count");
     int solid = params->mode == ACD3D_SOLID;
     acd_status st = check_input(mesh, err);
     if (st != ACD_OK) return st;
@@ -1377,7 +1383,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     for (size_t n = 0; n < t.n; n++)
         if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
 
-    if (params->budget_parts > 0 && solid && !params->max_hulls) {
+    if (params->budget_parts > 0) {
         st = split_to_budget(&t, params->budget_parts, out->merge_tau, 2e-5 * vol, sc.extent,
                              nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;

@@ -142,4 +142,14 @@ grep -q '^o ' "$T/wavy_h.obj" || fail "wavy sheet (solid): hulls not written"
 [ $? -eq 2 ] || fail "wavy sheet (solid, --verify): expected exit 2 (bad input before the verification)"
 "$ACD" 3d "$T/wavy.obj" -t 0.2 --mode surface --verify >/dev/null 2>"$T/wavy.err" ||
   fail "wavy sheet (surface): exit $? $(cat "$T/wavy.err")"
+# --budget is solid mode only and excludes --max-hulls: a usage error naming the option, not ignored
+"$ACD" 3d "$T/l.obj" --mode surface --budget 4 -o "$T/b.obj" >/dev/null 2>"$T/b.err"
+rc=$?
+[ $rc -eq 1 ] || fail "--budget in surface mode: exit $rc, expected 1"
+grep -q "budget.*solid mode only" "$T/b.err" || fail "--budget in surface mode: message: $(cat "$T/b.err")"
+"$ACD" 3d "$T/l.obj" --max-hulls 2 --budget 4 -o "$T/b.obj" >/dev/null 2>"$T/b.err"
+rc=$?
+[ $rc -eq 1 ] || fail "--budget with --max-hulls: exit $rc, expected 1"
+grep -q "exclude each other" "$T/b.err" || fail "--budget with --max-hulls: message: $(cat "$T/b.err")"
+"$ACD" 3d "$T/l.obj" -t 10 --budget 3 --verify -o "$T/b.obj" >/dev/null 2>"$T/b.err" || fail "--budget 3 --verify: exit $? $(cat "$T/b.err")"
 echo ok
