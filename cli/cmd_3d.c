@@ -486,6 +486,15 @@ int acd_cmd_3d(int argc, char **argv) {
         usage(stderr);
         return ACD_EXIT_USAGE;
     }
+    /* options that would otherwise be ignored: a usage error rather than a silent no-op */
+    if (p.merge_refine > 0 && p.merge_parts == 0) {
+        fprintf(stderr, "acd 3d: --merge-refine needs --merge-parts (the part count it refines at)\n");
+        return ACD_EXIT_USAGE;
+    }
+    if (!p.merge && (p.merge_parts > 0 || p.merge_order != ACD3D_MERGE_BOUND)) {
+        fprintf(stderr, "acd 3d: --no-merge with --merge-parts or --merge-order: the merge pass is off\n");
+        return ACD_EXIT_USAGE;
+    }
     acd_error err;
     acd_error_clear(&err);
     acd_mesh mesh;

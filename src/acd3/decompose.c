@@ -1214,6 +1214,14 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "threads %d: at most 1024 (0: as many as cores)", params->threads);
     if (params->budget_parts > 0 && params->mode != ACD3D_SOLID)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "budget_parts (--budget) is for solid mode only");
+    if (params->mode == ACD3D_SURFACE) { /* solid mode's options, refused rather than ignored */
+        const char *opt = params->cut_choice != ACD3D_CHOICE_CONCAVITY ? "cut_choice (--cut-choice)"
+                          : params->merge_order != ACD3D_MERGE_BOUND  ? "merge_order (--merge-order)"
+                          : params->merge_parts > 0                   ? "merge_parts (--merge-parts)"
+                          : params->merge_refine > 0                  ? "merge_refine (--merge-refine)"
+                                                                      : NULL;
+        if (opt) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "%s is for solid mode only", opt);
+    }
     if (params->budget_parts > 0 && params->max_hulls > 0)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT,
                         "budget_parts (--budget) and max_hulls (--max-hulls) exclude each other: use merge_parts "

@@ -152,4 +152,13 @@ rc=$?
 [ $rc -eq 1 ] || fail "--budget with --max-hulls: exit $rc, expected 1"
 grep -q "exclude each other" "$T/b.err" || fail "--budget with --max-hulls: message: $(cat "$T/b.err")"
 "$ACD" 3d "$T/l.obj" -t 10 --budget 3 --verify -o "$T/b.obj" >/dev/null 2>"$T/b.err" || fail "--budget 3 --verify: exit $? $(cat "$T/b.err")"
+# solid mode's options in surface mode, --merge-refine without --merge-parts, --no-merge with the
+# merge pass's options: usage errors (exit 1) naming the option, not silently ignored
+for opts in "--mode surface --cut-choice volume" "--mode surface --merge-order volume" \
+            "--mode surface --merge-parts 3" "--merge-refine 4" "--no-merge --merge-parts 3"; do
+  "$ACD" 3d "$T/l.obj" $opts -o "$T/b.obj" >/dev/null 2>"$T/b.err"
+  rc=$?
+  [ $rc -eq 1 ] || fail "$opts: exit $rc, expected 1"
+  grep -q -- "-\(cut-choice\|merge-order\|merge-parts\|merge-refine\)" "$T/b.err" || fail "$opts: message: $(cat "$T/b.err")"
+done
 echo ok
