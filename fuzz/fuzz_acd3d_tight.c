@@ -115,23 +115,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if ((data[0] & 16) && size > FZ_HEADER + FZ_NV) fz_delete_faces(&m, data + FZ_HEADER + FZ_NV, size - FZ_HEADER - FZ_NV);
     acd3d_result r;
     acd_error err;
-    err.message[0] = '\0';
-    acd_status s = acd3d_decompose(&m, &p, &r, &err);
-    if (s == ACD_ERR_NON_MANIFOLD) {
-        /* as `acd 3d` does: weld, orient, close the holes, then decompose the closed mesh */
-        acd_repair_options ro = acd_repair_default_options();
-        ro.fill_holes_max_edges = SIZE_MAX;
-        acd_repair_stats rs;
-        if (acd_mesh_repair(&m, &ro, &rs, &err) != ACD_OK) {
-            if (!err.message[0]) abort();
-            acd_mesh_free(&m);
-            return 0;
-        }
-        err.message[0] = '\0';
-        s = acd3d_decompose(&m, &p, &r, &err);
-    }
+    acd_status s = fz_decompose_closing(&m, &p, &r, &err); /* as `acd 3d`: holes closed in solid mode */
     if (s != ACD_OK) {
-        if (!err.message[0]) abort(); /* every failure must say why */
         acd_mesh_free(&m);
         return 0;
     }

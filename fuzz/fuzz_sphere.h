@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd/acd3d.h"
 #include "acd/mesh.h"
 
 static void fz_build_sphere(const uint8_t *r, int rings, int segs, acd_mesh *m) {
@@ -80,6 +81,27 @@ static void fz_delete_faces(acd_mesh *m, const uint8_t *del, size_t n) {
         if (!mark[t]) memmove(m->triangles + 3 * k++, m->triangles + 3 * t, 3 * sizeof(uint32_t));
     m->ntriangles = k;
     free(mark);
+}
+
+/* acd3d_decompose as `acd 3d` runs it: when solid mode refuses the mesh as not closed (holes deleted
+ * by the input), weld, orient and close the holes (acd_mesh_repair), then decompose the closed mesh.
+ * A repair that fails returns its status; every failure must carry a message (abort otherwise). */
+static inline acd_status fz_decompose_closing(acd_mesh *m, const acd3d_params *p, acd3d_result *r, acd_error *err) {
+    err->message[0] = '\0';
+    acd_status s = acd3d_decompose(m, p, r, err);
+    if (s == ACD_ERR_NON_MANIFOLD && p->mode == ACD3D_SOLID) {
+        acd_repair_options ro = acd_repair_default_options();
+        ro.fill_holes_max_edges = SIZE_MAX;
+        acd_repair_stats rs;
+        err->message[0] = '\0';
+        s = acd_mesh_repair(m, &ro, &rs, err);
+        if (s == ACD_OK) {
+            err->message[0] = '\0';
+            s = acd3d_decompose(m, p, r, err);
+        }
+    }
+    if (s != ACD_OK && !err->message[0]) abort(); /* every failure must say why */
+    return s;
 }
 
 #endif
