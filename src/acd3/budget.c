@@ -39,13 +39,10 @@ typedef struct budget_state {
     int ndir, nexact;
 } budget_state;
 
+/* The hull of m into *keep; its volume (0 unless dim 3), -1 on failure. */
 static double hull_volume_of(const acd_mesh *m, acd_hull *keep) {
-    acd_hull h;
-    if (acd_hull_compute(m->vertices, m->nvertices, &h, NULL) != ACD_OK) return -1;
-    double v = h.dim == 3 ? h.volume : 0;
-    if (keep) *keep = h;
-    else acd_hull_free(&h);
-    return v;
+    if (acd_hull_compute(m->vertices, m->nvertices, keep, NULL) != ACD_OK) return -1;
+    return keep->dim == 3 ? keep->volume : 0;
 }
 
 
@@ -271,7 +268,8 @@ static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_
     int good = X->cr.npieces >= 2;
     for (size_t p = 0; p < X->cr.npieces && good; p++) {
         double pv = acd_geom3_signed_volume(&X->cr.pieces[p].mesh);
-        double hv = hull_volume_of(&X->cr.pieces[p].mesh, NULL);
+        double hv;
+        if (acd_hull_volume(X->cr.pieces[p].mesh.vertices, X->cr.pieces[p].mesh.nvertices, &hv, NULL) != ACD_OK) hv = -1;
         if (!(pv > BUDGET_MIN_PIECE_FRACTION * A->vol) || hv < 0) good = 0;
         sum += hv;
     }

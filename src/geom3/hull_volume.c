@@ -7,13 +7,10 @@
 
 #include "acd/hull.h"
 
+/* qhull's volume (acd_hull_volume: acd_hull_compute's volume, the same bits, without the hull). */
 static double hull_volume_pts(const double *pts, size_t n) {
-    if (n < 4) return 0;
-    acd_hull h;
-    if (acd_hull_compute(pts, n, &h, NULL) != ACD_OK) return -1;
-    double v = h.dim == 3 ? h.volume : 0;
-    acd_hull_free(&h);
-    return v;
+    double v;
+    return acd_hull_volume(pts, n, &v, NULL) == ACD_OK ? v : -1;
 }
 
 /* A point within this fraction of the coordinates' scale of a facet's plane counts as inside it; a
