@@ -194,6 +194,9 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
 #define ACD3_VOLUME_PLANE_SCORED 400
 /* ... on all three principal axes */
 #define ACD3_VOLUME_PLANE_AXES 3
+/* The part budget's smallest saving worth a cut, relative to the input's volume (the merge
+ * refinement's min_gain, MERGE_REFINE_MIN_GAIN_REL, too). */
+#define ACD3_BUDGET_MIN_GAIN_REL 2e-5
 #define ACD3_VOLUME_BAND 0.5
 /* By volume (not by band): once the best cut makes progress, a candidate whose pieces' hull volume
  * (known from the screen's hulls) is not below the best's is dropped without measuring its pieces,
@@ -990,14 +993,14 @@ static int node_is_part(const acd3d_node *nd) {
 }
 
 /* The parts (node_is_part) in node order: *idx their nodes, *meshes their meshes (shallow
- * copies). *np < 2 leaves nothing allocated. */
+ * copies). *np = 0 leaves nothing allocated. */
 static acd_status collect_parts(const tree *t, size_t *np, size_t **idx, acd_mesh **meshes, acd_error *err) {
     size_t n0 = 0;
     for (size_t n = 0; n < t->n; n++) n0 += (size_t)node_is_part(&t->a[n].node);
     *np = n0;
     *idx = NULL;
     *meshes = NULL;
-    if (n0 < 2) return ACD_OK;
+    if (n0 == 0) return ACD_OK;
     *idx = malloc(n0 * sizeof **idx);
     *meshes = malloc(n0 * sizeof **meshes);
     if (!*idx || !*meshes) {
@@ -1033,7 +1036,11 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
     size_t np, *idx;
     acd_mesh *meshes;
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
-    if (st != ACD_OK || np < 2) return st;
+    if (st != ACD_OK || np < 2) { /* nothing to join */
+        free(idx);
+        free(meshes);
+        return st;
+    }
     acd3_merge_result mr;
     st = acd3_merge_adjacent(input, meshes, np, tau, tol, mo, threads, &mr, err);
     free(meshes);
@@ -1116,7 +1123,11 @@ static acd_status join_surface(tree *t, double eps, double tau, double tol, int 
     size_t np, *idx;
     acd_mesh *meshes;
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
-    if (st != ACD_OK || np < 2) return st;
+    if (st != ACD_OK || np < 2) { /* nothing to join */
+        free(idx);
+        free(meshes);
+        return st;
+    }
     acd3_surface_merge_result mr;
     st = acd3_surface_merge(meshes, np, eps, tau, tol, threads, &mr, err);
     free(meshes);
@@ -1146,25 +1157,7 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
     size_t np, *idx;
     acd_mesh *meshes;
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
-    if (st != ACD_OK) return st;
-    if (np < 2) { /* the root alone */
-        free(idx);
-        free(meshes);
-        np = 0;
-        for (size_t n = 0; n < t->n; n++)
-            if (node_is_part(&t->a[n].node)) np = n + 1;
-        if (!np) return ACD_OK;
-        idx = malloc(sizeof *idx);
-        meshes = malloc(sizeof *meshes);
-        if (!idx || !meshes) {
-            free(idx);
-            free(meshes);
-            return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-        }
-        idx[0] = np - 1;
-        meshes[0] = t->a[np - 1].mesh;
-        np = 1;
-    }
+    if (st != ACD_OK || np == 0) return st;
     acd3_budget_result br;
     st = acd3_budget_split(meshes, np, budget, limit, min_gain, extent, threads, &br, err);
     free(meshes);
@@ -1212,13 +1205,12 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "unknown stopping test %d", (int)params->stop);
     if (params->threads > 1024) /* 100000 crashed inside libgomp */
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "threads %d: at most 1024 (0: as many as cores)", params->threads);
-    if (params->budget_parts > 0 && params->mode != ACD3D_SOLID)
-        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "budget_parts (--budget) is for solid mode only");
     if (params->mode == ACD3D_SURFACE) { /* solid mode's options, refused rather than ignored */
         const char *opt = params->cut_choice != ACD3D_CHOICE_CONCAVITY ? "cut_choice (--cut-choice)"
                           : params->merge_order != ACD3D_MERGE_BOUND  ? "merge_order (--merge-order)"
                           : params->merge_parts > 0                   ? "merge_parts (--merge-parts)"
                           : params->merge_refine > 0                  ? "merge_refine (--merge-refine)"
+                          : params->budget_parts > 0                  ? "budget_parts (--budget)"
                                                                       : NULL;
         if (opt) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "%s is for solid mode only", opt);
     }
@@ -1392,7 +1384,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         if (t.a[n].node.first_child >= 0 && t.a[n].node.leaf_reason != ACD3D_LEAF_MERGED) acd_mesh_free(&t.a[n].mesh);
 
     if (params->budget_parts > 0) {
-        st = split_to_budget(&t, params->budget_parts, out->merge_tau, 2e-5 * vol, sc.extent,
+        st = split_to_budget(&t, params->budget_parts, out->merge_tau, ACD3_BUDGET_MIN_GAIN_REL * vol, sc.extent,
                              nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     }
