@@ -105,6 +105,16 @@ static void check_solid(const acd_mesh *in, const acd3d_result *r, const acd3d_p
         sum += v;
         /* the hull encloses the part: hull volume >= part volume */
         assert_true(r->parts[i].hull_volume >= v * (1 - 1e-9));
+        if (!p->max_hull_vertices) { /* the hull of this mesh (a leaf's kept from its measure): the same bits */
+            acd_hull h;
+            assert_int_equal(acd_hull_compute(m->vertices, m->nvertices, &h, &err), ACD_OK);
+            assert_true(h.volume == r->parts[i].hull_volume);
+            assert_int_equal(h.nvertices, r->parts[i].hull.nvertices);
+            assert_int_equal(h.ntriangles, r->parts[i].hull.ntriangles);
+            assert_memory_equal(h.vertices, r->parts[i].hull.vertices, 3 * h.nvertices * sizeof(double));
+            assert_memory_equal(h.triangles, r->parts[i].hull.triangles, 3 * h.ntriangles * sizeof(uint32_t));
+            acd_hull_free(&h);
+        }
         const acd3d_node *nd = &r->nodes[r->parts[i].node];
         assert_int_equal(nd->part, (int)i);
         assert_int_equal(nd->merged_into, -1);

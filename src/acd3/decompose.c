@@ -111,6 +111,10 @@ typedef struct work_node {
     acd_mesh mesh;
     size_t depth;
     measured cache;
+    /* a leaf's hull, kept from its measure for the output (hull_mesh: the same qhull run on the
+     * same mesh); used while the node is a part with this mesh, freed with the tree */
+    acd_hull hull;
+    int have_hull;
 } work_node;
 
 typedef struct tree {
@@ -139,11 +143,20 @@ static int tree_push(tree *t, int parent, acd_mesh *mesh, size_t depth, int soli
 }
 
 /* The part's convex hull as a mesh; with max_vertices >= 4, an enclosing polytope of at most that
- * many vertices (geom3/hull_simplify) when the hull has more. */
-static acd_status hull_mesh(const acd_mesh *m, size_t max_vertices, acd_mesh *out, double *volume, acd_error *err) {
+ * many vertices (geom3/hull_simplify) when the hull has more. kept: m's hull (acd_hull_compute of
+ * its vertices, taken over: its arrays are moved or freed), or NULL to compute it. */
+static acd_status hull_mesh(const acd_mesh *m, acd_hull *kept, size_t max_vertices, acd_mesh *out, double *volume,
+                            acd_error *err) {
     memset(out, 0, sizeof *out);
     acd_hull h;
-    acd_status st = acd_hull_compute(m->vertices, m->nvertices, &h, err);
+    acd_status st = ACD_OK;
+    if (kept) {
+        h = *kept;
+        memset(kept, 0, sizeof *kept);
+        kept->dim = -1;
+    } else {
+        st = acd_hull_compute(m->vertices, m->nvertices, &h, err);
+    }
     if (st == ACD_OK && max_vertices >= 4 && h.dim == 3 && h.nvertices > max_vertices) {
         acd_hull_free(&h);
         st = acd_hull_simplify(m->vertices, m->nvertices, max_vertices, &h, err);
@@ -982,6 +995,12 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         if (!split && out->st == ACD_OK)
             reason = c->params->stop != ACD3D_STOP_HULL && hull_leaf(c, w, &cur.ms, out) ? ACD3D_LEAF_HULL : ACD3D_LEAF_NO_CUT;
     }
+    if (!split && out->st == ACD_OK) { /* a leaf: its hull is its part's (until the mesh changes) */
+        w->hull = cur.ms.hull;
+        w->have_hull = 1;
+        memset(&cur.ms.hull, 0, sizeof cur.ms.hull);
+        cur.ms.hull.dim = -1;
+    }
     measured_free(&cur);
     out->reason = reason;
     out->split = split;
@@ -1440,7 +1459,9 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
 #endif
         for (long j = 0; j < (long)out->nparts; j++) {
             acd3d_part *p = &out->parts[j];
-            pst[j] = hull_mesh(&p->mesh, params->max_hull_vertices, &p->hull, &p->hull_volume, &perr[j]);
+            work_node *w = &t.a[p->node];
+            pst[j] = hull_mesh(&p->mesh, w->have_hull ? &w->hull : NULL, params->max_hull_vertices, &p->hull,
+                               &p->hull_volume, &perr[j]);
             if (pst[j] != ACD_OK) continue;
             acd3_topology topo;
             pst[j] = acd3_topology_of(&p->mesh, &topo, &perr[j]);
@@ -1456,6 +1477,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         free(perr);
         if (st != ACD_OK) goto fail;
     }
+    for (size_t i = 0; i < t.n; i++) acd_hull_free(&t.a[i].hull);
     free(t.a);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     out->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
@@ -1464,6 +1486,7 @@ fail:
     for (size_t i = 0; i < t.n; i++) {
         acd_mesh_free(&t.a[i].mesh);
         measured_free(&t.a[i].cache);
+        acd_hull_free(&t.a[i].hull);
     }
     free(t.a);
     acd3d_result_free(out);
