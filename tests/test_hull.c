@@ -484,6 +484,59 @@ static void test_volume_only(void **state) {
     assert_int_equal(acd_hull_volume(q, 1, &v, &err), ACD_ERR_INVALID_INPUT);
 }
 
+/* Every input point inside every facet plane, within ACD_TOL_REL_DIST of the diagonal. */
+static void assert_encloses(const acd_hull *h, const double *pts, size_t n) {
+    double tol = 1e-10 * extent_of(pts, n), worst = -INFINITY;
+    for (size_t t = 0; t < h->ntriangles; t++) {
+        const double *pl = h->planes + 4 * t;
+        for (size_t i = 0; i < n; i++) {
+            double v = pl[0] * pts[3 * i] + pl[1] * pts[3 * i + 1] + pl[2] * pts[3 * i + 2] + pl[3];
+            if (v > worst) worst = v;
+        }
+    }
+    if (worst > tol) print_message("a point is %g outside a facet plane (tol %g)\n", worst, tol);
+    assert_true(worst <= tol);
+}
+
+/* fuzz_hull's six points (docs/results/fuzz.md): C and D 1e-10 apart make the plane of facet
+ * (C, D, A) ill-conditioned, and qhull took B as coplanar with it while B lies 1.1e-6 (1.2e-7 of the
+ * extent) outside it. The facet's plane is lifted to B; the triangles, the volume and the other
+ * planes stay qhull's. Also scaled (1e-90, 1e90) and moved, and as acd_hull_volume sees it. */
+static void test_enclosure_ill_conditioned(void **state) {
+    (void)state;
+    const double base[18] = {0, 0, -9.585035187470353,
+                             -9.586051653338757, -9.586051653338757, -9.586052776444209,
+                             -9.586051653338757, -9.586051653338757, -9.586051653338757,
+                             -9.586051653338757, -9.586051653242881, -9.586051653338757,
+                             0, -2.184312143644803e-08, 0,
+                             0, 7.55684574833281e-12, 7.556001431015457e-12};
+    const double scales[4] = {1, 1e-90, 1e90, 1}, shifts[4] = {0, 0, 0, 3.5};
+    for (int c = 0; c < 4; c++) {
+        double p[18];
+        for (int i = 0; i < 18; i++) p[i] = base[i] * scales[c] + shifts[c];
+        acd_hull h;
+        acd_error err;
+        assert_int_equal(acd_hull_compute(p, 6, &h, &err), ACD_OK);
+        assert_int_equal(h.dim, 3);
+        assert_int_equal(h.ntriangles, 2 * h.nvertices - 4);
+        assert_encloses(&h, p, 6);
+        /* each plane still supports its triangle: no vertex outside, one on it or below it by at
+         * most the lift (B's distance, 1.2e-7 of the extent) */
+        for (size_t t = 0; t < h.ntriangles; t++) {
+            const double *pl = h.planes + 4 * t;
+            for (int k = 0; k < 3; k++) {
+                const double *q = h.vertices + 3 * h.triangles[3 * t + k];
+                double v = pl[0] * q[0] + pl[1] * q[1] + pl[2] * q[2] + pl[3];
+                assert_true(v <= 1e-10 * extent_of(p, 6) && v >= -2e-7 * extent_of(p, 6));
+            }
+        }
+        double v = -1;
+        assert_int_equal(acd_hull_volume(p, 6, &v, &err), ACD_OK);
+        assert_memory_equal(&v, &h.volume, sizeof v);
+        acd_hull_free(&h);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_random_vs_brute_force),
@@ -496,6 +549,7 @@ int main(void) {
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_nan_rejected),
         cmocka_unit_test(test_volume_only),
+        cmocka_unit_test(test_enclosure_ill_conditioned),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -21,7 +21,10 @@ typedef struct acd_hull {
     uint32_t *neighbors;  /* 3 * ntriangles: the triangle across edge (t[i], t[i+1 mod 3]);
                              ACD_HULL_NO_NEIGHBOR on the boundary of a planar (dim 2) hull */
     double *planes;       /* 4 * ntriangles: outward unit normal n and offset d, n.x + d = 0 (dim 3);
-                             for dim 2 every row is the polygon's plane, n the side seen counterclockwise */
+                             for dim 2 every row is the polygon's plane, n the side seen counterclockwise.
+                             dim 3: every input point p has n.p + d <= ACD_TOL_REL_DIST x the bounding-box
+                             diagonal (a plane qhull left a point outside of is lifted to it, so it may
+                             pass below its triangle's vertices by that much: docs/results/fuzz.md) */
     uint32_t *source;     /* nvertices: index of each hull vertex in the input points */
     double volume;        /* 0 unless dim == 3 */
     double area;

@@ -11,7 +11,10 @@
  *     longjmp escape: qh_new_qhull's own setjmp catches errors and returns a code, errors go to a
  *     memory stream that becomes our message; after it returns only plain data structure walks are done;
  *   - if qhull still reports a precision failure, retries on a copy joggled with a fixed-seed
- *     generator (deterministic), then gives up with ACD_ERR_DEGENERATE.
+ *     generator (deterministic), then gives up with ACD_ERR_DEGENERATE;
+ *   - checks every input point against every facet plane (a bounding-box tree prunes the points far
+ *     below a plane) and lifts a plane that a point exceeds by more than ACD_TOL_REL_DIST x diagonal
+ *     (qhull's roundoff on an ill-conditioned facet: hull_enclose).
  * Orientation comes from qhull's facet toporient flag (topologically consistent, counterclockwise
  * seen from outside); adjacency from the simplicial facets' neighbour sets (neighbour i is opposite
  * vertex i). */
@@ -291,8 +294,10 @@ static int outward_flip(qhT *qh, const double *w) {
     return flip;
 }
 
+/* The hull out from qhull's facets, or (out NULL) its volume alone into *volume: the same facet
+ * checks, orientation and volume sum in the same order either way (so the same bits). */
 static acd_status hull_from_qhull(qhull_run *r, const double *points, const double *w, size_t n, double s,
-                                  acd_hull *out, acd_error *err) {
+                                  acd_hull *out, double *volume, acd_error *err) {
     qhT *qh = r->qh;
     facetT *facet;
     vertexT *vertex, **vertexp;
@@ -330,45 +335,58 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
         }
         fidx[facet->id] = (uint32_t)t++;
     }
-    size_t nverts = 0;
+    size_t nverts = 0, apex = SIZE_MAX; /* apex: the hull vertex of least input index (out->source[0]) */
     for (size_t i = 0; i < n; i++)
-        if (vmap[i] == 0) vmap[i] = (uint32_t)nverts++;
-    acd_status st = hull_alloc(out, nverts, nf, err);
-    if (st != ACD_OK) {
-        free(fidx);
-        free(vmap);
-        return st;
+        if (vmap[i] == 0) {
+            if (apex == SIZE_MAX) apex = i;
+            vmap[i] = (uint32_t)nverts++;
+        }
+    if (out) {
+        acd_status st = hull_alloc(out, nverts, nf, err);
+        if (st != ACD_OK) {
+            free(fidx);
+            free(vmap);
+            return st;
+        }
+        out->dim = 3;
+        for (size_t i = 0; i < n; i++)
+            if (vmap[i] != UINT32_MAX) set_vertex(out, vmap[i], points, i);
     }
-    out->dim = 3;
-    for (size_t i = 0; i < n; i++)
-        if (vmap[i] != UINT32_MAX) set_vertex(out, vmap[i], points, i);
     int flip = outward_flip(qh, w);
     double vol = 0, area = 0;
-    const double *apex = w + 3 * out->source[0];
+    const double *pa = w + 3 * apex;
     t = 0;
     FORALLfacets {
-        uint32_t v[3], opp[3];
+        size_t pid[3];
+        uint32_t opp[3];
         int i = 0;
-        FOREACHvertex_(facet->vertices) v[i++] = vmap[qh_pointid(qh, vertex->point)];
+        FOREACHvertex_(facet->vertices) pid[i++] = (size_t)qh_pointid(qh, vertex->point);
         i = 0;
         FOREACHneighbor_(facet) opp[i++] = fidx[neighbor->id];
         if ((facet->toporient != 0) == flip) { /* inward as listed: swap the first two */
-            uint32_t x = v[0];
-            v[0] = v[1];
-            v[1] = x;
-            x = opp[0];
+            size_t x = pid[0];
+            pid[0] = pid[1];
+            pid[1] = x;
+            uint32_t y = opp[0];
             opp[0] = opp[1];
-            opp[1] = x;
+            opp[1] = y;
         }
+        const double *a = w + 3 * pid[0], *b = w + 3 * pid[1], *c = w + 3 * pid[2];
+        /* tetrahedra from a hull vertex (apex), each by the adaptive orient3d (accurate to about
+         * its own magnitude, not to the coordinates' cube): on thin hulls the plain triple product
+         * about the vertex centroid cancelled to a negative volume (coordinates 1e45 around a
+         * slab 1e37 thick gave -4.6e117) */
+        vol += acd_orient3d(a, b, c, pa) / 6.0;
+        if (!out) continue;
         uint32_t *tri = out->triangles + 3 * t, *nb = out->neighbors + 3 * t;
         for (int k = 0; k < 3; k++) {
-            tri[k] = v[k];
+            tri[k] = vmap[pid[k]];
             nb[k] = opp[(k + 2) % 3]; /* across edge (k, k+1) = opposite vertex k+2 */
         }
         double nrm[3] = {facet->normal[0], facet->normal[1], facet->normal[2]};
         double len = norm3(nrm);
         if (len > 0)
-            for (int c = 0; c < 3; c++) nrm[c] /= len;
+            for (int c3 = 0; c3 < 3; c3++) nrm[c3] /= len;
         double d = 0;
         for (int k = 0; k < 3; k++) {
             double dv = -dot3(nrm, out->vertices + 3 * tri[k]);
@@ -376,75 +394,212 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
         }
         memcpy(out->planes + 4 * t, nrm, sizeof nrm);
         out->planes[4 * t + 3] = d;
-        const double *a = w + 3 * out->source[tri[0]], *b = w + 3 * out->source[tri[1]], *c = w + 3 * out->source[tri[2]];
         double e1[3], e2[3], cr[3];
         sub3(b, a, e1);
         sub3(c, a, e2);
         cross3(e1, e2, cr);
         area += 0.5 * norm3(cr);
-        /* tetrahedra from a hull vertex (apex), each by the adaptive orient3d (accurate to about
-         * its own magnitude, not to the coordinates' cube): on thin hulls the plain triple product
-         * about the vertex centroid cancelled to a negative volume (coordinates 1e45 around a
-         * slab 1e37 thick gave -4.6e117) */
-        vol += acd_orient3d(a, b, c, apex) / 6.0;
         t++;
     }
-    out->volume = vol > 0 ? vol * s * s * s : 0.0;
-    out->area = area * s * s;
+    vol = vol > 0 ? vol * s * s * s : 0.0;
+    if (out) {
+        out->volume = vol;
+        out->area = area * s * s;
+    } else {
+        *volume = vol;
+    }
     free(fidx);
     free(vmap);
     return ACD_OK;
 }
 
-/* The volume alone (acd_hull_volume): the same facets, orientation and sum as hull_from_qhull, in
- * the same order (so the same bits), without building the hull. */
-static acd_status volume_from_qhull(qhull_run *r, const double *w, size_t n, double s, double *volume,
-                                    acd_error *err) {
-    qhT *qh = r->qh;
-    facetT *facet;
-    vertexT *vertex, **vertexp;
-    facetT *neighbor, **neighborp;
-    int apex = INT_MAX; /* hull_from_qhull's out->source[0]: the hull vertex of least input index */
-    FORALLfacets {
-        int nv = 0, nn = 0;
-        FOREACHvertex_(facet->vertices) {
-            int pid = qh_pointid(qh, vertex->point);
-            if (pid < 0 || (size_t)pid >= n)
-                return acd_fail(err, ACD_ERR_INTERNAL, "qhull facet f%u has a vertex that is no input point", facet->id);
-            if (pid < apex) apex = pid;
-            nv++;
+/* ---------- enclosure: every input point inside every facet plane ----------
+ *
+ * qhull's facets are convex up to its roundoff, but the plane of an ill-conditioned facet (two of
+ * its vertices nearly coincident) can leave a point it merged as coplanar far outside: six points
+ * of fuzz_hull (tests/test_hull.c, test_enclosure_ill_conditioned) left one 1.2e-7 of the extent
+ * outside. After every build the points are checked against the planes through a bounding-box
+ * tree of the (normalised) points: a subtree is skipped when its box lies within the tolerance
+ * below the plane, so only the points near a facet's plane are evaluated. A facet plane that a
+ * point exceeds by more than the tolerance is lifted to pass through its farthest point (its
+ * normal and the triangles unchanged); hulls without a violation keep their bits. */
+
+/* Points per leaf of the tree. */
+#define HULL_ENCLOSE_LEAF 32
+
+typedef struct encl_node {
+    double c[3], h[3];      /* box centre and half sides */
+    double m[3], mlo, mhi;  /* leaves: a direction (the plane of three spread points) and the range of m.p */
+    uint32_t begin, end;    /* range of the index array */
+    uint32_t child;         /* first of two children (0: leaf; the root is never a child) */
+} encl_node;
+
+typedef struct encl_tree {
+    encl_node *node;
+    size_t nnode, cap;
+    uint32_t *idx;
+} encl_tree;
+
+static void encl_box(const double *w, const uint32_t *idx, uint32_t b, uint32_t e, encl_node *nd) {
+    double lo[3], hi[3];
+    for (uint32_t i = b; i < e; i++) {
+        const double *p = w + 3 * (size_t)idx[i];
+        for (int k = 0; k < 3; k++) {
+            if (i == b || p[k] < lo[k]) lo[k] = p[k];
+            if (i == b || p[k] > hi[k]) hi[k] = p[k];
         }
-        FOREACHneighbor_(facet) nn++;
-        if (nv != 3 || nn != 3)
-            return acd_fail(err, ACD_ERR_INTERNAL, "qhull facet f%u is not a triangle (%d vertices, %d neighbours)",
-                            facet->id, nv, nn);
     }
-    int flip = outward_flip(qh, w);
-    double vol = 0;
-    const double *pa = w + 3 * (size_t)apex;
-    FORALLfacets {
-        int v[3], i = 0;
-        FOREACHvertex_(facet->vertices) v[i++] = qh_pointid(qh, vertex->point);
-        if ((facet->toporient != 0) == flip) {
-            int x = v[0];
-            v[0] = v[1];
-            v[1] = x;
+    for (int k = 0; k < 3; k++) {
+        nd->c[k] = 0.5 * (lo[k] + hi[k]);
+        nd->h[k] = 0.5 * (hi[k] - lo[k]);
+    }
+    nd->begin = b;
+    nd->end = e;
+    nd->child = 0;
+    nd->m[0] = nd->m[1] = nd->m[2] = 0;
+    nd->mlo = nd->mhi = 0;
+}
+
+/* A leaf's slab: m the normal of the plane through its first point, the point farthest from it and
+ * the point farthest from their line (a surface patch's normal, roughly: the leaf's thin side);
+ * any m gives a valid bound, a good one a tight bound. m stays 0 for a collinear leaf. */
+static void encl_slab(const double *w, const uint32_t *idx, encl_node *nd) {
+    const double *p0 = w + 3 * (size_t)idx[nd->begin], *p1 = p0;
+    double best = 0, u[3];
+    for (uint32_t i = nd->begin; i < nd->end; i++) {
+        const double *q = w + 3 * (size_t)idx[i];
+        sub3(q, p0, u);
+        double v = dot3(u, u);
+        if (v > best) best = v, p1 = q;
+    }
+    sub3(p1, p0, u);
+    best = 0;
+    for (uint32_t i = nd->begin; i < nd->end; i++) {
+        const double *q = w + 3 * (size_t)idx[i];
+        double d[3], cr[3];
+        sub3(q, p0, d);
+        cross3(u, d, cr);
+        double v = dot3(cr, cr);
+        if (v > best) best = v, memcpy(nd->m, cr, sizeof cr);
+    }
+    double len = norm3(nd->m);
+    if (!(len > 0)) return;
+    for (int k = 0; k < 3; k++) nd->m[k] /= len;
+    for (uint32_t i = nd->begin; i < nd->end; i++) {
+        double v = dot3(nd->m, w + 3 * (size_t)idx[i]);
+        if (i == nd->begin || v < nd->mlo) nd->mlo = v;
+        if (i == nd->begin || v > nd->mhi) nd->mhi = v;
+    }
+}
+
+/* Builds the tree: each node split at the midpoint of its longest side (by halves of its range
+ * when that leaves a side empty). Returns 0 when out of memory. */
+static int encl_build(encl_tree *T, const double *w, size_t n) {
+    T->cap = n / 4 + 16;
+    T->node = malloc(T->cap * sizeof *T->node);
+    T->idx = malloc((n ? n : 1) * sizeof *T->idx);
+    if (!T->node || !T->idx) return 0;
+    for (size_t i = 0; i < n; i++) T->idx[i] = (uint32_t)i;
+    encl_box(w, T->idx, 0, (uint32_t)n, &T->node[0]);
+    T->nnode = 1;
+    for (size_t k = 0; k < T->nnode; k++) { /* breadth first: nodes are appended behind k */
+        encl_node nd = T->node[k];
+        if (nd.end - nd.begin <= HULL_ENCLOSE_LEAF) {
+            encl_slab(w, T->idx, &T->node[k]);
+            continue;
         }
-        vol += acd_orient3d(w + 3 * (size_t)v[0], w + 3 * (size_t)v[1], w + 3 * (size_t)v[2], pa) / 6.0;
+        int ax = 0;
+        for (int a = 1; a < 3; a++)
+            if (nd.h[a] > nd.h[ax]) ax = a;
+        uint32_t i = nd.begin, j = nd.end;
+        while (i < j) { /* partition: coordinate below the centre first */
+            if (w[3 * (size_t)T->idx[i] + ax] < nd.c[ax]) {
+                i++;
+            } else {
+                uint32_t x = T->idx[i];
+                T->idx[i] = T->idx[--j];
+                T->idx[j] = x;
+            }
+        }
+        if (i == nd.begin || i == nd.end) i = nd.begin + (nd.end - nd.begin) / 2;
+        if (T->nnode + 2 > T->cap) {
+            size_t cap = 2 * T->cap;
+            encl_node *g = realloc(T->node, cap * sizeof *g);
+            if (!g) return 0;
+            T->node = g;
+            T->cap = cap;
+        }
+        T->node[k].child = (uint32_t)T->nnode;
+        encl_box(w, T->idx, nd.begin, i, &T->node[T->nnode++]);
+        encl_box(w, T->idx, i, nd.end, &T->node[T->nnode++]);
     }
-    *volume = vol > 0 ? vol * s * s * s : 0.0;
+    return 1;
+}
+
+/* Largest n.p + d over the points of the tree, or a value <= tol when every point is within tol. */
+static double encl_worst(const encl_tree *T, const double *w, const double *nrm, double d, double tol) {
+    uint32_t stack[128];
+    size_t top = 0;
+    double worst = -INFINITY;
+    stack[top++] = 0;
+    while (top > 0) {
+        const encl_node *nd = &T->node[stack[--top]];
+        double ub = dot3(nrm, nd->c) + d + fabs(nrm[0]) * nd->h[0] + fabs(nrm[1]) * nd->h[1] + fabs(nrm[2]) * nd->h[2];
+        if (ub <= tol) continue;
+        if (!nd->child) { /* n = a m + r: a (m.p) within the slab, r.p within the box */
+            double a = dot3(nrm, nd->m), r[3] = {nrm[0] - a * nd->m[0], nrm[1] - a * nd->m[1], nrm[2] - a * nd->m[2]};
+            ub = (a > 0 ? a * nd->mhi : a * nd->mlo) + dot3(r, nd->c) + d + fabs(r[0]) * nd->h[0] + fabs(r[1]) * nd->h[1] +
+                 fabs(r[2]) * nd->h[2];
+            if (ub <= tol) continue;
+        }
+        if (nd->child && top + 2 <= sizeof stack / sizeof *stack) {
+            stack[top++] = nd->child;
+            stack[top++] = nd->child + 1;
+            continue;
+        }
+        for (uint32_t i = nd->begin; i < nd->end; i++) { /* a leaf (or a subtree past the stack's depth) */
+            double v = dot3(nrm, w + 3 * (size_t)T->idx[i]) + d;
+            if (v > worst) worst = v;
+        }
+    }
+    return worst;
+}
+
+/* Checks the planes of out (built from w, the points normalised by s) against every point and
+ * lifts those exceeded by more than tol (normalised units). */
+static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double s, double tol, acd_error *err) {
+    encl_tree T = {0};
+    if (!encl_build(&T, w, n)) {
+        free(T.node);
+        free(T.idx);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory checking a hull of %zu points", n);
+    }
+    for (size_t t = 0; t < out->ntriangles; t++) {
+        double *pl = out->planes + 4 * t;
+        const uint32_t *tri = out->triangles + 3 * t;
+        double d = 0; /* the plane's offset in normalised coordinates, as hull_from_qhull sets it */
+        for (int k = 0; k < 3; k++) {
+            double dv = -dot3(pl, w + 3 * (size_t)out->source[tri[k]]);
+            if (k == 0 || dv < d) d = dv;
+        }
+        double worst = encl_worst(&T, w, pl, d, tol);
+        if (worst > tol) pl[3] -= worst * s;
+    }
+    free(T.node);
+    free(T.idx);
     return ACD_OK;
 }
 
 /* Runs qhull on w (joggled copies if it fails) and builds out, or (out NULL) the volume alone. */
-static acd_status hull_solid(const double *points, double *w, size_t n, double s, acd_hull *out, double *volume,
-                             acd_error *err) {
+static acd_status hull_solid(const double *points, double *w, size_t n, double s, double tol, acd_hull *out,
+                             double *volume, acd_error *err) {
     qhull_run r;
     int code = qhull_run_do(&r, w, n);
     char msg[200] = "";
     if (code == 0) {
-        acd_status st = out ? hull_from_qhull(&r, points, w, n, s, out, err) : volume_from_qhull(&r, w, n, s, volume, err);
+        acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
         qhull_run_free(&r);
+        if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, tol, err);
         return st;
     }
     qhull_first_line(&r, msg, sizeof msg);
@@ -460,10 +615,10 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
         for (size_t i = 0; i < 3 * n; i++) j[i] = w[i] + amp * (2.0 * acd_rng_uniform(&rng) - 1.0);
         code = qhull_run_do(&r, j, n);
         if (code == 0) {
-            acd_status st =
-                out ? hull_from_qhull(&r, points, w, n, s, out, err) : volume_from_qhull(&r, w, n, s, volume, err);
+            acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
             qhull_run_free(&r);
             free(j);
+            if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, tol, err);
             return st;
         }
         qhull_run_free(&r);
@@ -594,7 +749,7 @@ static acd_status hull_compute(const double *points, size_t n, acd_hull *out, do
     if (best <= tol)
         st = out ? hull_planar(points, w, n, nrm, s, out, err) : ACD_OK;
     else
-        st = hull_solid(points, w, n, s, out, volume, err);
+        st = hull_solid(points, w, n, s, tol, out, volume, err);
     free(w);
     if (st != ACD_OK && out) acd_hull_free(out);
     return st;
