@@ -57,21 +57,41 @@ static double hull_volume_of(const acd_mesh *m, acd_hull *keep) {
 #define BUDGET_OFFSETS 9
 #define BUDGET_REFINE 3
 
-static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, const double nrm[3], double c, double *bufa,
-                          double *bufb, acd_hull_volume_ws *w) {
-    size_t na = 0, nb = 0;
-    for (size_t v = 0; v < m->nvertices; v += stride) {
+/* The projections on one direction of the sample scored by score_plane: the sampled vertices' (every
+ * stride-th) and the sampled triangles' (every tstride-th) three corners'; computed once per direction
+ * (n.p, then less the offset per plane: the same bits as n.p - c). */
+static void sample_dots(const acd_mesh *m, size_t stride, size_t tstride, const double nrm[3], double *dv, double *dt) {
+    size_t k = 0;
+    for (size_t v = 0; v < m->nvertices; v += stride, k++) {
         const double *p = m->vertices + 3 * v;
-        double s = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2] - c;
+        dv[k] = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2];
+    }
+    k = 0;
+    for (size_t t = 0; t < m->ntriangles; t += tstride)
+        for (int c = 0; c < 3; c++, k++) {
+            const double *p = m->vertices + 3 * (size_t)m->triangles[3 * t + c];
+            dt[k] = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2];
+        }
+}
+
+/* The sampled score of the plane n.x = c: the sum of the two sides' hull volumes, each side's hull
+ * that of its sampled vertices and of the crossings of the sampled triangles' edges (an edge of two
+ * sampled triangles: twice); dv, dt the sample's projections (sample_dots). -1 on failure. */
+static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, const double *dv, const double *dt, double c,
+                          double *bufa, double *bufb, acd_hull_volume_ws *w) {
+    size_t na = 0, nb = 0, k = 0;
+    for (size_t v = 0; v < m->nvertices; v += stride, k++) {
+        const double *p = m->vertices + 3 * v;
+        double s = dv[k] - c;
         memcpy(s >= 0 ? bufa + 3 * na++ : bufb + 3 * nb++, p, sizeof(double[3]));
     }
-    for (size_t t = 0; t < m->ntriangles; t += tstride)
-        for (int k = 0; k < 3; k++) {
-            uint32_t i = m->triangles[3 * t + k], j = m->triangles[3 * t + (k + 1) % 3];
-            const double *p = m->vertices + 3 * (size_t)i, *q = m->vertices + 3 * (size_t)j;
-            double sp = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2] - c;
-            double sq = nrm[0] * q[0] + nrm[1] * q[1] + nrm[2] * q[2] - c;
+    k = 0;
+    for (size_t t = 0; t < m->ntriangles; t += tstride, k += 3)
+        for (int e = 0; e < 3; e++) {
+            int f = e == 2 ? 0 : e + 1;
+            double sp = dt[k + e] - c, sq = dt[k + f] - c;
             if ((sp >= 0) == (sq >= 0)) continue;
+            const double *p = m->vertices + 3 * (size_t)m->triangles[3 * t + e], *q = m->vertices + 3 * (size_t)m->triangles[3 * t + f];
             double a = sp / (sp - sq), x[3];
             for (int d = 0; d < 3; d++) x[d] = p[d] + a * (q[d] - p[d]);
             memcpy(bufa + 3 * na++, x, sizeof x);
@@ -90,7 +110,7 @@ typedef struct plan {
     int nd, ok;
     double dirs[BUDGET_MAX_DIRS][3];
     double centroid[3];
-    size_t stride, tstride, cap;
+    size_t stride, tstride, cap, nsv, nst; /* sample strides, points per side at most, sampled vertices and triangles */
     double lo[BUDGET_MAX_DIRS], st[BUDGET_MAX_DIRS], bs[BUDGET_MAX_DIRS], bc[BUDGET_MAX_DIRS];
     int ord[BUDGET_MAX_DIRS];
 } plan;
@@ -137,7 +157,9 @@ static void plan_init(const acd_mesh *m, int ndir, plan *P) {
     if (P->tstride < 1) P->tstride = 1;
     /* points one side can receive: the sampled vertices and two crossings per sampled triangle
      * (three kept for safety) */
-    P->cap = (m->nvertices + P->stride - 1) / P->stride + 3 * ((m->ntriangles + P->tstride - 1) / P->tstride) + 1;
+    P->nsv = (m->nvertices + P->stride - 1) / P->stride;
+    P->nst = (m->ntriangles + P->tstride - 1) / P->tstride;
+    P->cap = P->nsv + 3 * P->nst + 1;
     for (int d = 0; d < nd; d++) {
         const double *ax = dirs[d];
         double lo = INFINITY, hi = -INFINITY;
@@ -153,7 +175,8 @@ static void plan_init(const acd_mesh *m, int ndir, plan *P) {
     P->ok = 1;
 }
 
-static double *plan_buffers(const plan *P) { return malloc(2 * 3 * P->cap * sizeof(double)); }
+/* Room for both sides' points (3 * cap doubles each) and the sample's projections. */
+static double *plan_buffers(const plan *P) { return malloc((2 * 3 * P->cap + P->nsv + 3 * P->nst) * sizeof(double)); }
 
 /* Direction d's best of the fixed offsets (touches only P->bs[d], P->bc[d]); 0 when out of memory. */
 static int score_dir(const acd_mesh *m, plan *P, int d) {
@@ -162,8 +185,10 @@ static int score_dir(const acd_mesh *m, plan *P, int d) {
     if (!buf) return 0;
     acd_hull_volume_ws hw;
     memset(&hw, 0, sizeof hw);
+    double *dv = buf + 6 * P->cap, *dt = dv + P->nsv;
+    sample_dots(m, P->stride, P->tstride, P->dirs[d], dv, dt);
     for (int i = 1; i <= BUDGET_OFFSETS; i++) {
-        double c = P->lo[d] + P->st[d] * i, sc = score_plane(m, P->stride, P->tstride, P->dirs[d], c, buf, buf + 3 * P->cap, &hw);
+        double c = P->lo[d] + P->st[d] * i, sc = score_plane(m, P->stride, P->tstride, dv, dt, c, buf, buf + 3 * P->cap, &hw);
         if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = c;
     }
     free(buf);
@@ -177,12 +202,14 @@ static int refine_dir(const acd_mesh *m, plan *P, int d) {
     if (!buf) return 0;
     acd_hull_volume_ws hw;
     memset(&hw, 0, sizeof hw);
+    double *dv = buf + 6 * P->cap, *dt = dv + P->nsv;
+    sample_dots(m, P->stride, P->tstride, P->dirs[d], dv, dt);
     double step = P->st[d];
     for (int r = 0; r < BUDGET_REFINE && P->bs[d] < INFINITY; r++) {
         step *= 0.5;
         double c0 = P->bc[d];
         for (int sg = -1; sg <= 1; sg += 2) {
-            double c = c0 + sg * step, sc = score_plane(m, P->stride, P->tstride, P->dirs[d], c, buf, buf + 3 * P->cap, &hw);
+            double c = c0 + sg * step, sc = score_plane(m, P->stride, P->tstride, dv, dt, c, buf, buf + 3 * P->cap, &hw);
             if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = c;
         }
     }

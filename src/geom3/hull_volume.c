@@ -20,16 +20,17 @@ static double hull_volume_pts(const double *pts, size_t n) {
 
 /* The facets of acd_hull_volume_fast's hull (the workspace's array). */
 struct acd_hv_facet {
-    int v[3], nb[3]; /* nb[k]: across edge (v[k], v[k+1]) */
     double n[3], d;  /* unit outward normal, n.x = d on the plane */
-    int head, far;   /* outside set (a list through acd_hull_volume_ws.next) and its farthest point */
     double fard;
+    int head, far;   /* outside set (a list through acd_hull_volume_ws.next) and its farthest point */
+    int v[3], nb[3]; /* nb[k]: across edge (v[k], v[k+1]) */
     int alive, mark;
 };
 typedef struct acd_hv_facet hv_facet;
 
 void acd_hull_volume_ws_free(acd_hull_volume_ws *w) {
     free(w->f), free(w->next), free(w->start), free(w->end), free(w->stack), free(w->vis);
+    free(w->pend), free(w->hor), free(w->horf), free(w->horu), free(w->newf), free(w->visl), free(w->pl);
     memset(w, 0, sizeof *w);
 }
 
@@ -43,6 +44,34 @@ static int hv_reserve_points(acd_hull_volume_ws *w, size_t n) {
     if (e) w->end = e;
     if (!a || !b || !e) return 0;
     w->pcap = c;
+    return 1;
+}
+
+/* *a holds at least need ints (grown to twice that); 0 when out of memory. */
+static int hv_grow_int(int **a, size_t *cap, size_t need) {
+    if (need <= *cap) return 1;
+    int *b = realloc(*a, 2 * need * sizeof *b);
+    if (!b) return 0;
+    *a = b, *cap = 2 * need;
+    return 1;
+}
+
+/* Room for need horizon edges: their vertex pairs, facets (all and each once), new facets and the
+ * planes of the new and horizon facets. */
+static int hv_grow_horizon(acd_hull_volume_ws *w, size_t need) {
+    size_t c = 2 * need;
+    int *a = realloc(w->hor, 2 * c * sizeof *a);
+    if (a) w->hor = a;
+    int *b = a ? realloc(w->horf, c * sizeof *b) : NULL;
+    if (b) w->horf = b;
+    int *u = b ? realloc(w->horu, c * sizeof *u) : NULL;
+    if (u) w->horu = u;
+    int *nf = u ? realloc(w->newf, c * sizeof *nf) : NULL;
+    if (nf) w->newf = nf;
+    double *pl = nf ? realloc(w->pl, 2 * 4 * c * sizeof *pl) : NULL;
+    if (pl) w->pl = pl;
+    if (!pl) return 0;
+    w->hcap = c;
     return 1;
 }
 
@@ -93,7 +122,8 @@ static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *c
 
 static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
     if (n < 4) return 0;
-    if (!hv_reserve_points(w, n)) return -1;
+    if (!hv_reserve_points(w, n) || !hv_grow_int(&w->pend, &w->pendcap, 64) || (w->hcap < 64 && !hv_grow_horizon(w, 64)))
+        return -1;
     w->nf = 0;
     /* the initial simplex: the extreme pair along the axes, then farthest from its line, then from
      * their plane */
@@ -137,10 +167,16 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
     if (!(nl > 0)) return 0;
     int i3 = -1;
     best = 0;
+    /* the first point of largest |distance| (the quotient by nl, computed only where the numerator
+     * grows: the division is monotone, so a smaller numerator cannot give a larger quotient) */
+    double bestnum = 0;
     for (size_t i = 0; i < n; i++) {
         const double *q = p + 3 * i;
-        double dd = (nn[0] * (q[0] - P0[0]) + nn[1] * (q[1] - P0[1]) + nn[2] * (q[2] - P0[2])) / nl;
-        if (fabs(dd) > best) best = fabs(dd), i3 = (int)i;
+        double num = fabs(nn[0] * (q[0] - P0[0]) + nn[1] * (q[1] - P0[1]) + nn[2] * (q[2] - P0[2]));
+        if (!(num > bestnum)) continue;
+        bestnum = num;
+        double dd = num / nl;
+        if (dd > best) best = dd, i3 = (int)i;
     }
     if (i3 < 0 || !(best > HULL_VOLUME_FLAT * fmax(scale, ext))) return 0; /* flat: qhull's dim < 3 gives 0 too */
     int tri[4][3] = {{i0, i1, i2}, {i0, i1, i3}, {i0, i2, i3}, {i1, i2, i3}};
@@ -169,47 +205,26 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
         }
     int all[4] = {0, 1, 2, 3};
     for (size_t i = 0; i < n; i++) {
+        w->start[i] = w->end[i] = -1;
         if ((int)i == i0 || (int)i == i1 || (int)i == i2 || (int)i == i3) continue;
         hv_assign(w, p, (int)i, all, 4, eps);
     }
-    for (size_t i = 0; i < n; i++) w->start[i] = w->end[i] = -1;
     int iter = 0;
     /* the pending facets: a stack of indices (a facet may be pushed when made) */
     size_t top = 0;
-    int *pend = NULL;
-    size_t pcap = 0;
-#define HV_PUSH(x)                                                                                                     \
-    do {                                                                                                               \
-        if (top == pcap) {                                                                                             \
-            size_t nc_ = pcap ? 2 * pcap : 64;                                                                         \
-            int *np_ = realloc(pend, nc_ * sizeof *np_);                                                               \
-            if (!np_) {                                                                                                \
-                free(pend);                                                                                            \
-                return -1;                                                                                             \
-            }                                                                                                          \
-            pend = np_, pcap = nc_;                                                                                    \
-        }                                                                                                              \
-        pend[top++] = (x);                                                                                             \
-    } while (0)
     for (int t = 0; t < 4; t++)
-        if (w->f[t].head >= 0) HV_PUSH(t);
-    int *hor = NULL, *horf = NULL, *visl = NULL, *newf = NULL;
-    size_t hcap = 0, vcap = 0;
+        if (w->f[t].head >= 0) w->pend[top++] = t;
     double vol = -1;
     while (top > 0) {
-        int fi = pend[--top];
+        int fi = w->pend[--top];
         if (!w->f[fi].alive || w->f[fi].head < 0) continue;
         int pi = w->f[fi].far;
         const double *q = p + 3 * pi;
         iter++;
         /* the visible facets from pi (connected through edges) */
         size_t nv = 0, ns = 0;
-        if (vcap < w->nf) {
-            vcap = 2 * w->nf;
-            int *a = realloc(visl, vcap * sizeof *a);
-            if (!a) goto fail_mem;
-            visl = a;
-        }
+        if (!hv_grow_int(&w->visl, &w->vcap, w->nf)) return -1;
+        int *visl = w->visl;
         w->vis[fi] = iter;
         w->stack[ns++] = fi;
         while (ns > 0) {
@@ -232,19 +247,12 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
             for (int e = 0; e < 3; e++) {
                 int h = G->nb[e];
                 if (w->vis[h] == iter) continue;
-                if (nh + 1 > hcap) {
-                    hcap = hcap ? 2 * hcap : 64;
-                    int *a = realloc(hor, 2 * hcap * sizeof *a), *b = a ? realloc(horf, hcap * sizeof *b) : NULL;
-                    if (a) hor = a;
-                    if (b) horf = b;
-                    int *c = b ? realloc(newf, hcap * sizeof *c) : NULL;
-                    if (c) newf = c;
-                    if (!a || !b || !c) goto fail_mem;
-                }
-                hor[2 * nh] = G->v[e], hor[2 * nh + 1] = G->v[(e + 1) % 3], horf[nh] = h;
+                if (nh + 1 > w->hcap && !hv_grow_horizon(w, nh + 1)) return -1;
+                w->hor[2 * nh] = G->v[e], w->hor[2 * nh + 1] = G->v[(e + 1) % 3], w->horf[nh] = h;
                 nh++;
             }
         }
+        int *hor = w->hor, *horf = w->horf, *newf = w->newf;
         /* a simple cycle: every vertex starts one horizon edge and ends one */
         int bad = 0;
         for (size_t k = 0; k < nh; k++) {
@@ -254,12 +262,11 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
         }
         if (bad || nh < 3) {
             for (size_t k = 0; k < nh; k++) w->start[hor[2 * k]] = w->end[hor[2 * k + 1]] = -1;
-            vol = -2;
-            goto done;
+            return -2;
         }
         for (size_t k = 0; k < nh; k++) {
             int nfi = hv_new_facet(w, p, hor[2 * k], hor[2 * k + 1], pi);
-            if (nfi < 0) goto fail_mem;
+            if (nfi < 0) return -1;
             newf[k] = nfi;
         }
         for (size_t k = 0; k < nh; k++) {
@@ -273,23 +280,55 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
                 if (H->v[e] == b && H->v[(e + 1) % 3] == a) H->nb[e] = newf[k];
         }
         for (size_t k = 0; k < nh; k++) w->start[hor[2 * k]] = w->end[hor[2 * k + 1]] = -1;
-        /* the visible facets' outside points to the new facets */
+        /* the new facets' planes packed, then the horizon facets' (each once, in their first order:
+         * the same first match as testing them all in order) */
+        double *pl = w->pl;
+        for (size_t k = 0; k < nh; k++) {
+            const hv_facet *F = &w->f[newf[k]];
+            pl[4 * k] = F->n[0], pl[4 * k + 1] = F->n[1], pl[4 * k + 2] = F->n[2], pl[4 * k + 3] = F->d;
+        }
+        int *horu = w->horu;
+        size_t nu = 0;
+        for (size_t k = 0; k < nh; k++) {
+            int h = horf[k];
+            if (w->vis[h] == -iter) continue;
+            w->vis[h] = -iter;
+            const hv_facet *F = &w->f[h];
+            double *r = pl + 4 * (nh + nu);
+            r[0] = F->n[0], r[1] = F->n[1], r[2] = F->n[2], r[3] = F->d;
+            horu[nu++] = h;
+        }
+        /* the visible facets' outside points to the new facets; not above a new facet, a point may
+         * still be above a horizon facet */
         for (size_t k = 0; k < nv; k++) {
             hv_facet *G = &w->f[visl[k]];
             G->alive = 0;
             for (int i = G->head; i >= 0;) {
                 int nx = w->next[i];
                 if (i != pi) {
-                    /* not above a new facet, it may still be above a horizon facet */
-                    if (!hv_assign(w, p, i, newf, (int)nh, eps)) hv_assign(w, p, i, horf, (int)nh, eps);
+                    const double *x = p + 3 * i;
+                    size_t j = 0, nt = nh + nu;
+                    double dd = 0;
+                    for (; j < nt; j++) {
+                        const double *r = pl + 4 * j;
+                        dd = r[0] * x[0] + r[1] * x[1] + r[2] * x[2] - r[3];
+                        if (dd > eps) break;
+                    }
+                    if (j < nt) {
+                        hv_facet *F = &w->f[j < nh ? newf[j] : horu[j - nh]];
+                        w->next[i] = F->head;
+                        F->head = i;
+                        if (dd > F->fard) F->fard = dd, F->far = i;
+                    }
                 }
                 i = nx;
             }
             G->head = -1;
         }
+        if (top + 2 * nh > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 2 * nh)) return -1;
         for (size_t k = 0; k < nh; k++) {
-            if (w->f[newf[k]].head >= 0) HV_PUSH(newf[k]);
-            if (w->f[horf[k]].head >= 0) HV_PUSH(horf[k]);
+            if (w->f[newf[k]].head >= 0) w->pend[top++] = newf[k];
+            if (w->f[horf[k]].head >= 0) w->pend[top++] = horf[k];
         }
     }
     {
@@ -306,13 +345,7 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
         }
         vol = s / 6;
     }
-    goto done;
-fail_mem:
-    vol = -1;
-done:
-    free(pend), free(hor), free(horf), free(visl), free(newf);
     return vol;
-#undef HV_PUSH
 }
 
 double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, int *fallback) {

@@ -26,6 +26,11 @@ typedef struct acd_hull_volume_ws {
     int *next, *start, *end, *stack, *vis; /* per point: list link, horizon edge from / to it;
                                              per facet: search stack, visible mark */
     size_t pcap;
+    int *pend, *visl;                   /* facets pending, facets visible */
+    size_t pendcap, vcap;
+    int *hor, *horf, *horu, *newf;      /* horizon: edges, facets (all, each once), new facets */
+    double *pl;                         /* planes of the new and horizon facets */
+    size_t hcap;
 } acd_hull_volume_ws;
 
 void acd_hull_volume_ws_free(acd_hull_volume_ws *w);
