@@ -2,7 +2,8 @@
  * finds agreeing with a brute-force reference, on dense and sparse vertex ids (the radix sort's
  * packed key a * (maxid + 1) + b takes 2 to 5 digit passes), a vertex of high degree, a keep
  * mask, no half-edge at all; acd_edge_map_check_closed and its one-at-a-time conditions on a
- * tetrahedron, one with a triangle missing, one flipped, one repeating a vertex. */
+ * tetrahedron, one with a triangle missing, one flipped, one repeating a vertex, and
+ * acd_edge_map_closed (build and check in one) agreeing with them. */
 #include "testutil.h"
 
 #include <stdlib.h>
@@ -113,6 +114,19 @@ static acd_status closed_status(const uint32_t *tri, size_t nt, acd_error *err) 
     acd_error_clear(err);
     acd_status st = acd_edge_map_check_closed(&m, tri, nt, err);
     assert_int_equal(st == ACD_OK, ok);
+    /* acd_edge_map_closed: the same answer; when closed, the same map kept (or none asked for) */
+    acd_edge_map k;
+    acd_error e2;
+    assert_int_equal(acd_edge_map_closed(tri, nt, &k, &e2), st);
+    assert_int_equal(acd_edge_map_closed(tri, nt, NULL, NULL), st);
+    if (st == ACD_OK) {
+        assert_int_equal(k.n, m.n);
+        assert_memory_equal(k.key, m.key, m.n * sizeof *m.key);
+        assert_memory_equal(k.half, m.half, m.n * sizeof *m.half);
+        acd_edge_map_free(&k);
+    } else {
+        assert_string_equal(e2.message, err->message);
+    }
     free(tw);
     acd_edge_map_free(&m);
     return st;

@@ -541,14 +541,11 @@ static void split_screen(split_state *S, cand_eval *e) {
     e->hullvol = vol;
 }
 
-/* m's edge map, checked closed (acd_edge_map_check_closed); returns 1 when built and m is closed,
- * else 0 (nothing to free). A part's, built once for all the cuts of its splits (process_node;
- * without it, each cut builds and checks the map and reports that). */
+/* m's edge map, checked closed (acd_edge_map_closed); returns 1 when built and m is closed, else 0
+ * (nothing to free). em NULL: only whether m is closed. A part's, built once for all the cuts of
+ * its splits (process_node; without it, each cut builds and checks the map and reports that). */
 static int part_edge_map(const acd_mesh *m, acd_edge_map *em) {
-    if (acd_edge_map_build(m->triangles, m->ntriangles, NULL, em, NULL) != ACD_OK) return 0;
-    if (acd_edge_map_check_closed(em, m->triangles, m->ntriangles, NULL) == ACD_OK) return 1;
-    acd_edge_map_free(em);
-    return 0;
+    return acd_edge_map_closed(m->triangles, m->ntriangles, em, NULL) == ACD_OK;
 }
 
 /* Cuts the part by the candidate of slot i and measures the pieces (largest first, stopping when the
@@ -585,11 +582,7 @@ static void split_evaluate(split_state *S, int i) {
         /* every piece must be a closed, consistently oriented surface; a cut that rounding left
          * otherwise is not used */
         if (ok && trial->cut.pieces[k].closed && !S->restrict_cut) continue; /* checked by the cut */
-        acd_edge_map em;
-        if (ok && part_edge_map(pm, &em))
-            acd_edge_map_free(&em);
-        else
-            ok = 0;
+        if (ok && !part_edge_map(pm, NULL)) ok = 0;
     }
     if (!ok) {
         choice_free(trial);

@@ -904,15 +904,9 @@ static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_b
          * leave a piece with an edge used twice in one direction; such a cut is refused */
         for (size_t p = 0; p < cr.npieces && ret == 1; p++) {
             const acd_mesh *pm = &cr.pieces[p].mesh;
-            acd_edge_map em;
             if (cr.pieces[p].closed) continue;
-            acd_status es = acd_edge_map_build(pm->triangles, pm->ntriangles, NULL, &em, NULL);
-            if (es == ACD_OK) {
-                if (acd_edge_map_check_closed(&em, pm->triangles, pm->ntriangles, NULL) != ACD_OK) ret = 0;
-                acd_edge_map_free(&em);
-            } else {
-                ret = es == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
-            }
+            acd_status es = acd_edge_map_closed(pm->triangles, pm->ntriangles, NULL, NULL);
+            if (es != ACD_OK) ret = es == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
         }
         if (ret != 1) {
             acd_cut_result_free(&cr);

@@ -199,3 +199,15 @@ acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *tria
     free(tw);
     return st;
 }
+
+acd_status acd_edge_map_closed(const uint32_t *triangles, size_t ntriangles, acd_edge_map *map, acd_error *err) {
+    acd_edge_map m;
+    acd_status st = acd_edge_map_build(triangles, ntriangles, NULL, &m, err);
+    if (st != ACD_OK) return st;
+    st = acd_edge_map_check_closed(&m, triangles, ntriangles, err);
+    if (st == ACD_OK && map)
+        *map = m;
+    else
+        acd_edge_map_free(&m);
+    return st;
+}

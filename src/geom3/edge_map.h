@@ -36,6 +36,11 @@ acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error 
  * ACD_ERR_NON_MANIFOLD naming the triangle and the edge. */
 acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *triangles, size_t ntriangles,
                                      acd_error *err);
+/* Whether the triangles form such a surface: builds their map and checks it
+ * (acd_edge_map_check_closed). ACD_OK: closed, and *map (when not NULL) holds the map, freed by
+ * the caller. Otherwise the failure, nothing left to free: ACD_ERR_NON_MANIFOLD (not closed, err
+ * names the triangle and the edge), ACD_ERR_NOMEM, ACD_ERR_INVALID_ARGUMENT (too many triangles). */
+acd_status acd_edge_map_closed(const uint32_t *triangles, size_t ntriangles, acd_edge_map *map, acd_error *err);
 /* Its conditions one at a time (for a caller that walks the map anyway, as geom3/plane_cut): entry
  * i of m (twin: acd_edge_map_twins of m) is the only half-edge of its key (not repeated) and has an
  * opposite; the triangle q repeats no vertex. */
