@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "acd/hull.h"
+#include "geom3/hull_volume.h"
 #include "geom3/pca.h"
 
 /* Offsets tried per axis: the planes at i / (VP_OFFSETS + 1) of the part's extent along it. */
@@ -32,9 +33,11 @@ static double hull_volume(const double *pts, size_t n) {
 }
 
 /* Sum of the two sides' hull volumes of the plane (unit normal nrm, offset c: n.x = c); -1 on
- * failure. buf holds room for every vertex and crossing (twice). */
+ * failure. buf holds room for every vertex and crossing (twice). The hulls by qhull
+ * (acd_hull_volume), or with a workspace w by geom3/hull_volume's own Quickhull (an estimate's
+ * scores: they only rank planes). */
 static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, const double nrm[3], double c, double *bufa,
-                          double *bufb) {
+                          double *bufb, acd_hull_volume_ws *w) {
     size_t na = 0, nb = 0;
     for (size_t v = 0; v < m->nvertices; v += stride) {
         const double *p = m->vertices + 3 * v;
@@ -55,7 +58,8 @@ static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, cons
             memcpy(bufa + 3 * na++, x, sizeof x);
             memcpy(bufb + 3 * nb++, x, sizeof x);
         }
-    double va = hull_volume(bufa, na), vb = hull_volume(bufb, nb);
+    double va = w ? acd_hull_volume_fast(bufa, na, w, NULL) : hull_volume(bufa, na);
+    double vb = w ? acd_hull_volume_fast(bufb, nb, w, NULL) : hull_volume(bufb, nb);
     return va < 0 || vb < 0 ? -1 : va + vb;
 }
 
@@ -85,6 +89,10 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, in
         for (size_t v = 0; v < m->nvertices; v += stride) memcpy(bufa + 3 * k++, m->vertices + 3 * v, sizeof(double[3]));
         *whole = hull_volume(bufa, k);
     }
+    /* an estimate's scores by the own Quickhull (geom3/hull_volume), the full search's by qhull */
+    acd_hull_volume_ws hw;
+    memset(&hw, 0, sizeof hw);
+    acd_hull_volume_ws *hwp = max_scored > 0 ? &hw : NULL;
     double best[3];
     int n = 0, order[3];
     acd3_plane_candidate cand[3];
@@ -106,7 +114,7 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, in
         double bs = INFINITY, bc = 0, step = (hi - lo) / (noff + 1);
         for (int i = 1; i <= noff; i++) {
             double c = lo + step * i;
-            double s = score_plane(m, stride, tstride, ax, c, bufa, bufb);
+            double s = score_plane(m, stride, tstride, ax, c, bufa, bufb, hwp);
             if (s >= 0 && s < bs) bs = s, bc = c;
         }
         abest[a] = bs, acut[a] = bc, astep[a] = step, atried[a] = 1;
@@ -124,7 +132,7 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, in
             double c0 = bc;
             for (int sgn = -1; sgn <= 1; sgn += 2) {
                 double c = c0 + sgn * step;
-                double s = score_plane(m, stride, tstride, ax, c, bufa, bufb);
+                double s = score_plane(m, stride, tstride, ax, c, bufa, bufb, hwp);
                 if (s >= 0 && s < bs) bs = s, bc = c;
             }
         }
@@ -140,6 +148,7 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, in
     }
     free(bufa);
     free(bufb);
+    acd_hull_volume_ws_free(&hw);
     /* best first (stable: the axes' order on ties) */
     for (int i = 1; i < n; i++)
         for (int j = i; j > 0 && best[order[j]] < best[order[j - 1]]; j--) {
@@ -159,7 +168,7 @@ double acd3_volume_plane_sides(const acd_mesh *m, const double normal[3], const 
     size_t cap = m->nvertices + 3 * m->ntriangles + 1;
     double *bufa = malloc(3 * cap * sizeof *bufa), *bufb = malloc(3 * cap * sizeof *bufb), s = -1;
     if (bufa && bufb)
-        s = score_plane(m, 1, 1, normal, normal[0] * point[0] + normal[1] * point[1] + normal[2] * point[2], bufa, bufb);
+        s = score_plane(m, 1, 1, normal, normal[0] * point[0] + normal[1] * point[1] + normal[2] * point[2], bufa, bufb, NULL);
     free(bufa);
     free(bufb);
     return s;
