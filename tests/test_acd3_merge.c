@@ -13,6 +13,8 @@
 
 #include "acd/hull.h"
 #include "acd3/merge.h"
+#include "core/rng.h"
+#include "geom3/bvh.h"
 #include "shapes.h"
 
 enum { NX = 14, NY = 12 };
@@ -88,9 +90,71 @@ static void test_volume_order_skips_refused(void **state) {
     acd_mesh_free(&in);
 }
 
+/* Distance from p to the nearest of the triangles (brute force). */
+static double dist_tris(const double *v, const uint32_t *t, size_t nt, const double p[3]) {
+    double best = INFINITY, q[3];
+    for (size_t i = 0; i < nt; i++) {
+        double d2 = acd_closest_point_triangle(p, v + 3 * t[3 * i], v + 3 * t[3 * i + 1], v + 3 * t[3 * i + 2], q);
+        if (d2 < best) best = d2;
+    }
+    return sqrt(best);
+}
+
+/* acd3_merge_hull_reach where the distance nears tau over a whole facet: the part is a unit square
+ * (two triangles) and the hull a slab over it h = 0.99 tau thick, so every point of the top facet
+ * is h from the part. The closest-point bound needs pieces of radius about
+ * sqrt(tau^2 - h^2) = 0.14 tau there (some 10^5 queries: the budget ran out and the bound was
+ * INFINITY); the triangle the closest point lies on bounds the facet's pieces by h itself
+ * (facet_ub, after MERGE_FACET_POINT_QUERIES). The bound is finite, within tau, and above the
+ * distance of every sampled point of every facet. */
+static void test_hull_reach_near_tau(void **state) {
+    (void)state;
+    const double tau = 0.01, h = 0.99 * tau;
+    const double sq[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const uint32_t st[6] = {0, 1, 2, 0, 2, 3};
+    double box[24];
+    for (int i = 0; i < 4; i++) {
+        memcpy(box + 3 * i, sq + 3 * i, 3 * sizeof(double));
+        memcpy(box + 12 + 3 * i, sq + 3 * i, 3 * sizeof(double));
+        box[12 + 3 * i + 2] = h;
+    }
+    acd_bvh bvh;
+    acd_error err;
+    assert_int_equal(acd_bvh_build(&bvh, sq, 4, st, 2, &err), ACD_OK);
+    acd_hull H;
+    assert_int_equal(acd_hull_compute(box, 8, &H, &err), ACD_OK);
+    assert_int_equal(H.dim, 3);
+    double reach = acd3_merge_hull_reach(&bvh, &H, tau);
+    print_message("reach %.17g (h %.17g, tau %g)\n", reach, h, tau);
+    assert_true(reach <= tau);
+    assert_true(reach >= h * (1 - 1e-12));
+    /* above the distance of sampled points of every facet */
+    acd_rng r;
+    acd_rng_seed(&r, 5);
+    double seen = 0;
+    for (size_t t = 0; t < H.ntriangles; t++)
+        for (int k = 0; k < 200; k++) {
+            double a = acd_rng_uniform(&r), b = acd_rng_uniform(&r);
+            if (a + b > 1) a = 1 - a, b = 1 - b;
+            const double *p0 = H.vertices + 3 * H.triangles[3 * t], *p1 = H.vertices + 3 * H.triangles[3 * t + 1],
+                         *p2 = H.vertices + 3 * H.triangles[3 * t + 2];
+            double p[3];
+            for (int c = 0; c < 3; c++) p[c] = p0[c] + a * (p1[c] - p0[c]) + b * (p2[c] - p0[c]);
+            double d = dist_tris(sq, st, 2, p);
+            if (d > seen) seen = d;
+        }
+    assert_true(seen > 0.9 * h);
+    assert_true(reach >= seen * (1 - 1e-12));
+    /* a tau below h: refused */
+    assert_true(acd3_merge_hull_reach(&bvh, &H, 0.98 * h) > 0.98 * h);
+    acd_hull_free(&H);
+    acd_bvh_free(&bvh);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_volume_order_skips_refused),
+        cmocka_unit_test(test_hull_reach_near_tau),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

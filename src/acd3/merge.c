@@ -19,6 +19,10 @@
 
 /* Closest-point queries allowed when scoring one pair; a pair needing more is refused. */
 #define MERGE_MAX_QUERIES 100000
+/* Closest-point queries after which a facet's bound switches from the closest point to its
+ * triangle (facet_ub; at most 363 on the target meshes at their settings, so their bounds are the
+ * point bound's). */
+#define MERGE_FACET_POINT_QUERIES 1000
 /* Hull pieces are not subdivided below this fraction of tau: such a piece (its centroid within
  * tau of the part but its bound above tau) refuses the pair. */
 #define MERGE_MIN_RADIUS_REL 1e-3
@@ -120,24 +124,28 @@ void acd3_merge_result_free(acd3_merge_result *r) {
 }
 
 /* Distance from p to the members' triangles, if below lim (else lim or more); q: the closest point
- * found (untouched when none within lim). */
-static double dist_group(const group *g, const double p[3], double lim, double q[3]) {
+ * found and tri the corners of its triangle (untouched when none within lim). */
+static double dist_group(const group *g, const double p[3], double lim, double q[3], double tri[9]) {
     double d = INFINITY;
     for (size_t m = 0; m < g->nmembers; m++) {
         acd_bvh_closest_result r;
         double l = d < lim ? d : lim;
-        if (acd_bvh_closest(&g->at->bvh[g->members[m]], p, l * l, &r) && sqrt(r.dist2) < d) {
+        const acd_bvh *bvh = &g->at->bvh[g->members[m]];
+        if (acd_bvh_closest(bvh, p, l * l, &r) && sqrt(r.dist2) < d) {
             d = sqrt(r.dist2);
             memcpy(q, r.point, sizeof r.point);
+            for (int k = 0; k < 3; k++)
+                memcpy(tri + 3 * k, bvh->vertices + 3 * (size_t)bvh->triangles[3 * (size_t)r.triangle + k],
+                       sizeof(double[3]));
         }
     }
     return d;
 }
 
-static double dist_groups(const group *A, const group *B, const double p[3], double lim, double q[3]) {
-    double d = dist_group(A, p, lim, q);
+static double dist_groups(const group *A, const group *B, const double p[3], double lim, double q[3], double tri[9]) {
+    double d = dist_group(A, p, lim, q, tri);
     if (B) {
-        double e = dist_group(B, p, d < lim ? d : lim, q);
+        double e = dist_group(B, p, d < lim ? d : lim, q, tri);
         if (e < d) d = e;
     }
     return d;
@@ -241,31 +249,42 @@ static double max_corner_dist(const double tri[9], const double q[3]) {
     return fmax(acd_dist3(tri, q), fmax(acd_dist3(tri + 3, q), acd_dist3(tri + 6, q)));
 }
 
+/* Largest distance from the corners of piece to the triangle t. */
+static double max_corner_dist_tri(const double piece[9], const double t[9]) {
+    double q[3], m = 0;
+    for (int k = 0; k < 3; k++) m = fmax(m, acd_closest_point_triangle(piece + 3 * k, t, t + 3, t + 6, q));
+    return sqrt(m); /* (squared distances) */
+}
+
 /* An upper bound of the distance from the points of triangle tri to A u B (B may be NULL). For a
  * point q of A u B, every point of a triangle is within max_k |v_k - q| of q (|x - q| is convex,
  * its maximum on the triangle is at a corner). The triangle is subdivided (midpoints, 4 children)
  * until every piece has such a point within tau of all its corners: first the point its parent
  * found (no query), else the closest point q of A u B to its centroid g. Since
  * max_k |v_k - q| <= dist(g) + r (r: the piece's circumradius), this bound is never looser than
- * the Lipschitz one. Returns INFINITY when a centroid is farther than tau, the query budget runs
- * out or pieces get too small. Stack items: the piece's corners (9) and the parent's point (3; NaN
- * for none). */
+ * the Lipschitz one. A facet that takes more than MERGE_FACET_POINT_QUERIES queries so (the point
+ * bound needs pieces of radius about sqrt(tau^2 - d^2) where the distance d nears tau: thousands
+ * of queries on a large facet at a small tau) bounds its remaining pieces by the triangle T of
+ * A u B that q lies on: max_k dist(v_k, T), as convex and never above max_k |v_k - q|, and flat
+ * where the part is (a piece parallel to T needs no subdivision). Returns INFINITY when a
+ * centroid is farther than tau, the query budget runs out or pieces get too small. Stack items:
+ * the piece's corners (9), the parent's point (3; NaN for none) and its triangle (9). */
 #define MERGE_WARM_SLACK_REL 1e-9
-#define MERGE_ITEM 12
+#define MERGE_ITEM 21
 static double facet_ub(const group *A, const group *B, const double tri0[9], double tau, size_t *queries,
                        double **stackp, size_t *capp) {
     double *stack = *stackp;
-    size_t n = 1, cap = *capp;
+    size_t n = 1, cap = *capp, q0 = *queries;
     memcpy(stack, tri0, 9 * sizeof *stack);
-    stack[9] = stack[10] = stack[11] = NAN;
+    for (int k = 9; k < MERGE_ITEM; k++) stack[k] = NAN;
     double ub = 0, prev_d = INFINITY, prev_g[3] = {0, 0, 0};
     while (n) {
         double it[MERGE_ITEM];
         memcpy(it, stack + MERGE_ITEM * (--n), sizeof it);
-        const double *tri = it, *pq = it + 9;
-        int has_pq = !isnan(pq[0]);
+        const double *tri = it, *pq = it + 9, *pt = it + 12;
+        int has_pq = !isnan(pq[0]), by_tri = *queries - q0 > MERGE_FACET_POINT_QUERIES;
         if (has_pq) {
-            double b = max_corner_dist(tri, pq);
+            double b = by_tri ? max_corner_dist_tri(tri, pt) : max_corner_dist(tri, pq);
             if (b <= tau) {
                 if (b > ub) ub = b;
                 continue;
@@ -278,20 +297,22 @@ static double facet_ub(const group *A, const group *B, const double tri0[9], dou
          * one's, and so does the parent's point (margins far above the rounding of the
          * closest-point computation) */
         double lim = fmin(tau, (prev_d + acd_dist3(g, prev_g)) * (1 + 1e-9) + MERGE_WARM_SLACK_REL * tau);
-        double q[3], dq = INFINITY;
-        if (has_pq) {
-            dq = acd_dist3(g, pq);
+        double q[3], t[9], pg[3], dq = INFINITY;
+        if (has_pq) { /* the parent's point, or (by_tri) its triangle's point closest to g */
+            if (by_tri) dq = sqrt(acd_closest_point_triangle(g, pt, pt + 3, pt + 6, pg));
+            else dq = acd_dist3(g, pq), memcpy(pg, pq, sizeof pg);
             lim = fmin(lim, dq * (1 + 1e-9) + MERGE_WARM_SLACK_REL * tau);
         }
-        double d = dist_groups(A, B, g, lim, q);
+        double d = dist_groups(A, B, g, lim, q, t);
         if (!(d <= dq) && has_pq) { /* nothing nearer than the parent's point was found */
             d = dq;
-            memcpy(q, pq, sizeof q);
+            memcpy(q, pg, sizeof q);
+            memcpy(t, pt, sizeof t);
         }
         if (!(d <= tau)) return INFINITY;
         prev_d = d;
         memcpy(prev_g, g, sizeof prev_g);
-        double b = max_corner_dist(tri, q);
+        double b = by_tri ? max_corner_dist_tri(tri, t) : max_corner_dist(tri, q);
         if (b <= tau) {
             if (b > ub) ub = b;
             continue;
@@ -309,6 +330,7 @@ static double facet_ub(const group *A, const group *B, const double tri0[9], dou
         for (int s = 0; s < 4; s++) {
             memcpy(stack + MERGE_ITEM * n, sub[s], sizeof sub[s]);
             memcpy(stack + MERGE_ITEM * n + 9, q, sizeof q);
+            memcpy(stack + MERGE_ITEM * n + 12, t, sizeof t);
             n++;
         }
     }
