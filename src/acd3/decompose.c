@@ -366,13 +366,19 @@ static int split_lost(const split_state *S, double c, int r) {
     return S->found && S->best_progress && c > S->best.concavity + (r ? r + 2 : 1) * margin;
 }
 
-/* split_lost, and by volume, with the candidates before e's all replayed (r = 0: the best is the one
- * e is compared with) and e's hull volume known: whether a trial of concavity c (so far) cannot be
- * better (split_better), or is not to be measured. Its hull volume is not smaller than the best's:
- * by band it would need a concavity below the band; by volume (ACD3D_CHOICE_VOLUME) it is lost
- * unmeasured (ACD3_VOLUME_SCREEN_HULL); else it needs a concavity within the band. */
-static int split_lost_at(const split_state *S, const cand_eval *e, double c, int r) {
+/* split_lost for the trial of e, its pieces measured so far of concavity conc (their largest; 0:
+ * none), c = conc or more by e's lower bound; by volume, also: once a best that makes progress is
+ * found (the best makes progress from then on), a trial of conc not below the part's by tol makes
+ * none and cannot be better (split_better), whatever its other pieces measure; and with the
+ * candidates before e's all replayed (r = 0: the best is the one e is compared with) and e's hull
+ * volume known: whether a trial of concavity c cannot be better, or is not to be measured. Its hull
+ * volume is not smaller than the best's: by band it would need a concavity below the band; by
+ * volume (ACD3D_CHOICE_VOLUME) it is lost unmeasured (ACD3_VOLUME_SCREEN_HULL); else it needs a
+ * concavity within the band. */
+static int split_lost_at(const split_state *S, const cand_eval *e, double conc, int r) {
+    double c = fmax(conc, e->cbound);
     if (split_lost(S, c, r)) return 1;
+    if (S->by_volume && S->found && S->best_progress && !(conc < S->ms->concavity - S->tol)) return 1;
     if (r || !S->by_volume || !e->have_hullvol || !S->found || !S->best_progress) return 0;
     if (e->hullvol >= S->best.hullvol && ACD3_VOLUME_SCREEN_HULL && !S->early) return 1;
     return e->hullvol >= S->best.hullvol ? c >= S->best.concavity - S->band : c > S->best.concavity + S->band;
@@ -419,7 +425,7 @@ static void split_replay(split_state *S) {
          * measuring there: a failure past that point is not its failure) */
         split_choice *t = &e->trial;
         double conc = 0;
-        int lost = split_lost_at(S, e, e->cbound, 0);
+        int lost = split_lost_at(S, e, 0, 0);
         for (size_t i2 = 0; i2 < t->cut.npieces && !lost; i2++) {
             if (i2 == e->failed_at) {
                 S->fail = (int)e->st;
@@ -435,7 +441,7 @@ static void split_replay(split_state *S) {
             }
             double c = t->pieces[e->ord[i2]].ms.concavity;
             if (c > conc) conc = c;
-            lost = split_lost_at(S, e, fmax(conc, e->cbound), 0);
+            lost = split_lost_at(S, e, conc, 0);
         }
         if (lost) {
             cand_eval_free(e);
@@ -464,10 +470,11 @@ static void split_replay(split_state *S) {
     if (S->cursor >= S->nc) S->stopped = 1;
 }
 
-/* Whether the replay no longer needs the candidate of slot id (*lost: a trial of concavity c has
- * lost against any best the replay can reach at its index i, so its other pieces need no measure;
- * the replay finds the same when it reaches i). Before the order is known, every slot is needed. */
-static int split_abandoned(split_state *S, int id, double c, int *lost) {
+/* Whether the replay no longer needs the candidate of slot id (*lost: a trial whose pieces measured so
+ * far have concavity conc has lost against any best the replay can reach at its index i
+ * (split_lost_at), so its other pieces need no measure; the replay finds the same when it reaches
+ * i). Before the order is known, every slot is needed. */
+static int split_abandoned(split_state *S, int id, double conc, int *lost) {
     int gone = 0;
     *lost = 0;
 #ifdef _OPENMP
@@ -476,7 +483,7 @@ static int split_abandoned(split_state *S, int id, double c, int *lost) {
     if (S->ordered) {
         int i = S->pos[id];
         gone = i < 0 || S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i));
-        *lost = !gone && split_lost_at(S, &S->ev[id], c, i - S->cursor);
+        *lost = !gone && split_lost_at(S, &S->ev[id], conc, i - S->cursor);
     }
     return gone;
 }
@@ -610,7 +617,7 @@ static void split_evaluate(split_state *S, int i) {
     double conc = 0;
     for (size_t i2 = 0; i2 < trial->cut.npieces; i2++) {
         int lost = 0;
-        if (split_abandoned(S, i, fmax(conc, e->cbound), &lost) || lost) return;
+        if (split_abandoned(S, i, conc, &lost) || lost) return;
         size_t k = e->ord[i2];
         acd_hull *hk = e->hulls && e->hulls[k].dim >= 0 ? &e->hulls[k] : NULL;
         acd_status st = measure_mesh(&trial->cut.pieces[k].mesh, S->eps, S->tol, hk, &trial->pieces[k], &e->err);
