@@ -565,7 +565,8 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
             ok = 0;
             break;
         }
-        for (size_t i = 0; i < nk; i++) {
+        /* (one kept cut crosses no other: no flood) */
+        for (size_t i = 0; i < nk && nk > 1; i++) {
             const cand *ci = &cands[kept.a[i]];
             const uint32_t *p = pool.a + ci->off;
             for (size_t k = 0; k + 1 < ci->n; k++) {

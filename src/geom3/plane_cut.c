@@ -565,8 +565,6 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         double tv = (a[0] * bd[0] + a[1] * bd[1] + a[2] * bd[2]) / 6.0;
         uint32_t r = acd_uf_find(parent, (uint32_t)t);
         vol[r] += tv;
-        avol[r] += sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) *
-                        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) / 6.0;
         double e1[3], e2[3], nn[3];
         for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
         cross3(e1, e2, nn);
@@ -577,6 +575,23 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
     double diag = 0;
     for (int k = 0; k < 3; k++) diag += c->nv ? (hi[k] - lo[k]) * (hi[k] - lo[k]) : 0;
     diag = sqrt(diag);
+    /* the rounding scales, needed only for the specks dropped (DROP_SPECKS) and the cavities (a shell
+     * of negative volume that is not flat): a second pass in the same order (the same sums) */
+    int need_avol = (c->flags & ACD_PLANE_CUT_DROP_SPECKS) != 0;
+    for (size_t t = 0; t < nt && !need_avol; t++) {
+        double thr = ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t];
+        int fl = parent[t] == t && isfinite(thr) && !(fabs(vol[t]) > thr);
+        need_avol = parent[t] == t && !fl && vol[t] < 0;
+    }
+    for (size_t t = 0; t < nt && need_avol; t++) {
+        const double *p[3];
+        for (int i = 0; i < 3; i++) p[i] = c->V + 3 * (size_t)c->T[3 * t + i];
+        double a[3], b[3], d[3];
+        for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], d[k] = p[2][k] - o[k];
+        avol[acd_uf_find(parent, (uint32_t)t)] += sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) *
+                                                       (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) *
+                                                       (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) / 6.0;
+    }
     for (size_t t = 0; t < nt; t++) {
         /* (a threshold that overflows decides nothing: such a shell is kept) */
         double thr = ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * area[t];
