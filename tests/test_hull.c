@@ -535,6 +535,29 @@ static void test_enclosure_ill_conditioned(void **state) {
         assert_memory_equal(&v, &h.volume, sizeof v);
         acd_hull_free(&h);
     }
+    /* with 400 convex combinations of the six (the points checked through several levels of
+     * hull_enclose's tree), in shuffled order: still every point inside every plane */
+    enum { NP = 406 };
+    double *q = malloc(3 * NP * sizeof *q);
+    assert_non_null(q);
+    acd_rng r;
+    acd_rng_seed(&r, 3);
+    for (size_t i = 0; i < NP; i++) {
+        double wsum = 0, wt[6];
+        for (int k = 0; k < 6; k++) wsum += wt[k] = acd_rng_uniform(&r) * acd_rng_uniform(&r);
+        for (int c = 0; c < 3; c++) {
+            q[3 * i + c] = 0;
+            for (int k = 0; k < 6; k++) q[3 * i + c] += wt[k] / wsum * base[3 * k + c];
+        }
+    }
+    for (int k = 0; k < 6; k++) memcpy(q + 3 * (size_t)(37 + 61 * k), base + 3 * k, 3 * sizeof(double));
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(q, NP, &h, &err), ACD_OK);
+    assert_int_equal(h.dim, 3);
+    assert_encloses(&h, q, NP);
+    acd_hull_free(&h);
+    free(q);
 }
 
 int main(void) {

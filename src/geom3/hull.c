@@ -424,8 +424,9 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
  * point exceeds by more than the tolerance is lifted to pass through its farthest point (its
  * normal and the triangles unchanged); hulls without a violation keep their bits. */
 
-/* Points per leaf of the tree. */
-#define HULL_ENCLOSE_LEAF 32
+/* Points per leaf of the tree (the check's time on the hulls of a bunny00 run, against 64:
+ * 1.7x with 16, 1.2x with 32, the same with 128). */
+#define HULL_ENCLOSE_LEAF 64
 
 typedef struct encl_node {
     double c[3], h[3];      /* box centre and half sides */
@@ -438,6 +439,7 @@ typedef struct encl_tree {
     encl_node *node;
     size_t nnode, cap;
     uint32_t *idx;
+    double *pts; /* the points in the order of idx (leaves contiguous) */
 } encl_tree;
 
 static void encl_box(const double *w, const uint32_t *idx, uint32_t b, uint32_t e, encl_node *nd) {
@@ -533,11 +535,14 @@ static int encl_build(encl_tree *T, const double *w, size_t n) {
         encl_box(w, T->idx, nd.begin, i, &T->node[T->nnode++]);
         encl_box(w, T->idx, i, nd.end, &T->node[T->nnode++]);
     }
+    T->pts = malloc((n ? n : 1) * 3 * sizeof *T->pts);
+    if (!T->pts) return 0;
+    for (size_t i = 0; i < n; i++) memcpy(T->pts + 3 * i, w + 3 * (size_t)T->idx[i], 3 * sizeof(double));
     return 1;
 }
 
 /* Largest n.p + d over the points of the tree, or a value <= tol when every point is within tol. */
-static double encl_worst(const encl_tree *T, const double *w, const double *nrm, double d, double tol) {
+static double encl_worst(const encl_tree *T, const double *nrm, double d, double tol) {
     uint32_t stack[128];
     size_t top = 0;
     double worst = -INFINITY;
@@ -558,7 +563,7 @@ static double encl_worst(const encl_tree *T, const double *w, const double *nrm,
             continue;
         }
         for (uint32_t i = nd->begin; i < nd->end; i++) { /* a leaf (or a subtree past the stack's depth) */
-            double v = dot3(nrm, w + 3 * (size_t)T->idx[i]) + d;
+            double v = dot3(nrm, T->pts + 3 * (size_t)i) + d;
             if (v > worst) worst = v;
         }
     }
@@ -572,6 +577,7 @@ static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double 
     if (!encl_build(&T, w, n)) {
         free(T.node);
         free(T.idx);
+        free(T.pts);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory checking a hull of %zu points", n);
     }
     for (size_t t = 0; t < out->ntriangles; t++) {
@@ -582,11 +588,12 @@ static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double 
             double dv = -dot3(pl, w + 3 * (size_t)out->source[tri[k]]);
             if (k == 0 || dv < d) d = dv;
         }
-        double worst = encl_worst(&T, w, pl, d, tol);
+        double worst = encl_worst(&T, pl, d, tol);
         if (worst > tol) pl[3] -= worst * s;
     }
     free(T.node);
     free(T.idx);
+    free(T.pts);
     return ACD_OK;
 }
 
