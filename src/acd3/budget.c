@@ -178,22 +178,108 @@ static void plan_init(const acd_mesh *m, int ndir, plan *P) {
 /* Room for both sides' points (3 * cap doubles each) and the sample's projections. */
 static double *plan_buffers(const plan *P) { return malloc((2 * 3 * P->cap + P->nsv + 3 * P->nst) * sizeof(double)); }
 
-/* Direction d's best of the fixed offsets (touches only P->bs[d], P->bc[d]); 0 when out of memory. */
+/* The sampled vertices' order along a direction (by projection, then index). */
+typedef struct keyed {
+    double key;
+    size_t i;
+} keyed;
+static int keyed_less(const keyed *x, const keyed *y) { return x->key < y->key || (x->key == y->key && x->i < y->i); }
+
+/* a[0..n) sorted (keyed_less) through tmp (room for n): a merge sort, runs of 8 by insertion. */
+static void keyed_sort(keyed *a, keyed *tmp, size_t n) {
+    for (size_t r = 0; r < n; r += 8) {
+        size_t e = r + 8 < n ? r + 8 : n;
+        for (size_t i = r + 1; i < e; i++) {
+            keyed x = a[i];
+            size_t j = i;
+            for (; j > r && keyed_less(&x, &a[j - 1]); j--) a[j] = a[j - 1];
+            a[j] = x;
+        }
+    }
+    keyed *src = a, *dst = tmp;
+    for (size_t w = 8; w < n; w *= 2) {
+        for (size_t r = 0; r < n; r += 2 * w) {
+            size_t m = r + w < n ? r + w : n, e = r + 2 * w < n ? r + 2 * w : n, i = r, j = m, k = r;
+            while (i < m && j < e) dst[k++] = keyed_less(&src[j], &src[i]) ? src[j++] : src[i++];
+            while (i < m) dst[k++] = src[i++];
+            while (j < e) dst[k++] = src[j++];
+        }
+        keyed *t = src;
+        src = dst, dst = t;
+    }
+    if (src != a) memcpy(a, src, n * sizeof *a);
+}
+
+/* Direction d's best of the fixed offsets (touches only P->bs[d], P->bc[d]); 0 when out of memory.
+ * Each side's hulls over the offsets by one sweep (acd_hull_volume_sweep: the sampled vertices
+ * sorted along d, the hull grown offset by offset, each plane's crossings added and undone); an
+ * offset the sweep leaves scored as one plane (score_plane). */
 static int score_dir(const acd_mesh *m, plan *P, int d) {
     if (!(P->lo[d] == P->lo[d])) return 1; /* flat along d */
     double *buf = plan_buffers(P);
-    if (!buf) return 0;
+    size_t nsv = P->nsv, xcap = 3 * P->nst;
+    keyed *ord = malloc(2 * (nsv + 1) * sizeof *ord);
+    double *srt = malloc(3 * (nsv + 1) * sizeof *srt), *xs = malloc(3 * (BUDGET_OFFSETS * xcap + 1) * sizeof *xs);
+    if (!buf || !ord || !srt || !xs) {
+        free(buf), free(ord), free(srt), free(xs);
+        return 0;
+    }
     acd_hull_volume_ws hw;
     memset(&hw, 0, sizeof hw);
     double *dv = buf + 6 * P->cap, *dt = dv + P->nsv;
     sample_dots(m, P->stride, P->tstride, P->dirs[d], dv, dt);
-    for (int i = 1; i <= BUDGET_OFFSETS; i++) {
-        double c = P->lo[d] + P->st[d] * i, sc = score_plane(m, P->stride, P->tstride, dv, dt, c, buf, buf + 3 * P->cap, &hw);
+    double cs[BUDGET_OFFSETS];
+    for (int i = 1; i <= BUDGET_OFFSETS; i++) cs[i - 1] = P->lo[d] + P->st[d] * i;
+    /* each offset's crossings (as score_plane makes them) */
+    size_t xb[BUDGET_OFFSETS], xe[BUDGET_OFFSETS];
+    for (int i = 0; i < BUDGET_OFFSETS; i++) {
+        size_t nx = i * xcap, k = 0;
+        xb[i] = nx;
+        for (size_t t = 0; t < m->ntriangles; t += P->tstride, k += 3)
+            for (int e = 0; e < 3; e++) {
+                int f = e == 2 ? 0 : e + 1;
+                double sp = dt[k + e] - cs[i], sq = dt[k + f] - cs[i];
+                if ((sp >= 0) == (sq >= 0)) continue;
+                const double *p = m->vertices + 3 * (size_t)m->triangles[3 * t + e], *q = m->vertices + 3 * (size_t)m->triangles[3 * t + f];
+                double a = sp / (sp - sq);
+                for (int c = 0; c < 3; c++) xs[3 * nx + c] = p[c] + a * (q[c] - p[c]);
+                nx++;
+            }
+        xe[i] = nx;
+    }
+    /* the sample sorted along d: side below (n.p - c < 0) a prefix, side above a suffix */
+    for (size_t k = 0; k < nsv; k++) ord[k].key = dv[k], ord[k].i = k;
+    keyed_sort(ord, ord + nsv, nsv);
+    for (size_t k = 0; k < nsv; k++) memcpy(srt + 3 * k, m->vertices + 3 * (ord[k].i * P->stride), sizeof(double[3]));
+    size_t cntb[BUDGET_OFFSETS], cnta[BUDGET_OFFSETS], xba[BUDGET_OFFSETS], xea[BUDGET_OFFSETS];
+    for (int i = 0; i < BUDGET_OFFSETS; i++) {
+        size_t c = 0;
+        for (size_t k = 0; k < nsv; k++) c += dv[k] - cs[i] < 0;
+        cntb[i] = c;
+        cnta[BUDGET_OFFSETS - 1 - i] = nsv - c;
+        xba[BUDGET_OFFSETS - 1 - i] = xb[i], xea[BUDGET_OFFSETS - 1 - i] = xe[i];
+    }
+    double vb[BUDGET_OFFSETS], va[BUDGET_OFFSETS], vr[BUDGET_OFFSETS];
+    int ok = acd_hull_volume_sweep(srt, nsv, P->dirs[d], cntb, xs, xb, xe, BUDGET_OFFSETS, vb, &hw) == 0;
+    for (size_t k = 0; k < nsv / 2; k++) { /* reversed: the side above as a prefix */
+        double t[3];
+        memcpy(t, srt + 3 * k, sizeof t);
+        memcpy(srt + 3 * k, srt + 3 * (nsv - 1 - k), sizeof t);
+        memcpy(srt + 3 * (nsv - 1 - k), t, sizeof t);
+    }
+    ok = ok && acd_hull_volume_sweep(srt, nsv, P->dirs[d], cnta, xs, xba, xea, BUDGET_OFFSETS, vr, &hw) == 0;
+    for (int i = 0; i < BUDGET_OFFSETS; i++) va[i] = vr[BUDGET_OFFSETS - 1 - i];
+    for (int i = 1; ok && i <= BUDGET_OFFSETS; i++) {
+        double c = cs[i - 1], sc;
+        if (va[i - 1] >= 0 && vb[i - 1] >= 0)
+            sc = va[i - 1] + vb[i - 1];
+        else
+            sc = score_plane(m, P->stride, P->tstride, dv, dt, c, buf, buf + 3 * P->cap, &hw);
         if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = c;
     }
-    free(buf);
+    free(buf), free(ord), free(srt), free(xs);
     acd_hull_volume_ws_free(&hw);
-    return 1;
+    return ok;
 }
 
 /* Direction d's offset refined around its best (touches only P->bs[d], P->bc[d]). */

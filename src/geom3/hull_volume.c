@@ -17,6 +17,8 @@ static double hull_volume_pts(const double *pts, size_t n) {
  * set this thin (relative to the same scale) has no volume. */
 #define HULL_VOLUME_EPS 1e-10
 #define HULL_VOLUME_FLAT 1e-8
+/* A sweep (acd_hull_volume_sweep) stops at a new facet whose angle at its apex is below this sine. */
+#define HULL_VOLUME_SLIVER 1e-6
 
 /* The facets of acd_hull_volume_fast's hull (the workspace's array). */
 struct acd_hv_facet {
@@ -120,7 +122,245 @@ static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *c
     return 0;
 }
 
-static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
+/* The facets visible from point q (index pi) connected to facet fi or (if not -1) fj, into
+ * w->visl; their number. */
+static size_t hv_visible(acd_hull_volume_ws *w, const double *q, int fi, int fj, double eps) {
+    int iter = ++w->iter;
+    size_t nv = 0, ns = 0;
+    int *visl = w->visl;
+    w->vis[fi] = iter;
+    w->stack[ns++] = fi;
+    if (fj >= 0 && fj != fi) w->vis[fj] = iter, w->stack[ns++] = fj;
+    while (ns > 0) {
+        int g = w->stack[--ns];
+        visl[nv++] = g;
+        for (int k = 0; k < 3; k++) {
+            int h = w->f[g].nb[k];
+            if (w->f[h].mark == iter || w->vis[h] == iter) continue;
+            if (hv_dist(&w->f[h], q) > eps) {
+                w->vis[h] = iter;
+                w->stack[ns++] = h;
+            } else
+                w->f[h].mark = iter; /* checked, not visible */
+        }
+    }
+    return nv;
+}
+
+/* The horizon of the nv visible facets (edges of visible facets whose neighbour is not visible)
+ * into w->hor / w->horf, and the cone of new facets from point pi over it (into w->newf); undo (if
+ * not NULL) records each horizon facet's neighbour changed (facet, edge, old value). Returns the
+ * number of horizon edges, -1 when out of memory, -2 when the horizon is not one simple cycle
+ * (nothing changed then). */
+static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nv, int **undo, size_t *nundo, size_t *undocap) {
+    int iter = w->iter;
+    size_t nh = 0;
+    for (size_t k = 0; k < nv; k++) {
+        hv_facet *G = &w->f[w->visl[k]];
+        for (int e = 0; e < 3; e++) {
+            int h = G->nb[e];
+            if (w->vis[h] == iter) continue;
+            if (nh + 1 > w->hcap && !hv_grow_horizon(w, nh + 1)) return -1;
+            w->hor[2 * nh] = G->v[e], w->hor[2 * nh + 1] = G->v[(e + 1) % 3], w->horf[nh] = h;
+            nh++;
+        }
+    }
+    int *hor = w->hor, *horf = w->horf, *newf = w->newf;
+    /* a simple cycle: every vertex starts one horizon edge and ends one */
+    int bad = 0;
+    for (size_t k = 0; k < nh; k++) {
+        if (w->start[hor[2 * k]] >= 0 || w->end[hor[2 * k + 1]] >= 0) bad = 1;
+        w->start[hor[2 * k]] = (int)k;
+        w->end[hor[2 * k + 1]] = (int)k;
+    }
+    /* a sweep refuses a sliver (pi nearly on the line of a horizon edge: its plane would be noise) */
+    for (size_t k = 0; k < nh && !bad && w->sweep; k++) {
+        const double *A = p + 3 * hor[2 * k], *B = p + 3 * hor[2 * k + 1], *C = p + 3 * pi;
+        double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        double a2 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2], b2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+        if (!(l2 > HULL_VOLUME_SLIVER * HULL_VOLUME_SLIVER * a2 * b2)) bad = 1;
+    }
+    if (bad || nh < 3) {
+        for (size_t k = 0; k < nh; k++) w->start[hor[2 * k]] = w->end[hor[2 * k + 1]] = -1;
+        return -2;
+    }
+    if (undo && *nundo + 3 * nh > *undocap) {
+        size_t c = 2 * (*nundo + 3 * nh);
+        int *u = realloc(*undo, c * sizeof *u);
+        if (!u) return -1;
+        *undo = u, *undocap = c;
+    }
+    for (size_t k = 0; k < nh; k++) {
+        int nfi = hv_new_facet(w, p, hor[2 * k], hor[2 * k + 1], pi);
+        if (nfi < 0) return -1;
+        newf[k] = nfi;
+    }
+    for (size_t k = 0; k < nh; k++) {
+        hv_facet *F = &w->f[newf[k]];
+        int a = hor[2 * k], b = hor[2 * k + 1], h = horf[k];
+        F->nb[0] = h;
+        F->nb[1] = newf[w->start[b]];
+        F->nb[2] = newf[w->end[a]];
+        hv_facet *H = &w->f[h];
+        for (int e = 0; e < 3; e++)
+            if (H->v[e] == b && H->v[(e + 1) % 3] == a) {
+                if (undo) {
+                    int *u = *undo + *nundo;
+                    u[0] = h, u[1] = e, u[2] = H->nb[e];
+                    *nundo += 3;
+                }
+                H->nb[e] = newf[k];
+            }
+    }
+    for (size_t k = 0; k < nh; k++) w->start[hor[2 * k]] = w->end[hor[2 * k + 1]] = -1;
+    return (long)nh;
+}
+
+/* The volume the cone from q over the nv visible facets adds (each facet's tetrahedron with q). */
+static double hv_cone_volume(const acd_hull_volume_ws *w, const double *p, const double *q, size_t nv) {
+    double s = 0;
+    for (size_t k = 0; k < nv; k++) {
+        const hv_facet *G = &w->f[w->visl[k]];
+        const double *A = p + 3 * G->v[0], *B = p + 3 * G->v[1], *C = p + 3 * G->v[2];
+        double a[3] = {A[0] - q[0], A[1] - q[1], A[2] - q[2]}, b[3] = {B[0] - q[0], B[1] - q[1], B[2] - q[2]},
+               c[3] = {C[0] - q[0], C[1] - q[1], C[2] - q[2]};
+        s -= a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    return s / 6;
+}
+
+/* The Quickhull loop from the pending facets w->pend[0..top): each step adds the farthest point of
+ * a facet's outside set; *added (if not NULL) accumulates the volume each step adds. 0, -1 when out
+ * of memory, -2 when a horizon is not one simple cycle. */
+/* The sweep's steps find the facets visible from a point by a climb over the facets from a start
+ * (to the neighbour the point is farther above, while there is one); a climb ending on a facet the
+ * point is at most this many times the tolerance above may have stopped on a nearly coplanar
+ * facet away from the rest of the visible region: every facet is then searched. */
+#define HULL_VOLUME_CLIMB_SURE 1e4
+
+/* A facet visible from q (farther than eps above its plane), the one q is farthest above of those
+ * met: a climb from facet start (if alive) then, when it ends on a facet q is barely above, the
+ * farthest of every facet; -1 when q is inside. */
+static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int start, double eps) {
+    int cur = -1;
+    double dc = -INFINITY;
+    if (start >= 0 && (size_t)start < w->nf && w->f[start].alive) {
+        cur = start;
+        dc = hv_dist(&w->f[cur], q);
+        for (size_t steps = 0; steps < w->nf; steps++) {
+            int bn = -1;
+            double bd = dc;
+            for (int k = 0; k < 3; k++) {
+                int h = w->f[cur].nb[k];
+                double dh = hv_dist(&w->f[h], q);
+                if (dh > bd) bd = dh, bn = h;
+            }
+            if (bn < 0) break;
+            cur = bn, dc = bd;
+        }
+        if (dc > HULL_VOLUME_CLIMB_SURE * eps) return cur;
+    }
+    for (size_t t = 0; t < w->nf; t++)
+        if (w->f[t].alive) {
+            double dd = hv_dist(&w->f[t], q);
+            if (dd > dc) dc = dd, cur = (int)t;
+        }
+    return dc > eps ? cur : -1;
+}
+
+/* What a step changed in the facets before it (to be undone): neighbours (facet, edge, old
+ * value), facets removed. */
+typedef struct hv_undo {
+    int *nb, *killed;
+    size_t nnb, nbcap, nk, kcap;
+} hv_undo;
+
+static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t top, double *added, hv_undo *u) {
+    while (top > 0) {
+        int fi = w->pend[--top];
+        if (!w->f[fi].alive || w->f[fi].head < 0) continue;
+        int pi = w->f[fi].far;
+        const double *q = p + 3 * pi;
+        if (!hv_grow_int(&w->visl, &w->vcap, w->nf)) return -1;
+        /* a sweep's step also searches from the facet q is farthest above (hv_find_visible): fi may
+         * be barely visible, joined to the rest of the visible region only through facets within
+         * eps (two cones from q then, the facets between within eps of q) */
+        int fj = added ? hv_find_visible(w, q, fi, eps) : -1;
+        size_t nv = hv_visible(w, q, fi, fj, eps);
+        if (added) *added += hv_cone_volume(w, p, q, nv);
+        long r = u ? hv_cone(w, p, pi, nv, &u->nb, &u->nnb, &u->nbcap) : hv_cone(w, p, pi, nv, NULL, NULL, NULL);
+        if (r < 0) return (int)r;
+        if (u && u->nk + nv > u->kcap) {
+            size_t c = 2 * (u->nk + nv);
+            int *k2 = realloc(u->killed, c * sizeof *k2);
+            if (!k2) return -1;
+            u->killed = k2, u->kcap = c;
+        }
+        size_t nh = (size_t)r;
+        int iter = w->iter, *horf = w->horf, *newf = w->newf, *visl = w->visl;
+        w->lastf = newf[0];
+        /* the new facets' planes packed, then the horizon facets' (each once, in their first order:
+         * the same first match as testing them all in order) */
+        double *pl = w->pl;
+        for (size_t k = 0; k < nh; k++) {
+            const hv_facet *F = &w->f[newf[k]];
+            pl[4 * k] = F->n[0], pl[4 * k + 1] = F->n[1], pl[4 * k + 2] = F->n[2], pl[4 * k + 3] = F->d;
+        }
+        int *horu = w->horu;
+        size_t nu = 0;
+        for (size_t k = 0; k < nh; k++) {
+            int h = horf[k];
+            if (w->vis[h] == -iter) continue;
+            w->vis[h] = -iter;
+            const hv_facet *F = &w->f[h];
+            double *r4 = pl + 4 * (nh + nu);
+            r4[0] = F->n[0], r4[1] = F->n[1], r4[2] = F->n[2], r4[3] = F->d;
+            horu[nu++] = h;
+        }
+        /* the visible facets' outside points to the new facets; not above a new facet, a point may
+         * still be above a horizon facet */
+        for (size_t k = 0; k < nv; k++) {
+            hv_facet *G = &w->f[visl[k]];
+            G->alive = 0;
+            if (u) u->killed[u->nk++] = visl[k];
+            for (int i = G->head; i >= 0;) {
+                int nx = w->next[i];
+                if (i != pi) {
+                    const double *x = p + 3 * i;
+                    size_t j = 0, nt = nh + nu;
+                    double dd = 0;
+                    for (; j < nt; j++) {
+                        const double *r4 = pl + 4 * j;
+                        dd = r4[0] * x[0] + r4[1] * x[1] + r4[2] * x[2] - r4[3];
+                        if (dd > eps) break;
+                    }
+                    if (j < nt) {
+                        hv_facet *F = &w->f[j < nh ? newf[j] : horu[j - nh]];
+                        w->next[i] = F->head;
+                        F->head = i;
+                        if (dd > F->fard) F->fard = dd, F->far = i;
+                    }
+                }
+                i = nx;
+            }
+            G->head = -1;
+        }
+        if (top + 2 * nh > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 2 * nh)) return -1;
+        for (size_t k = 0; k < nh; k++) {
+            if (w->f[newf[k]].head >= 0) w->pend[top++] = newf[k];
+            if (w->f[horf[k]].head >= 0) w->pend[top++] = horf[k];
+        }
+    }
+    return 0;
+}
+
+/* The initial simplex of the first n points of p (built in w, the other points assigned to its
+ * facets' outside sets, the facets with points pushed on w->pend: *top of them), its four corners
+ * in c4 and the tolerance in *eps. 1; 0 for a flat set or fewer than 4 points; -1 when out of
+ * memory; -2 on trouble. */
+static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, int c4[4], double *eps_out, size_t *top_out) {
     if (n < 4) return 0;
     if (!hv_reserve_points(w, n) || !hv_grow_int(&w->pend, &w->pendcap, 64) || (w->hcap < 64 && !hv_grow_horizon(w, 64)))
         return -1;
@@ -140,6 +380,7 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
     if (!(ext > 0)) return 0;
     double scale = fmax(fmax(fabs(lo[0]), fabs(hi[0])), fmax(fmax(fabs(lo[1]), fabs(hi[1])), fmax(fabs(lo[2]), fabs(hi[2]))));
     double eps = HULL_VOLUME_EPS * fmax(scale, ext);
+    *eps_out = eps;
     int i0 = ex[0], i1 = ex[1];
     double best = -1;
     for (int a = 0; a < 6; a++)
@@ -209,128 +450,24 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
         if ((int)i == i0 || (int)i == i1 || (int)i == i2 || (int)i == i3) continue;
         hv_assign(w, p, (int)i, all, 4, eps);
     }
-    int iter = 0;
-    /* the pending facets: a stack of indices (a facet may be pushed when made) */
     size_t top = 0;
     for (int t = 0; t < 4; t++)
         if (w->f[t].head >= 0) w->pend[top++] = t;
-    double vol = -1;
-    while (top > 0) {
-        int fi = w->pend[--top];
-        if (!w->f[fi].alive || w->f[fi].head < 0) continue;
-        int pi = w->f[fi].far;
-        const double *q = p + 3 * pi;
-        iter++;
-        /* the visible facets from pi (connected through edges) */
-        size_t nv = 0, ns = 0;
-        if (!hv_grow_int(&w->visl, &w->vcap, w->nf)) return -1;
-        int *visl = w->visl;
-        w->vis[fi] = iter;
-        w->stack[ns++] = fi;
-        while (ns > 0) {
-            int g = w->stack[--ns];
-            visl[nv++] = g;
-            for (int k = 0; k < 3; k++) {
-                int h = w->f[g].nb[k];
-                if (w->f[h].mark == iter || w->vis[h] == iter) continue;
-                if (hv_dist(&w->f[h], q) > eps) {
-                    w->vis[h] = iter;
-                    w->stack[ns++] = h;
-                } else
-                    w->f[h].mark = iter; /* checked, not visible */
-            }
-        }
-        /* the horizon: edges of visible facets whose neighbour is not visible */
-        size_t nh = 0;
-        for (size_t k = 0; k < nv; k++) {
-            hv_facet *G = &w->f[visl[k]];
-            for (int e = 0; e < 3; e++) {
-                int h = G->nb[e];
-                if (w->vis[h] == iter) continue;
-                if (nh + 1 > w->hcap && !hv_grow_horizon(w, nh + 1)) return -1;
-                w->hor[2 * nh] = G->v[e], w->hor[2 * nh + 1] = G->v[(e + 1) % 3], w->horf[nh] = h;
-                nh++;
-            }
-        }
-        int *hor = w->hor, *horf = w->horf, *newf = w->newf;
-        /* a simple cycle: every vertex starts one horizon edge and ends one */
-        int bad = 0;
-        for (size_t k = 0; k < nh; k++) {
-            if (w->start[hor[2 * k]] >= 0 || w->end[hor[2 * k + 1]] >= 0) bad = 1;
-            w->start[hor[2 * k]] = (int)k;
-            w->end[hor[2 * k + 1]] = (int)k;
-        }
-        if (bad || nh < 3) {
-            for (size_t k = 0; k < nh; k++) w->start[hor[2 * k]] = w->end[hor[2 * k + 1]] = -1;
-            return -2;
-        }
-        for (size_t k = 0; k < nh; k++) {
-            int nfi = hv_new_facet(w, p, hor[2 * k], hor[2 * k + 1], pi);
-            if (nfi < 0) return -1;
-            newf[k] = nfi;
-        }
-        for (size_t k = 0; k < nh; k++) {
-            hv_facet *F = &w->f[newf[k]];
-            int a = hor[2 * k], b = hor[2 * k + 1], h = horf[k];
-            F->nb[0] = h;
-            F->nb[1] = newf[w->start[b]];
-            F->nb[2] = newf[w->end[a]];
-            hv_facet *H = &w->f[h];
-            for (int e = 0; e < 3; e++)
-                if (H->v[e] == b && H->v[(e + 1) % 3] == a) H->nb[e] = newf[k];
-        }
-        for (size_t k = 0; k < nh; k++) w->start[hor[2 * k]] = w->end[hor[2 * k + 1]] = -1;
-        /* the new facets' planes packed, then the horizon facets' (each once, in their first order:
-         * the same first match as testing them all in order) */
-        double *pl = w->pl;
-        for (size_t k = 0; k < nh; k++) {
-            const hv_facet *F = &w->f[newf[k]];
-            pl[4 * k] = F->n[0], pl[4 * k + 1] = F->n[1], pl[4 * k + 2] = F->n[2], pl[4 * k + 3] = F->d;
-        }
-        int *horu = w->horu;
-        size_t nu = 0;
-        for (size_t k = 0; k < nh; k++) {
-            int h = horf[k];
-            if (w->vis[h] == -iter) continue;
-            w->vis[h] = -iter;
-            const hv_facet *F = &w->f[h];
-            double *r = pl + 4 * (nh + nu);
-            r[0] = F->n[0], r[1] = F->n[1], r[2] = F->n[2], r[3] = F->d;
-            horu[nu++] = h;
-        }
-        /* the visible facets' outside points to the new facets; not above a new facet, a point may
-         * still be above a horizon facet */
-        for (size_t k = 0; k < nv; k++) {
-            hv_facet *G = &w->f[visl[k]];
-            G->alive = 0;
-            for (int i = G->head; i >= 0;) {
-                int nx = w->next[i];
-                if (i != pi) {
-                    const double *x = p + 3 * i;
-                    size_t j = 0, nt = nh + nu;
-                    double dd = 0;
-                    for (; j < nt; j++) {
-                        const double *r = pl + 4 * j;
-                        dd = r[0] * x[0] + r[1] * x[1] + r[2] * x[2] - r[3];
-                        if (dd > eps) break;
-                    }
-                    if (j < nt) {
-                        hv_facet *F = &w->f[j < nh ? newf[j] : horu[j - nh]];
-                        w->next[i] = F->head;
-                        F->head = i;
-                        if (dd > F->fard) F->fard = dd, F->far = i;
-                    }
-                }
-                i = nx;
-            }
-            G->head = -1;
-        }
-        if (top + 2 * nh > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 2 * nh)) return -1;
-        for (size_t k = 0; k < nh; k++) {
-            if (w->f[newf[k]].head >= 0) w->pend[top++] = newf[k];
-            if (w->f[horf[k]].head >= 0) w->pend[top++] = horf[k];
-        }
-    }
+    c4[0] = i0, c4[1] = i1, c4[2] = i2, c4[3] = i3;
+    *top_out = top;
+    return 1;
+}
+
+static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
+    int c4[4];
+    double eps;
+    size_t top;
+    int r = hv_simplex(p, n, w, c4, &eps, &top);
+    if (r <= 0) return r;
+    r = hv_expand(w, p, eps, top, NULL, NULL);
+    if (r < 0) return r;
+    int i0 = c4[0], i1 = c4[1], i2 = c4[2], i3 = c4[3];
+    double vol;
     {
         double cen[3];
         for (int k = 0; k < 3; k++) cen[k] = (p[3 * i0 + k] + p[3 * i1 + k] + p[3 * i2 + k] + p[3 * i3 + k]) / 4;
@@ -352,4 +489,211 @@ double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, 
     double v = hull_volume_qh(pts, n, w);
     if (fallback) *fallback = v == -2;
     return v == -2 ? hull_volume_pts(pts, n) : v;
+}
+
+/* a before b: (u, v, index) in lexicographic order */
+static int hv_uv_less(const double *a, const double *b) {
+    return a[0] < b[0] || (a[0] == b[0] && (a[1] < b[1] || (a[1] == b[1] && a[2] < b[2])));
+}
+
+/* The n triples of uv sorted (hv_uv_less): a merge sort through tmp (room for as many), the runs
+ * of 8 by insertion first. */
+static void hv_uv_sort(double *uv, double *tmp, size_t n) {
+    for (size_t a = 0; a < n; a += 8) {
+        size_t b = a + 8 < n ? a + 8 : n;
+        for (size_t i = a + 1; i < b; i++) {
+            double x[3] = {uv[3 * i], uv[3 * i + 1], uv[3 * i + 2]};
+            size_t j = i;
+            for (; j > a && hv_uv_less(x, uv + 3 * (j - 1)); j--) memcpy(uv + 3 * j, uv + 3 * (j - 1), sizeof x);
+            memcpy(uv + 3 * j, x, sizeof x);
+        }
+    }
+    double *src = uv, *dst = tmp;
+    for (size_t w = 8; w < n; w *= 2) {
+        for (size_t a = 0; a < n; a += 2 * w) {
+            size_t m = a + w < n ? a + w : n, b = a + 2 * w < n ? a + 2 * w : n, i = a, j = m, k = a;
+            while (i < m && j < b) {
+                const double *x = hv_uv_less(src + 3 * j, src + 3 * i) ? src + 3 * j++ : src + 3 * i++;
+                memcpy(dst + 3 * k++, x, sizeof(double[3]));
+            }
+            memcpy(dst + 3 * k, src + 3 * i, (m - i) * sizeof(double[3])), k += m - i;
+            memcpy(dst + 3 * k, src + 3 * j, (b - j) * sizeof(double[3]));
+        }
+        double *t = src;
+        src = dst, dst = t;
+    }
+    if (src != uv) memcpy(uv, src, n * sizeof(double[3]));
+}
+
+/* The corners of the planar hull of the nx points x (on a plane of normal dir) into out (their
+ * indices in x); how many. uv: room for 6 * nx doubles. */
+static size_t hv_corners(const double *x, size_t nx, const double dir[3], double *uv, int *out) {
+    double u[3];
+    int k0 = fabs(dir[0]) < fabs(dir[1]) ? (fabs(dir[0]) < fabs(dir[2]) ? 0 : 2) : (fabs(dir[1]) < fabs(dir[2]) ? 1 : 2);
+    double e[3] = {0, 0, 0};
+    e[k0] = 1;
+    u[0] = dir[1] * e[2] - dir[2] * e[1], u[1] = dir[2] * e[0] - dir[0] * e[2], u[2] = dir[0] * e[1] - dir[1] * e[0];
+    double v[3] = {dir[1] * u[2] - dir[2] * u[1], dir[2] * u[0] - dir[0] * u[2], dir[0] * u[1] - dir[1] * u[0]};
+    for (size_t i = 0; i < nx; i++) {
+        const double *q = x + 3 * i;
+        uv[3 * i] = u[0] * q[0] + u[1] * q[1] + u[2] * q[2];
+        uv[3 * i + 1] = v[0] * q[0] + v[1] * q[1] + v[2] * q[2];
+        uv[3 * i + 2] = (double)i;
+    }
+    hv_uv_sort(uv, uv + 3 * nx, nx);
+    /* Andrew's monotone chain, strict turns only */
+    size_t m = 0;
+    int *h = out;
+#define HV_CROSS(o, a, b) ((uv[3 * (a)] - uv[3 * (o)]) * (uv[3 * (b) + 1] - uv[3 * (o) + 1]) - (uv[3 * (a) + 1] - uv[3 * (o) + 1]) * (uv[3 * (b)] - uv[3 * (o)]))
+    for (size_t i = 0; i < nx; i++) {
+        while (m >= 2 && HV_CROSS(h[m - 2], h[m - 1], (int)i) <= 0) m--;
+        h[m++] = (int)i;
+    }
+    for (size_t i = nx - 1, t = m + 1; i-- > 0;) {
+        while (m >= t && HV_CROSS(h[m - 2], h[m - 1], (int)i) <= 0) m--;
+        h[m++] = (int)i;
+    }
+#undef HV_CROSS
+    if (m > 1) m--; /* the first point again */
+    for (size_t i = 0; i < m; i++) h[i] = (int)uv[3 * h[i] + 2];
+    return m;
+}
+
+int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
+                          const size_t *xb, const size_t *xe, int nq, double *vol, acd_hull_volume_ws *w) {
+    for (int q = 0; q < nq; q++) vol[q] = -3;
+    size_t maxx = 0;
+    for (int q = 0; q < nq; q++)
+        if (xe[q] - xb[q] > maxx) maxx = xe[q] - xb[q];
+    double *P = malloc(3 * (n + maxx + 1) * sizeof *P), *uv = malloc(6 * (maxx + 1) * sizeof *uv);
+    int *corner = malloc((2 * maxx + 2) * sizeof *corner);
+    hv_undo U;
+    memset(&U, 0, sizeof U);
+    int st = 0;
+    if (!P || !uv || !corner || !hv_reserve_points(w, n + maxx + 1) || !hv_grow_int(&w->pend, &w->pendcap, 64) ||
+        (w->hcap < 64 && !hv_grow_horizon(w, 64))) {
+        st = -1;
+        goto out;
+    }
+    memcpy(P, pts, 3 * n * sizeof *P);
+    w->sweep = 1;
+    for (size_t i = 0; i < n + maxx + 1; i++) w->start[i] = w->end[i] = -1;
+    /* the first query whose prefix has a volume: the hull of it by the Quickhull above */
+    int q0 = 0, c4[4];
+    double eps = 0, V = 0;
+    size_t top = 0;
+    for (; q0 < nq; q0++) {
+        if (cnt[q0] < 4) continue;
+        int r = hv_simplex(P, cnt[q0], w, c4, &eps, &top);
+        if (r == -1) {
+            st = -1;
+            goto out;
+        }
+        if (r == 1) break;
+    }
+    if (q0 == nq) goto out;
+    w->lastf = 0;
+    {
+        int r = hv_expand(w, P, eps, top, NULL, NULL);
+        if (r < 0) {
+            st = r == -1 ? -1 : 0;
+            goto out;
+        }
+        double cen[3];
+        for (int k = 0; k < 3; k++) cen[k] = (P[3 * c4[0] + k] + P[3 * c4[1] + k] + P[3 * c4[2] + k] + P[3 * c4[3] + k]) / 4;
+        double s = 0;
+        for (size_t t = 0; t < w->nf; t++) {
+            const hv_facet *F = &w->f[t];
+            if (!F->alive) continue;
+            const double *A = P + 3 * F->v[0], *B = P + 3 * F->v[1], *C = P + 3 * F->v[2];
+            double a[3] = {A[0] - cen[0], A[1] - cen[1], A[2] - cen[2]}, b[3] = {B[0] - cen[0], B[1] - cen[1], B[2] - cen[2]},
+                   c[3] = {C[0] - cen[0], C[1] - cen[1], C[2] - cen[2]};
+            s += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+        }
+        V = s / 6;
+    }
+    int last = w->lastf;
+    for (int q = q0; q < nq; q++) {
+        if (q > q0) { /* the points up to this query's prefix: outside sets, then the Quickhull loop */
+            top = 0;
+            for (size_t i = cnt[q - 1]; i < cnt[q]; i++) {
+                const double *x = P + 3 * i;
+                int f = hv_find_visible(w, x, last, eps);
+                if (f < 0) continue;
+                hv_facet *F = &w->f[f];
+                double dd = hv_dist(F, x);
+                if (F->head < 0) {
+                    if (top + 1 > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 1)) {
+                        st = -1;
+                        goto out;
+                    }
+                    w->pend[top++] = f;
+                }
+                w->next[i] = F->head;
+                F->head = (int)i;
+                if (dd > F->fard) F->fard = dd, F->far = (int)i;
+                last = f;
+            }
+            if (top > 0) {
+                int r = hv_expand(w, P, eps, top, &V, NULL);
+                if (r < 0) {
+                    st = r == -1 ? -1 : 0;
+                    goto out;
+                }
+                last = w->lastf;
+            }
+        }
+        /* the query: the corners of its extra points' planar hull added, the volume, then undone */
+        size_t nx = xe[q] - xb[q];
+        if (nx == 0) {
+            vol[q] = V;
+            continue;
+        }
+        size_t nc = nx >= 3 ? hv_corners(xs + 3 * xb[q], nx, dir, uv, corner) : 0;
+        if (nx < 3) {
+            for (size_t j = 0; j < nx; j++) corner[j] = (int)j;
+            nc = nx;
+        }
+        size_t nf0 = w->nf;
+        U.nnb = U.nk = 0;
+        double Vx = 0;
+        top = 0;
+        for (size_t j = 0; j < nc; j++) { /* outside sets, then the Quickhull loop (farthest first) */
+            int pi = (int)(n + j);
+            memcpy(P + 3 * pi, xs + 3 * (xb[q] + (size_t)corner[j]), sizeof(double[3]));
+            const double *x = P + 3 * pi;
+            int f = hv_find_visible(w, x, last, eps);
+            if (f < 0) continue;
+            hv_facet *F = &w->f[f];
+            double dd = hv_dist(F, x);
+            if (F->head < 0) {
+                if (top + 1 > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 1)) {
+                    st = -1;
+                    goto out;
+                }
+                w->pend[top++] = f;
+            }
+            w->next[pi] = F->head;
+            F->head = pi;
+            if (dd > F->fard) F->fard = dd, F->far = pi;
+        }
+        int r = hv_expand(w, P, eps, top, &Vx, &U);
+        if (r == -1) {
+            st = -1;
+            goto out;
+        }
+        if (r == 0) vol[q] = V + Vx;
+        for (size_t k = 0; k < U.nk; k++) {
+            hv_facet *F = &w->f[U.killed[k]];
+            F->alive = 1, F->head = -1, F->far = -1, F->fard = 0;
+        }
+        for (size_t k = U.nnb; k >= 3; k -= 3) w->f[U.nb[k - 3]].nb[U.nb[k - 2]] = U.nb[k - 1];
+        if (r == -2) /* stopped midway: outside sets left on the facets made before */
+            for (size_t t = 0; t < nf0; t++) w->f[t].head = -1, w->f[t].far = -1, w->f[t].fard = 0;
+        w->nf = nf0;
+    }
+out:
+    w->sweep = 0;
+    free(P), free(uv), free(corner), free(U.nb), free(U.killed);
+    return st;
 }

@@ -31,6 +31,9 @@ typedef struct acd_hull_volume_ws {
     int *hor, *horf, *horu, *newf;      /* horizon: edges, facets (all, each once), new facets */
     double *pl;                         /* planes of the new and horizon facets */
     size_t hcap;
+    int iter;  /* the visible search's stamp (vis, facets' marks) */
+    int lastf; /* a facet made by the last step */
+    int sweep; /* in acd_hull_volume_sweep (slivers refused) */
 } acd_hull_volume_ws;
 
 void acd_hull_volume_ws_free(acd_hull_volume_ws *w);
@@ -38,5 +41,16 @@ void acd_hull_volume_ws_free(acd_hull_volume_ws *w);
 /* The volume of the convex hull of n points (3 doubles each): 0 for fewer than 4 points or a flat
  * set, -1 when out of memory. *fallback (if not NULL) is set to 1 when qhull computed it. */
 double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, int *fallback);
+
+/* The hull volumes of nested sets swept along the unit direction dir, for scores that cut one
+ * point set by parallel planes: query q's set is the first cnt[q] of the n points pts (sorted along
+ * dir, cnt not decreasing) and the points xs[xb[q]..xe[q]) (3 doubles each), which lie on
+ * a plane of normal dir at or beyond the prefix. One hull grows over the sweep (Quickhull's outside
+ * sets: each query adds only the points since the previous one), each query's extra points (the
+ * corners of their planar hull) are added and undone. vol[q]: the volume, or -3 when not computed
+ * (fewer than 4 points, a flat prefix, or a numerically ambiguous step: the caller computes those
+ * with acd_hull_volume_fast). Returns 0, -1 when out of memory. */
+int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
+                          const size_t *xb, const size_t *xe, int nq, double *vol, acd_hull_volume_ws *w);
 
 #endif
