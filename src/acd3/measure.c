@@ -43,6 +43,8 @@ void acd3_measure_free(acd3_measure *ms) {
     free(ms->edge_barrier);
     free(ms->edge_handle);
     acd3_handle_arcs_free(&ms->handle_arcs);
+    free(ms->face_of);
+    free(ms->face_edge);
     memset(ms, 0, sizeof *ms);
 }
 
@@ -410,8 +412,8 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
             out->concavity = out->vconc[v];
             out->witness = (uint32_t)v;
         }
-    free(face_of);
-    free(fe);
+    out->face_of = face_of;
+    out->face_edge = fe;
     free(queue);
     acd3_pathfinder_free(&pf);
     open_rule_free(&os);

@@ -45,6 +45,9 @@ typedef struct acd3_measure {
     uint8_t *edge_handle;   /* per graph edge: on a handle arc (NULL when the flat hull skipped it) */
     acd3_handle_arcs handle_arcs;
     size_t nhandle_candidates; /* candidate arcs (the shortest per pair of cap loops that meet) */
+    /* kept for the part's cut graph (acd3/pocket_cut), NULL when the hull is flat: acd3_edge_faces,
+     * and per face side the graph edge from corner k to k + 1 (3f + k; ACD_NO_VERTEX when none) */
+    uint32_t *face_of, *face_edge;
 } acd3_measure;
 
 /* Measures m (whose edge graph g was built from it). eps: bridge clustering threshold; tol: a

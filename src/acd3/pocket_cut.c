@@ -373,7 +373,14 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                                 const acd3_gc_opts *o, acd3_cut_graph *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     size_t nv = m->nvertices, nf = m->ntriangles, ne = g->nedges, nr = ms->nregions;
-    acd_status st = acd3_edge_faces(m, g, &out->face_of, err);
+    acd_status st = ACD_OK;
+    if (ms->face_of) { /* the measure's (the same graph and mesh) */
+        out->face_of = malloc((2 * ne + 1) * sizeof *out->face_of);
+        if (!out->face_of) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu edges", ne);
+        memcpy(out->face_of, ms->face_of, 2 * ne * sizeof *out->face_of);
+    } else {
+        st = acd3_edge_faces(m, g, &out->face_of, err);
+    }
     if (st != ACD_OK) return st;
     /* vertex -> faces */
     out->vf_row = calloc(nv + 1, sizeof *out->vf_row);
@@ -398,7 +405,8 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     /* faces by region */
     size_t *rrow = calloc(nr + 1, sizeof *rrow);
     uint32_t *rface = malloc((nf ? nf : 1) * sizeof *rface), *label = malloc((nf ? nf : 1) * sizeof *label),
-             *queue = malloc((nf ? nf : 1) * sizeof *queue), *fe = malloc((nf ? 3 * nf : 1) * sizeof *fe);
+             *queue = malloc((nf ? nf : 1) * sizeof *queue),
+             *fe = ms->face_edge ? NULL : malloc((nf ? 3 * nf : 1) * sizeof *fe);
     double *wcost = malloc((ne ? ne : 1) * sizeof *wcost);
     uint8_t *allowed = calloc(nv ? nv : 1, 1), *cut_edge = calloc(ne ? ne : 1, 1);
     uint8_t *on_cut = calloc(nv ? nv : 1, 1); /* the vertices of the kept cut being compared (below) */
@@ -409,10 +417,12 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     size_t ncand = 0, capcand = 0;
     acd3_pocket_cut *cuts = NULL;
     size_t ncuts = 0, capcuts = 0, ncutv = 0;
-    int ok = rks && rrow && rface && label && queue && fe && wcost && allowed && cut_edge && on_cut;
+    int ok = rks && rrow && rface && label && queue && (fe || ms->face_edge) && wcost && allowed && cut_edge && on_cut;
     if (!ok) goto build_done;
-    int fe_ready = 0; /* fe: the edge of each face side, found once when first needed (the floods
-                         below visit a region's faces per kept cut) */
+    /* fev: the edge of each face side (the measure's, or fe found once when first needed: the
+     * floods below visit a region's faces per kept cut) */
+    const uint32_t *fev = ms->face_edge;
+    int fe_ready = fev != NULL;
     for (size_t k = 0; k < out->nknots; k++) {
         uint32_t c = out->knot_chain[k];
         rks[2 * k] = (rk){out->chain_region[2 * c], (uint32_t)k};
@@ -578,8 +588,9 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
                     for (int k = 0; k < 3; k++)
                         fe[3 * f + k] = acd_edge_graph_find(g, m->triangles[3 * f + k], m->triangles[3 * f + (k + 1) % 3]);
                 fe_ready = 1;
+                fev = fe;
             }
-            flood_split(fe, ms, out, r, rf, nrf, cut_edge, label, queue);
+            flood_split(fev, ms, out, r, rf, nrf, cut_edge, label, queue);
             for (size_t k = 0; k + 1 < ci->n; k++) {
                 uint32_t e = acd_edge_graph_find(g, p[k], p[k + 1]);
                 if (e != ACD_NO_VERTEX) cut_edge[e] = 0;
