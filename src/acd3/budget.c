@@ -76,9 +76,10 @@ static void sample_dots(const acd_mesh *m, size_t stride, size_t tstride, const 
 
 /* The sampled score of the plane n.x = c: the sum of the two sides' hull volumes, each side's hull
  * that of its sampled vertices and of the crossings of the sampled triangles' edges (an edge of two
- * sampled triangles: twice); dv, dt the sample's projections (sample_dots). -1 on failure. */
+ * sampled triangles: twice); dv, dt the sample's projections (sample_dots); ka, kb the sides' hull
+ * volumes when known already (else negative). -1 on failure. */
 static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, const double *dv, const double *dt, double c,
-                          double *bufa, double *bufb, acd_hull_volume_ws *w) {
+                          double ka, double kb, double *bufa, double *bufb, acd_hull_volume_ws *w) {
     size_t na = 0, nb = 0, k = 0;
     for (size_t v = 0; v < m->nvertices; v += stride, k++) {
         const double *p = m->vertices + 3 * v;
@@ -97,7 +98,7 @@ static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, cons
             memcpy(bufa + 3 * na++, x, sizeof x);
             memcpy(bufb + 3 * nb++, x, sizeof x);
         }
-    double va = acd_hull_volume_fast(bufa, na, w, NULL), vb = acd_hull_volume_fast(bufb, nb, w, NULL);
+    double va = ka >= 0 ? ka : acd_hull_volume_fast(bufa, na, w, NULL), vb = kb >= 0 ? kb : acd_hull_volume_fast(bufb, nb, w, NULL);
     return va < 0 || vb < 0 ? -1 : va + vb;
 }
 
@@ -274,7 +275,7 @@ static int score_dir(const acd_mesh *m, plan *P, int d) {
         if (va[i - 1] >= 0 && vb[i - 1] >= 0)
             sc = va[i - 1] + vb[i - 1];
         else
-            sc = score_plane(m, P->stride, P->tstride, dv, dt, c, buf, buf + 3 * P->cap, &hw);
+            sc = score_plane(m, P->stride, P->tstride, dv, dt, c, va[i - 1], vb[i - 1], buf, buf + 3 * P->cap, &hw);
         if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = c;
     }
     free(buf), free(ord), free(srt), free(xs);
@@ -282,26 +283,19 @@ static int score_dir(const acd_mesh *m, plan *P, int d) {
     return ok;
 }
 
-/* Direction d's offset refined around its best (touches only P->bs[d], P->bc[d]). */
-static int refine_dir(const acd_mesh *m, plan *P, int d) {
+/* One plane of a refinement: direction d's offset c scored (touches nothing shared); -1 when it has
+ * no score, -2 when out of memory. */
+static double refine_plane(const acd_mesh *m, const plan *P, int d, double c) {
     double *buf = plan_buffers(P);
-    if (!buf) return 0;
+    if (!buf) return -2;
     acd_hull_volume_ws hw;
     memset(&hw, 0, sizeof hw);
     double *dv = buf + 6 * P->cap, *dt = dv + P->nsv;
     sample_dots(m, P->stride, P->tstride, P->dirs[d], dv, dt);
-    double step = P->st[d];
-    for (int r = 0; r < BUDGET_REFINE && P->bs[d] < INFINITY; r++) {
-        step *= 0.5;
-        double c0 = P->bc[d];
-        for (int sg = -1; sg <= 1; sg += 2) {
-            double c = c0 + sg * step, sc = score_plane(m, P->stride, P->tstride, dv, dt, c, buf, buf + 3 * P->cap, &hw);
-            if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = c;
-        }
-    }
+    double sc = score_plane(m, P->stride, P->tstride, dv, dt, c, -1, -1, buf, buf + 3 * P->cap, &hw);
     free(buf);
     acd_hull_volume_ws_free(&hw);
-    return 1;
+    return sc < 0 ? -1 : sc;
 }
 
 static void sort_dirs(plan *P, int lim) {
@@ -432,22 +426,42 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
 #endif
             fail[tj[t]] = 1;
         }
-    ntask = 0;
+    /* the best directions refined around their best offsets: BUDGET_REFINE rounds of half the
+     * step, each round's two planes per direction scored as parallel tasks, then taken in the
+     * sequential order (the lower offset first) */
+    int nref = 0, rj[BUDGET_BATCH * BUDGET_REFINE_DIRS], rd[BUDGET_BATCH * BUDGET_REFINE_DIRS];
+    double rstep[BUDGET_BATCH * BUDGET_REFINE_DIRS];
     for (int j = 0; j < nb; j++) {
         if (!P[j].ok) continue;
         sort_dirs(&P[j], P[j].nd);
-        for (int q = 0; q < P[j].nd && q < BUDGET_REFINE_DIRS; q++) tj[ntask] = j, td[ntask] = P[j].ord[q], ntask++;
+        for (int q = 0; q < P[j].nd && q < BUDGET_REFINE_DIRS; q++)
+            rj[nref] = j, rd[nref] = P[j].ord[q], rstep[nref] = P[j].st[P[j].ord[q]], nref++;
     }
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
-#endif
-    for (int t = 0; t < ntask; t++)
-        if (!refine_dir(&S->a[idx[tj[t]]].mesh, &P[tj[t]], td[t])) {
-#ifdef _OPENMP
-#pragma omp atomic write
-#endif
-            fail[tj[t]] = 1;
+    for (int r = 0; r < BUDGET_REFINE; r++) {
+        double rc[2 * BUDGET_BATCH * BUDGET_REFINE_DIRS], rs[2 * BUDGET_BATCH * BUDGET_REFINE_DIRS];
+        int live[BUDGET_BATCH * BUDGET_REFINE_DIRS], any = 0;
+        for (int k = 0; k < nref; k++) {
+            const plan *Q = &P[rj[k]];
+            live[k] = Q->bs[rd[k]] < INFINITY;
+            any |= live[k];
+            rstep[k] *= 0.5;
+            rc[2 * k] = Q->bc[rd[k]] - rstep[k], rc[2 * k + 1] = Q->bc[rd[k]] + rstep[k];
         }
+        if (!any) break;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nref > 0)
+#endif
+        for (int t = 0; t < 2 * nref; t++)
+            rs[t] = live[t / 2] ? refine_plane(&S->a[idx[rj[t / 2]]].mesh, &P[rj[t / 2]], rd[t / 2], rc[t]) : -1;
+        for (int k = 0; k < nref; k++) {
+            plan *Q = &P[rj[k]];
+            for (int sg = 0; sg < 2 && live[k]; sg++) {
+                double sc = rs[2 * k + sg];
+                if (sc == -2) fail[rj[k]] = 1;
+                if (sc >= 0 && sc < Q->bs[rd[k]]) Q->bs[rd[k]] = sc, Q->bc[rd[k]] = rc[2 * k + sg];
+            }
+        }
+    }
     acd3_plane_candidate cand[BUDGET_BATCH][BUDGET_EXACT];
     int nc[BUDGET_BATCH] = {0};
     ntask = 0;

@@ -559,6 +559,31 @@ static size_t hv_corners(const double *x, size_t nx, const double dir[3], double
     return m;
 }
 
+/* The sweep's hull of the first n points of P from scratch (Quickhull), its volume in *V and
+ * tolerance in *eps: 1; 0 when flat or numerically ambiguous; -1 when out of memory. */
+static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, double *eps, double *V) {
+    int c4[4];
+    size_t top = 0;
+    int r = hv_simplex(P, n, w, c4, eps, &top);
+    if (r != 1) return r == -1 ? -1 : 0;
+    w->lastf = 0;
+    r = hv_expand(w, P, *eps, top, NULL, NULL);
+    if (r < 0) return r == -1 ? -1 : 0;
+    double cen[3];
+    for (int k = 0; k < 3; k++) cen[k] = (P[3 * c4[0] + k] + P[3 * c4[1] + k] + P[3 * c4[2] + k] + P[3 * c4[3] + k]) / 4;
+    double s = 0;
+    for (size_t t = 0; t < w->nf; t++) {
+        const hv_facet *F = &w->f[t];
+        if (!F->alive) continue;
+        const double *A = P + 3 * F->v[0], *B = P + 3 * F->v[1], *C = P + 3 * F->v[2];
+        double a[3] = {A[0] - cen[0], A[1] - cen[1], A[2] - cen[2]}, b[3] = {B[0] - cen[0], B[1] - cen[1], B[2] - cen[2]},
+               c[3] = {C[0] - cen[0], C[1] - cen[1], C[2] - cen[2]};
+        s += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    *V = s / 6;
+    return 1;
+}
+
 int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
                           const size_t *xb, const size_t *xe, int nq, double *vol, acd_hull_volume_ws *w) {
     for (int q = 0; q < nq; q++) vol[q] = -3;
@@ -579,12 +604,12 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     w->sweep = 1;
     for (size_t i = 0; i < n + maxx + 1; i++) w->start[i] = w->end[i] = -1;
     /* the first query whose prefix has a volume: the hull of it by the Quickhull above */
-    int q0 = 0, c4[4];
+    int q0 = 0;
     double eps = 0, V = 0;
     size_t top = 0;
     for (; q0 < nq; q0++) {
         if (cnt[q0] < 4) continue;
-        int r = hv_simplex(P, cnt[q0], w, c4, &eps, &top);
+        int r = hv_chain_start(w, P, cnt[q0], &eps, &V);
         if (r == -1) {
             st = -1;
             goto out;
@@ -592,26 +617,6 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         if (r == 1) break;
     }
     if (q0 == nq) goto out;
-    w->lastf = 0;
-    {
-        int r = hv_expand(w, P, eps, top, NULL, NULL);
-        if (r < 0) {
-            st = r == -1 ? -1 : 0;
-            goto out;
-        }
-        double cen[3];
-        for (int k = 0; k < 3; k++) cen[k] = (P[3 * c4[0] + k] + P[3 * c4[1] + k] + P[3 * c4[2] + k] + P[3 * c4[3] + k]) / 4;
-        double s = 0;
-        for (size_t t = 0; t < w->nf; t++) {
-            const hv_facet *F = &w->f[t];
-            if (!F->alive) continue;
-            const double *A = P + 3 * F->v[0], *B = P + 3 * F->v[1], *C = P + 3 * F->v[2];
-            double a[3] = {A[0] - cen[0], A[1] - cen[1], A[2] - cen[2]}, b[3] = {B[0] - cen[0], B[1] - cen[1], B[2] - cen[2]},
-                   c[3] = {C[0] - cen[0], C[1] - cen[1], C[2] - cen[2]};
-            s += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-        }
-        V = s / 6;
-    }
     int last = w->lastf;
     for (int q = q0; q < nq; q++) {
         if (q > q0) { /* the points up to this query's prefix: outside sets, then the Quickhull loop */
@@ -636,9 +641,14 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
             }
             if (top > 0) {
                 int r = hv_expand(w, P, eps, top, &V, NULL);
-                if (r < 0) {
-                    st = r == -1 ? -1 : 0;
+                if (r == -1) {
+                    st = -1;
                     goto out;
+                }
+                if (r == -2) { /* the hull of this prefix again from scratch, then on */
+                    r = hv_chain_start(w, P, cnt[q], &eps, &V);
+                    if (r == -1) st = -1;
+                    if (r != 1) goto out;
                 }
                 last = w->lastf;
             }
