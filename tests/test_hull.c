@@ -560,6 +560,52 @@ static void test_enclosure_ill_conditioned(void **state) {
     free(q);
 }
 
+/* Many ill-conditioned facets at once: points on a sphere, a third of them with a twin 1e-11 to
+ * 1e-7 away in a random direction (slivers of every conditioning, on both sides of hull_enclose's
+ * trust test), shuffled in: every point inside every plane. (qhull's planes already pass this
+ * without any check; test_enclosure_ill_conditioned is the case that needs the lift.) */
+static void test_enclosure_twins(void **state) {
+    (void)state;
+    enum { NB = 3000, NT = 1000 };
+    double *p = malloc(3 * (NB + NT) * sizeof *p);
+    assert_non_null(p);
+    acd_rng r;
+    acd_rng_seed(&r, 11);
+    const double golden = 2.399963229728653; /* pi (3 - sqrt 5) */
+    for (size_t i = 0; i < NB; i++) {
+        double z = 1 - (2.0 * (double)i + 1) / NB, rho = sqrt(1 - z * z), a = golden * (double)i;
+        p[3 * i] = 7.0 * rho * cos(a) + 2.0;
+        p[3 * i + 1] = 7.0 * rho * sin(a) - 1.0;
+        p[3 * i + 2] = 7.0 * z;
+    }
+    for (size_t j = 0; j < NT; j++) {
+        const double *q = p + 3 * (3 * j);
+        double *t = p + 3 * (NB + j), dir[3], len = 0;
+        for (int c = 0; c < 3; c++) {
+            dir[c] = 2 * acd_rng_uniform(&r) - 1;
+            len += dir[c] * dir[c];
+        }
+        double gap = 1e-11 * pow(1e4, acd_rng_uniform(&r)) / sqrt(len);
+        for (int c = 0; c < 3; c++) t[c] = q[c] + gap * dir[c];
+    }
+    for (size_t i = NB + NT - 1; i > 0; i--) { /* shuffle */
+        size_t k = (size_t)(acd_rng_uniform(&r) * (double)(i + 1));
+        if (k > i) k = i;
+        for (int c = 0; c < 3; c++) {
+            double x = p[3 * i + c];
+            p[3 * i + c] = p[3 * k + c];
+            p[3 * k + c] = x;
+        }
+    }
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(p, NB + NT, &h, &err), ACD_OK);
+    assert_int_equal(h.dim, 3);
+    assert_encloses(&h, p, NB + NT);
+    acd_hull_free(&h);
+    free(p);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_random_vs_brute_force),
@@ -573,6 +619,7 @@ int main(void) {
         cmocka_unit_test(test_nan_rejected),
         cmocka_unit_test(test_volume_only),
         cmocka_unit_test(test_enclosure_ill_conditioned),
+        cmocka_unit_test(test_enclosure_twins),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

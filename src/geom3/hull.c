@@ -422,7 +422,15 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
  * tree of the (normalised) points: a subtree is skipped when its box lies within the tolerance
  * below the plane, so only the points near a facet's plane are evaluated. A facet plane that a
  * point exceeds by more than the tolerance is lifted to pass through its farthest point (its
- * normal and the triangles unchanged); hulls without a violation keep their bits. */
+ * normal and the triangles unchanged); hulls without a violation keep their bits.
+ *
+ * Only planes that can be off are checked (hull_plane_trusted): a facet whose triangle is well
+ * shaped and whose qhull normal agrees with the triangle's own cross product. Such a plane is the
+ * true plane of a hull face up to an angle of tilt + 3 eps L / h (the cross product's rounding: L
+ * the longest edge, h the least altitude), so no point of the box (within a diagonal of the facet)
+ * is off by more than diagonal x that angle, which the test keeps under a quarter of the
+ * tolerance. On real meshes 90-96% of the facets pass (bunny00, armadillo, fandisk at tau 0.05:
+ * altitudes under 1e-3 of the extent on 4.6%, 4.3%, 10%); fuzz_hull still checks every plane. */
 
 /* Points per leaf of the tree (the check's time on the hulls of a bunny00 run, against 64:
  * 1.7x with 16, 1.2x with 32, the same with 128). */
@@ -572,17 +580,50 @@ static double encl_worst(const encl_tree *T, const double *nrm, double d, double
 
 /* Checks the planes of out (built from w, the points normalised by s) against every point and
  * lifts those exceeded by more than tol (normalised units). */
-static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double s, double tol, acd_error *err) {
+/* Rounding of a triangle's cross product, in units of DBL_EPSILON x L / h (3 in the analysis, with
+ * a margin), and the share of the tolerance a trusted plane may be off by. */
+#define HULL_ENCLOSE_ROUNDOFF 8.0
+#define HULL_ENCLOSE_TRUST_SHARE 0.25
+
+/* A facet plane (unit normal nrm) of the triangle a, b, c that no point of a box of diagonal diag
+ * can exceed by more than tol x HULL_ENCLOSE_TRUST_SHARE: the triangle's own normal agrees with
+ * nrm (same side, small tilt) and is well conditioned. */
+static int hull_plane_trusted(const double *nrm, const double *a, const double *b, const double *c, double diag,
+                              double tol) {
+    double e1[3], e2[3], e3[3], cr[3], x[3];
+    sub3(b, a, e1);
+    sub3(c, a, e2);
+    sub3(c, b, e3);
+    cross3(e1, e2, cr);
+    double area2 = norm3(cr), lmax = fmax(norm3(e1), fmax(norm3(e2), norm3(e3)));
+    if (!(area2 > 0) || dot3(nrm, cr) <= 0) return 0;
+    double h = area2 / lmax; /* the least altitude */
+    for (int k = 0; k < 3; k++) cr[k] /= area2;
+    cross3(nrm, cr, x);
+    double angle = norm3(x) + HULL_ENCLOSE_ROUNDOFF * DBL_EPSILON * lmax / h;
+    return diag * angle <= HULL_ENCLOSE_TRUST_SHARE * tol;
+}
+
+/* Checks the planes of out (built from w, the points normalised by s, box diagonal diag) that are
+ * not trusted against every point and lifts those exceeded by more than tol (normalised units). */
+static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double s, double diag, double tol,
+                               acd_error *err) {
     encl_tree T = {0};
-    if (!encl_build(&T, w, n)) {
-        free(T.node);
-        free(T.idx);
-        free(T.pts);
-        return acd_fail(err, ACD_ERR_NOMEM, "out of memory checking a hull of %zu points", n);
-    }
+    int built = 0;
+    acd_status st = ACD_OK;
     for (size_t t = 0; t < out->ntriangles; t++) {
         double *pl = out->planes + 4 * t;
         const uint32_t *tri = out->triangles + 3 * t;
+        const double *a = w + 3 * (size_t)out->source[tri[0]], *b = w + 3 * (size_t)out->source[tri[1]],
+                     *c = w + 3 * (size_t)out->source[tri[2]];
+        if (hull_plane_trusted(pl, a, b, c, diag, tol)) continue;
+        if (!built) {
+            built = 1;
+            if (!encl_build(&T, w, n)) {
+                st = acd_fail(err, ACD_ERR_NOMEM, "out of memory checking a hull of %zu points", n);
+                break;
+            }
+        }
         double d = 0; /* the plane's offset in normalised coordinates, as hull_from_qhull sets it */
         for (int k = 0; k < 3; k++) {
             double dv = -dot3(pl, w + 3 * (size_t)out->source[tri[k]]);
@@ -594,11 +635,11 @@ static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double 
     free(T.node);
     free(T.idx);
     free(T.pts);
-    return ACD_OK;
+    return st;
 }
 
 /* Runs qhull on w (joggled copies if it fails) and builds out, or (out NULL) the volume alone. */
-static acd_status hull_solid(const double *points, double *w, size_t n, double s, double tol, acd_hull *out,
+static acd_status hull_solid(const double *points, double *w, size_t n, double s, double diag, double tol, acd_hull *out,
                              double *volume, acd_error *err) {
     qhull_run r;
     int code = qhull_run_do(&r, w, n);
@@ -606,7 +647,7 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
     if (code == 0) {
         acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
         qhull_run_free(&r);
-        if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, tol, err);
+        if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, diag, tol, err);
         return st;
     }
     qhull_first_line(&r, msg, sizeof msg);
@@ -625,7 +666,7 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
             acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
             qhull_run_free(&r);
             free(j);
-            if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, tol, err);
+            if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, diag, tol, err);
             return st;
         }
         qhull_run_free(&r);
@@ -756,7 +797,7 @@ static acd_status hull_compute(const double *points, size_t n, acd_hull *out, do
     if (best <= tol)
         st = out ? hull_planar(points, w, n, nrm, s, out, err) : ACD_OK;
     else
-        st = hull_solid(points, w, n, s, tol, out, volume, err);
+        st = hull_solid(points, w, n, s, diag, tol, out, volume, err);
     free(w);
     if (st != ACD_OK && out) acd_hull_free(out);
     return st;
