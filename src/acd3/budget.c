@@ -361,6 +361,7 @@ typedef struct exact_cut {
     acd_cut_result cr;
 } exact_cut;
 
+/* The cut itself (the pieces' volumes and hulls are tasks of their own: exact_cut_pieces). */
 static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_candidate *cand, exact_cut *X) {
     memset(X, 0, sizeof *X);
     X->cs = acd_cut_plane_from_normal(cand->point, cand->normal, S->extent, &X->cp, NULL);
@@ -370,15 +371,17 @@ static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_
     }
     acd_error ce;
     X->cs = acd_plane_cut_flags(&A->mesh, &X->cp, ACD_PLANE_CUT_DROP_SPECKS, &X->cr, &ce);
-    if (X->cs != ACD_OK) return;
+}
+
+/* A cut's verdict from its pieces' volumes pv and hull volumes hv (-1: no hull): good when at
+ * least two pieces, none a sliver (under BUDGET_MIN_PIECE_FRACTION of the atom's volume) and every
+ * hull computed; sum, the hull volumes' sum in the pieces' order. */
+static void exact_cut_judge(const atom *A, exact_cut *X, const double *pv, const double *hv) {
     double sum = 0;
     int good = X->cr.npieces >= 2;
     for (size_t p = 0; p < X->cr.npieces && good; p++) {
-        double pv = acd_geom3_signed_volume(&X->cr.pieces[p].mesh);
-        double hv;
-        if (acd_hull_volume(X->cr.pieces[p].mesh.vertices, X->cr.pieces[p].mesh.nvertices, &hv, NULL) != ACD_OK) hv = -1;
-        if (!(pv > BUDGET_MIN_PIECE_FRACTION * A->vol) || hv < 0) good = 0;
-        sum += hv;
+        if (!(pv[p] > BUDGET_MIN_PIECE_FRACTION * A->vol) || hv[p] < 0) good = 0;
+        sum += hv[p];
     }
     X->good = good;
     X->sum = sum;
@@ -482,6 +485,34 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
 #endif
     for (int t = 0; t < ntask; t++) exact_cut_do(S, &S->a[idx[tj[t]]], &cand[tj[t]][td[t]], &X[tj[t]][td[t]]);
+    /* then every piece's volume and hull volume (qhull) as a task: the cuts' pieces spread over
+     * the threads */
+    size_t npc = 0, at = 0;
+    for (int t = 0; t < ntask; t++)
+        if (X[tj[t]][td[t]].cs == ACD_OK) npc += X[tj[t]][td[t]].cr.npieces;
+    double *pv = malloc((2 * npc + 1) * sizeof *pv), *hv = pv + npc;
+    size_t *pt = malloc((2 * npc + 1) * sizeof *pt), *off = malloc(((size_t)ntask + 1) * sizeof *off);
+    if (!pv || !pt || !off) {
+        for (int j = 0; j < nb; j++) S->a[idx[j]].st = ACD_ERR_NOMEM;
+        npc = 0;
+    }
+    for (int t = 0; t < ntask && off; t++) {
+        off[t] = at;
+        const exact_cut *x = &X[tj[t]][td[t]];
+        for (size_t p = 0; x->cs == ACD_OK && p < x->cr.npieces && at < npc; p++) pt[2 * at] = (size_t)t, pt[2 * at + 1] = p, at++;
+    }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && npc > 1)
+#endif
+    for (long k = 0; k < (long)npc; k++) {
+        int t = (int)pt[2 * k];
+        const acd_mesh *pm = &X[tj[t]][td[t]].cr.pieces[pt[2 * k + 1]].mesh;
+        pv[k] = acd_geom3_signed_volume(pm);
+        if (acd_hull_volume(pm->vertices, pm->nvertices, &hv[k], NULL) != ACD_OK) hv[k] = -1;
+    }
+    for (int t = 0; t < ntask && npc > 0; t++)
+        if (X[tj[t]][td[t]].cs == ACD_OK) exact_cut_judge(&S->a[idx[tj[t]]], &X[tj[t]][td[t]], pv + off[t], hv + off[t]);
+    free(pv), free(pt), free(off);
     for (int j = 0; j < nb; j++) {
         atom *A = &S->a[idx[j]];
         double best = INFINITY;
