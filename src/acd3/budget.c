@@ -211,16 +211,38 @@ static void keyed_sort(keyed *a, keyed *tmp, size_t n) {
     if (src != a) memcpy(a, src, n * sizeof *a);
 }
 
-/* Direction d's best of the fixed offsets (touches only P->bs[d], P->bc[d]); 0 when out of memory.
- * Each side's hulls over the offsets by one sweep (acd_hull_volume_sweep: the sampled vertices
- * sorted along d, the hull grown offset by offset, each plane's crossings added and undone); an
- * offset the sweep leaves scored as one plane (score_plane). */
-static int score_dir(const acd_mesh *m, plan *P, int d) {
-    if (!(P->lo[d] == P->lo[d])) return 1; /* flat along d */
+/* One side's sampled hull volume of the plane n.x = c (above: s >= 0, else below), its set made as
+ * score_plane makes it; buf: room for 3 * P->cap doubles. */
+static double side_volume(const acd_mesh *m, const plan *P, const double *dv, const double *dt, double c, int above,
+                          double *buf, acd_hull_volume_ws *w) {
+    size_t n = 0, k = 0;
+    for (size_t v = 0; v < m->nvertices; v += P->stride, k++)
+        if ((dv[k] - c >= 0) == above) memcpy(buf + 3 * n++, m->vertices + 3 * v, sizeof(double[3]));
+    k = 0;
+    for (size_t t = 0; t < m->ntriangles; t += P->tstride, k += 3)
+        for (int e = 0; e < 3; e++) {
+            int f = e == 2 ? 0 : e + 1;
+            double sp = dt[k + e] - c, sq = dt[k + f] - c;
+            if ((sp >= 0) == (sq >= 0)) continue;
+            const double *p = m->vertices + 3 * (size_t)m->triangles[3 * t + e], *q = m->vertices + 3 * (size_t)m->triangles[3 * t + f];
+            double a = sp / (sp - sq);
+            for (int d = 0; d < 3; d++) buf[3 * n + d] = p[d] + a * (q[d] - p[d]);
+            n++;
+        }
+    return acd_hull_volume_fast(buf, n, w, NULL);
+}
+
+#define BUDGET_MAX_QUERIES 32
+
+/* Direction d's sampled side hull volumes at the nq increasing offsets cs (which: 1 the side below,
+ * 2 above, 3 both) by one sweep per side (acd_hull_volume_sweep: the sampled vertices sorted along
+ * d, the hull grown offset by offset, each plane's crossings added and undone); an offset a sweep
+ * leaves computed on its own (side_volume). Touches only vb, va; 0 when out of memory. */
+static int sweep_dir(const acd_mesh *m, const plan *P, int d, const double *cs, int nq, int which, double *vb, double *va) {
     double *buf = plan_buffers(P);
     size_t nsv = P->nsv, xcap = 3 * P->nst;
     keyed *ord = malloc(2 * (nsv + 1) * sizeof *ord);
-    double *srt = malloc(3 * (nsv + 1) * sizeof *srt), *xs = malloc(3 * (BUDGET_OFFSETS * xcap + 1) * sizeof *xs);
+    double *srt = malloc(3 * (nsv + 1) * sizeof *srt), *xs = malloc(3 * ((size_t)nq * xcap + 1) * sizeof *xs);
     if (!buf || !ord || !srt || !xs) {
         free(buf), free(ord), free(srt), free(xs);
         return 0;
@@ -229,12 +251,10 @@ static int score_dir(const acd_mesh *m, plan *P, int d) {
     memset(&hw, 0, sizeof hw);
     double *dv = buf + 6 * P->cap, *dt = dv + P->nsv;
     sample_dots(m, P->stride, P->tstride, P->dirs[d], dv, dt);
-    double cs[BUDGET_OFFSETS];
-    for (int i = 1; i <= BUDGET_OFFSETS; i++) cs[i - 1] = P->lo[d] + P->st[d] * i;
     /* each offset's crossings (as score_plane makes them) */
-    size_t xb[BUDGET_OFFSETS], xe[BUDGET_OFFSETS];
-    for (int i = 0; i < BUDGET_OFFSETS; i++) {
-        size_t nx = i * xcap, k = 0;
+    size_t xb[BUDGET_MAX_QUERIES], xe[BUDGET_MAX_QUERIES];
+    for (int i = 0; i < nq; i++) {
+        size_t nx = (size_t)i * xcap, k = 0;
         xb[i] = nx;
         for (size_t t = 0; t < m->ntriangles; t += P->tstride, k += 3)
             for (int e = 0; e < 3; e++) {
@@ -252,35 +272,75 @@ static int score_dir(const acd_mesh *m, plan *P, int d) {
     for (size_t k = 0; k < nsv; k++) ord[k].key = dv[k], ord[k].i = k;
     keyed_sort(ord, ord + nsv, nsv);
     for (size_t k = 0; k < nsv; k++) memcpy(srt + 3 * k, m->vertices + 3 * (ord[k].i * P->stride), sizeof(double[3]));
-    size_t cntb[BUDGET_OFFSETS], cnta[BUDGET_OFFSETS], xba[BUDGET_OFFSETS], xea[BUDGET_OFFSETS];
-    for (int i = 0; i < BUDGET_OFFSETS; i++) {
+    size_t cntb[BUDGET_MAX_QUERIES], cnta[BUDGET_MAX_QUERIES], xba[BUDGET_MAX_QUERIES], xea[BUDGET_MAX_QUERIES];
+    for (int i = 0; i < nq; i++) {
         size_t c = 0;
         for (size_t k = 0; k < nsv; k++) c += dv[k] - cs[i] < 0;
         cntb[i] = c;
-        cnta[BUDGET_OFFSETS - 1 - i] = nsv - c;
-        xba[BUDGET_OFFSETS - 1 - i] = xb[i], xea[BUDGET_OFFSETS - 1 - i] = xe[i];
+        cnta[nq - 1 - i] = nsv - c;
+        xba[nq - 1 - i] = xb[i], xea[nq - 1 - i] = xe[i];
     }
-    double vb[BUDGET_OFFSETS], va[BUDGET_OFFSETS], vr[BUDGET_OFFSETS];
-    int ok = acd_hull_volume_sweep(srt, nsv, P->dirs[d], cntb, xs, xb, xe, BUDGET_OFFSETS, vb, &hw) == 0;
-    for (size_t k = 0; k < nsv / 2; k++) { /* reversed: the side above as a prefix */
-        double t[3];
-        memcpy(t, srt + 3 * k, sizeof t);
-        memcpy(srt + 3 * k, srt + 3 * (nsv - 1 - k), sizeof t);
-        memcpy(srt + 3 * (nsv - 1 - k), t, sizeof t);
+    double vr[BUDGET_MAX_QUERIES];
+    int ok = 1;
+    if (which & 1) ok = acd_hull_volume_sweep(srt, nsv, P->dirs[d], cntb, xs, xb, xe, nq, vb, &hw) == 0;
+    if (ok && (which & 2)) {
+        for (size_t k = 0; k < nsv / 2; k++) { /* reversed: the side above as a prefix */
+            double t[3];
+            memcpy(t, srt + 3 * k, sizeof t);
+            memcpy(srt + 3 * k, srt + 3 * (nsv - 1 - k), sizeof t);
+            memcpy(srt + 3 * (nsv - 1 - k), t, sizeof t);
+        }
+        ok = acd_hull_volume_sweep(srt, nsv, P->dirs[d], cnta, xs, xba, xea, nq, vr, &hw) == 0;
+        for (int i = 0; i < nq; i++) va[i] = vr[nq - 1 - i];
     }
-    ok = ok && acd_hull_volume_sweep(srt, nsv, P->dirs[d], cnta, xs, xba, xea, BUDGET_OFFSETS, vr, &hw) == 0;
-    for (int i = 0; i < BUDGET_OFFSETS; i++) va[i] = vr[BUDGET_OFFSETS - 1 - i];
-    for (int i = 1; ok && i <= BUDGET_OFFSETS; i++) {
-        double c = cs[i - 1], sc;
-        if (va[i - 1] >= 0 && vb[i - 1] >= 0)
-            sc = va[i - 1] + vb[i - 1];
-        else
-            sc = score_plane(m, P->stride, P->tstride, dv, dt, c, va[i - 1], vb[i - 1], buf, buf + 3 * P->cap, &hw);
-        if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = c;
+    for (int i = 0; ok && i < nq; i++) { /* the offsets a sweep left */
+        if ((which & 1) && vb[i] == -3) vb[i] = side_volume(m, P, dv, dt, cs[i], 0, buf, &hw);
+        if ((which & 2) && va[i] == -3) va[i] = side_volume(m, P, dv, dt, cs[i], 1, buf, &hw);
+        if (((which & 1) && vb[i] == -1) || ((which & 2) && va[i] == -1)) ok = 0;
     }
     free(buf), free(ord), free(srt), free(xs);
     acd_hull_volume_ws_free(&hw);
     return ok;
+}
+
+/* Direction d's best of the fixed offsets (touches only P->bs[d], P->bc[d]); 0 when out of memory. */
+static int score_dir(const acd_mesh *m, plan *P, int d) {
+    if (!(P->lo[d] == P->lo[d])) return 1; /* flat along d */
+    double cs[BUDGET_OFFSETS], va[BUDGET_OFFSETS], vb[BUDGET_OFFSETS];
+    for (int i = 1; i <= BUDGET_OFFSETS; i++) cs[i - 1] = P->lo[d] + P->st[d] * i;
+    if (!sweep_dir(m, P, d, cs, BUDGET_OFFSETS, 3, vb, va)) return 0;
+    for (int i = 0; i < BUDGET_OFFSETS; i++) {
+        double sc = va[i] < 0 || vb[i] < 0 ? -1 : va[i] + vb[i];
+        if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = cs[i];
+    }
+    return 1;
+}
+
+/* The offsets a refinement from c0 can score (its BUDGET_REFINE rounds of half the step from st,
+ * each from the best offset so far: c0 or one scored before), computed as the rounds compute them,
+ * increasing and each once, into out (room for BUDGET_MAX_QUERIES); how many. */
+static int refine_offsets(double c0, double st, double *out) {
+    double reach[BUDGET_MAX_QUERIES + 1];
+    int nr = 1, n = 0;
+    reach[0] = c0;
+    double step = st;
+    for (int r = 0; r < BUDGET_REFINE; r++) {
+        step *= 0.5;
+        int nr0 = nr;
+        for (int i = 0; i < nr0; i++)
+            for (int sg = -1; sg <= 1; sg += 2)
+                if (nr <= BUDGET_MAX_QUERIES) reach[nr++] = reach[i] + sg * step;
+    }
+    for (int i = 1; i < nr; i++) { /* increasing, each once */
+        double x = reach[i];
+        int at = 0;
+        while (at < n && out[at] < x) at++;
+        if (at < n && out[at] == x) continue;
+        memmove(out + at + 1, out + at, (size_t)(n - at) * sizeof *out);
+        out[at] = x;
+        n++;
+    }
+    return n;
 }
 
 /* One plane of a refinement: direction d's offset c scored (touches nothing shared); -1 when it has
@@ -430,38 +490,50 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
             fail[tj[t]] = 1;
         }
     /* the best directions refined around their best offsets: BUDGET_REFINE rounds of half the
-     * step, each round's two planes per direction scored as parallel tasks, then taken in the
-     * sequential order (the lower offset first) */
+     * step, the lower offset first, each taken when it lowers the score (as the sequential search);
+     * the scores looked up among the offsets the rounds can reach (refine_offsets), whose sides are
+     * swept once per refined direction and side, as parallel tasks */
     int nref = 0, rj[BUDGET_BATCH * BUDGET_REFINE_DIRS], rd[BUDGET_BATCH * BUDGET_REFINE_DIRS];
-    double rstep[BUDGET_BATCH * BUDGET_REFINE_DIRS];
     for (int j = 0; j < nb; j++) {
         if (!P[j].ok) continue;
         sort_dirs(&P[j], P[j].nd);
-        for (int q = 0; q < P[j].nd && q < BUDGET_REFINE_DIRS; q++)
-            rj[nref] = j, rd[nref] = P[j].ord[q], rstep[nref] = P[j].st[P[j].ord[q]], nref++;
+        for (int q = 0; q < P[j].nd && q < BUDGET_REFINE_DIRS; q++) rj[nref] = j, rd[nref] = P[j].ord[q], nref++;
     }
-    for (int r = 0; r < BUDGET_REFINE; r++) {
-        double rc[2 * BUDGET_BATCH * BUDGET_REFINE_DIRS], rs[2 * BUDGET_BATCH * BUDGET_REFINE_DIRS];
-        int live[BUDGET_BATCH * BUDGET_REFINE_DIRS], any = 0;
-        for (int k = 0; k < nref; k++) {
-            const plan *Q = &P[rj[k]];
-            live[k] = Q->bs[rd[k]] < INFINITY;
-            any |= live[k];
-            rstep[k] *= 0.5;
-            rc[2 * k] = Q->bc[rd[k]] - rstep[k], rc[2 * k + 1] = Q->bc[rd[k]] + rstep[k];
-        }
-        if (!any) break;
+    double roff[BUDGET_BATCH * BUDGET_REFINE_DIRS][BUDGET_MAX_QUERIES], rvb[BUDGET_BATCH * BUDGET_REFINE_DIRS][BUDGET_MAX_QUERIES],
+        rva[BUDGET_BATCH * BUDGET_REFINE_DIRS][BUDGET_MAX_QUERIES];
+    int nro[BUDGET_BATCH * BUDGET_REFINE_DIRS];
+    for (int k = 0; k < nref; k++)
+        nro[k] = P[rj[k]].bs[rd[k]] < INFINITY ? refine_offsets(P[rj[k]].bc[rd[k]], P[rj[k]].st[rd[k]], roff[k]) : 0;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nref > 0)
 #endif
-        for (int t = 0; t < 2 * nref; t++)
-            rs[t] = live[t / 2] ? refine_plane(&S->a[idx[rj[t / 2]]].mesh, &P[rj[t / 2]], rd[t / 2], rc[t]) : -1;
-        for (int k = 0; k < nref; k++) {
-            plan *Q = &P[rj[k]];
-            for (int sg = 0; sg < 2 && live[k]; sg++) {
-                double sc = rs[2 * k + sg];
+    for (int t = 0; t < 2 * nref; t++) {
+        int k = t / 2;
+        if (nro[k] > 0 && !sweep_dir(&S->a[idx[rj[k]]].mesh, &P[rj[k]], rd[k], roff[k], nro[k], t % 2 ? 2 : 1, rvb[k], rva[k])) {
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+            fail[rj[k]] = 1;
+        }
+    }
+    for (int k = 0; k < nref; k++) {
+        plan *Q = &P[rj[k]];
+        int d = rd[k];
+        if (nro[k] == 0 || fail[rj[k]]) continue;
+        double step = Q->st[d];
+        for (int r = 0; r < BUDGET_REFINE && Q->bs[d] < INFINITY; r++) {
+            step *= 0.5;
+            double c0 = Q->bc[d];
+            for (int sg = -1; sg <= 1; sg += 2) {
+                double c = c0 + sg * step, sc = -1;
+                int i = 0;
+                while (i < nro[k] && roff[k][i] != c) i++;
+                if (i < nro[k])
+                    sc = rva[k][i] < 0 || rvb[k][i] < 0 ? -1 : rva[k][i] + rvb[k][i];
+                else
+                    sc = refine_plane(&S->a[idx[rj[k]]].mesh, Q, d, c); /* not reached */
                 if (sc == -2) fail[rj[k]] = 1;
-                if (sc >= 0 && sc < Q->bs[rd[k]]) Q->bs[rd[k]] = sc, Q->bc[rd[k]] = rc[2 * k + sg];
+                if (sc >= 0 && sc < Q->bs[d]) Q->bs[d] = sc, Q->bc[d] = c;
             }
         }
     }
