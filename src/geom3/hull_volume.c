@@ -665,6 +665,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
             nc = nx;
         }
         size_t nf0 = w->nf;
+        int start = last;
         U.nnb = U.nk = 0;
         double Vx = 0;
         top = 0;
@@ -672,8 +673,9 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
             int pi = (int)(n + j);
             memcpy(P + 3 * pi, xs + 3 * (xb[q] + (size_t)corner[j]), sizeof(double[3]));
             const double *x = P + 3 * pi;
-            int f = hv_find_visible(w, x, last, eps);
+            int f = hv_find_visible(w, x, start, eps);
             if (f < 0) continue;
+            start = f; /* the next corner is the polygon's next: near this one */
             hv_facet *F = &w->f[f];
             double dd = hv_dist(F, x);
             if (F->head < 0) {
