@@ -284,10 +284,10 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
         int pi = w->f[fi].far;
         const double *q = p + 3 * pi;
         if (!hv_grow_int(&w->visl, &w->vcap, w->nf)) return -1;
-        /* a sweep's step also searches from the facet q is farthest above (hv_find_visible): fi may
-         * be barely visible, joined to the rest of the visible region only through facets within
-         * eps (two cones from q then, the facets between within eps of q) */
-        int fj = added ? hv_find_visible(w, q, fi, eps) : -1;
+        /* a sweep's step with q barely above fi also searches from the facet q is farthest above
+         * (hv_find_visible): fi may be joined to the rest of the visible region only through facets
+         * within eps (two cones from q then, the facets between within eps of q) */
+        int fj = added && !(w->f[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps) : -1;
         size_t nv = hv_visible(w, q, fi, fj, eps);
         if (added) *added += hv_cone_volume(w, p, q, nv);
         long r = u ? hv_cone(w, p, pi, nv, &u->nb, &u->nnb, &u->nbcap) : hv_cone(w, p, pi, nv, NULL, NULL, NULL);
