@@ -90,6 +90,76 @@ static void test_volume_order_skips_refused(void **state) {
     acd_mesh_free(&in);
 }
 
+static void assert_same_result(const acd3_merge_result *a, const acd3_merge_result *b, size_t nparts) {
+    assert_int_equal(a->ngroups, b->ngroups);
+    assert_int_equal(a->merges, b->merges);
+    assert_int_equal(a->nnew, b->nnew);
+    assert_int_equal(a->trades, b->trades);
+    size_t na = nparts + a->nnew;
+    assert_memory_equal(a->group_of, b->group_of, na * sizeof *a->group_of);
+    assert_memory_equal(a->group_size, b->group_size, a->ngroups * sizeof *a->group_size);
+    for (size_t g = 0; g < a->ngroups; g++) assert_memory_equal(&a->bound[g], &b->bound[g], sizeof(double));
+}
+
+/* acd3_merge_adjacent_hulls with the parts' hulls given (all, some, one of them another part's:
+ * not used) gives the parts and bounds of acd3_merge_adjacent, bit for bit, at 1 and 2 threads;
+ * every option of the pass (bound and volume order, a stop, a tolerance joining more). */
+static void test_kept_hulls_same_result(void **state) {
+    (void)state;
+    int xy[64][2], n = 0;
+    acd_mesh parts[4], in;
+    n = row(xy, 0, 2, 0);
+    cells(&parts[0], (const int(*)[2])xy, n);
+    xy[0][0] = 0, xy[0][1] = 1, xy[1][0] = 0, xy[1][1] = 2;
+    cells(&parts[1], (const int(*)[2])xy, 2);
+    n = row(xy, 0, 9, 8);
+    cells(&parts[2], (const int(*)[2])xy, n);
+    n = row(xy, 3, 12, 9);
+    cells(&parts[3], (const int(*)[2])xy, n);
+    n = row(xy, 0, 2, 0);
+    xy[n][0] = 0, xy[n][1] = 1, n++;
+    xy[n][0] = 0, xy[n][1] = 2, n++;
+    n += row(xy + n, 0, 9, 8);
+    n += row(xy + n, 3, 12, 9);
+    cells(&in, (const int(*)[2])xy, n);
+    acd_error err;
+    acd_hull H[4];
+    for (int k = 0; k < 4; k++) {
+        assert_int_equal(acd_hull_compute(parts[k].vertices, parts[k].nvertices, &H[k], &err), ACD_OK);
+        assert_int_equal(H[k].dim, 3);
+    }
+    const acd_hull *all[4] = {&H[0], &H[1], &H[2], &H[3]};
+    const acd_hull *some[4] = {NULL, &H[1], &H[2], NULL};
+    const acd_hull *wrong[4] = {&H[2], &H[1], &H[0], &H[3]}; /* 0 and 2 swapped: not theirs */
+    const acd_hull *const *sets[3] = {all, some, wrong};
+    const acd3_merge_opts opts[4] = {{1, 3, 0}, {1, 0, 0}, {0, 0, 0}, {0, 3, 0}};
+    const double taus[2] = {0.9, 1.5}, tol = 1e-9;
+    for (int o = 0; o < 4; o++)
+        for (int t = 0; t < 2; t++) {
+            acd3_merge_result ref;
+            assert_int_equal(acd3_merge_adjacent(&in, parts, 4, taus[t], tol, &opts[o], 1, &ref, &err), ACD_OK);
+            assert_true(ref.merges >= 1);
+            for (int s = 0; s < 3; s++)
+                for (int th = 1; th <= 2; th++) {
+                    acd3_merge_result r;
+                    assert_int_equal(
+                        acd3_merge_adjacent_hulls(&in, parts, sets[s], 4, taus[t], tol, &opts[o], th, &r, &err),
+                        ACD_OK);
+                    assert_same_result(&ref, &r, 4);
+                    acd3_merge_result_free(&r);
+                }
+            acd3_merge_result_free(&ref);
+        }
+    /* the hulls are read, not taken: still whole */
+    for (int k = 0; k < 4; k++) {
+        assert_int_equal(H[k].dim, 3);
+        assert_non_null(H[k].vertices);
+        acd_hull_free(&H[k]);
+        acd_mesh_free(&parts[k]);
+    }
+    acd_mesh_free(&in);
+}
+
 /* Distance from p to the nearest of the triangles (brute force). */
 static double dist_tris(const double *v, const uint32_t *t, size_t nt, const double p[3]) {
     double best = INFINITY, q[3];
@@ -155,6 +225,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_volume_order_skips_refused),
         cmocka_unit_test(test_hull_reach_near_tau),
+        cmocka_unit_test(test_kept_hulls_same_result),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -115,6 +115,7 @@ typedef struct work_node {
      * same mesh); used while the node is a part with this mesh, freed with the tree */
     acd_hull hull;
     int have_hull;
+    const double *hull_of; /* the vertices (mesh.vertices then) the hull was computed from */
 } work_node;
 
 typedef struct tree {
@@ -998,6 +999,7 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     if (!split && out->st == ACD_OK) { /* a leaf: its hull is its part's (until the mesh changes) */
         w->hull = cur.ms.hull;
         w->have_hull = 1;
+        w->hull_of = w->mesh.vertices;
         memset(&cur.ms.hull, 0, sizeof cur.ms.hull);
         cur.ms.hull.dim = -1;
     }
@@ -1060,8 +1062,20 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
         free(meshes);
         return st;
     }
+    /* the leaves' kept hulls (process_node): the merge's parts' hulls, not computed again */
+    const acd_hull **hulls = malloc(np * sizeof *hulls);
+    if (!hulls) {
+        free(idx);
+        free(meshes);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    for (size_t i = 0; i < np; i++) {
+        const work_node *w = &t->a[idx[i]];
+        hulls[i] = w->have_hull && w->hull_of && w->hull_of == w->mesh.vertices ? &w->hull : NULL;
+    }
     acd3_merge_result mr;
-    st = acd3_merge_adjacent(input, meshes, np, tau, tol, mo, threads, &mr, err);
+    st = acd3_merge_adjacent_hulls(input, meshes, hulls, np, tau, tol, mo, threads, &mr, err);
+    free(hulls);
     free(meshes);
     /* the refinement's pieces (acd3/merge): children of the parts they were cut from */
     size_t na = np + mr.nnew, *idx2 = st == ACD_OK ? realloc(idx, (na ? na : 1) * sizeof *idx) : NULL;

@@ -624,18 +624,46 @@ static void score_pairs(group *G, pair *P, size_t p0, size_t p1, double tau, dou
     (void)threads;
 }
 
-static acd_status group_init_hull(group *g, const double *pts, size_t n, double tau, acd_error *err) {
+/* Whether kept can stand for the hull of the n points pts: each of its vertices is the input point
+ * its source names, bit for bit (a hull computed from another point set, or the same points in
+ * another order, fails this unless its vertices happen to sit at the same indices; the caller
+ * promises the rest: kept is acd_hull_compute of exactly these points, in this order). */
+static int kept_hull_matches(const acd_hull *kept, const double *pts, size_t n) {
+    if (kept->dim < 0 || (kept->nvertices && (!kept->vertices || !kept->source))) return 0;
+    for (size_t v = 0; v < kept->nvertices; v++) {
+        uint32_t s = kept->source[v];
+        if (s >= n || memcmp(kept->vertices + 3 * v, pts + 3 * (size_t)s, 3 * sizeof *pts) != 0) return 0;
+    }
+    return 1;
+}
+
+/* The group's hull data from the hull of its part's n points pts: kept when given (and matching,
+ * kept_hull_matches; read only), else computed (the same qhull run gives the same bits). */
+static acd_status group_init_hull(group *g, const double *pts, size_t n, const acd_hull *kept, double tau,
+                                  acd_error *err) {
     acd_hull h;
-    acd_status st = acd_hull_compute(pts, n, &h, err);
-    if (st != ACD_OK) return st;
+    const acd_hull *H = &h;
+    if (kept && kept_hull_matches(kept, pts, n)) {
+        H = kept;
+    } else {
+        acd_status st = acd_hull_compute(pts, n, &h, err);
+        if (st != ACD_OK) return st;
+    }
     double worst;
-    if (h.dim == 3 && !facet_table(g, NULL, &h, tau, 0, &worst, &g->ft, &g->fub)) {
-        acd_hull_free(&h);
+    if (H->dim == 3 && !facet_table(g, NULL, H, tau, 0, &worst, &g->ft, &g->fub)) {
+        if (H == &h) acd_hull_free(&h);
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for a hull's facets");
     }
-    if (h.dim == 3) g->nft = h.ntriangles;
-    g->hvol = h.dim == 3 ? h.volume : 0;
-    take_hull_vertices(&h, &g->hv, &g->nhv);
+    if (H->dim == 3) g->nft = H->ntriangles;
+    g->hvol = H->dim == 3 ? H->volume : 0;
+    if (H == &h) {
+        take_hull_vertices(&h, &g->hv, &g->nhv);
+        return ACD_OK;
+    }
+    g->hv = malloc((H->nvertices ? H->nvertices : 1) * 3 * sizeof *g->hv);
+    if (!g->hv) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for a hull's vertices");
+    memcpy(g->hv, H->vertices, 3 * H->nvertices * sizeof *g->hv);
+    g->nhv = H->nvertices;
     return ACD_OK;
 }
 
@@ -1209,6 +1237,12 @@ static int grow_cands(refine_cand **c, size_t *cap) {
 
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
                                const acd3_merge_opts *opts, int threads, acd3_merge_result *out, acd_error *err) {
+    return acd3_merge_adjacent_hulls(input, parts, NULL, nparts, tau, tol, opts, threads, out, err);
+}
+
+acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *parts, const acd_hull *const *hulls,
+                                     size_t nparts, double tau, double tol, const acd3_merge_opts *opts, int threads,
+                                     acd3_merge_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     const int by_volume = opts && opts->by_volume;
     const size_t stop_at = opts ? opts->stop_at : 0;
@@ -1284,7 +1318,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
             if (s2 == ACD_OK && !g->members) s2 = acd_fail(&gerr[i], ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
             if (s2 == ACD_OK) {
                 g->members[0] = (uint32_t)i;
-                s2 = group_init_hull(g, parts[i].vertices, parts[i].nvertices, tau, &gerr[i]);
+                s2 = group_init_hull(g, parts[i].vertices, parts[i].nvertices, hulls ? hulls[i] : NULL, tau, &gerr[i]);
             }
             gst[i] = s2;
         }

@@ -72,6 +72,13 @@ typedef struct acd3_merge_opts {
  * be NULL (bound order, no stop). */
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
                                const acd3_merge_opts *opts, int threads, acd3_merge_result *out, acd_error *err);
+/* As acd3_merge_adjacent, with hulls (NULL, or per part NULL or the part's hull: acd_hull_compute of
+ * exactly its vertices, in their order; read only) used instead of computing the parts' hulls again:
+ * the same result, bit for bit. A hull whose vertices are not the part's points its source names is
+ * not used (computed again). */
+acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *parts, const acd_hull *const *hulls,
+                                     size_t nparts, double tau, double tol, const acd3_merge_opts *opts, int threads,
+                                     acd3_merge_result *out, acd_error *err);
 void acd3_merge_result_free(acd3_merge_result *r);
 
 /* d_out of one part: an upper bound of the largest distance from a point of the boundary of H (a
