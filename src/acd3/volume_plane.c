@@ -167,8 +167,11 @@ int acd3_volume_planes_scored(const acd_mesh *m, int nmax, size_t max_scored, in
 double acd3_volume_plane_sides(const acd_mesh *m, const double normal[3], const double point[3]) {
     size_t cap = m->nvertices + 3 * m->ntriangles + 1;
     double *bufa = malloc(3 * cap * sizeof *bufa), *bufb = malloc(3 * cap * sizeof *bufb), s = -1;
+    acd_hull_volume_ws hw;
+    memset(&hw, 0, sizeof hw);
     if (bufa && bufb)
-        s = score_plane(m, 1, 1, normal, normal[0] * point[0] + normal[1] * point[1] + normal[2] * point[2], bufa, bufb, NULL);
+        s = score_plane(m, 1, 1, normal, normal[0] * point[0] + normal[1] * point[1] + normal[2] * point[2], bufa, bufb, &hw);
+    acd_hull_volume_ws_free(&hw);
     free(bufa);
     free(bufb);
     return s;
