@@ -68,7 +68,7 @@ typedef struct group {
     size_t nft;
     double vol;      /* the members' volume */
     int est;         /* refinement: 0 its volume plane not searched yet, 1 searched, 2 its cut refused */
-    double est_gain; /* the hull volume its volume plane saves (the plane found on a sample, its saving exact) */
+    double est_gain; /* the hull volume its volume plane saves (the plane found on a sample, its saving on every vertex) */
     acd3_plane_candidate est_plane;
 } group;
 
@@ -818,7 +818,9 @@ static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double o
 }
 
 /* The group's volume plane (searched on a sample: acd3_volume_planes_scored) and the hull volume it
- * saves against g->hvol (exact: the hulls of its two sides, every vertex). */
+ * saves against g->hvol (the hulls of its two sides over every vertex, by geom3/hull_volume's own
+ * Quickhull since c536875: within 1e-9 of qhull's; it only ranks the moves, whose gain is then
+ * measured with qhull's hulls). */
 static void estimate(group *g, int naxes) {
     const atoms *at = g->at;
     g->est = 1;
@@ -840,8 +842,7 @@ static void estimate(group *g, int naxes) {
             m.nvertices += s->nvertices;
             m.ntriangles += s->ntriangles;
         }
-        /* the plane searched on a sample, its saving measured on every vertex (the sides' exact
-         * hulls) */
+        /* the plane searched on a sample, its saving measured on every vertex (the sides' hulls) */
         if (acd3_volume_planes_scored(&m, 1, MERGE_REFINE_SCORED, naxes, &g->est_plane, NULL, NULL) == 1) {
             double ex = acd3_volume_plane_sides(&m, g->est_plane.normal, g->est_plane.point);
             if (ex >= 0) g->est_gain = g->hvol - ex;
