@@ -33,27 +33,30 @@ static int row(int (*xy)[2], int x0, int x1, int y) {
     return n;
 }
 
-static void test_volume_order_skips_refused(void **state) {
-    (void)state;
-    int xy[64][2], n = 0;
-    acd_mesh parts[4], in;
-    /* L: A = row 0, x 0..2; B = column 0, y 1..2 */
+/* Four parts of unit cells and their union: an L (A = row 0, x 0..2; B = column 0, y 1..2) and,
+ * apart from it, a step (C = row 8, x 0..9; D = row 9, x 3..12). */
+static void l_and_step(acd_mesh parts[4], acd_mesh *in) {
+    int xy[64][2], n;
     n = row(xy, 0, 2, 0);
     cells(&parts[0], (const int(*)[2])xy, n);
     xy[0][0] = 0, xy[0][1] = 1, xy[1][0] = 0, xy[1][1] = 2;
     cells(&parts[1], (const int(*)[2])xy, 2);
-    /* step: C = row 8, x 0..9; D = row 9, x 3..12 */
     n = row(xy, 0, 9, 8);
     cells(&parts[2], (const int(*)[2])xy, n);
     n = row(xy, 3, 12, 9);
     cells(&parts[3], (const int(*)[2])xy, n);
-    /* the input: all of them */
     n = row(xy, 0, 2, 0);
     xy[n][0] = 0, xy[n][1] = 1, n++;
     xy[n][0] = 0, xy[n][1] = 2, n++;
     n += row(xy + n, 0, 9, 8);
     n += row(xy + n, 3, 12, 9);
-    cells(&in, (const int(*)[2])xy, n);
+    cells(in, (const int(*)[2])xy, n);
+}
+
+static void test_volume_order_skips_refused(void **state) {
+    (void)state;
+    acd_mesh parts[4], in;
+    l_and_step(parts, &in);
     const double tau = 0.9, tol = 1e-9;
     acd_error err;
     /* the costs: the L's joint hull adds 2, the step's 3 */
@@ -106,22 +109,8 @@ static void assert_same_result(const acd3_merge_result *a, const acd3_merge_resu
  * every option of the pass (bound and volume order, a stop, a tolerance joining more). */
 static void test_kept_hulls_same_result(void **state) {
     (void)state;
-    int xy[64][2], n = 0;
     acd_mesh parts[4], in;
-    n = row(xy, 0, 2, 0);
-    cells(&parts[0], (const int(*)[2])xy, n);
-    xy[0][0] = 0, xy[0][1] = 1, xy[1][0] = 0, xy[1][1] = 2;
-    cells(&parts[1], (const int(*)[2])xy, 2);
-    n = row(xy, 0, 9, 8);
-    cells(&parts[2], (const int(*)[2])xy, n);
-    n = row(xy, 3, 12, 9);
-    cells(&parts[3], (const int(*)[2])xy, n);
-    n = row(xy, 0, 2, 0);
-    xy[n][0] = 0, xy[n][1] = 1, n++;
-    xy[n][0] = 0, xy[n][1] = 2, n++;
-    n += row(xy + n, 0, 9, 8);
-    n += row(xy + n, 3, 12, 9);
-    cells(&in, (const int(*)[2])xy, n);
+    l_and_step(parts, &in);
     acd_error err;
     acd_hull H[4];
     for (int k = 0; k < 4; k++) {

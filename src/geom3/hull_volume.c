@@ -559,6 +559,21 @@ static size_t hv_corners(const double *x, size_t nx, const double dir[3], double
     return m;
 }
 
+/* Point i of P into the outside set of facet f (which it sees), f onto the pending stack (of top
+ * entries) if its set was empty, f's farthest point updated. 0 when the stack cannot grow. */
+static int hv_push_outside(acd_hull_volume_ws *w, const double *P, int i, int f, size_t *top) {
+    hv_facet *F = &w->f[f];
+    double dd = hv_dist(F, P + 3 * (size_t)i);
+    if (F->head < 0) {
+        if (*top + 1 > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, *top + 1)) return 0;
+        w->pend[(*top)++] = f;
+    }
+    w->next[i] = F->head;
+    F->head = i;
+    if (dd > F->fard) F->fard = dd, F->far = i;
+    return 1;
+}
+
 /* The sweep's hull of the first n points of P from scratch (Quickhull), its volume in *V and
  * tolerance in *eps: 1; 0 when flat or numerically ambiguous; -1 when out of memory. */
 static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, double *eps, double *V) {
@@ -622,21 +637,12 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         if (q > q0) { /* the points up to this query's prefix: outside sets, then the Quickhull loop */
             top = 0;
             for (size_t i = cnt[q - 1]; i < cnt[q]; i++) {
-                const double *x = P + 3 * i;
-                int f = hv_find_visible(w, x, last, eps);
+                int f = hv_find_visible(w, P + 3 * i, last, eps);
                 if (f < 0) continue;
-                hv_facet *F = &w->f[f];
-                double dd = hv_dist(F, x);
-                if (F->head < 0) {
-                    if (top + 1 > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 1)) {
-                        st = -1;
-                        goto out;
-                    }
-                    w->pend[top++] = f;
+                if (!hv_push_outside(w, P, (int)i, f, &top)) {
+                    st = -1;
+                    goto out;
                 }
-                w->next[i] = F->head;
-                F->head = (int)i;
-                if (dd > F->fard) F->fard = dd, F->far = (int)i;
                 last = f;
             }
             if (top > 0) {
@@ -672,22 +678,13 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         for (size_t j = 0; j < nc; j++) { /* outside sets, then the Quickhull loop (farthest first) */
             int pi = (int)(n + j);
             memcpy(P + 3 * pi, xs + 3 * (xb[q] + (size_t)corner[j]), sizeof(double[3]));
-            const double *x = P + 3 * pi;
-            int f = hv_find_visible(w, x, start, eps);
+            int f = hv_find_visible(w, P + 3 * pi, start, eps);
             if (f < 0) continue;
             start = f; /* the next corner is the polygon's next: near this one */
-            hv_facet *F = &w->f[f];
-            double dd = hv_dist(F, x);
-            if (F->head < 0) {
-                if (top + 1 > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 1)) {
-                    st = -1;
-                    goto out;
-                }
-                w->pend[top++] = f;
+            if (!hv_push_outside(w, P, pi, f, &top)) {
+                st = -1;
+                goto out;
             }
-            w->next[pi] = F->head;
-            F->head = pi;
-            if (dd > F->fard) F->fard = dd, F->far = pi;
         }
         int r = hv_expand(w, P, eps, top, &Vx, &U);
         if (r == -1) {
