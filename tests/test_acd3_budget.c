@@ -2,10 +2,14 @@
  * budget"): parts split best first by the hull volume a cut saves. The module on a voxel U (volume
  * 7, hull 9): the pieces tile the input (volumes add up, each on one side of its parent's plane),
  * their hulls' volume falls with the budget and stays at least the input's, each piece's bound
- * meets the limit, and the output is the same for 1, 2 and 4 threads. Through acd3d_decompose on a
+ * meets the limit, and the output is the same for 1, 2 and 4 threads; each piece left a part comes
+ * with its hull (the bits of acd_hull_compute of its vertices, the hull volume summed), a piece cut
+ * again with none; the input's hull given (acd3_budget_split_hulls) or a wrong one given changes
+ * nothing. Through acd3d_decompose on a
  * bumpy star: at most N parts, volumes add up, the pieces are tree nodes under the parts they were
  * cut from, every budget part within the merge tolerance, and the sum of the hulls' volumes below
- * that of the tau-driven tree merged to the same N. (The plane scores' hull volume:
+ * that of the tau-driven tree merged to the same N, and every budget part's output hull the bits of
+ * its mesh's hull (handed from the budget pass). (The plane scores' hull volume:
  * tests/test_hull_volume.c.) */
 #include "testutil.h"
 
@@ -17,6 +21,40 @@
 #include "acd/hull.h"
 #include "acd3/budget.h"
 #include "shapes.h"
+
+/* h has the bits of acd_hull_compute of the n points pts. */
+static void assert_hull_of(const acd_hull *h, const double *pts, size_t n) {
+    acd_hull c;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(pts, n, &c, &err), ACD_OK);
+    assert_int_equal(h->dim, c.dim);
+    assert_true(h->volume == c.volume);
+    assert_int_equal(h->nvertices, c.nvertices);
+    assert_int_equal(h->ntriangles, c.ntriangles);
+    assert_memory_equal(h->vertices, c.vertices, 3 * c.nvertices * sizeof(double));
+    assert_memory_equal(h->source, c.source, c.nvertices * sizeof(uint32_t));
+    assert_memory_equal(h->triangles, c.triangles, 3 * c.ntriangles * sizeof(uint32_t));
+    assert_memory_equal(h->planes, c.planes, 4 * c.ntriangles * sizeof(double));
+    acd_hull_free(&c);
+}
+
+/* Two budget results alike, bit for bit. */
+static void assert_same_result(const acd3_budget_result *a, const acd3_budget_result *b) {
+    assert_int_equal(a->nnew, b->nnew);
+    assert_int_equal(a->cuts, b->cuts);
+    assert_int_equal(a->nalive, b->nalive);
+    assert_int_equal(a->over, b->over);
+    assert_true(a->hull_volume == b->hull_volume);
+    for (size_t k = 0; k < a->nnew; k++) {
+        assert_int_equal(a->new_parent[k], b->new_parent[k]);
+        assert_true(a->new_bound[k] == b->new_bound[k]);
+        assert_int_equal(a->new_parts[k].nvertices, b->new_parts[k].nvertices);
+        assert_memory_equal(a->new_parts[k].vertices, b->new_parts[k].vertices,
+                            3 * a->new_parts[k].nvertices * sizeof(double));
+        assert_int_equal(a->new_hull[k].dim, b->new_hull[k].dim);
+        assert_int_equal(a->new_hull[k].nvertices, b->new_hull[k].nvertices);
+    }
+}
 
 /* A U of unit voxels in a 3 x 3 grid: the bottom row and the two side columns. */
 static void voxel_u(acd_mesh *m) {
@@ -70,18 +108,47 @@ static void test_module_on_voxels(void **state) {
             if (!cut[1 + k]) sum += b->new_volume[k], alive++;
         assert_int_equal(alive, b->nalive);
         assert_true(fabs(sum - vin) <= 1e-9 * vin);
-        free(cut);
-        /* the same for any thread count */
-        for (int t = 1; t < 3; t++) {
-            assert_int_equal(r[t].nnew, b->nnew);
-            assert_int_equal(r[t].cuts, b->cuts);
-            assert_true(r[t].hull_volume == b->hull_volume);
-            for (size_t k = 0; k < b->nnew; k++) {
-                assert_int_equal(r[t].new_parts[k].nvertices, b->new_parts[k].nvertices);
-                assert_memory_equal(r[t].new_parts[k].vertices, b->new_parts[k].vertices,
-                                    3 * b->new_parts[k].nvertices * sizeof(double));
-            }
+        /* each part's hull handed out (its mesh's hull, bit for bit; the sum of their volumes in atom
+         * order is hull_volume); a piece cut again has none */
+        double hsum = 0;
+        if (!cut[0]) {
+            acd_hull h0;
+            assert_int_equal(acd_hull_compute(u.vertices, u.nvertices, &h0, &err), ACD_OK);
+            hsum += h0.volume;
+            acd_hull_free(&h0);
         }
+        for (size_t k = 0; k < b->nnew; k++) {
+            if (cut[1 + k]) {
+                assert_int_equal(b->new_hull[k].dim, -1);
+                assert_null(b->new_hull[k].vertices);
+                continue;
+            }
+            assert_hull_of(&b->new_hull[k], b->new_parts[k].vertices, b->new_parts[k].nvertices);
+            hsum += b->new_hull[k].dim == 3 ? b->new_hull[k].volume : 0;
+        }
+        assert_true(hsum == b->hull_volume);
+        free(cut);
+        /* the input's hull given: the same result; a hull not of its points given: not used */
+        {
+            acd_hull hu, hw;
+            double *w = malloc(3 * u.nvertices * sizeof *w); /* u shifted: a hull of other points */
+            assert_non_null(w);
+            for (size_t i = 0; i < 3 * u.nvertices; i++) w[i] = u.vertices[i] + (i % 3 == 0 ? 0.25 : 0);
+            assert_int_equal(acd_hull_compute(u.vertices, u.nvertices, &hu, &err), ACD_OK);
+            assert_int_equal(acd_hull_compute(w, u.nvertices, &hw, &err), ACD_OK);
+            const acd_hull *given[2] = {&hu, &hw};
+            for (int g = 0; g < 2; g++) {
+                acd3_budget_result rh;
+                assert_int_equal(acd3_budget_split_hulls(&u, &given[g], 1, budget, 10.0, 0, 10.0, 2, &rh, &err), ACD_OK);
+                assert_same_result(&rh, b);
+                acd3_budget_result_free(&rh);
+            }
+            acd_hull_free(&hu);
+            acd_hull_free(&hw);
+            free(w);
+        }
+        /* the same for any thread count */
+        for (int t = 1; t < 3; t++) assert_same_result(&r[t], b);
         for (int t = 0; t < 3; t++) acd3_budget_result_free(&r[t]);
     }
     /* a tight limit forces cuts beyond the budget: every part then meets it (or is counted over) */
@@ -148,6 +215,16 @@ static void test_decompose_budget(void **state) {
         assert_true(pt->hull_volume >= pt->volume * (1 - 1e-9));
         if (nd->leaf_reason == ACD3D_LEAF_BUDGET || nd->leaf_reason == ACD3D_LEAF_JOINED)
             assert_true(pt->concavity <= br.merge_tau * (1 + 1e-12));
+        if (nd->leaf_reason == ACD3D_LEAF_BUDGET) { /* its hull from the budget pass: its mesh's */
+            acd_hull h;
+            assert_int_equal(acd_hull_compute(pt->mesh.vertices, pt->mesh.nvertices, &h, &err), ACD_OK);
+            assert_true(h.volume == pt->hull_volume);
+            assert_int_equal(h.nvertices, pt->hull.nvertices);
+            assert_int_equal(h.ntriangles, pt->hull.ntriangles);
+            assert_memory_equal(h.vertices, pt->hull.vertices, 3 * h.nvertices * sizeof(double));
+            assert_memory_equal(h.triangles, pt->hull.triangles, 3 * h.ntriangles * sizeof(uint32_t));
+            acd_hull_free(&h);
+        }
     }
     assert_true(fabs(sum - vin) <= 1e-9 * vin);
     for (size_t n = 0; n < br.nnodes; n++) {

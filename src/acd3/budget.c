@@ -7,6 +7,7 @@
 
 #include "acd/hull.h"
 #include "acd3/leaf_test.h"
+#include "acd3/merge.h"
 #include "acd3/resolve.h"
 #include "core/error.h"
 #include "geom3/hull_volume.h"
@@ -26,6 +27,10 @@ typedef struct atom {
     int alive;       /* a part of the current decomposition (not cut) */
     double gain;     /* hull volume its best split saves; -INFINITY: no split */
     acd_cut_result cut; /* that split's pieces (npieces >= 2), or none */
+    acd_hull *cut_hulls; /* the pieces' hulls (cut.npieces, owned), or NULL */
+    acd_hull hull;   /* pieces: the hull (acd_hull_compute of mesh's vertices) while have_hull */
+    int have_hull;
+    const acd_hull *kept; /* input parts: the caller's hull of the part (read only), or NULL */
     double plane[4];
     acd_status st;
     size_t parent;   /* pieces: the atom cut */
@@ -39,10 +44,17 @@ typedef struct budget_state {
     int ndir, nexact;
 } budget_state;
 
-/* The hull of m into *keep; its volume (0 unless dim 3), -1 on failure. */
-static double hull_volume_of(const acd_mesh *m, acd_hull *keep) {
-    if (acd_hull_compute(m->vertices, m->nvertices, keep, NULL) != ACD_OK) return -1;
-    return keep->dim == 3 ? keep->volume : 0;
+/* A hull's volume as acd_hull_volume gives it for the same points (0 unless dim 3: the same bits,
+ * geom3/hull's hull_from_qhull). */
+static double hull_vol(const acd_hull *h) { return h->dim == 3 ? h->volume : 0; }
+
+/* The atom's best split dropped: its pieces and their hulls freed. */
+static void atom_cut_free(atom *A) {
+    if (A->cut_hulls)
+        for (size_t p = 0; p < A->cut.npieces; p++) acd_hull_free(&A->cut_hulls[p]);
+    free(A->cut_hulls);
+    A->cut_hulls = NULL;
+    acd_cut_result_free(&A->cut);
 }
 
 
@@ -387,29 +399,39 @@ static int plan_planes(const plan *P, int nmax, int nrefine_dirs, acd3_plane_can
     return n;
 }
 
-/* The atom's hull volume and bound (touches only the atom). */
+/* The atom's hull volume and bound (touches only the atom). Its hull: a piece's from its parent's
+ * exact cut (computed once: its volume chose the cut), an input part's the caller's when it matches,
+ * else computed (kept for a piece, dropped for an input part). */
 static void prepare(const budget_state *S, size_t i) {
     atom *A = &S->a[i];
     A->st = ACD_OK;
     A->gain = -INFINITY;
-    acd_hull H;
-    memset(&H, 0, sizeof H);
-    A->hvol = hull_volume_of(&A->mesh, &H);
-    if (A->hvol < 0) {
+    acd_hull T;
+    memset(&T, 0, sizeof T);
+    T.dim = -1;
+    const acd_hull *H = &T;
+    if (A->have_hull)
+        H = &A->hull;
+    else if (A->kept && acd3_kept_hull_matches(A->kept, A->mesh.vertices, A->mesh.nvertices))
+        H = A->kept;
+    else if (acd_hull_compute(A->mesh.vertices, A->mesh.nvertices, &T, NULL) != ACD_OK) {
         A->st = ACD_ERR_NOMEM;
         return;
+    } else if (i >= S->nparts) {
+        A->hull = T;
+        A->have_hull = 1;
+        H = &A->hull;
     }
+    A->hvol = hull_vol(H);
     A->ok = 1;
     A->bound = 0;
-    {
-        if (H.dim == 3) {
-            int acc = 0;
-            acd_error e;
-            A->st = acd3_leaf_test(&A->mesh, &H, S->limit, UINT32_MAX, &acc, &A->bound, &e);
-            A->ok = acc;
-        }
+    if (H->dim == 3) {
+        int acc = 0;
+        acd_error e;
+        A->st = acd3_leaf_test(&A->mesh, H, S->limit, UINT32_MAX, &acc, &A->bound, &e);
+        A->ok = acc;
     }
-    acd_hull_free(&H);
+    if (H == &T) acd_hull_free(&T);
 }
 
 /* One exact cut of an atom by a candidate plane: its pieces and the sum of their hull volumes. */
@@ -419,7 +441,17 @@ typedef struct exact_cut {
     double sum;
     acd_cut_plane cp;
     acd_cut_result cr;
+    acd_hull *hulls; /* the pieces' hulls (cr.npieces), or NULL */
 } exact_cut;
+
+/* A candidate cut dropped: its pieces and their hulls freed. */
+static void exact_cut_free(exact_cut *X) {
+    if (X->hulls)
+        for (size_t p = 0; p < X->cr.npieces; p++) acd_hull_free(&X->hulls[p]);
+    free(X->hulls);
+    X->hulls = NULL;
+    acd_cut_result_free(&X->cr);
+}
 
 /* The cut itself (the pieces' volumes and hulls are tasks of their own: exact_cut_pieces). */
 static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_candidate *cand, exact_cut *X) {
@@ -557,14 +589,21 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
 #endif
     for (int t = 0; t < ntask; t++) exact_cut_do(S, &S->a[idx[tj[t]]], &cand[tj[t]][td[t]], &X[tj[t]][td[t]]);
-    /* then every piece's volume and hull volume (qhull) as a task: the cuts' pieces spread over
-     * the threads */
+    /* then every piece's volume and hull (qhull; kept for the cut chosen: its pieces' hulls are
+     * computed once) as a task: the cuts' pieces spread over the threads */
     size_t npc = 0, at = 0;
-    for (int t = 0; t < ntask; t++)
-        if (X[tj[t]][td[t]].cs == ACD_OK) npc += X[tj[t]][td[t]].cr.npieces;
-    double *pv = malloc((2 * npc + 1) * sizeof *pv), *hv = pv + npc;
+    int hfail = 0;
+    for (int t = 0; t < ntask; t++) {
+        exact_cut *x = &X[tj[t]][td[t]];
+        if (x->cs != ACD_OK) continue;
+        npc += x->cr.npieces;
+        x->hulls = calloc(x->cr.npieces ? x->cr.npieces : 1, sizeof *x->hulls);
+        if (!x->hulls) hfail = 1;
+        for (size_t p = 0; x->hulls && p < x->cr.npieces; p++) x->hulls[p].dim = -1;
+    }
+    double *pv = malloc((2 * npc + 1) * sizeof *pv), *hv = pv ? pv + npc : NULL;
     size_t *pt = malloc((2 * npc + 1) * sizeof *pt), *off = malloc(((size_t)ntask + 1) * sizeof *off);
-    if (!pv || !pt || !off) {
+    if (!pv || !pt || !off || hfail) {
         for (int j = 0; j < nb; j++) S->a[idx[j]].st = ACD_ERR_NOMEM;
         npc = 0;
     }
@@ -578,9 +617,11 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
 #endif
     for (long k = 0; k < (long)npc; k++) {
         int t = (int)pt[2 * k];
-        const acd_mesh *pm = &X[tj[t]][td[t]].cr.pieces[pt[2 * k + 1]].mesh;
+        exact_cut *x = &X[tj[t]][td[t]];
+        const acd_mesh *pm = &x->cr.pieces[pt[2 * k + 1]].mesh;
+        acd_hull *ph = &x->hulls[pt[2 * k + 1]];
         pv[k] = acd_geom3_signed_volume(pm);
-        if (acd_hull_volume(pm->vertices, pm->nvertices, &hv[k], NULL) != ACD_OK) hv[k] = -1;
+        hv[k] = acd_hull_compute(pm->vertices, pm->nvertices, ph, NULL) == ACD_OK ? hull_vol(ph) : -1;
     }
     for (int t = 0; t < ntask && npc > 0; t++)
         if (X[tj[t]][td[t]].cs == ACD_OK) exact_cut_judge(&S->a[idx[tj[t]]], &X[tj[t]][td[t]], pv + off[t], hv + off[t]);
@@ -596,12 +637,13 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
             }
             if (x->good && x->sum < best) {
                 best = x->sum;
-                acd_cut_result_free(&A->cut);
+                atom_cut_free(A);
                 A->cut = x->cr;
+                A->cut_hulls = x->hulls;
                 memcpy(A->plane, x->cp.normal, sizeof(double[3]));
                 A->plane[3] = -(x->cp.normal[0] * x->cp.a[0] + x->cp.normal[1] * x->cp.a[1] + x->cp.normal[2] * x->cp.a[2]);
             } else
-                acd_cut_result_free(&x->cr);
+                exact_cut_free(x);
         }
         if (isfinite(best) && A->st == ACD_OK) A->gain = A->hvol - best;
     }
@@ -623,11 +665,20 @@ void acd3_budget_result_free(acd3_budget_result *r) {
     free(r->new_plane);
     free(r->new_volume);
     free(r->new_bound);
+    if (r->new_hull)
+        for (size_t k = 0; k < r->nnew; k++) acd_hull_free(&r->new_hull[k]);
+    free(r->new_hull);
     memset(r, 0, sizeof *r);
 }
 
 acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget, double limit,
                              double min_gain, double extent, int threads, acd3_budget_result *out, acd_error *err) {
+    return acd3_budget_split_hulls(parts, NULL, nparts, budget, limit, min_gain, extent, threads, out, err);
+}
+
+acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const *hulls, size_t nparts, size_t budget,
+                                   double limit, double min_gain, double extent, int threads, acd3_budget_result *out,
+                                   acd_error *err) {
     memset(out, 0, sizeof *out);
     budget_state S = {0};
     S.nparts = nparts;
@@ -643,6 +694,7 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
         S.a[i].mesh = parts[i];
         S.a[i].vol = acd_geom3_signed_volume(&parts[i]);
         S.a[i].alive = 1;
+        S.a[i].kept = hulls ? hulls[i] : NULL;
     }
     S.n = nparts;
     prepare_range(&S, 0, nparts, threads);
@@ -710,8 +762,14 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
             A->vol = acd_geom3_signed_volume(&A->mesh);
             A->alive = 1;
             A->parent = pick;
+            A->hull = P->cut_hulls[p]; /* the hull its volume was scored with */
+            A->have_hull = 1;
+            memset(&P->cut_hulls[p], 0, sizeof P->cut_hulls[p]);
+            P->cut_hulls[p].dim = -1;
         }
-        acd_cut_result_free(&P->cut);
+        atom_cut_free(P);
+        acd_hull_free(&P->hull); /* cut: its hull is no part's */
+        P->have_hull = 0;
         P->alive = 0;
         nalive += np - 1;
         out->cuts++;
@@ -725,7 +783,9 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
         out->new_plane = malloc(nnew * sizeof *out->new_plane);
         out->new_volume = malloc(nnew * sizeof *out->new_volume);
         out->new_bound = malloc(nnew * sizeof *out->new_bound);
-        if (!out->new_parts || !out->new_parent || !out->new_plane || !out->new_volume || !out->new_bound)
+        out->new_hull = calloc(nnew, sizeof *out->new_hull);
+        if (!out->new_parts || !out->new_parent || !out->new_plane || !out->new_volume || !out->new_bound ||
+            !out->new_hull)
             st = acd_fail(err, ACD_ERR_NOMEM, "budget: out of memory");
     }
     if (st == ACD_OK) {
@@ -740,6 +800,13 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
             out->new_bound[k] = S.a[i].bound;
             out->new_parent[k] = (uint32_t)S.a[i].parent;
             memcpy(out->new_plane[k], S.a[S.a[i].parent].plane, sizeof out->new_plane[k]);
+            out->new_hull[k].dim = -1;
+            if (S.a[i].alive && S.a[i].have_hull) { /* a part: its hull out (a piece cut again has none) */
+                out->new_hull[k] = S.a[i].hull;
+                memset(&S.a[i].hull, 0, sizeof S.a[i].hull);
+                S.a[i].hull.dim = -1;
+                S.a[i].have_hull = 0;
+            }
         }
         for (size_t i = 0; i < S.n; i++) {
             out->over += S.a[i].alive && !S.a[i].ok;
@@ -747,7 +814,8 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
         }
     }
     for (size_t i = 0; i < S.n; i++) {
-        acd_cut_result_free(&S.a[i].cut);
+        atom_cut_free(&S.a[i]);
+        if (S.a[i].have_hull) acd_hull_free(&S.a[i].hull);
         if (i >= nparts) acd_mesh_free(&S.a[i].mesh);
     }
     free(S.a);

@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "acd/base.h"
+#include "acd/hull.h"
 #include "acd/mesh.h"
 
 typedef struct acd3_budget_result {
@@ -28,6 +29,9 @@ typedef struct acd3_budget_result {
     double (*new_plane)[4]; /* per piece: its parent's cut plane n.x + d = 0 */
     double *new_volume;     /* per piece: its volume */
     double *new_bound;      /* per piece: its leaf_test bound (<= limit unless it is in `over`) */
+    acd_hull *new_hull;     /* per piece: its hull (acd_hull_compute of its vertices, the one its hull
+                             * volume and bound came from) when it is a part, owned; dim -1 (nothing
+                             * allocated) for a piece cut again */
     size_t nalive;          /* parts after the splits (input parts not cut and pieces not cut) */
     size_t over;            /* of them, parts above limit that no cut could split */
     size_t cuts;            /* cuts made */
@@ -39,6 +43,12 @@ typedef struct acd3_budget_result {
  * budget must save more than this much hull volume. threads: OpenMP workers (<= 1: one). */
 acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget, double limit,
                              double min_gain, double extent, int threads, acd3_budget_result *out, acd_error *err);
+/* As acd3_budget_split, with hulls (NULL, or per part NULL or the part's hull: acd_hull_compute of
+ * exactly its vertices, in their order; read only) used instead of computing the parts' hulls again
+ * (a hull whose vertices are not the part's points its source names is computed as before). */
+acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const *hulls, size_t nparts, size_t budget,
+                                   double limit, double min_gain, double extent, int threads, acd3_budget_result *out,
+                                   acd_error *err);
 void acd3_budget_result_free(acd3_budget_result *r);
 
 #endif

@@ -1191,8 +1191,20 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
     acd_mesh *meshes;
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
     if (st != ACD_OK || np == 0) return st;
+    /* the parts' kept hulls (process_node) for the budget's own tests, not computed again */
+    const acd_hull **hulls = malloc(np * sizeof *hulls);
+    if (!hulls) {
+        free(idx);
+        free(meshes);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    for (size_t i = 0; i < np; i++) {
+        const work_node *w = &t->a[idx[i]];
+        hulls[i] = w->have_hull && w->hull_of && w->hull_of == w->mesh.vertices ? &w->hull : NULL;
+    }
     acd3_budget_result br;
-    st = acd3_budget_split(meshes, np, budget, limit, min_gain, extent, threads, &br, err);
+    st = acd3_budget_split_hulls(meshes, hulls, np, budget, limit, min_gain, extent, threads, &br, err);
+    free(hulls);
     free(meshes);
     size_t na = np + br.nnew, *idx2 = st == ACD_OK ? realloc(idx, na * sizeof *idx) : NULL;
     if (st == ACD_OK && !idx2) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
@@ -1205,12 +1217,23 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
         }
         memset(&br.new_parts[k], 0, sizeof br.new_parts[k]);
         idx[np + k] = t->n - 1;
-        acd3d_node *pa = &t->a[pn].node, *nd = &t->a[t->n - 1].node;
+        work_node *w = &t->a[t->n - 1];
+        if (br.new_hull[k].dim >= 0) { /* a part: its hull from the budget pass (the merge's and the output's) */
+            w->hull = br.new_hull[k];
+            w->have_hull = 1;
+            w->hull_of = w->mesh.vertices;
+            memset(&br.new_hull[k], 0, sizeof br.new_hull[k]);
+            br.new_hull[k].dim = -1;
+        }
+        acd3d_node *pa = &t->a[pn].node, *nd = &w->node;
         if (pa->first_child < 0) {
             pa->first_child = (int)(t->n - 1);
             memcpy(pa->cut_plane, br.new_plane[k], sizeof pa->cut_plane);
             pa->leaf_reason = ACD3D_LEAF_NONE;
             acd_mesh_free(&t->a[pn].mesh);
+            acd_hull_free(&t->a[pn].hull); /* cut: its kept hull is no part's */
+            t->a[pn].have_hull = 0;
+            t->a[pn].hull_of = NULL;
         }
         pa->nchildren++;
         nd->leaf_reason = ACD3D_LEAF_BUDGET;

@@ -628,7 +628,7 @@ static void score_pairs(group *G, pair *P, size_t p0, size_t p1, double tau, dou
  * its source names, bit for bit (a hull computed from another point set, or the same points in
  * another order, fails this unless its vertices happen to sit at the same indices; the caller
  * promises the rest: kept is acd_hull_compute of exactly these points, in this order). */
-static int kept_hull_matches(const acd_hull *kept, const double *pts, size_t n) {
+int acd3_kept_hull_matches(const acd_hull *kept, const double *pts, size_t n) {
     if (kept->dim < 0 || (kept->nvertices && (!kept->vertices || !kept->source))) return 0;
     for (size_t v = 0; v < kept->nvertices; v++) {
         uint32_t s = kept->source[v];
@@ -638,12 +638,12 @@ static int kept_hull_matches(const acd_hull *kept, const double *pts, size_t n) 
 }
 
 /* The group's hull data from the hull of its part's n points pts: kept when given (and matching,
- * kept_hull_matches; read only), else computed (the same qhull run gives the same bits). */
+ * acd3_kept_hull_matches; read only), else computed (the same qhull run gives the same bits). */
 static acd_status group_init_hull(group *g, const double *pts, size_t n, const acd_hull *kept, double tau,
                                   acd_error *err) {
     acd_hull h;
     const acd_hull *H = &h;
-    if (kept && kept_hull_matches(kept, pts, n)) {
+    if (kept && acd3_kept_hull_matches(kept, pts, n)) {
         H = kept;
     } else {
         acd_status st = acd_hull_compute(pts, n, &h, err);

@@ -80,6 +80,11 @@ acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *part
                                      size_t nparts, double tau, double tol, const acd3_merge_opts *opts, int threads,
                                      acd3_merge_result *out, acd_error *err);
 void acd3_merge_result_free(acd3_merge_result *r);
+/* Whether kept can stand for the hull of the n points pts (the test acd3_merge_adjacent_hulls
+ * applies): each of its vertices is the input point its source names, bit for bit; the caller
+ * promises the rest (kept is acd_hull_compute of exactly these points, in this order). Also used
+ * by acd3/budget. */
+int acd3_kept_hull_matches(const acd_hull *kept, const double *pts, size_t n);
 
 /* d_out of one part: an upper bound of the largest distance from a point of the boundary of H (a
  * dim 3 hull) to the triangles of `part` (its tree), by the facet subdivision above; INFINITY as
