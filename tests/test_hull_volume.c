@@ -230,11 +230,55 @@ static void test_sweep(void **state) {
     acd_hull_volume_ws_free(&w);
 }
 
+/* Coordinates at any scale: fuzz_hull_volume's nine points (a sliver at 2e84, a cluster at 1e-42)
+ * and a tetrahedron at 1e-70 and 1e90 get qhull's volume (the own Quickhull's cross products would
+ * overflow or underflow: such sets go to qhull), 0 before that fix for the nine; a slab far from
+ * the origin gets its volume (moved to its centre first), 0 before. */
+static void test_extreme_scales(void **state) {
+    (void)state;
+    const double nine[27] = {-6.290423992676007e-10, 2.1026533892325537e+84, 2.1026533892325537e+84,
+                             5.256633473081384e+83, 5.256633473081384e+83, 5.262562028615726e+83,
+                             1.684635518523213e-43, 8.96831024570393e-44, 1.0410273767909543e-42,
+                             1.0410273767909543e-42, 5.256633000831295e+83, 5.256633473081384e+83,
+                             5.262562028615726e+83, 1.684635518523213e-43, 8.96831024570393e-44,
+                             1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+                             1.0410273767909543e-42, 1.0410273767909543e-42, 1.3980433222694975e-76,
+                             3.6947213095772724e-57, 9.515194426837388e-43, 1.0411210059817749e-42,
+                             1.0409895966853888e-42, 1.0410273767909543e-42, 1.0410273767909543e-42};
+    acd_hull_volume_ws w;
+    memset(&w, 0, sizeof w);
+    double ref = qhull_volume(nine, 9); /* exact: 1.0934454242429589e248 (rational arithmetic) */
+    assert_true(fabs(ref - 1.0934454242429589e248) <= 1e-9 * ref);
+    double v = acd_hull_volume_fast(nine, 9, &w, NULL);
+    assert_true(fabs(v - ref) <= 1e-9 * ref);
+    const double scales[2] = {1e-70, 1e90};
+    for (int c = 0; c < 2; c++) {
+        double t[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+        for (int i = 0; i < 12; i++) t[i] *= scales[c];
+        double r = qhull_volume(t, 4), f = acd_hull_volume_fast(t, 4, &w, NULL);
+        assert_true(r > 0 && fabs(f - r) <= 1e-9 * r);
+    }
+    /* a slab 1 x 1 x 0.05 at 1e7 from the origin (a part of a scan in UTM coordinates): the
+     * tolerances follow the coordinates' magnitude, so before the set was moved to its centre it
+     * came out flat (0) */
+    unsigned long long seed = 5;
+    double slab[3 * 60];
+    for (int i = 0; i < 60; i++) {
+        slab[3 * i] = 1e7 + lcg01(&seed);
+        slab[3 * i + 1] = -3e7 + lcg01(&seed);
+        slab[3 * i + 2] = 2e7 + 0.05 * lcg01(&seed);
+    }
+    double rs = qhull_volume(slab, 60), fs = acd_hull_volume_fast(slab, 60, &w, NULL);
+    assert_true(rs > 0.02 && fabs(fs - rs) <= 1e-6 * rs);
+    acd_hull_volume_ws_free(&w);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hull_volume),
         cmocka_unit_test(test_workspace_reuse),
         cmocka_unit_test(test_sweep),
+        cmocka_unit_test(test_extreme_scales),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

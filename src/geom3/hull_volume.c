@@ -17,6 +17,16 @@ static double hull_volume_pts(const double *pts, size_t n) {
  * set this thin (relative to the same scale) has no volume. */
 #define HULL_VOLUME_EPS 1e-10
 #define HULL_VOLUME_FLAT 1e-8
+/* Coordinates (their largest magnitude) above this, or an extent below its inverse, go to qhull
+ * (acd_hull_compute normalises them): the planes' cross products square the coordinates' squares,
+ * which overflow past about 1e77 (fuzz_hull_volume: points at 2e84 gave volume 0 for 1.09e248). */
+#define HULL_VOLUME_RANGE 1e60
+/* A set farther from the origin than this many times its extent is moved to its box's centre
+ * first: the tolerances are relative to the coordinates' magnitude (their roundoff), so far from
+ * the origin a thin set came out flat (fuzz_hull_volume: points at 1.04e-42 spread over 4e-49, volume
+ * 0 for 2.7e-150; a scan in UTM coordinates, 5e6 m off, would lose parts thinner than 5% of a metre).
+ * Nearer sets keep their bits. */
+#define HULL_VOLUME_OFFSET 1e4
 /* A sweep (acd_hull_volume_sweep) stops at a new facet whose angle at its apex is below this sine. */
 #define HULL_VOLUME_SLIVER 1e-6
 
@@ -379,6 +389,8 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, int c4[4
     double ext = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
     if (!(ext > 0)) return 0;
     double scale = fmax(fmax(fabs(lo[0]), fabs(hi[0])), fmax(fmax(fabs(lo[1]), fabs(hi[1])), fmax(fabs(lo[2]), fabs(hi[2]))));
+    if (!(scale <= HULL_VOLUME_RANGE) || !(ext >= 1.0 / HULL_VOLUME_RANGE)) return -2; /* to qhull */
+    if (scale > HULL_VOLUME_OFFSET * ext) return -4;                                       /* centre it */
     double eps = HULL_VOLUME_EPS * fmax(scale, ext);
     *eps_out = eps;
     int i0 = ex[0], i1 = ex[1];
@@ -458,13 +470,19 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, int c4[4
     return 1;
 }
 
-static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
-    int c4[4];
-    double eps;
-    size_t top;
-    int r = hv_simplex(p, n, w, c4, &eps, &top);
-    if (r <= 0) return r;
-    r = hv_expand(w, p, eps, top, NULL, NULL);
+/* The first n points of p less the centre of their bounding box, into q. */
+static void hv_centred(const double *p, size_t n, double *q, double c[3]) {
+    double lo[3] = {p[0], p[1], p[2]}, hi[3] = {p[0], p[1], p[2]};
+    for (size_t i = 1; i < n; i++)
+        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], p[3 * i + k]), hi[k] = fmax(hi[k], p[3 * i + k]);
+    for (int k = 0; k < 3; k++) c[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) q[3 * i + k] = p[3 * i + k] - c[k];
+}
+
+/* The Quickhull from the simplex c4 (its outside sets in w, top facets pending) and the volume. */
+static double hv_finish(acd_hull_volume_ws *w, const double *p, double eps, size_t top, const int c4[4]) {
+    int r = hv_expand(w, p, eps, top, NULL, NULL);
     if (r < 0) return r;
     int i0 = c4[0], i1 = c4[1], i2 = c4[2], i3 = c4[3];
     double vol;
@@ -484,6 +502,25 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
     }
     return vol;
 }
+
+static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
+    int c4[4];
+    double eps;
+    size_t top;
+    int r = hv_simplex(p, n, w, c4, &eps, &top);
+    if (r == -4) { /* far from the origin: the same set about its centre */
+        double *q = malloc(3 * n * sizeof *q), c[3];
+        if (!q) return -1;
+        hv_centred(p, n, q, c);
+        r = hv_simplex(q, n, w, c4, &eps, &top);
+        double v = r == 1 ? hv_finish(w, q, eps, top, c4) : r == -4 ? -2 : r;
+        free(q);
+        return v;
+    }
+    if (r <= 0) return r;
+    return hv_finish(w, p, eps, top, c4);
+}
+
 
 double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, int *fallback) {
     double v = hull_volume_qh(pts, n, w);
@@ -580,7 +617,7 @@ static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, doub
     int c4[4];
     size_t top = 0;
     int r = hv_simplex(P, n, w, c4, eps, &top);
-    if (r != 1) return r == -1 ? -1 : 0;
+    if (r != 1) return r == -1 || r == -4 ? r : 0;
     w->lastf = 0;
     r = hv_expand(w, P, *eps, top, NULL, NULL);
     if (r < 0) return r == -1 ? -1 : 0;
@@ -619,8 +656,8 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     w->sweep = 1;
     for (size_t i = 0; i < n + maxx + 1; i++) w->start[i] = w->end[i] = -1;
     /* the first query whose prefix has a volume: the hull of it by the Quickhull above */
-    int q0 = 0;
-    double eps = 0, V = 0;
+    int q0 = 0, centred = 0;
+    double eps = 0, V = 0, c[3] = {0, 0, 0};
     size_t top = 0;
     for (; q0 < nq; q0++) {
         if (cnt[q0] < 4) continue;
@@ -628,6 +665,12 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         if (r == -1) {
             st = -1;
             goto out;
+        }
+        if (r == -4 && !centred) { /* far from the origin: every point about the box's centre, again */
+            centred = 1;
+            hv_centred(pts, n, P, c);
+            q0--;
+            continue;
         }
         if (r == 1) break;
     }
@@ -677,7 +720,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         top = 0;
         for (size_t j = 0; j < nc; j++) { /* outside sets, then the Quickhull loop (farthest first) */
             int pi = (int)(n + j);
-            memcpy(P + 3 * pi, xs + 3 * (xb[q] + (size_t)corner[j]), sizeof(double[3]));
+            for (int k = 0; k < 3; k++) P[3 * pi + k] = xs[3 * (xb[q] + (size_t)corner[j]) + k] - c[k];
             int f = hv_find_visible(w, P + 3 * pi, start, eps);
             if (f < 0) continue;
             start = f; /* the next corner is the polygon's next: near this one */
