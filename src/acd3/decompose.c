@@ -1013,6 +1013,18 @@ static int node_is_part(const acd3d_node *nd) {
            (nd->leaf_reason == ACD3D_LEAF_MERGED || (nd->first_child < 0 && nd->leaf_reason != ACD3D_LEAF_NONE));
 }
 
+/* Per part idx[i] of t, the hull its node kept (process_node) when it is the hull of the node's
+ * current mesh, else NULL; the array is the caller's to free (NULL when out of memory). */
+static const acd_hull **kept_hulls(const tree *t, const size_t *idx, size_t np) {
+    const acd_hull **hulls = malloc((np ? np : 1) * sizeof *hulls);
+    if (!hulls) return NULL;
+    for (size_t i = 0; i < np; i++) {
+        const work_node *w = &t->a[idx[i]];
+        hulls[i] = w->have_hull && w->hull_of && w->hull_of == w->mesh.vertices ? &w->hull : NULL;
+    }
+    return hulls;
+}
+
 /* The parts (node_is_part) in node order: *idx their nodes, *meshes their meshes (shallow
  * copies). *np = 0 leaves nothing allocated. */
 static acd_status collect_parts(const tree *t, size_t *np, size_t **idx, acd_mesh **meshes, acd_error *err) {
@@ -1063,15 +1075,11 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
         return st;
     }
     /* the leaves' kept hulls (process_node): the merge's parts' hulls, not computed again */
-    const acd_hull **hulls = malloc(np * sizeof *hulls);
+    const acd_hull **hulls = kept_hulls(t, idx, np);
     if (!hulls) {
         free(idx);
         free(meshes);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-    }
-    for (size_t i = 0; i < np; i++) {
-        const work_node *w = &t->a[idx[i]];
-        hulls[i] = w->have_hull && w->hull_of && w->hull_of == w->mesh.vertices ? &w->hull : NULL;
     }
     acd3_merge_result mr;
     st = acd3_merge_adjacent_hulls(input, meshes, hulls, np, tau, tol, mo, threads, &mr, err);
@@ -1192,15 +1200,11 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
     if (st != ACD_OK || np == 0) return st;
     /* the parts' kept hulls (process_node) for the budget's own tests, not computed again */
-    const acd_hull **hulls = malloc(np * sizeof *hulls);
+    const acd_hull **hulls = kept_hulls(t, idx, np);
     if (!hulls) {
         free(idx);
         free(meshes);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-    }
-    for (size_t i = 0; i < np; i++) {
-        const work_node *w = &t->a[idx[i]];
-        hulls[i] = w->have_hull && w->hull_of && w->hull_of == w->mesh.vertices ? &w->hull : NULL;
     }
     acd3_budget_result br;
     st = acd3_budget_split_hulls(meshes, hulls, np, budget, limit, min_gain, extent, threads, &br, err);
