@@ -5,8 +5,8 @@
  * byte, raw doubles. The points are sorted along the direction; up to 8 queries take growing
  * prefixes, each with some of the later points projected onto the query's plane (as a plane cut's
  * section crossings). Every volume acd_hull_volume_fast gives (and the sweep's, when built with
- * -DHV_FUZZ_CHECK_SWEEP: it overestimates some degenerate queries, an open defect written down in
- * docs/results/fuzz.md; the decline -3 is allowed) must be within
+ * -DHV_FUZZ_CHECK_SWEEP: it still underestimates some degenerate queries, an open defect written
+ * down in docs/results/fuzz.md; the decline -3 is allowed) must be within
  * HV_FUZZ_TOL_REL x extent^3 of acd_hull_volume's (qhull's) on the same set: the estimate's
  * roundoff is a point within its tolerance of a facet, far below that; a wrong horizon or a lost
  * point off by more is a defect. Out of memory (-1) is allowed; anything else aborts. */

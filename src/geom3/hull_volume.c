@@ -310,6 +310,11 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
         }
         size_t nh = (size_t)r;
         int iter = w->iter, *horf = w->horf, *newf = w->newf, *visl = w->visl;
+        /* a new facet with the initial simplex's centroid above it faces inward: the visible
+         * region was inconsistent (fuzz_hull_volume: a sweep's corner then counted 1.74 of volume
+         * that lay inside, +15%); numerically ambiguous */
+        for (size_t k = 0; k < nh; k++)
+            if (hv_dist(&w->f[newf[k]], w->cen) > 0) return -2;
         w->lastf = newf[0];
         /* the new facets' planes packed, then the horizon facets' (each once, in their first order:
          * the same first match as testing them all in order) */
@@ -435,6 +440,7 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, int c4[4
     int tri[4][3] = {{i0, i1, i2}, {i0, i1, i3}, {i0, i2, i3}, {i1, i2, i3}};
     double cen0[3];
     for (int k = 0; k < 3; k++) cen0[k] = (p[3 * i0 + k] + p[3 * i1 + k] + p[3 * i2 + k] + p[3 * i3 + k]) / 4;
+    memcpy(w->cen, cen0, sizeof cen0);
     for (int t = 0; t < 4; t++) {
         if (hv_new_facet(w, p, tri[t][0], tri[t][1], tri[t][2]) < 0) return -1;
         if (hv_dist(&w->f[t], cen0) > 0) { /* inward: reversed */
@@ -640,8 +646,14 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
                           const size_t *xb, const size_t *xe, int nq, double *vol, acd_hull_volume_ws *w) {
     for (int q = 0; q < nq; q++) vol[q] = -3;
     size_t maxx = 0;
-    for (int q = 0; q < nq; q++)
+    double big = 0; /* the largest coordinate of every point the sweep may add: beyond the range, none
+                     * is computed here (hv_simplex checks only the first prefix) */
+    for (size_t i = 0; i < 3 * n; i++) big = fmax(big, fabs(pts[i]));
+    for (int q = 0; q < nq; q++) {
         if (xe[q] - xb[q] > maxx) maxx = xe[q] - xb[q];
+        for (size_t i = 3 * xb[q]; i < 3 * xe[q]; i++) big = fmax(big, fabs(xs[i]));
+    }
+    if (!(big <= HULL_VOLUME_RANGE)) return 0;
     double *P = malloc(3 * (n + maxx + 1) * sizeof *P), *uv = malloc(6 * (maxx + 1) * sizeof *uv);
     int *corner = malloc((2 * maxx + 2) * sizeof *corner);
     hv_undo U;

@@ -34,6 +34,7 @@ typedef struct acd_hull_volume_ws {
     int iter;  /* the visible search's stamp (vis, facets' marks) */
     int lastf; /* a facet made by the last step */
     int sweep; /* in acd_hull_volume_sweep (slivers refused) */
+    double cen[3]; /* the initial simplex's centroid: inside every facet of a valid hull */
 } acd_hull_volume_ws;
 
 void acd_hull_volume_ws_free(acd_hull_volume_ws *w);
