@@ -7,9 +7,10 @@
  * section crossings). Every volume acd_hull_volume_fast gives (and the sweep's, when built with
  * -DHV_FUZZ_CHECK_SWEEP: it still underestimates some degenerate queries, an open defect written
  * down in docs/results/fuzz.md; the decline -3 is allowed) must be within
- * HV_FUZZ_TOL_REL x extent^3 of acd_hull_volume's (qhull's) on the same set: the estimate's
- * roundoff is a point within its tolerance of a facet, far below that; a wrong horizon or a lost
- * point off by more is a defect. Out of memory (-1) is allowed; anything else aborts. */
+ * HV_FUZZ_TOL_REL x extent^2 x max(extent, the coordinates' magnitude) of acd_hull_volume's
+ * (qhull's) on the same set: the estimate's tolerances (a point within 1e-10, a set flat within
+ * 1e-8) are relative to the coordinates' magnitude, so its slack is far below that; a wrong
+ * horizon or a lost point off by more is a defect. Out of memory (-1) is allowed; anything else aborts. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -20,7 +21,7 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-/* Volumes may differ from qhull's by this share of the extent's cube (the estimate's slack). */
+/* Volumes may differ from qhull's by this share of extent^2 x max(extent, magnitude) (the slack). */
 #define HV_FUZZ_TOL_REL 1e-6
 #define HV_FUZZ_MAX_POINTS 4096
 #define HV_FUZZ_QUERIES 8
@@ -86,8 +87,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             if (i == 0 || s[3 * i + k] < lo[k]) lo[k] = s[3 * i + k];
             if (i == 0 || s[3 * i + k] > hi[k]) hi[k] = s[3 * i + k];
         }
-    for (int k = 0; k < 3; k++) ext = fmax(ext, hi[k] - lo[k]);
-    double tol = HV_FUZZ_TOL_REL * ext * ext * ext;
+    double mag = 0; /* the coordinates' magnitude: the estimate's tolerances are relative to it */
+    for (int k = 0; k < 3; k++) ext = fmax(ext, hi[k] - lo[k]), mag = fmax(mag, fmax(fabs(lo[k]), fabs(hi[k])));
+    double tol = HV_FUZZ_TOL_REL * ext * ext * fmax(ext, mag);
     /* queries: prefixes at q (n / Q), the plane at the prefix's last height, the next few points
      * projected onto it */
     size_t cnt[HV_FUZZ_QUERIES], xb[HV_FUZZ_QUERIES], xe[HV_FUZZ_QUERIES], nx = 0;
