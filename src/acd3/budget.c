@@ -48,28 +48,30 @@ typedef struct budget_state {
  * geom3/hull's hull_from_qhull). */
 static double hull_vol(const acd_hull *h) { return h->dim == 3 ? h->volume : 0; }
 
-/* The atom's best split dropped: its pieces and their hulls freed. */
-static void atom_cut_free(atom *A) {
-    if (A->cut_hulls)
-        for (size_t p = 0; p < A->cut.npieces; p++) acd_hull_free(&A->cut_hulls[p]);
-    free(A->cut_hulls);
-    A->cut_hulls = NULL;
-    acd_cut_result_free(&A->cut);
+/* A cut's pieces and their hulls (*hulls: cr->npieces of them, or NULL) freed. */
+static void cut_with_hulls_free(acd_cut_result *cr, acd_hull **hulls) {
+    if (*hulls)
+        for (size_t p = 0; p < cr->npieces; p++) acd_hull_free(&(*hulls)[p]);
+    free(*hulls);
+    *hulls = NULL;
+    acd_cut_result_free(cr);
 }
 
+/* The atom's best split dropped. */
+static void atom_cut_free(atom *A) { cut_with_hulls_free(&A->cut, &A->cut_hulls); }
 
-/* Vertices scored at most by the plane search (every k-th beyond; every crossing of the sampled
- * triangles' edges too). */
 #define BUDGET_MAX_DIRS 80
 #define BUDGET_DIRS 40
 #define BUDGET_EXACT 3
 #define BUDGET_REFINE_DIRS 3
 #define BUDGET_BATCH 4
+/* Vertices scored at most by the plane search (every k-th beyond; every crossing of the sampled
+ * triangles' edges too). */
 #define BUDGET_MAX_SCORED 1000
 #define BUDGET_OFFSETS 9
 #define BUDGET_REFINE 3
 
-/* The projections on one direction of the sample scored by score_plane: the sampled vertices' (every
+/* The projections on one direction of the sample scored: the sampled vertices' (every
  * stride-th) and the sampled triangles' (every tstride-th) three corners'; computed once per direction
  * (n.p, then less the offset per plane: the same bits as n.p - c). */
 static void sample_dots(const acd_mesh *m, size_t stride, size_t tstride, const double nrm[3], double *dv, double *dt) {
@@ -84,34 +86,6 @@ static void sample_dots(const acd_mesh *m, size_t stride, size_t tstride, const 
             const double *p = m->vertices + 3 * (size_t)m->triangles[3 * t + c];
             dt[k] = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2];
         }
-}
-
-/* The sampled score of the plane n.x = c: the sum of the two sides' hull volumes, each side's hull
- * that of its sampled vertices and of the crossings of the sampled triangles' edges (an edge of two
- * sampled triangles: twice); dv, dt the sample's projections (sample_dots); ka, kb the sides' hull
- * volumes when known already (else negative). -1 on failure. */
-static double score_plane(const acd_mesh *m, size_t stride, size_t tstride, const double *dv, const double *dt, double c,
-                          double ka, double kb, double *bufa, double *bufb, acd_hull_volume_ws *w) {
-    size_t na = 0, nb = 0, k = 0;
-    for (size_t v = 0; v < m->nvertices; v += stride, k++) {
-        const double *p = m->vertices + 3 * v;
-        double s = dv[k] - c;
-        memcpy(s >= 0 ? bufa + 3 * na++ : bufb + 3 * nb++, p, sizeof(double[3]));
-    }
-    k = 0;
-    for (size_t t = 0; t < m->ntriangles; t += tstride, k += 3)
-        for (int e = 0; e < 3; e++) {
-            int f = e == 2 ? 0 : e + 1;
-            double sp = dt[k + e] - c, sq = dt[k + f] - c;
-            if ((sp >= 0) == (sq >= 0)) continue;
-            const double *p = m->vertices + 3 * (size_t)m->triangles[3 * t + e], *q = m->vertices + 3 * (size_t)m->triangles[3 * t + f];
-            double a = sp / (sp - sq), x[3];
-            for (int d = 0; d < 3; d++) x[d] = p[d] + a * (q[d] - p[d]);
-            memcpy(bufa + 3 * na++, x, sizeof x);
-            memcpy(bufb + 3 * nb++, x, sizeof x);
-        }
-    double va = ka >= 0 ? ka : acd_hull_volume_fast(bufa, na, w, NULL), vb = kb >= 0 ? kb : acd_hull_volume_fast(bufb, nb, w, NULL);
-    return va < 0 || vb < 0 ? -1 : va + vb;
 }
 
 /* The plane search of one atom: its directions (the part's principal axes, the diagonals between
@@ -188,8 +162,8 @@ static void plan_init(const acd_mesh *m, int ndir, plan *P) {
     P->ok = 1;
 }
 
-/* Room for both sides' points (3 * cap doubles each) and the sample's projections. */
-static double *plan_buffers(const plan *P) { return malloc((2 * 3 * P->cap + P->nsv + 3 * P->nst) * sizeof(double)); }
+/* Room for one side's points (3 * cap doubles: side_volume) and the sample's projections. */
+static double *plan_buffers(const plan *P) { return malloc((3 * P->cap + P->nsv + 3 * P->nst) * sizeof(double)); }
 
 /* The sampled vertices' order along a direction (by projection, then index). */
 typedef struct keyed {
@@ -223,24 +197,32 @@ static void keyed_sort(keyed *a, keyed *tmp, size_t n) {
     if (src != a) memcpy(a, src, n * sizeof *a);
 }
 
-/* One side's sampled hull volume of the plane n.x = c (above: s >= 0, else below), its set made as
- * score_plane makes it; buf: room for 3 * P->cap doubles. */
-static double side_volume(const acd_mesh *m, const plan *P, const double *dv, const double *dt, double c, int above,
-                          double *buf, acd_hull_volume_ws *w) {
+/* The crossings of the plane n.x = c with the edges of the sampled triangles (every tstride-th; an
+ * edge of two sampled triangles twice), dt their corners' projections (sample_dots), into out;
+ * how many. */
+static size_t sample_crossings(const acd_mesh *m, size_t tstride, const double *dt, double c, double *out) {
     size_t n = 0, k = 0;
-    for (size_t v = 0; v < m->nvertices; v += P->stride, k++)
-        if ((dv[k] - c >= 0) == above) memcpy(buf + 3 * n++, m->vertices + 3 * v, sizeof(double[3]));
-    k = 0;
-    for (size_t t = 0; t < m->ntriangles; t += P->tstride, k += 3)
+    for (size_t t = 0; t < m->ntriangles; t += tstride, k += 3)
         for (int e = 0; e < 3; e++) {
             int f = e == 2 ? 0 : e + 1;
             double sp = dt[k + e] - c, sq = dt[k + f] - c;
             if ((sp >= 0) == (sq >= 0)) continue;
             const double *p = m->vertices + 3 * (size_t)m->triangles[3 * t + e], *q = m->vertices + 3 * (size_t)m->triangles[3 * t + f];
             double a = sp / (sp - sq);
-            for (int d = 0; d < 3; d++) buf[3 * n + d] = p[d] + a * (q[d] - p[d]);
+            for (int d = 0; d < 3; d++) out[3 * n + d] = p[d] + a * (q[d] - p[d]);
             n++;
         }
+    return n;
+}
+
+/* One side's sampled hull volume of the plane n.x = c (above: s >= 0, else below): its sampled
+ * vertices, then the crossings; buf: room for 3 * P->cap doubles. */
+static double side_volume(const acd_mesh *m, const plan *P, const double *dv, const double *dt, double c, int above,
+                          double *buf, acd_hull_volume_ws *w) {
+    size_t n = 0, k = 0;
+    for (size_t v = 0; v < m->nvertices; v += P->stride, k++)
+        if ((dv[k] - c >= 0) == above) memcpy(buf + 3 * n++, m->vertices + 3 * v, sizeof(double[3]));
+    n += sample_crossings(m, P->tstride, dt, c, buf + 3 * n);
     return acd_hull_volume_fast(buf, n, w, NULL);
 }
 
@@ -261,24 +243,13 @@ static int sweep_dir(const acd_mesh *m, const plan *P, int d, const double *cs, 
     }
     acd_hull_volume_ws hw;
     memset(&hw, 0, sizeof hw);
-    double *dv = buf + 6 * P->cap, *dt = dv + P->nsv;
+    double *dv = buf + 3 * P->cap, *dt = dv + P->nsv;
     sample_dots(m, P->stride, P->tstride, P->dirs[d], dv, dt);
-    /* each offset's crossings (as score_plane makes them) */
+    /* each offset's crossings */
     size_t xb[BUDGET_MAX_QUERIES], xe[BUDGET_MAX_QUERIES];
     for (int i = 0; i < nq; i++) {
-        size_t nx = (size_t)i * xcap, k = 0;
-        xb[i] = nx;
-        for (size_t t = 0; t < m->ntriangles; t += P->tstride, k += 3)
-            for (int e = 0; e < 3; e++) {
-                int f = e == 2 ? 0 : e + 1;
-                double sp = dt[k + e] - cs[i], sq = dt[k + f] - cs[i];
-                if ((sp >= 0) == (sq >= 0)) continue;
-                const double *p = m->vertices + 3 * (size_t)m->triangles[3 * t + e], *q = m->vertices + 3 * (size_t)m->triangles[3 * t + f];
-                double a = sp / (sp - sq);
-                for (int c = 0; c < 3; c++) xs[3 * nx + c] = p[c] + a * (q[c] - p[c]);
-                nx++;
-            }
-        xe[i] = nx;
+        xb[i] = (size_t)i * xcap;
+        xe[i] = xb[i] + sample_crossings(m, P->tstride, dt, cs[i], xs + 3 * xb[i]);
     }
     /* the sample sorted along d: side below (n.p - c < 0) a prefix, side above a suffix */
     for (size_t k = 0; k < nsv; k++) ord[k].key = dv[k], ord[k].i = k;
@@ -330,7 +301,9 @@ static int score_dir(const acd_mesh *m, plan *P, int d) {
 
 /* The offsets a refinement from c0 can score (its BUDGET_REFINE rounds of half the step from st,
  * each from the best offset so far: c0 or one scored before), computed as the rounds compute them,
- * increasing and each once, into out (room for BUDGET_MAX_QUERIES); how many. */
+ * increasing and each once, into out (room for BUDGET_MAX_QUERIES); how many. All of them fit
+ * (3^BUDGET_REFINE - 1), so every offset the refinement tries is among them. */
+_Static_assert(BUDGET_REFINE <= 3 && BUDGET_MAX_QUERIES >= 26, "a refinement's offsets must fit BUDGET_MAX_QUERIES");
 static int refine_offsets(double c0, double st, double *out) {
     double reach[BUDGET_MAX_QUERIES + 1];
     int nr = 1, n = 0;
@@ -353,21 +326,6 @@ static int refine_offsets(double c0, double st, double *out) {
         n++;
     }
     return n;
-}
-
-/* One plane of a refinement: direction d's offset c scored (touches nothing shared); -1 when it has
- * no score, -2 when out of memory. */
-static double refine_plane(const acd_mesh *m, const plan *P, int d, double c) {
-    double *buf = plan_buffers(P);
-    if (!buf) return -2;
-    acd_hull_volume_ws hw;
-    memset(&hw, 0, sizeof hw);
-    double *dv = buf + 6 * P->cap, *dt = dv + P->nsv;
-    sample_dots(m, P->stride, P->tstride, P->dirs[d], dv, dt);
-    double sc = score_plane(m, P->stride, P->tstride, dv, dt, c, -1, -1, buf, buf + 3 * P->cap, &hw);
-    free(buf);
-    acd_hull_volume_ws_free(&hw);
-    return sc < 0 ? -1 : sc;
 }
 
 static void sort_dirs(plan *P, int lim) {
@@ -444,14 +402,8 @@ typedef struct exact_cut {
     acd_hull *hulls; /* the pieces' hulls (cr.npieces), or NULL */
 } exact_cut;
 
-/* A candidate cut dropped: its pieces and their hulls freed. */
-static void exact_cut_free(exact_cut *X) {
-    if (X->hulls)
-        for (size_t p = 0; p < X->cr.npieces; p++) acd_hull_free(&X->hulls[p]);
-    free(X->hulls);
-    X->hulls = NULL;
-    acd_cut_result_free(&X->cr);
-}
+/* A candidate cut dropped. */
+static void exact_cut_free(exact_cut *X) { cut_with_hulls_free(&X->cr, &X->hulls); }
 
 /* The cut itself (the pieces' volumes and hulls are tasks of their own: exact_cut_pieces). */
 static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_candidate *cand, exact_cut *X) {
@@ -559,12 +511,8 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
             for (int sg = -1; sg <= 1; sg += 2) {
                 double c = c0 + sg * step, sc = -1;
                 int i = 0;
-                while (i < nro[k] && roff[k][i] != c) i++;
-                if (i < nro[k])
-                    sc = rva[k][i] < 0 || rvb[k][i] < 0 ? -1 : rva[k][i] + rvb[k][i];
-                else
-                    sc = refine_plane(&S->a[idx[rj[k]]].mesh, Q, d, c); /* not reached */
-                if (sc == -2) fail[rj[k]] = 1;
+                while (i < nro[k] && roff[k][i] != c) i++; /* found: refine_offsets made every c */
+                if (i < nro[k]) sc = rva[k][i] < 0 || rvb[k][i] < 0 ? -1 : rva[k][i] + rvb[k][i];
                 if (sc >= 0 && sc < Q->bs[d]) Q->bs[d] = sc, Q->bc[d] = c;
             }
         }
