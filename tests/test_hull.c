@@ -606,6 +606,28 @@ static void test_enclosure_twins(void **state) {
     free(p);
 }
 
+/* acd_hull_take moves the arrays out and leaves an empty hull that acd_hull_free (and a second
+ * take) handle. */
+static void test_take(void **state) {
+    (void)state;
+    const double p[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    acd_hull h, e;
+    assert_int_equal(acd_hull_compute(p, 4, &h, NULL), ACD_OK);
+    const double *verts = h.vertices;
+    double vol = h.volume;
+    acd_hull t = acd_hull_take(&h);
+    assert_ptr_equal(t.vertices, verts);
+    assert_int_equal(t.dim, 3);
+    assert_true(t.volume == vol && t.ntriangles == 4);
+    assert_int_equal(h.dim, -1);
+    assert_null(h.vertices);
+    assert_int_equal(h.ntriangles, 0);
+    e = acd_hull_take(&h);
+    assert_int_equal(e.dim, -1);
+    acd_hull_free(&h);
+    acd_hull_free(&t);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_random_vs_brute_force),
@@ -620,6 +642,7 @@ int main(void) {
         cmocka_unit_test(test_volume_only),
         cmocka_unit_test(test_enclosure_ill_conditioned),
         cmocka_unit_test(test_enclosure_twins),
+        cmocka_unit_test(test_take),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -40,6 +40,9 @@ typedef struct acd_hull {
  * acd_hull_free (also safe after a failure). */
 acd_status acd_hull_compute(const double *points, size_t n, acd_hull *out, acd_error *err);
 void acd_hull_free(acd_hull *h);
+/* Moves h out: returns it and leaves h empty (as acd_hull_free leaves it), so that the arrays have
+ * one owner. */
+acd_hull acd_hull_take(acd_hull *h);
 /* The volume of the same hull (acd_hull_compute's out.volume, the same bits: 0 unless dim 3)
  * without building it. */
 acd_status acd_hull_volume(const double *points, size_t n, double *volume, acd_error *err);

@@ -710,10 +710,8 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
             A->vol = acd_geom3_signed_volume(&A->mesh);
             A->alive = 1;
             A->parent = pick;
-            A->hull = P->cut_hulls[p]; /* the hull its volume was scored with */
+            A->hull = acd_hull_take(&P->cut_hulls[p]); /* the hull its volume was scored with */
             A->have_hull = 1;
-            memset(&P->cut_hulls[p], 0, sizeof P->cut_hulls[p]);
-            P->cut_hulls[p].dim = -1;
         }
         atom_cut_free(P);
         acd_hull_free(&P->hull); /* cut: its hull is no part's */
@@ -750,9 +748,7 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
             memcpy(out->new_plane[k], S.a[S.a[i].parent].plane, sizeof out->new_plane[k]);
             out->new_hull[k].dim = -1;
             if (S.a[i].alive && S.a[i].have_hull) { /* a part: its hull out (a piece cut again has none) */
-                out->new_hull[k] = S.a[i].hull;
-                memset(&S.a[i].hull, 0, sizeof S.a[i].hull);
-                S.a[i].hull.dim = -1;
+                out->new_hull[k] = acd_hull_take(&S.a[i].hull);
                 S.a[i].have_hull = 0;
             }
         }

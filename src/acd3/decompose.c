@@ -151,13 +151,10 @@ static acd_status hull_mesh(const acd_mesh *m, acd_hull *kept, size_t max_vertic
     memset(out, 0, sizeof *out);
     acd_hull h;
     acd_status st = ACD_OK;
-    if (kept) {
-        h = *kept;
-        memset(kept, 0, sizeof *kept);
-        kept->dim = -1;
-    } else {
+    if (kept)
+        h = acd_hull_take(kept);
+    else
         st = acd_hull_compute(m->vertices, m->nvertices, &h, err);
-    }
     if (st == ACD_OK && max_vertices >= 4 && h.dim == 3 && h.nvertices > max_vertices) {
         acd_hull_free(&h);
         st = acd_hull_simplify(m->vertices, m->nvertices, max_vertices, &h, err);
@@ -997,11 +994,9 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
             reason = c->params->stop != ACD3D_STOP_HULL && hull_leaf(c, w, &cur.ms, out) ? ACD3D_LEAF_HULL : ACD3D_LEAF_NO_CUT;
     }
     if (!split && out->st == ACD_OK) { /* a leaf: its hull is its part's (until the mesh changes) */
-        w->hull = cur.ms.hull;
+        w->hull = acd_hull_take(&cur.ms.hull);
         w->have_hull = 1;
         w->hull_of = w->mesh.vertices;
-        memset(&cur.ms.hull, 0, sizeof cur.ms.hull);
-        cur.ms.hull.dim = -1;
     }
     measured_free(&cur);
     out->reason = reason;
@@ -1223,11 +1218,9 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
         idx[np + k] = t->n - 1;
         work_node *w = &t->a[t->n - 1];
         if (br.new_hull[k].dim >= 0) { /* a part: its hull from the budget pass (the merge's and the output's) */
-            w->hull = br.new_hull[k];
+            w->hull = acd_hull_take(&br.new_hull[k]);
             w->have_hull = 1;
             w->hull_of = w->mesh.vertices;
-            memset(&br.new_hull[k], 0, sizeof br.new_hull[k]);
-            br.new_hull[k].dim = -1;
         }
         acd3d_node *pa = &t->a[pn].node, *nd = &w->node;
         if (pa->first_child < 0) {

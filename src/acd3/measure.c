@@ -199,9 +199,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
         goto fail;
     }
     if (hull) { /* taken over */
-        out->hull = *hull;
-        memset(hull, 0, sizeof *hull);
-        hull->dim = -1;
+        out->hull = acd_hull_take(hull);
     } else {
         st = acd_hull_compute(m->vertices, nv, &out->hull, err);
         if (st != ACD_OK) goto fail;

@@ -64,6 +64,13 @@ void acd_hull_free(acd_hull *h) {
     h->dim = -1;
 }
 
+acd_hull acd_hull_take(acd_hull *h) {
+    acd_hull t = *h;
+    memset(h, 0, sizeof *h);
+    h->dim = -1;
+    return t;
+}
+
 /* Allocates the output arrays. */
 static acd_status hull_alloc(acd_hull *h, size_t nv, size_t nt, acd_error *err) {
     h->vertices = malloc((nv ? nv : 1) * 3 * sizeof *h->vertices);
