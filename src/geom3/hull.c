@@ -12,8 +12,9 @@
  *     memory stream that becomes our message; after it returns only plain data structure walks are done;
  *   - if qhull still reports a precision failure, retries on a copy joggled with a fixed-seed
  *     generator (deterministic), then gives up with ACD_ERR_DEGENERATE;
- *   - checks every input point against every facet plane (a bounding-box tree prunes the points far
- *     below a plane) and lifts a plane that a point exceeds by more than ACD_TOL_REL_DIST x diagonal
+ *   - checks the facet planes it cannot trust (an ill-shaped triangle, or qhull's normal off the
+ *     triangle's own) against every input point (a bounding-box tree prunes the points far below a
+ *     plane) and lifts a plane that a point exceeds by more than ACD_TOL_REL_DIST x diagonal
  *     (qhull's roundoff on an ill-conditioned facet: hull_enclose).
  * Orientation comes from qhull's facet toporient flag (topologically consistent, counterclockwise
  * seen from outside); adjacency from the simplicial facets' neighbour sets (neighbour i is opposite
@@ -612,9 +613,10 @@ static int hull_plane_trusted(const double *nrm, const double *a, const double *
 }
 
 /* Checks the planes of out (built from w, the points normalised by s, box diagonal diag) that are
- * not trusted against every point and lifts those exceeded by more than tol (normalised units). */
-static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double s, double diag, double tol,
-                               acd_error *err) {
+ * not trusted against every point and lifts those exceeded by more than ACD_TOL_REL_DIST x diag
+ * (normalised units). */
+static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double s, double diag, acd_error *err) {
+    const double tol = ACD_TOL_REL_DIST * diag;
     encl_tree T = {0};
     int built = 0;
     acd_status st = ACD_OK;
@@ -646,7 +648,7 @@ static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double 
 }
 
 /* Runs qhull on w (joggled copies if it fails) and builds out, or (out NULL) the volume alone. */
-static acd_status hull_solid(const double *points, double *w, size_t n, double s, double diag, double tol, acd_hull *out,
+static acd_status hull_solid(const double *points, double *w, size_t n, double s, double diag, acd_hull *out,
                              double *volume, acd_error *err) {
     qhull_run r;
     int code = qhull_run_do(&r, w, n);
@@ -654,7 +656,7 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
     if (code == 0) {
         acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
         qhull_run_free(&r);
-        if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, diag, tol, err);
+        if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, diag, err);
         return st;
     }
     qhull_first_line(&r, msg, sizeof msg);
@@ -673,7 +675,7 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
             acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
             qhull_run_free(&r);
             free(j);
-            if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, diag, tol, err);
+            if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, diag, err);
             return st;
         }
         qhull_run_free(&r);
@@ -804,7 +806,7 @@ static acd_status hull_compute(const double *points, size_t n, acd_hull *out, do
     if (best <= tol)
         st = out ? hull_planar(points, w, n, nrm, s, out, err) : ACD_OK;
     else
-        st = hull_solid(points, w, n, s, diag, tol, out, volume, err);
+        st = hull_solid(points, w, n, s, diag, out, volume, err);
     free(w);
     if (st != ACD_OK && out) acd_hull_free(out);
     return st;
