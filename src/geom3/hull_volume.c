@@ -486,27 +486,26 @@ static void hv_centred(const double *p, size_t n, double *q, double c[3]) {
         for (int k = 0; k < 3; k++) q[3 * i + k] = p[3 * i + k] - c[k];
 }
 
-/* The Quickhull from the simplex c4 (its outside sets in w, top facets pending) and the volume. */
-static double hv_finish(acd_hull_volume_ws *w, const double *p, double eps, size_t top, const int c4[4]) {
-    int r = hv_expand(w, p, eps, top, NULL, NULL);
-    if (r < 0) return r;
-    int i0 = c4[0], i1 = c4[1], i2 = c4[2], i3 = c4[3];
-    double vol;
-    {
-        double cen[3];
-        for (int k = 0; k < 3; k++) cen[k] = (p[3 * i0 + k] + p[3 * i1 + k] + p[3 * i2 + k] + p[3 * i3 + k]) / 4;
-        double s = 0;
-        for (size_t t = 0; t < w->nf; t++) {
-            const hv_facet *F = &w->f[t];
-            if (!F->alive) continue;
-            const double *A = p + 3 * F->v[0], *B = p + 3 * F->v[1], *C = p + 3 * F->v[2];
-            double a[3] = {A[0] - cen[0], A[1] - cen[1], A[2] - cen[2]}, b[3] = {B[0] - cen[0], B[1] - cen[1], B[2] - cen[2]},
-                   c[3] = {C[0] - cen[0], C[1] - cen[1], C[2] - cen[2]};
-            s += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-        }
-        vol = s / 6;
+/* The volume of the hull in w (its alive facets, points p): tetrahedra from the initial simplex's
+ * centroid (w->cen, inside the hull). */
+static double hv_hull_volume(const acd_hull_volume_ws *w, const double *p) {
+    const double *cen = w->cen;
+    double s = 0;
+    for (size_t t = 0; t < w->nf; t++) {
+        const hv_facet *F = &w->f[t];
+        if (!F->alive) continue;
+        const double *A = p + 3 * F->v[0], *B = p + 3 * F->v[1], *C = p + 3 * F->v[2];
+        double a[3] = {A[0] - cen[0], A[1] - cen[1], A[2] - cen[2]}, b[3] = {B[0] - cen[0], B[1] - cen[1], B[2] - cen[2]},
+               c[3] = {C[0] - cen[0], C[1] - cen[1], C[2] - cen[2]};
+        s += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
     }
-    return vol;
+    return s / 6;
+}
+
+/* The Quickhull from the initial simplex (its outside sets in w, top facets pending) and the volume. */
+static double hv_finish(acd_hull_volume_ws *w, const double *p, double eps, size_t top) {
+    int r = hv_expand(w, p, eps, top, NULL, NULL);
+    return r < 0 ? r : hv_hull_volume(w, p);
 }
 
 static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
@@ -519,12 +518,12 @@ static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
         if (!q) return -1;
         hv_centred(p, n, q, c);
         r = hv_simplex(q, n, w, c4, &eps, &top);
-        double v = r == 1 ? hv_finish(w, q, eps, top, c4) : r == -4 ? -2 : r;
+        double v = r == 1 ? hv_finish(w, q, eps, top) : r == -4 ? -2 : r;
         free(q);
         return v;
     }
     if (r <= 0) return r;
-    return hv_finish(w, p, eps, top, c4);
+    return hv_finish(w, p, eps, top);
 }
 
 
@@ -627,18 +626,7 @@ static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, doub
     w->lastf = 0;
     r = hv_expand(w, P, *eps, top, NULL, NULL);
     if (r < 0) return r == -1 ? -1 : 0;
-    double cen[3];
-    for (int k = 0; k < 3; k++) cen[k] = (P[3 * c4[0] + k] + P[3 * c4[1] + k] + P[3 * c4[2] + k] + P[3 * c4[3] + k]) / 4;
-    double s = 0;
-    for (size_t t = 0; t < w->nf; t++) {
-        const hv_facet *F = &w->f[t];
-        if (!F->alive) continue;
-        const double *A = P + 3 * F->v[0], *B = P + 3 * F->v[1], *C = P + 3 * F->v[2];
-        double a[3] = {A[0] - cen[0], A[1] - cen[1], A[2] - cen[2]}, b[3] = {B[0] - cen[0], B[1] - cen[1], B[2] - cen[2]},
-               c[3] = {C[0] - cen[0], C[1] - cen[1], C[2] - cen[2]};
-        s += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-    }
-    *V = s / 6;
+    *V = hv_hull_volume(w, P);
     return 1;
 }
 
