@@ -139,7 +139,7 @@ static void test_module_on_voxels(void **state) {
             const acd_hull *given[2] = {&hu, &hw};
             for (int g = 0; g < 2; g++) {
                 acd3_budget_result rh;
-                assert_int_equal(acd3_budget_split_hulls(&u, &given[g], 1, budget, 10.0, 0, 10.0, 2, &rh, &err), ACD_OK);
+                assert_int_equal(acd3_budget_split_hulls(&u, &given[g], 1, budget, 10.0, 0, 10.0, 2, NULL, NULL, &rh, &err), ACD_OK);
                 assert_same_result(&rh, b);
                 acd3_budget_result_free(&rh);
             }

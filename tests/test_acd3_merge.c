@@ -60,7 +60,7 @@ static void test_volume_order_skips_refused(void **state) {
     const double tau = 0.9, tol = 1e-9;
     acd_error err;
     /* the costs: the L's joint hull adds 2, the step's 3 */
-    acd3_merge_opts mo = {1, 3, 0};
+    acd3_merge_opts mo = {.by_volume = 1, .stop_at = 3};
     acd3_merge_result r[2];
     const int threads[2] = {1, 2};
     for (int t = 0; t < 2; t++) {
@@ -121,7 +121,7 @@ static void test_kept_hulls_same_result(void **state) {
     const acd_hull *some[4] = {NULL, &H[1], &H[2], NULL};
     const acd_hull *wrong[4] = {&H[2], &H[1], &H[0], &H[3]}; /* 0 and 2 swapped: not theirs */
     const acd_hull *const *sets[3] = {all, some, wrong};
-    const acd3_merge_opts opts[4] = {{1, 3, 0}, {1, 0, 0}, {0, 0, 0}, {0, 3, 0}};
+    const acd3_merge_opts opts[4] = {{.by_volume = 1, .stop_at = 3}, {.by_volume = 1}, {.by_volume = 0}, {.stop_at = 3}};
     const double taus[2] = {0.9, 1.5}, tol = 1e-9;
     for (int o = 0; o < 4; o++)
         for (int t = 0; t < 2; t++) {

@@ -78,7 +78,7 @@ static void test_trade_on_voxels(void **state) {
     voxels(&parts[1], bx, by, 1);
     voxels(&parts[2], cx, cy, 1);
     const double tau = 0.25, tol = 1e-9, vin = mg_volume(&in);
-    acd3_merge_opts mo = {1, 3, 0};
+    acd3_merge_opts mo = {.by_volume = 1, .stop_at = 3};
     acd3_merge_result plain, ref[3];
     acd_error err;
     assert_int_equal(acd3_merge_adjacent(&in, parts, 3, tau, tol, &mo, 1, &plain, &err), ACD_OK);

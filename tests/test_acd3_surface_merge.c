@@ -111,7 +111,7 @@ static void test_sphere_joins_back(void **state) {
     assert_true(n >= 6);
     acd3_surface_merge_result r;
     acd_error err;
-    assert_int_equal(acd3_surface_merge(parts, n, 0.01, 0.02, 1e-12, 2, &r, &err), ACD_OK);
+    assert_int_equal(acd3_surface_merge(parts, n, 0.01, 0.02, 1e-12, 2, NULL, NULL, &r, &err), ACD_OK);
     assert_int_equal(r.ngroups, 1);
     assert_int_equal(r.merges, n - 1);
     assert_true(r.concavity[0] <= 0.02);
@@ -136,20 +136,20 @@ static void test_torus_groups_within_tau(void **state) {
     acd_error err;
     const double tau = 0.25, eps = 0.2 * tau;
     acd3_surface_merge_result r;
-    assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 1, &r, &err), ACD_OK);
+    assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 1, NULL, NULL, &r, &err), ACD_OK);
     assert_true(r.ngroups < n);  /* a quarter of the ring: its inner wall 0.65 (1 - cos 45 deg) = 0.19 deep */
     assert_true(r.ngroups >= 3); /* three eighths: 0.40 */
     print_message("torus eighths: %zu groups\n", r.ngroups);
     check_groups(&r, n, eps, tau, 1);
     /* same groups with two threads */
     acd3_surface_merge_result r2;
-    assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 2, &r2, &err), ACD_OK);
+    assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 2, NULL, NULL, &r2, &err), ACD_OK);
     assert_int_equal(r2.ngroups, r.ngroups);
     for (size_t i = 0; i < n; i++) assert_int_equal(r2.group_of[i], r.group_of[i]);
     acd3_surface_merge_result_free(&r2);
     acd3_surface_merge_result_free(&r);
     /* a tolerant tau: one group, the torus again */
-    assert_int_equal(acd3_surface_merge(parts, n, eps, 10.0, 1e-12, 1, &r, &err), ACD_OK);
+    assert_int_equal(acd3_surface_merge(parts, n, eps, 10.0, 1e-12, 1, NULL, NULL, &r, &err), ACD_OK);
     assert_int_equal(r.ngroups, 1);
     acd3_topology t;
     assert_int_equal(acd3_topology_of(&r.meshes[0], &t, &err), ACD_OK);
@@ -180,8 +180,8 @@ static void test_moves(void **state) {
     for (int i = 0; i < 2; i++) {
         const double tau = taus[i], eps = 0.5 * tau;
         acd3_surface_merge_result r, r2;
-        assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 1, &r, &err), ACD_OK);
-        assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 2, &r2, &err), ACD_OK);
+        assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 1, NULL, NULL, &r, &err), ACD_OK);
+        assert_int_equal(acd3_surface_merge(parts, n, eps, tau, 1e-12, 2, NULL, NULL, &r2, &err), ACD_OK);
         print_message("tau %g: %zu pieces, %zu groups, %zu joins, %zu moves\n", tau, n, r.ngroups, r.merges, r.moves);
         assert_int_equal(r.ngroups + r.merges + r.moves, n);
         assert_int_equal(r2.ngroups, r.ngroups);

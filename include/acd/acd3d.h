@@ -137,7 +137,8 @@ typedef struct acd3d_params {
     int region_cuts;          /* non-zero: a plane cuts only its section region at the witness
                                  (spec decision A13), falling back to the whole plane; default 0,
                                  see docs/acd3d.md for the measurements behind the default */
-    acd_progress_fn progress; /* optional; may cancel */
+    acd_progress_fn progress; /* optional: called from the calling thread between the steps of every
+                                 stage (tree, budget, merge; the stage named); non-zero cancels */
     void *progress_user;
 } acd3d_params;
 

@@ -621,12 +621,12 @@ void acd3_budget_result_free(acd3_budget_result *r) {
 
 acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget, double limit,
                              double min_gain, double extent, int threads, acd3_budget_result *out, acd_error *err) {
-    return acd3_budget_split_hulls(parts, NULL, nparts, budget, limit, min_gain, extent, threads, out, err);
+    return acd3_budget_split_hulls(parts, NULL, nparts, budget, limit, min_gain, extent, threads, NULL, NULL, out, err);
 }
 
 acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const *hulls, size_t nparts, size_t budget,
-                                   double limit, double min_gain, double extent, int threads, acd3_budget_result *out,
-                                   acd_error *err) {
+                                   double limit, double min_gain, double extent, int threads, acd_progress_fn progress,
+                                   void *progress_user, acd3_budget_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     budget_state S = {0};
     S.nparts = nparts;
@@ -650,6 +650,9 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
     for (;;) {
         for (size_t i = 0; i < S.n && st == ACD_OK; i++)
             if (S.a[i].st != ACD_OK) st = acd_fail(err, S.a[i].st, "budget: out of memory");
+        if (st == ACD_OK && progress &&
+            progress(progress_user, budget ? fmin(1.0, (double)nalive / (double)budget) : -1.0, "budget: splitting"))
+            st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled in the budget pass after %zu cuts", out->cuts);
         if (st != ACD_OK) break;
         /* the next cut: while under the budget, the largest saving above min_gain; an atom not
          * evaluated yet may save at most its excess (hull volume less volume: each piece's hull

@@ -45,10 +45,12 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
                              double min_gain, double extent, int threads, acd3_budget_result *out, acd_error *err);
 /* As acd3_budget_split, with hulls (NULL, or per part NULL or the part's hull: acd_hull_compute of
  * exactly its vertices, in their order; read only) used instead of computing the parts' hulls again
- * (a hull whose vertices are not the part's points its source names is computed as before). */
+ * (a hull whose vertices are not the part's points its source names is computed as before), and a
+ * progress callback (NULL: none; called before each choice from the calling thread, the fraction
+ * parts / budget; non-zero cancels: ACD_ERR_CANCELLED, nothing returned). */
 acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const *hulls, size_t nparts, size_t budget,
-                                   double limit, double min_gain, double extent, int threads, acd3_budget_result *out,
-                                   acd_error *err);
+                                   double limit, double min_gain, double extent, int threads, acd_progress_fn progress,
+                                   void *progress_user, acd3_budget_result *out, acd_error *err);
 void acd3_budget_result_free(acd3_budget_result *r);
 
 #endif

@@ -1154,8 +1154,8 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
 
 /* Surface mode's merge pass (acd3/surface_merge): like join_adjacent, the joined node's mesh the
  * members welded along their shared chains, its concavity measured as the leaves'. */
-static acd_status join_surface(tree *t, double eps, double tau, double tol, int threads, size_t *nparts,
-                               acd_error *err) {
+static acd_status join_surface(tree *t, double eps, double tau, double tol, int threads, const acd3d_params *params,
+                               size_t *nparts, acd_error *err) {
     size_t np, *idx;
     acd_mesh *meshes;
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
@@ -1165,7 +1165,7 @@ static acd_status join_surface(tree *t, double eps, double tau, double tol, int 
         return st;
     }
     acd3_surface_merge_result mr;
-    st = acd3_surface_merge(meshes, np, eps, tau, tol, threads, &mr, err);
+    st = acd3_surface_merge(meshes, np, eps, tau, tol, threads, params->progress, params->progress_user, &mr, err);
     free(meshes);
     for (size_t g = 0; st == ACD_OK && g < mr.ngroups; g++) {
         if (mr.group_size[g] < 2) continue;
@@ -1189,7 +1189,7 @@ static acd_status join_surface(tree *t, double eps, double tau, double tol, int 
  * the hull volume a split saves, the pieces children of the parts they were cut from
  * (ACD3D_LEAF_BUDGET, their concavity the two-sided bound). */
 static acd_status split_to_budget(tree *t, size_t budget, double limit, double min_gain, double extent,
-                                  int threads, size_t *nparts, acd_error *err) {
+                                  int threads, const acd3d_params *params, size_t *nparts, acd_error *err) {
     size_t np, *idx;
     acd_mesh *meshes;
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
@@ -1202,7 +1202,8 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
     }
     acd3_budget_result br;
-    st = acd3_budget_split_hulls(meshes, hulls, np, budget, limit, min_gain, extent, threads, &br, err);
+    st = acd3_budget_split_hulls(meshes, hulls, np, budget, limit, min_gain, extent, threads, params->progress,
+                                 params->progress_user, &br, err);
     free(hulls);
     free(meshes);
     size_t na = np + br.nnew, *idx2 = st == ACD_OK ? realloc(idx, na * sizeof *idx) : NULL;
@@ -1338,7 +1339,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
      * split independently (in parallel), then the children are appended in node order. The
      * tree, and so the output, is the same for any number of threads. */
     for (size_t i = 0; i < t.n;) {
-        if (params->progress && params->progress(params->progress_user, -1.0, "3d: measuring and cutting")) {
+        if (params->progress && params->progress(params->progress_user, -1.0, "measuring and cutting")) {
             st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled after %zu parts", nleaves);
             goto fail;
         }
@@ -1438,7 +1439,7 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
 
     if (params->budget_parts > 0) {
         st = split_to_budget(&t, params->budget_parts, out->merge_tau, ACD3_BUDGET_MIN_GAIN_REL * vol, sc.extent,
-                             nthreads, &nleaves, err);
+                             nthreads, params, &nleaves, err);
         if (st != ACD_OK) goto fail;
     }
 
@@ -1446,11 +1447,12 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         /* (no refinement after max_hulls: its merged parts keep their dropped children, the pieces
          * could not be their children) */
         const acd3_merge_opts mo = {params->merge_order == ACD3D_MERGE_VOLUME, params->merge_parts,
-                                    params->max_hulls ? 0 : params->merge_refine};
+                                    params->max_hulls ? 0 : params->merge_refine, params->progress,
+                                    params->progress_user};
         st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, &mo, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     } else if (params->merge) {
-        st = join_surface(&t, params->eps_ratio * out->merge_tau, out->merge_tau, sc.dist, nthreads, &nleaves, err);
+        st = join_surface(&t, params->eps_ratio * out->merge_tau, out->merge_tau, sc.dist, nthreads, params, &nleaves, err);
         if (st != ACD_OK) goto fail;
     }
 

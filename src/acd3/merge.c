@@ -1241,6 +1241,13 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
     return acd3_merge_adjacent_hulls(input, parts, NULL, nparts, tau, tol, opts, threads, out, err);
 }
 
+/* The caller's progress callback (opts may be NULL), between steps: ACD_ERR_CANCELLED when it asks. */
+static acd_status merge_progress(const acd3_merge_opts *opts, double fraction, const char *stage, acd_error *err) {
+    if (opts && opts->progress && opts->progress(opts->progress_user, fraction, stage))
+        return acd_fail(err, ACD_ERR_CANCELLED, "cancelled (%s)", stage);
+    return ACD_OK;
+}
+
 acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *parts, const acd_hull *const *hulls,
                                      size_t nparts, double tau, double tol, const acd3_merge_opts *opts, int threads,
                                      acd3_merge_result *out, acd_error *err) {
@@ -1372,10 +1379,14 @@ acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *part
         for (size_t k = 0; k < G[i].nadj && st == ACD_OK; k++)
             if (G[i].adj[k] > i) st = push_pair(&P, &np, &capp, (uint32_t)i, G[i].adj[k], err);
     const double din_refuse = tau + MERGE_DEPTH_SLACK_REL * diag;
+    if (st == ACD_OK) st = merge_progress(opts, -1.0, "merge: scoring adjacent pairs", err);
     if (st == ACD_OK) score_pairs(G, P, 0, np, tau, din_refuse, by_volume, threads);
     /* greedy: the cheapest joinable pair of live groups, ties by the lower ids */
     size_t nlive = nparts;
     while (st == ACD_OK && nlive > stop_at) {
+        st = merge_progress(opts, stop_at ? (double)(nparts - nlive) / (double)(nparts - stop_at) : -1.0,
+                            "merge: joining", err);
+        if (st != ACD_OK) break;
         size_t best = best_pair(G, P, &np, tau, threads);
         if (best == SIZE_MAX) break;
         st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
@@ -1390,6 +1401,8 @@ acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *part
     refine_cand *cands = NULL;
     const double min_gain = MERGE_REFINE_MIN_GAIN_REL * in_vol;
     while (st == ACD_OK && out->trades < refine && fails <= MERGE_REFINE_FAILS_PER_STEP * refine) {
+        st = merge_progress(opts, (double)out->trades / (double)refine, "merge: refining", err);
+        if (st != ACD_OK) break;
         best_pair(G, P, &np, tau, threads);
         cheapest_join cj;
         cheapest_join_init(&cj, G, P, np, tau, threads);

@@ -65,6 +65,9 @@ typedef struct acd3_merge_opts {
                        lowers the sum of hull volumes the most, both sides within tau under the
                        bound above, and joins the cheapest joinable pair; taken only when the cut
                        saves more hull volume than the join adds (docs/acd3d.md "Hull tightness") */
+    acd_progress_fn progress; /* optional (NULL: none): called between steps, from the calling
+                                 thread only; non-zero cancels (ACD_ERR_CANCELLED) */
+    void *progress_user;
 } acd3_merge_opts;
 
 /* Joins the adjacent parts of the closed input mesh `input` (all parts closed, together tiling

@@ -411,7 +411,8 @@ void acd3_surface_merge_result_free(acd3_surface_merge_result *r) {
 }
 
 acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, double tau, double tol, int threads,
-                              acd3_surface_merge_result *out, acd_error *err) {
+                              acd_progress_fn progress, void *progress_user, acd3_surface_merge_result *out,
+                              acd_error *err) {
     memset(out, 0, sizeof *out);
     size_t nv = 0, ne = 0;
     for (size_t p = 0; p < nparts; p++) nv += parts[p].nvertices, ne += 3 * parts[p].ntriangles;
@@ -548,6 +549,11 @@ acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, 
     }
     for (int round = 0;; round++) {
         for (;;) {
+            if (progress && progress(progress_user, -1.0, "merge: joining surface parts")) {
+                st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled (merge: joining surface parts, %zu joins made)",
+                              out->merges);
+                goto done;
+            }
             size_t best = SIZE_MAX;
             for (size_t i = 0; i < npr; i++) {
                 if (!prs[i].valid || !(prs[i].cost <= tau)) continue;

@@ -39,9 +39,11 @@ typedef struct acd3_surface_merge_result {
 } acd3_surface_merge_result;
 
 /* eps, tol, tau in model units (eps: the bridge clustering threshold of the measure). threads:
- * OpenMP workers for the measuring (<= 1: one). */
+ * OpenMP workers for the measuring (<= 1: one). progress: NULL, or called before each join from the
+ * calling thread; non-zero cancels (ACD_ERR_CANCELLED, nothing returned). */
 acd_status acd3_surface_merge(const acd_mesh *parts, size_t nparts, double eps, double tau, double tol, int threads,
-                              acd3_surface_merge_result *out, acd_error *err);
+                              acd_progress_fn progress, void *progress_user, acd3_surface_merge_result *out,
+                              acd_error *err);
 void acd3_surface_merge_result_free(acd3_surface_merge_result *r);
 
 #endif
