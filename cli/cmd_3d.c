@@ -16,10 +16,10 @@
 
 static void usage(FILE *f) {
     fprintf(f,
-            "usage: acd 3d INPUT [--mode solid|surface] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj]\n"
-            "              [--json FILE] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
-            "              [--no-merge] [--merge-tau T] [--merge-order bound|volume] [--merge-parts N]\n"
-            "              [--merge-refine N] [--budget N]\n"
+            "usage: acd 3d INPUT [--budget N] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj] [--json FILE]\n"
+            "              [--mode solid|surface] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
+            "              [--no-merge] [--merge-tau T] [--merge-tau-diag F] [--merge-order bound|volume]\n"
+            "              [--merge-parts N] [--merge-refine N]\n"
             "              [--cut-choice concavity|volume|band] [--no-close-holes] [--resolver global|witness|notch]\n"
             "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--eps-ratio R]\n"
             "              [--no-feature-grouping] [--stop measure|hull] [--verify] [-v]\n"
@@ -27,6 +27,15 @@ static void usage(FILE *f) {
             "Decomposes a triangle mesh (closed for solid mode; OBJ, OFF, PLY, STL, optionally gzip-compressed) into parts\n"
             "whose concavity is at most TAU, and outputs their convex hulls.\n"
             "\n"
+            "  --budget N          the tightest hulls at N parts (solid mode): after the decomposition the\n"
+            "                      parts are split further, best first by the hull volume a plane cut saves,\n"
+            "                      until N parts exist, and every part until it is within the merge\n"
+            "                      tolerance of its hull both ways; then the merge pass (default 0: off).\n"
+            "                      It implies, for the options not given: -t 10 (no tau-driven split: the\n"
+            "                      input alone is split) --merge-tau-diag 0.0195 (joined parts within 0.0195\n"
+            "                      of the bounding-box diagonal) --cut-choice volume --merge-order volume\n"
+            "                      --merge-parts N --merge-refine 40 (with --no-merge only the first three).\n"
+            "                      The settings that ran are printed and in --json (\"settings\")\n"
             "  -t TAU              concavity tolerance, relative to the radius of the minimum enclosing\n"
             "                      sphere (default 0.05); with --tau-abs in model units\n"
             "  --mode solid        parts are closed solids, cut by planes with capped sections (default)\n"
@@ -57,6 +66,8 @@ static void usage(FILE *f) {
             "                      joined while the result stays within tau: solid, the joined hull\n"
             "                      within tau of the joined part; surface, the welded patch's concavity)\n"
             "  --merge-tau T       the merge pass's tolerance, in the units of TAU (default: TAU)\n"
+            "  --merge-tau-diag F  the merge pass's tolerance as a fraction F of the bounding-box diagonal\n"
+            "                      (instead of --merge-tau)\n"
             "  --merge-order bound solid merge pass: the joinable pair of smallest bound first (default);\n"
             "                      'volume': the pair whose joined hull adds the least volume first\n"
             "  --merge-parts N     solid merge pass: stop as soon as at most N parts remain (default: join\n"
@@ -64,10 +75,6 @@ static void usage(FILE *f) {
             "  --merge-refine N    with --merge-parts: up to N refinement steps after the joins, each a cut\n"
             "                      of the part whose volume plane saves the most hull volume and a join of\n"
             "                      the cheapest pair, while the hulls' volume falls (default 0)\n"
-            "  --budget N          solid mode: after the decomposition, split the parts further, best first\n"
-            "                      by the hull volume a plane cut saves, until N parts exist, and every\n"
-            "                      part until it is within the merge tolerance of its hull both ways; then\n"
-            "                      the merge pass (with a large TAU the input alone is split; default 0: off)\n"
             "  --cut-choice concavity  solid mode: the candidate cut of least piece concavity (default);\n"
             "                      'volume': planes chosen for tight hulls join the candidates, and the\n"
             "                      smallest sum of the pieces' hull volumes wins within a band of concavity;\n"
@@ -120,6 +127,51 @@ static const char *leaf_reason_name(acd3d_leaf_reason r) {
     case ACD3D_LEAF_BUDGET: return "budget";
     }
     return "unknown";
+}
+
+static const char *cut_choice_name(acd3d_cut_choice c) {
+    return c == ACD3D_CHOICE_VOLUME ? "volume" : c == ACD3D_CHOICE_BAND ? "band" : "concavity";
+}
+
+static const char *merge_order_name(acd3d_merge_order o) { return o == ACD3D_MERGE_VOLUME ? "volume" : "bound"; }
+
+/* The settings that ran, when --budget implied some (or --merge-tau-diag was given): as options on
+ * stdout, with the merge tolerance in TAU's units at full precision (the command line that gives the
+ * same run), and as the JSON's "settings". Not written for other command lines, whose output stays
+ * as it was. */
+static void print_settings(const acd3d_result *r, const acd3d_params *p) {
+    printf("settings:");
+    if (p->budget_parts > 0) printf(" --budget %zu", p->budget_parts);
+    printf(" -t %.17g%s --merge-tau %.17g", p->tau, p->tau_absolute ? " --tau-abs" : "",
+           p->tau_absolute ? r->merge_tau : r->merge_tau_relative);
+    if (p->merge_tau == 0 && p->merge_tau_diag > 0) printf(" (%.6g x diagonal)", p->merge_tau_diag);
+    printf(" --cut-choice %s", cut_choice_name(p->cut_choice));
+    if (!p->merge) printf(" --no-merge");
+    else {
+        printf(" --merge-order %s", merge_order_name(p->merge_order));
+        if (p->merge_parts > 0) printf(" --merge-parts %zu", p->merge_parts);
+        if (p->merge_refine > 0) printf(" --merge-refine %zu", p->merge_refine);
+    }
+    printf("\n");
+}
+
+static void settings_json(cJSON *o, const acd3d_result *r, const acd3d_params *p, const char *const *implied,
+                          size_t nimplied) {
+    cJSON *q = cJSON_AddObjectToObject(o, "settings");
+    if (!q) return;
+    cJSON_AddNumberToObject(q, "budget", (double)p->budget_parts);
+    cJSON_AddNumberToObject(q, "tau", r->tau);
+    cJSON_AddNumberToObject(q, "tau_relative", r->scale > 0 ? r->tau / r->scale : 0);
+    cJSON_AddNumberToObject(q, "merge_tau", r->merge_tau);
+    cJSON_AddNumberToObject(q, "merge_tau_relative", r->merge_tau_relative);
+    if (p->merge_tau == 0 && p->merge_tau_diag > 0) cJSON_AddNumberToObject(q, "merge_tau_diag", p->merge_tau_diag);
+    cJSON_AddStringToObject(q, "cut_choice", cut_choice_name(p->cut_choice));
+    cJSON_AddBoolToObject(q, "merge", p->merge != 0);
+    cJSON_AddStringToObject(q, "merge_order", merge_order_name(p->merge_order));
+    cJSON_AddNumberToObject(q, "merge_parts", (double)p->merge_parts);
+    cJSON_AddNumberToObject(q, "merge_refine", (double)p->merge_refine);
+    cJSON *imp = cJSON_AddArrayToObject(q, "implied");
+    for (size_t i = 0; imp && i < nimplied; i++) cJSON_AddItemToArray(imp, cJSON_CreateString(implied[i]));
 }
 
 static int write_parts(const char *path, const acd3d_result *r, int hulls, acd_error *err) {
@@ -316,6 +368,9 @@ int acd_cmd_3d(int argc, char **argv) {
     const char *input = NULL, *hulls_path = NULL, *parts_path = NULL, *json_path = NULL, *export_path = NULL,
                *model_name = NULL;
     int do_verify = 0, verbose = 0, close_holes = 1;
+    /* the options --budget implies when they are not given */
+    int got_tau = 0, got_merge_tau = 0, got_merge_tau_diag = 0, got_cut_choice = 0, got_merge_order = 0,
+        got_merge_parts = 0, got_merge_refine = 0;
     acd3d_params p = acd3d_default_params();
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -328,6 +383,7 @@ int acd_cmd_3d(int argc, char **argv) {
                 fprintf(stderr, "acd 3d: %s needs a number >= 0\n", a);
                 return ACD_EXIT_USAGE;
             }
+            got_tau = 1;
             i++;
         } else if (!strcmp(a, "--tau-abs")) {
             p.tau_absolute = 1;
@@ -355,15 +411,18 @@ int acd_cmd_3d(int argc, char **argv) {
                 fprintf(stderr, "acd 3d: --merge-order takes bound or volume\n");
                 return ACD_EXIT_USAGE;
             }
+            got_merge_order = 1;
             i++;
         } else if (!strcmp(a, "--merge-parts")) {
             if (!acd_cli_parse_size("3d", a, val, &p.merge_parts)) return ACD_EXIT_USAGE;
+            got_merge_parts = 1;
             i++;
         } else if (!strcmp(a, "--budget")) {
             if (!acd_cli_parse_size("3d", a, val, &p.budget_parts)) return ACD_EXIT_USAGE;
             i++;
         } else if (!strcmp(a, "--merge-refine")) {
             if (!acd_cli_parse_size("3d", a, val, &p.merge_refine)) return ACD_EXIT_USAGE;
+            got_merge_refine = 1;
             i++;
         } else if (!strcmp(a, "--cut-choice")) {
             if (val && !strcmp(val, "concavity")) p.cut_choice = ACD3D_CHOICE_CONCAVITY;
@@ -373,6 +432,7 @@ int acd_cmd_3d(int argc, char **argv) {
                 fprintf(stderr, "acd 3d: --cut-choice takes concavity, volume or band\n");
                 return ACD_EXIT_USAGE;
             }
+            got_cut_choice = 1;
             i++;
         } else if (!strcmp(a, "--stop")) {
             if (val && !strcmp(val, "measure")) p.stop = ACD3D_STOP_MEASURE;
@@ -438,6 +498,14 @@ int acd_cmd_3d(int argc, char **argv) {
                 fprintf(stderr, "acd 3d: %s needs a number >= 0\n", a);
                 return ACD_EXIT_USAGE;
             }
+            got_merge_tau = 1;
+            i++;
+        } else if (!strcmp(a, "--merge-tau-diag")) {
+            if (!acd_cli_parse_double("3d", a, val, &p.merge_tau_diag) || !(p.merge_tau_diag > 0)) {
+                fprintf(stderr, "acd 3d: %s needs a number > 0\n", a);
+                return ACD_EXIT_USAGE;
+            }
+            got_merge_tau_diag = 1;
             i++;
         } else if (!strcmp(a, "--no-merge")) {
             p.merge = 0;
@@ -487,6 +555,48 @@ int acd_cmd_3d(int argc, char **argv) {
         return ACD_EXIT_USAGE;
     }
     /* options that would otherwise be ignored: a usage error rather than a silent no-op */
+    if (got_merge_tau && got_merge_tau_diag) {
+        fprintf(stderr, "acd 3d: --merge-tau and --merge-tau-diag both set the merge tolerance: give one\n");
+        return ACD_EXIT_USAGE;
+    }
+    /* --budget N: the budget pipeline's settings (acd3d_budget_params) for the options not given; not
+     * where the library refuses --budget (surface mode, --max-hulls), so that its message stays about
+     * --budget; with --no-merge not the merge pass's */
+    const char *implied[8];
+    size_t nimplied = 0;
+    if (p.budget_parts > 0 && p.mode == ACD3D_SOLID && p.max_hulls == 0) {
+        const acd3d_params b = acd3d_budget_params(p.budget_parts);
+        if (!got_tau && p.tau_absolute) {
+            fprintf(stderr, "acd 3d: --tau-abs with --budget needs -t (the -t 10 --budget implies is relative to the "
+                            "radius)\n");
+            return ACD_EXIT_USAGE;
+        }
+        if (!got_tau) {
+            p.tau = b.tau;
+            implied[nimplied++] = "-t";
+        }
+        if (!got_merge_tau && !got_merge_tau_diag) {
+            p.merge_tau_diag = b.merge_tau_diag;
+            implied[nimplied++] = "--merge-tau-diag";
+        }
+        if (!got_cut_choice) {
+            p.cut_choice = b.cut_choice;
+            implied[nimplied++] = "--cut-choice";
+        }
+        if (p.merge && !got_merge_order) {
+            p.merge_order = b.merge_order;
+            implied[nimplied++] = "--merge-order";
+        }
+        if (p.merge && !got_merge_parts) {
+            p.merge_parts = b.merge_parts;
+            implied[nimplied++] = "--merge-parts";
+        }
+        if (p.merge && !got_merge_refine && p.merge_parts > 0) {
+            p.merge_refine = b.merge_refine;
+            implied[nimplied++] = "--merge-refine";
+        }
+    }
+    const int show_settings = nimplied > 0 || p.merge_tau_diag > 0;
     if (p.merge_refine > 0 && p.merge_parts == 0) {
         fprintf(stderr, "acd 3d: --merge-refine needs --merge-parts (the part count it refines at)\n");
         return ACD_EXIT_USAGE;
@@ -546,6 +656,7 @@ int acd_cmd_3d(int argc, char **argv) {
                                                    r.nodes[r.parts[i].node].leaf_reason == ACD3D_LEAF_DEPTH;
     printf("%zu parts, max concavity %.6g (tau %.6g = %.4g x radius %.6g), %.3f s\n", r.nparts, r.max_concavity, r.tau,
            r.scale > 0 ? r.tau / r.scale : 0.0, r.scale, r.seconds);
+    if (show_settings) print_settings(&r, &p);
     {
         size_t handled = 0;
         long gmax = 0;
@@ -580,6 +691,7 @@ int acd_cmd_3d(int argc, char **argv) {
         code = acd_cli_report("3d", &err);
     if (!code && json_path) {
         cJSON *j = result_json(input, &r, &p);
+        if (j && show_settings) settings_json(j, &r, &p, implied, nimplied);
         char *txt = j ? cJSON_Print(j) : NULL;
         FILE *f = txt ? fopen(json_path, "w") : NULL;
         if (!txt) {

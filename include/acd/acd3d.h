@@ -7,6 +7,9 @@
  *   prm.tau = 0.05;                       // relative to the minimum enclosing sphere's radius
  *   acd3d_result res;
  *   if (acd3d_decompose(&mesh, &prm, &res, &err) == ACD_OK) { ...; acd3d_result_free(&res); }
+ *
+ * The tightest hulls at a part budget (the CLI's `acd 3d MESH --budget 40`):
+ *   acd3d_params prm = acd3d_budget_params(40);  // then change any field, e.g. prm.merge_refine = 0
  */
 #ifndef ACD_ACD3D_H
 #define ACD_ACD3D_H
@@ -114,7 +117,7 @@ typedef struct acd3d_params {
                                  (acd3/surface_merge); docs/acd3d.md "Merge pass". The joined parts
                                  are ACD3D_LEAF_JOINED nodes */
     double merge_tau;         /* the merge pass's tolerance, in the units of tau (relative, or absolute
-                                 with tau_absolute); 0 (default): tau */
+                                 with tau_absolute); 0 (default): tau, or merge_tau_diag's when set */
     acd3d_merge_order merge_order; /* solid mode's merge pass: which joinable pair first */
     size_t merge_parts;       /* solid mode's merge pass: 0 (default) joins while a pair is joinable;
                                  else it stops as soon as at most this many parts remain */
@@ -140,9 +143,30 @@ typedef struct acd3d_params {
     acd_progress_fn progress; /* optional: called from the calling thread between the steps of every
                                  stage (tree, budget, merge; the stage named); non-zero cancels */
     void *progress_user;
+    double merge_tau_diag;    /* the merge pass's tolerance as a fraction of the input's bounding-box
+                                 diagonal (model units: merge_tau_diag x diagonal), used when merge_tau
+                                 is 0; 0 (default): unused. Also the budget's limit (budget_parts).
+                                 acd3d_decompose turns it into the relative tolerance merge_tau_diag x
+                                 diagonal / scale (result.merge_tau_relative): the run is the one
+                                 merge_tau = that value gives (with tau relative) */
 } acd3d_params;
 
 acd3d_params acd3d_default_params(void);
+
+/* The budget pipeline's settings ("the tightest hulls at a part budget", docs/acd3d.md
+ * "Excess-driven budget"; the CLI's `acd 3d MESH --budget N`): */
+#define ACD3D_BUDGET_TAU 10.0             /* tau (relative): no tau-driven split, the budget splits the input */
+#define ACD3D_BUDGET_MERGE_TAU_DIAG 0.0195 /* merge_tau_diag: joined parts within 0.0195 of the diagonal
+                                             (under the 0.02 of the issue's concavity target) */
+#define ACD3D_BUDGET_MERGE_REFINE 40      /* merge_refine */
+
+/* acd3d_default_params() set for a part budget of `parts` (> 0): budget_parts = merge_parts = parts,
+ * tau = ACD3D_BUDGET_TAU (relative), merge_tau_diag = ACD3D_BUDGET_MERGE_TAU_DIAG (merge_tau 0),
+ * cut_choice = ACD3D_CHOICE_VOLUME, merge_order = ACD3D_MERGE_VOLUME, merge_refine =
+ * ACD3D_BUDGET_MERGE_REFINE; the rest as acd3d_default_params (solid mode, merge on). Any field may be
+ * changed afterwards (a merge_tau > 0 takes precedence over merge_tau_diag). parts 0:
+ * acd3d_default_params() unchanged. */
+acd3d_params acd3d_budget_params(size_t parts);
 
 /* Why a node of the tree is a leaf. */
 typedef enum acd3d_leaf_reason {
@@ -203,6 +227,10 @@ typedef struct acd3d_result {
     double max_concavity;     /* over the parts, model units */
     double input_volume;
     double seconds;
+    double merge_tau_relative; /* the merge tolerance relative to scale as the run used it: params.merge_tau
+                                 when given relative, merge_tau_diag x diagonal / scale when derived from
+                                 merge_tau_diag (then merge_tau = merge_tau_relative x scale exactly), else
+                                 merge_tau / scale (0 when scale is 0) */
 } acd3d_result;
 
 /* Decomposes a closed (solid) or any (surface) triangle mesh. The input should have been

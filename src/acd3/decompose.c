@@ -73,6 +73,19 @@ acd3d_params acd3d_default_params(void) {
     return p;
 }
 
+acd3d_params acd3d_budget_params(size_t parts) {
+    acd3d_params p = acd3d_default_params();
+    if (parts == 0) return p;
+    p.tau = ACD3D_BUDGET_TAU;
+    p.budget_parts = parts;
+    p.merge_tau_diag = ACD3D_BUDGET_MERGE_TAU_DIAG;
+    p.cut_choice = ACD3D_CHOICE_VOLUME;
+    p.merge_order = ACD3D_MERGE_VOLUME;
+    p.merge_parts = parts;
+    p.merge_refine = ACD3D_BUDGET_MERGE_REFINE;
+    return p;
+}
+
 /* A part measured while its parent's cut was chosen keeps that measure until it is processed. */
 typedef struct measured {
     acd_edge_graph g;
@@ -1251,6 +1264,8 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "tau must be a finite number >= 0");
     if (!(params->merge_tau >= 0) || !isfinite(params->merge_tau))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "merge_tau must be a finite number >= 0");
+    if (!(params->merge_tau_diag >= 0) || !isfinite(params->merge_tau_diag))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "merge_tau_diag must be a finite number >= 0");
     if (params->max_hull_vertices > 0 && params->max_hull_vertices < 4)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "max_hull_vertices must be 0 (no limit) or at least 4");
     if (params->mode != ACD3D_SOLID && params->mode != ACD3D_SURFACE)
@@ -1303,8 +1318,20 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     acd_scale sc = acd_scale_of_points(mesh->vertices, mesh->nvertices, 3);
     out->scale = sph.radius;
     out->tau = params->tau_absolute ? params->tau : params->tau * sph.radius;
-    out->merge_tau = params->merge_tau > 0 ? (params->tau_absolute ? params->merge_tau : params->merge_tau * sph.radius)
-                                           : out->tau;
+    if (params->merge_tau > 0) {
+        out->merge_tau = params->tau_absolute ? params->merge_tau : params->merge_tau * sph.radius;
+        out->merge_tau_relative = params->tau_absolute ? (sph.radius > 0 ? params->merge_tau / sph.radius : 0)
+                                                       : params->merge_tau;
+    } else if (params->merge_tau_diag > 0 && sph.radius > 0) {
+        /* through the relative value, so that merge_tau = merge_tau_relative gives this very run */
+        out->merge_tau_relative = params->merge_tau_diag * sc.extent / sph.radius;
+        out->merge_tau = out->merge_tau_relative * sph.radius;
+    } else if (params->merge_tau_diag > 0) { /* a single point: no radius */
+        out->merge_tau = params->merge_tau_diag * sc.extent;
+    } else {
+        out->merge_tau = out->tau;
+        out->merge_tau_relative = !params->tau_absolute ? params->tau : sph.radius > 0 ? out->tau / sph.radius : 0;
+    }
     out->input_volume = vol;
     double tau = out->tau;
     if (!solid && params->merge) tau *= ACD3_SURFACE_SPLIT_RATIO; /* the tree's tau; the parts' is out->merge_tau */

@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# acd 3d --budget N alone: the budget pipeline with the settings it implies (acd3d_budget_params:
+# -t 10, merge tolerance 0.0195 x bounding-box diagonal, --cut-choice volume --merge-order volume
+# --merge-parts N --merge-refine 40), the hull OBJ byte-identical to the long command line; the
+# settings that ran printed and in --json ("settings"), the long form's JSON without them; options
+# given win over the implied ones; the combinations --budget excludes are usage errors.
+set -u
+ACD=$1; SRC=$2
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+M="$SRC/tests/data/meshes/sliver_part.off"
+N=6
+LONG_FIXED="--cut-choice volume --merge-order volume --merge-parts $N --merge-refine 40"
+# the short form (with --verify: the result is checked too)
+"$ACD" 3d "$M" --budget $N --verify -o "$T/s.obj" --json "$T/s.json" > "$T/s.txt" 2> "$T/s.err" ||
+  fail "--budget $N: exit $? $(cat "$T/s.err")"
+grep -q "^settings: --budget $N -t 10 --merge-tau [0-9.e+-]* (0.0195 x diagonal) $LONG_FIXED\$" "$T/s.txt" ||
+  fail "settings line: $(cat "$T/s.txt")"
+mt=$(sed -n 's/^settings: .*--merge-tau \([0-9.e+-]*\) .*/\1/p' "$T/s.txt")
+# the JSON states the effective values; the merge tolerance is 0.0195 x the diagonal of the input's
+# bounding box (computed here from the OFF file) over the radius, the value printed
+python3 - "$T/s.json" "$M" "$mt" <<'PY' || fail "settings json"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+s = d["settings"]
+assert s["implied"] == ["-t", "--merge-tau-diag", "--cut-choice", "--merge-order", "--merge-parts", "--merge-refine"], s
+assert s["budget"] == 6 and s["merge_parts"] == 6 and s["merge_refine"] == 40, s
+assert s["cut_choice"] == "volume" and s["merge_order"] == "volume" and s["merge"] is True, s
+assert s["tau_relative"] == 10 and abs(s["tau"] - 10 * d["scale"]) <= 1e-12 * s["tau"], s
+assert s["merge_tau_diag"] == 0.0195, s
+words = [w for l in open(sys.argv[2]) for w in l.split("#")[0].split()]
+nv = int(words[1])
+xyz = [float(w) for w in words[4:4 + 3 * nv]]
+diag = math.sqrt(sum((max(xyz[k::3]) - min(xyz[k::3])) ** 2 for k in range(3)))
+assert abs(s["merge_tau"] - 0.0195 * diag) <= 1e-12 * s["merge_tau"], (s["merge_tau"], diag)
+assert abs(s["merge_tau_relative"] * d["scale"] - s["merge_tau"]) <= 1e-12 * s["merge_tau"], s
+assert float(sys.argv[3]) == s["merge_tau_relative"], (sys.argv[3], s)
+assert len(d["parts"]) <= 6, len(d["parts"])
+assert any(n.get("leaf_reason") == "budget" for n in d["tree"]), "no budget pieces"
+PY
+# the long form with the printed merge tau: the same hulls, bit for bit; its JSON is the short
+# form's without "settings" (the long form's output is as it was)
+"$ACD" 3d "$M" -t 10 --budget $N --merge-tau "$mt" $LONG_FIXED -o "$T/l.obj" --json "$T/l.json" > "$T/l.txt" 2>&1 ||
+  fail "long form: exit $? $(cat "$T/l.txt")"
+cmp -s "$T/s.obj" "$T/l.obj" || fail "--budget $N and the long form give different hulls"
+grep -q "^settings" "$T/l.txt" && fail "long form prints settings"
+python3 - "$T/s.json" "$T/l.json" <<'PY' || fail "short and long JSON"
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert "settings" not in b
+del a["settings"]
+for x in (a, b):
+    del x["stats"]["seconds"]
+assert a == b
+PY
+# given options win over the implied ones; the rest still implied
+"$ACD" 3d "$M" --budget $N -t 0.5 --cut-choice band --merge-order bound --merge-parts 4 --merge-refine 2 \
+  -o "$T/o.obj" --json "$T/o.json" > "$T/o.txt" 2>&1 || fail "overrides: exit $? $(cat "$T/o.txt")"
+grep -q "^settings: --budget $N -t 0.5 --merge-tau $mt (0.0195 x diagonal) --cut-choice band --merge-order bound --merge-parts 4 --merge-refine 2\$" "$T/o.txt" ||
+  fail "overrides: settings line: $(cat "$T/o.txt")"
+python3 -c "import json,sys; s=json.load(open(sys.argv[1]))['settings']; assert s['implied']==['--merge-tau-diag'], s; assert (s['cut_choice'],s['merge_order'],s['merge_parts'],s['merge_refine'])==('band','bound',4,2), s" "$T/o.json" ||
+  fail "overrides: settings json"
+"$ACD" 3d "$M" -t 0.5 --budget $N --merge-tau "$mt" --cut-choice band --merge-order bound --merge-parts 4 --merge-refine 2 \
+  -o "$T/ol.obj" > /dev/null 2>&1 || fail "overrides, long form: exit $?"
+cmp -s "$T/o.obj" "$T/ol.obj" || fail "overrides: not the long form's hulls"
+cmp -s "$T/o.obj" "$T/s.obj" && fail "overrides: the same hulls as without them (the check cannot tell)"
+# an explicit merge tolerance, in TAU's units or as a fraction of the diagonal
+"$ACD" 3d "$M" --budget $N --merge-tau 0.08 -o "$T/m.obj" --json "$T/m.json" > "$T/m.txt" 2>&1 || fail "--merge-tau: exit $?"
+"$ACD" 3d "$M" -t 10 --budget $N --merge-tau 0.08 $LONG_FIXED -o "$T/ml.obj" > /dev/null 2>&1 || fail "--merge-tau long: exit $?"
+cmp -s "$T/m.obj" "$T/ml.obj" || fail "--budget with --merge-tau: not the long form's hulls"
+python3 -c "import json,sys; s=json.load(open(sys.argv[1]))['settings']; assert '--merge-tau-diag' not in s['implied'] and s['merge_tau_relative']==0.08 and 'merge_tau_diag' not in s, s" "$T/m.json" ||
+  fail "--merge-tau: settings json"
+"$ACD" 3d "$M" --budget $N --merge-tau-diag 0.03 -o "$T/d.obj" > "$T/d.txt" 2>&1 || fail "--merge-tau-diag: exit $?"
+dt=$(sed -n 's/^settings: .*--merge-tau \([0-9.e+-]*\) (0.03 x diagonal).*/\1/p' "$T/d.txt")
+[ -n "$dt" ] || fail "--merge-tau-diag: settings line: $(cat "$T/d.txt")"
+"$ACD" 3d "$M" -t 10 --budget $N --merge-tau "$dt" $LONG_FIXED -o "$T/dl.obj" > /dev/null 2>&1 || fail "--merge-tau-diag long: exit $?"
+cmp -s "$T/d.obj" "$T/dl.obj" || fail "--merge-tau-diag: not the long form's hulls"
+# --no-merge: the budget's own settings implied (its limit is the merge tolerance), not the merge pass's
+"$ACD" 3d "$M" --budget $N --no-merge --json "$T/n.json" > "$T/n.txt" 2>&1 || fail "--no-merge: exit $? $(cat "$T/n.txt")"
+python3 -c "import json,sys; s=json.load(open(sys.argv[1]))['settings']; assert s['implied']==['-t','--merge-tau-diag','--cut-choice'] and s['merge'] is False, s" "$T/n.json" ||
+  fail "--no-merge: settings json"
+# refused, naming the problem (exit 1): --budget in surface mode, with --max-hulls, with --tau-abs
+# but no -t; both merge tolerances; bad fractions; the merge pass's options with --no-merge
+check_usage() { # PATTERN ARGS...
+  local pat=$1; shift
+  "$ACD" 3d "$M" "$@" -o "$T/x.obj" > /dev/null 2> "$T/x.err"
+  local rc=$?
+  [ $rc -eq 1 ] || fail "$*: exit $rc, expected 1"
+  grep -q -- "$pat" "$T/x.err" || fail "$*: message: $(cat "$T/x.err")"
+}
+check_usage "budget.*solid mode only" --budget $N --mode surface
+check_usage "exclude each other" --budget $N --max-hulls 3
+check_usage "--tau-abs with --budget needs -t" --budget $N --tau-abs
+check_usage "--merge-tau and --merge-tau-diag" --budget $N --merge-tau 0.05 --merge-tau-diag 0.02
+for bad in 0 -1 abc nan; do check_usage "--merge-tau-diag" --budget $N --merge-tau-diag $bad; done
+check_usage "--no-merge with --merge-parts" --budget $N --no-merge --merge-parts 3
+# --help tells the short form and what it implies
+"$ACD" 3d --help | grep -q -- "--budget N .*tightest hulls" || fail "--help: no --budget"
+"$ACD" 3d --help | grep -q -- "implies" || fail "--help: no implied options"
+echo ok
