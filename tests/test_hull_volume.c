@@ -273,12 +273,97 @@ static void test_extreme_scales(void **state) {
     acd_hull_volume_ws_free(&w);
 }
 
+/* fuzz_hull_volume's sweep underestimate (fuzz/corpus/hull_volume/sweep_thin_prefix): 23 points at
+ * 1e-42 sorted along dir (most on the plane x = y, 1.6e-8 of the extent off it, near-duplicates),
+ * eight queries. The prefix of 17 points is a hull that thin: point 19 lies 6.5e-3 of the extent
+ * beyond its rim but within the tolerance of every facet, so it was taken as inside and forgotten;
+ * point 18's cone then replaced the rim, and the prefix of 20 and every query after missed it
+ * (queries 6 and 7: 0.3% below qhull's volume, 700 times the target's tolerance). The sweep now
+ * keeps such points and tests them against the facets made later (hv_near_retest). Every query the
+ * sweep computes is within the target's tolerance of qhull's volume, and the last two are computed. */
+static void test_sweep_thin_prefix(void **state) {
+    (void)state;
+    static const double pts[3 * 23] = {
+        1.3980432860952889e-76, 1.3980432860952889e-76, 1.107644006727337e-47,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.3980433222694975e-76,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.6936477909996416e-43,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.6936477909996416e-43,
+        1.0410273767909543e-42, 1.0410273767961745e-42, 2.6025684419773857e-43,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 2.6025684419773857e-43,
+        1.2444927205786585e-47, 1.2460995198351858e-47, 1.0410273783105702e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273764568587e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767892822e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767896492e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909605e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410814307844512e-42,
+        1.0411149579449746e-42, 1.0410273767909543e-42, 1.0410273767896492e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0478587068045377e-42,
+        1.0410273767941761e-42, 1.3980432860933274e-76, 1.0410273767175843e-42,
+        1.0410276106494882e-42, 1.5707759177945867e-76, 1.0410273767909531e-42,
+        1.0410869042724818e-42, 6.014732326702936e-67, 1.0410273767906677e-42
+    };
+    static const double xs[3 * 20] = {
+        9.766534336036376e-43, 1.0940412123569798e-42, 6.996383741366631e-44,
+        9.766534336036376e-43, 1.0940412123569798e-42, 6.996383741366631e-44,
+        9.4210622334128836e-43, 1.1224918561076642e-42, 1.0751094548869556e-43,
+        9.4210622334023007e-43, 1.1224918561033153e-42, 1.0751094548706155e-43,
+        -3.5045160806985238e-43, 2.8862991640454038e-43, 4.99869649418054e-43,
+        1.041027376789896e-42, 1.0410273767918257e-42, 2.6025684419610453e-43,
+        -2.5153045462018643e-43, 2.0716543709305077e-43, 6.5261554812709693e-43,
+        7.4426391656471001e-43, 1.2854208146243318e-42, 5.8278968051927566e-43,
+        7.4426391643835903e-43, 1.2854208147283856e-42, 5.8278968065659843e-43,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410068313816635e-42, 1.0410442965397819e-42, 1.0410497062553994e-42,
+        1.0410933995075602e-42, 1.0410451307982368e-42, 1.0409940880259946e-42,
+        1.038430853165884e-42, 1.0431656903645414e-42, 1.0438493688540617e-42,
+        8.2999558279306089e-43, 1.7379088917738897e-43, 7.1516945950998e-43,
+        8.2999575905610181e-43, 1.7379093660631822e-43, 7.1516937065410646e-43,
+        8.3004045732585157e-43, 1.7380295630898959e-43, 7.1514683371131223e-43,
+        8.3259210641813115e-43, 1.7165257560380173e-43, 7.1917879746045607e-43,
+        8.325922826811719e-43, 1.71652623032731e-43, 7.1917870860458253e-43,
+        8.3263698095092182e-43, 1.7166464273540235e-43, 7.191561716617883e-43
+    };
+    const size_t cnt[8] = {2, 5, 8, 11, 14, 17, 20, 23}, xb[8] = {0, 5, 9, 9, 9, 11, 17, 20}, xe[8] = {5, 9, 9, 9, 11, 17, 20, 20};
+    double dir[3] = {68, -56, 105}, l = sqrt(68.0 * 68 + 56 * 56 + 105 * 105);
+    for (int k = 0; k < 3; k++) dir[k] /= l;
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) lo[k] = hi[k] = pts[k];
+    for (int i = 1; i < 23; i++)
+        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], pts[3 * i + k]), hi[k] = fmax(hi[k], pts[3 * i + k]);
+    double ext = 0, mag = 0;
+    for (int k = 0; k < 3; k++) ext = fmax(ext, hi[k] - lo[k]), mag = fmax(mag, fmax(fabs(lo[k]), fabs(hi[k])));
+    double tol = 1e-6 * ext * ext * fmax(ext, mag); /* fuzz_hull_volume's HV_FUZZ_TOL_REL */
+    acd_hull_volume_ws w;
+    memset(&w, 0, sizeof w);
+    double vol[8], set[3 * 29];
+    assert_int_equal(acd_hull_volume_sweep(pts, 23, dir, cnt, xs, xb, xe, 8, vol, &w), 0);
+    for (int q = 0; q < 8; q++) {
+        size_t m = cnt[q] + xe[q] - xb[q];
+        memcpy(set, pts, 3 * cnt[q] * sizeof *set);
+        memcpy(set + 3 * cnt[q], xs + 3 * xb[q], 3 * (xe[q] - xb[q]) * sizeof *set);
+        double ref;
+        if (acd_hull_volume(set, m, &ref, NULL) != ACD_OK) continue;
+        if (vol[q] == -3) continue;
+        assert_true(fabs(vol[q] - ref) <= tol);
+    }
+    assert_true(vol[6] > 0 && vol[7] > 0);
+    acd_hull_volume_ws_free(&w);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hull_volume),
         cmocka_unit_test(test_workspace_reuse),
         cmocka_unit_test(test_sweep),
         cmocka_unit_test(test_extreme_scales),
+        cmocka_unit_test(test_sweep_thin_prefix),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

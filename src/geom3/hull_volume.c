@@ -42,7 +42,7 @@ typedef struct acd_hv_facet hv_facet;
 
 void acd_hull_volume_ws_free(acd_hull_volume_ws *w) {
     free(w->f), free(w->next), free(w->start), free(w->end), free(w->stack), free(w->vis);
-    free(w->pend), free(w->hor), free(w->horf), free(w->horu), free(w->newf), free(w->visl), free(w->pl);
+    free(w->pend), free(w->hor), free(w->horf), free(w->horu), free(w->newf), free(w->visl), free(w->pl), free(w->near);
     memset(w, 0, sizeof *w);
 }
 
@@ -118,7 +118,10 @@ static inline double hv_dist(const hv_facet *F, const double *q) {
     return F->n[0] * q[0] + F->n[1] * q[1] + F->n[2] * q[2] - F->d;
 }
 
-static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *cand, int nc, double eps) {
+/* Point i into the outside set of the first of the nc facets cand it is above by more than eps: 1;
+ * 0 when none (*mx: the most it is above one of them). */
+static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *cand, int nc, double eps, double *mx) {
+    double m = -INFINITY;
     for (int k = 0; k < nc; k++) {
         hv_facet *F = &w->f[cand[k]];
         double dd = hv_dist(F, p + 3 * i);
@@ -128,8 +131,18 @@ static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *c
             if (dd > F->fard) F->fard = dd, F->far = i;
             return 1;
         }
+        m = fmax(m, dd);
     }
+    *mx = m;
     return 0;
+}
+
+/* A sweep's point near the hull (above a facet, by at most the tolerance) onto w->near; 0 when out
+ * of memory. */
+static int hv_near_add(acd_hull_volume_ws *w, int i) {
+    if (!hv_grow_int(&w->near, &w->nearcap, w->nnear + 1)) return 0;
+    w->near[w->nnear++] = i;
+    return 1;
 }
 
 /* The facets visible from point q (index pi) connected to facet fi or (if not -1) fj, into
@@ -252,8 +265,8 @@ static double hv_cone_volume(const acd_hull_volume_ws *w, const double *p, const
 
 /* A facet visible from q (farther than eps above its plane), the one q is farthest above of those
  * met: a climb from facet start (if alive) then, when it ends on a facet q is barely above, the
- * farthest of every facet; -1 when q is inside. */
-static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int start, double eps) {
+ * farthest of every facet; -1 when q is inside (*dmax, if not NULL: the most q is above a facet). */
+static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int start, double eps, double *dmax) {
     int cur = -1;
     double dc = -INFINITY;
     if (start >= 0 && (size_t)start < w->nf && w->f[start].alive) {
@@ -277,6 +290,7 @@ static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int sta
             double dd = hv_dist(&w->f[t], q);
             if (dd > dc) dc = dd, cur = (int)t;
         }
+    if (dmax) *dmax = dc;
     return dc > eps ? cur : -1;
 }
 
@@ -297,7 +311,7 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
         /* a sweep's step with q barely above fi also searches from the facet q is farthest above
          * (hv_find_visible): fi may be joined to the rest of the visible region only through facets
          * within eps (two cones from q then, the facets between within eps of q) */
-        int fj = added && !(w->f[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps) : -1;
+        int fj = added && !(w->f[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps, NULL) : -1;
         size_t nv = hv_visible(w, q, fi, fj, eps);
         if (added) *added += hv_cone_volume(w, p, q, nv);
         long r = u ? hv_cone(w, p, pi, nv, &u->nb, &u->nnb, &u->nbcap) : hv_cone(w, p, pi, nv, NULL, NULL, NULL);
@@ -345,12 +359,14 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
                 if (i != pi) {
                     const double *x = p + 3 * i;
                     size_t j = 0, nt = nh + nu;
-                    double dd = 0;
+                    double dd = 0, mx = -INFINITY;
                     for (; j < nt; j++) {
                         const double *r4 = pl + 4 * j;
                         dd = r4[0] * x[0] + r4[1] * x[1] + r4[2] * x[2] - r4[3];
                         if (dd > eps) break;
+                        mx = dd > mx ? dd : mx;
                     }
+                    if (j == nt && w->sweep && mx > 0 && !hv_near_add(w, i)) return -1;
                     if (j < nt) {
                         hv_facet *F = &w->f[j < nh ? newf[j] : horu[j - nh]];
                         w->next[i] = F->head;
@@ -466,7 +482,8 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, int c4[4
     for (size_t i = 0; i < n; i++) {
         w->start[i] = w->end[i] = -1;
         if ((int)i == i0 || (int)i == i1 || (int)i == i2 || (int)i == i3) continue;
-        hv_assign(w, p, (int)i, all, 4, eps);
+        double mx;
+        if (!hv_assign(w, p, (int)i, all, 4, eps, &mx) && w->sweep && mx > 0 && !hv_near_add(w, (int)i)) return -1;
     }
     size_t top = 0;
     for (int t = 0; t < 4; t++)
@@ -616,16 +633,65 @@ static int hv_push_outside(acd_hull_volume_ws *w, const double *P, int i, int f,
     return 1;
 }
 
-/* The sweep's hull of the first n points of P from scratch (Quickhull), its volume in *V and
- * tolerance in *eps: 1; 0 when flat or numerically ambiguous; -1 when out of memory. */
+/* The sweep's points near the hull (w->near: above a facet, by at most eps, when they were found
+ * inside or dropped from a removed facet's outside set) that are above an alive facet made since
+ * facet f0 by more than eps, into the outside set of the one they are farthest above (pending, *top
+ * entries). Outside the queries (stamp NULL) they leave the list; in query q the first np entries (the
+ * prefix's) stay, stamped q (not taken twice), the others (the query's) leave it. How many; -1 when
+ * out of memory.
+ *
+ * Why: a point within eps of every facet it is above is taken as inside, but near an edge whose
+ * facets meet at a small angle b (a hull nearly flat, as a prefix can be) it can lie up to about
+ * 2 eps / b beyond the hull; a later point whose cone replaces one of those facets can leave it
+ * outside by far more (fuzz_hull_volume: a prefix 1.6e-8 of its extent thick, a point 6.5e-3 of the
+ * extent beyond its rim found inside; the hull of the next prefix missed it, the query's volume 0.3%
+ * below qhull's). The per-set Quickhull does not keep them: its hull contains the initial simplex of
+ * the whole set, so such an edge is as thin as the set and what it misses is of order eps x extent^2. */
+static long hv_near_retest(acd_hull_volume_ws *w, const double *P, double eps, size_t f0, size_t np, int *stamp, int q,
+                           size_t *top) {
+    size_t keep = 0;
+    long pushed = 0;
+    for (size_t k = 0; k < w->nnear; k++) {
+        int i = w->near[k], pre = stamp && k < np;
+        if (pre && stamp[i] == q) {
+            w->near[keep++] = i;
+            continue;
+        }
+        const double *x = P + 3 * (size_t)i;
+        int bf = -1;
+        double bd = eps;
+        for (size_t t = f0; t < w->nf; t++)
+            if (w->f[t].alive) {
+                double dd = hv_dist(&w->f[t], x);
+                if (dd > bd) bd = dd, bf = (int)t;
+            }
+        if (bf >= 0 && !hv_push_outside(w, P, i, bf, top)) return -1;
+        pushed += bf >= 0;
+        if (bf < 0 || pre) w->near[keep++] = i;
+        if (bf >= 0 && pre) stamp[i] = q;
+    }
+    w->nnear = keep;
+    return pushed;
+}
+
+/* The sweep's hull of the first n points of P from scratch (Quickhull, then its points near the hull
+ * tested again: hv_near_retest), its volume in *V and tolerance in *eps: 1; 0 when flat or
+ * numerically ambiguous; -1 when out of memory. */
 static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, double *eps, double *V) {
     int c4[4];
     size_t top = 0;
+    w->nnear = 0;
     int r = hv_simplex(P, n, w, c4, eps, &top);
     if (r != 1) return r == -1 || r == -4 ? r : 0;
     w->lastf = 0;
-    r = hv_expand(w, P, *eps, top, NULL, NULL);
-    if (r < 0) return r == -1 ? -1 : 0;
+    for (;;) {
+        r = hv_expand(w, P, *eps, top, NULL, NULL);
+        if (r < 0) return r == -1 ? -1 : 0;
+        top = 0;
+        long k = hv_near_retest(w, P, *eps, 0, 0, NULL, 0, &top);
+        if (k < 0) return -1;
+        if (k == 0) break;
+    }
     *V = hv_hull_volume(w, P);
     return 1;
 }
@@ -643,18 +709,19 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     }
     if (!(big <= HULL_VOLUME_RANGE)) return 0;
     double *P = malloc(3 * (n + maxx + 1) * sizeof *P), *uv = malloc(6 * (maxx + 1) * sizeof *uv);
-    int *corner = malloc((2 * maxx + 2) * sizeof *corner);
+    int *corner = malloc((2 * maxx + 2) * sizeof *corner), *stamp = malloc((n + maxx + 1) * sizeof *stamp);
     hv_undo U;
     memset(&U, 0, sizeof U);
     int st = 0;
-    if (!P || !uv || !corner || !hv_reserve_points(w, n + maxx + 1) || !hv_grow_int(&w->pend, &w->pendcap, 64) ||
+    if (!P || !uv || !corner || !stamp || !hv_reserve_points(w, n + maxx + 1) || !hv_grow_int(&w->pend, &w->pendcap, 64) ||
         (w->hcap < 64 && !hv_grow_horizon(w, 64))) {
         st = -1;
         goto out;
     }
     memcpy(P, pts, 3 * n * sizeof *P);
     w->sweep = 1;
-    for (size_t i = 0; i < n + maxx + 1; i++) w->start[i] = w->end[i] = -1;
+    w->nnear = 0;
+    for (size_t i = 0; i < n + maxx + 1; i++) w->start[i] = w->end[i] = -1, stamp[i] = -1;
     /* the first query whose prefix has a volume: the hull of it by the Quickhull above */
     int q0 = 0, centred = 0;
     double eps = 0, V = 0, c[3] = {0, 0, 0};
@@ -677,29 +744,51 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     if (q0 == nq) goto out;
     int last = w->lastf;
     for (int q = q0; q < nq; q++) {
-        if (q > q0) { /* the points up to this query's prefix: outside sets, then the Quickhull loop */
+        if (q > q0) { /* the points up to this query's prefix: outside sets, then the Quickhull loop, then
+                       * the points near the hull above a facet made since (hv_near_retest), again */
             top = 0;
+            size_t fm = w->nf;
             for (size_t i = cnt[q - 1]; i < cnt[q]; i++) {
-                int f = hv_find_visible(w, P + 3 * i, last, eps);
-                if (f < 0) continue;
+                double dm;
+                int f = hv_find_visible(w, P + 3 * i, last, eps, &dm);
+                if (f < 0) {
+                    if (dm > 0 && !hv_near_add(w, (int)i)) {
+                        st = -1;
+                        goto out;
+                    }
+                    continue;
+                }
                 if (!hv_push_outside(w, P, (int)i, f, &top)) {
                     st = -1;
                     goto out;
                 }
                 last = f;
             }
-            if (top > 0) {
-                int r = hv_expand(w, P, eps, top, &V, NULL);
-                if (r == -1) {
+            for (;;) {
+                if (top > 0) {
+                    int r = hv_expand(w, P, eps, top, &V, NULL);
+                    if (r == -1) {
+                        st = -1;
+                        goto out;
+                    }
+                    if (r == -2) { /* the hull of this prefix again from scratch, then on */
+                        r = hv_chain_start(w, P, cnt[q], &eps, &V);
+                        if (r == -1) st = -1;
+                        if (r != 1) goto out;
+                        last = w->lastf;
+                        break;
+                    }
+                    last = w->lastf;
+                }
+                size_t f1 = w->nf;
+                top = 0;
+                long k = hv_near_retest(w, P, eps, fm, 0, NULL, 0, &top);
+                if (k < 0) {
                     st = -1;
                     goto out;
                 }
-                if (r == -2) { /* the hull of this prefix again from scratch, then on */
-                    r = hv_chain_start(w, P, cnt[q], &eps, &V);
-                    if (r == -1) st = -1;
-                    if (r != 1) goto out;
-                }
-                last = w->lastf;
+                if (k == 0) break;
+                fm = f1;
             }
         }
         /* the query: the corners of its extra points' planar hull added, the volume, then undone */
@@ -713,7 +802,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
             for (size_t j = 0; j < nx; j++) corner[j] = (int)j;
             nc = nx;
         }
-        size_t nf0 = w->nf;
+        size_t nf0 = w->nf, np = w->nnear;
         int start = last;
         U.nnb = U.nk = 0;
         double Vx = 0;
@@ -721,8 +810,15 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         for (size_t j = 0; j < nc; j++) { /* outside sets, then the Quickhull loop (farthest first) */
             int pi = (int)(n + j);
             for (int k = 0; k < 3; k++) P[3 * pi + k] = xs[3 * (xb[q] + (size_t)corner[j]) + k] - c[k];
-            int f = hv_find_visible(w, P + 3 * pi, start, eps);
-            if (f < 0) continue;
+            double dm;
+            int f = hv_find_visible(w, P + 3 * pi, start, eps, &dm);
+            if (f < 0) {
+                if (dm > 0 && !hv_near_add(w, pi)) {
+                    st = -1;
+                    goto out;
+                }
+                continue;
+            }
             start = f; /* the next corner is the polygon's next: near this one */
             if (!hv_push_outside(w, P, pi, f, &top)) {
                 st = -1;
@@ -730,6 +826,17 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
             }
         }
         int r = hv_expand(w, P, eps, top, &Vx, &U);
+        for (size_t fm = nf0; r == 0;) { /* the points near the hull above a facet the query made */
+            size_t f1 = w->nf;
+            top = 0;
+            long k = hv_near_retest(w, P, eps, fm, np, stamp, q, &top);
+            if (k <= 0) {
+                r = (int)k;
+                break;
+            }
+            r = hv_expand(w, P, eps, top, &Vx, &U);
+            fm = f1;
+        }
         if (r == -1) {
             st = -1;
             goto out;
@@ -743,9 +850,10 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         if (r == -2) /* stopped midway: outside sets left on the facets made before */
             for (size_t t = 0; t < nf0; t++) w->f[t].head = -1, w->f[t].far = -1, w->f[t].fard = 0;
         w->nf = nf0;
+        w->nnear = np;
     }
 out:
     w->sweep = 0;
-    free(P), free(uv), free(corner), free(U.nb), free(U.killed);
+    free(P), free(uv), free(corner), free(stamp), free(U.nb), free(U.killed);
     return st;
 }

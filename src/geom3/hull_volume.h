@@ -31,6 +31,8 @@ typedef struct acd_hull_volume_ws {
     int *hor, *horf, *horu, *newf;      /* horizon: edges, facets (all, each once), new facets */
     double *pl;                         /* planes of the new and horizon facets */
     size_t hcap;
+    int *near;                          /* acd_hull_volume_sweep: points near the hull (see there) */
+    size_t nnear, nearcap;
     int iter;  /* the visible search's stamp (vis, facets' marks) */
     int lastf; /* a facet made by the last step */
     int sweep; /* in acd_hull_volume_sweep (slivers refused) */
@@ -48,7 +50,9 @@ double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, 
  * dir, cnt not decreasing) and the points xs[xb[q]..xe[q]) (3 doubles each), which lie on
  * a plane of normal dir at or beyond the prefix. One hull grows over the sweep (Quickhull's outside
  * sets: each query adds only the points since the previous one), each query's extra points (the
- * corners of their planar hull) are added and undone. vol[q]: the volume, or -3 when not computed
+ * corners of their planar hull) are added and undone. A point found inside but above a facet (within
+ * the tolerance) is kept and tested against the facets made later: beyond the rim of a nearly flat
+ * prefix it can lie far outside (fuzz_hull_volume). vol[q]: the volume, or -3 when not computed
  * (fewer than 4 points, a flat prefix, or a numerically ambiguous step: the caller computes those
  * with acd_hull_volume_fast). Returns 0, -1 when out of memory. */
 int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
