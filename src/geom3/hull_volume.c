@@ -119,9 +119,11 @@ static inline double hv_dist(const hv_facet *F, const double *q) {
 }
 
 /* Point i into the outside set of the first of the nc facets cand it is above by more than eps: 1;
- * 0 when none (*mx: the most it is above one of them). */
-static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *cand, int nc, double eps, double *mx) {
+ * 0 when none (*mx: the most it is above one of them, *fm: that one). */
+static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *cand, int nc, double eps, double *mx,
+                     int *fm) {
     double m = -INFINITY;
+    int b = -1;
     for (int k = 0; k < nc; k++) {
         hv_facet *F = &w->f[cand[k]];
         double dd = hv_dist(F, p + 3 * i);
@@ -131,15 +133,37 @@ static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *c
             if (dd > F->fard) F->fard = dd, F->far = i;
             return 1;
         }
-        m = fmax(m, dd);
+        if (dd > m) m = dd, b = cand[k];
     }
-    *mx = m;
+    *mx = m, *fm = b;
     return 0;
 }
 
-/* A sweep's point near the hull (above a facet, by at most the tolerance) onto w->near; 0 when out
- * of memory. */
-static int hv_near_add(acd_hull_volume_ws *w, int i) {
+/* A sweep's point near the hull is kept (hv_near_retest) unless a walk of at most this many facets
+ * from the facet it is farthest above finds one whose triangle its projection lies in, within the
+ * tolerance of its plane: then the point is within the tolerance of the hull, and of every hull after. */
+#define HULL_VOLUME_NEAR_WALK 16
+
+/* A sweep's point i taken as inside though above facet f (by at most eps): onto w->near unless it is
+ * within eps of the hull (HULL_VOLUME_NEAR_WALK; beyond an edge whose facets meet at a small angle the
+ * walk crosses that edge back and forth). 0 when out of memory. */
+static int hv_near_add(acd_hull_volume_ws *w, const double *p, int i, int f, double eps) {
+    const double *x = p + 3 * (size_t)i;
+    for (int step = 0; step < HULL_VOLUME_NEAR_WALK; step++) {
+        const hv_facet *F = &w->f[f];
+        int out = -1;
+        for (int k = 0; k < 3 && out < 0; k++) {
+            const double *A = p + 3 * F->v[k], *B = p + 3 * F->v[(k + 1) % 3];
+            double e[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, r[3] = {x[0] - A[0], x[1] - A[1], x[2] - A[2]};
+            double c[3] = {e[1] * r[2] - e[2] * r[1], e[2] * r[0] - e[0] * r[2], e[0] * r[1] - e[1] * r[0]};
+            if (F->n[0] * c[0] + F->n[1] * c[1] + F->n[2] * c[2] < 0) out = k;
+        }
+        if (out < 0) {
+            if (fabs(hv_dist(F, x)) <= eps) return 1;
+            break;
+        }
+        f = F->nb[out];
+    }
     if (!hv_grow_int(&w->near, &w->nearcap, w->nnear + 1)) return 0;
     w->near[w->nnear++] = i;
     return 1;
@@ -265,8 +289,9 @@ static double hv_cone_volume(const acd_hull_volume_ws *w, const double *p, const
 
 /* A facet visible from q (farther than eps above its plane), the one q is farthest above of those
  * met: a climb from facet start (if alive) then, when it ends on a facet q is barely above, the
- * farthest of every facet; -1 when q is inside (*dmax, if not NULL: the most q is above a facet). */
-static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int start, double eps, double *dmax) {
+ * farthest of every facet; -1 when q is inside (*dmax, if not NULL: the most q is above a facet,
+ * *fmax: that facet). */
+static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int start, double eps, double *dmax, int *fmax) {
     int cur = -1;
     double dc = -INFINITY;
     if (start >= 0 && (size_t)start < w->nf && w->f[start].alive) {
@@ -290,7 +315,7 @@ static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int sta
             double dd = hv_dist(&w->f[t], q);
             if (dd > dc) dc = dd, cur = (int)t;
         }
-    if (dmax) *dmax = dc;
+    if (dmax) *dmax = dc, *fmax = cur;
     return dc > eps ? cur : -1;
 }
 
@@ -311,7 +336,7 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
         /* a sweep's step with q barely above fi also searches from the facet q is farthest above
          * (hv_find_visible): fi may be joined to the rest of the visible region only through facets
          * within eps (two cones from q then, the facets between within eps of q) */
-        int fj = added && !(w->f[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps, NULL) : -1;
+        int fj = added && !(w->f[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps, NULL, NULL) : -1;
         size_t nv = hv_visible(w, q, fi, fj, eps);
         if (added) *added += hv_cone_volume(w, p, q, nv);
         long r = u ? hv_cone(w, p, pi, nv, &u->nb, &u->nnb, &u->nbcap) : hv_cone(w, p, pi, nv, NULL, NULL, NULL);
@@ -359,14 +384,16 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
                 if (i != pi) {
                     const double *x = p + 3 * i;
                     size_t j = 0, nt = nh + nu;
-                    double dd = 0, mx = -INFINITY;
+                    double dd = 0, mx = 0;
+                    size_t jm = nt;
                     for (; j < nt; j++) {
                         const double *r4 = pl + 4 * j;
                         dd = r4[0] * x[0] + r4[1] * x[1] + r4[2] * x[2] - r4[3];
                         if (dd > eps) break;
-                        mx = dd > mx ? dd : mx;
+                        if (dd > mx) mx = dd, jm = j;
                     }
-                    if (j == nt && w->sweep && mx > 0 && !hv_near_add(w, i)) return -1;
+                    if (j == nt && jm < nt && w->sweep && !hv_near_add(w, p, i, jm < nh ? newf[jm] : horu[jm - nh], eps))
+                        return -1;
                     if (j < nt) {
                         hv_facet *F = &w->f[j < nh ? newf[j] : horu[j - nh]];
                         w->next[i] = F->head;
@@ -483,7 +510,9 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, int c4[4
         w->start[i] = w->end[i] = -1;
         if ((int)i == i0 || (int)i == i1 || (int)i == i2 || (int)i == i3) continue;
         double mx;
-        if (!hv_assign(w, p, (int)i, all, 4, eps, &mx) && w->sweep && mx > 0 && !hv_near_add(w, (int)i)) return -1;
+        int fm;
+        if (!hv_assign(w, p, (int)i, all, 4, eps, &mx, &fm) && w->sweep && mx > 0 && !hv_near_add(w, p, (int)i, fm, eps))
+            return -1;
     }
     size_t top = 0;
     for (int t = 0; t < 4; t++)
@@ -750,9 +779,9 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
             size_t fm = w->nf;
             for (size_t i = cnt[q - 1]; i < cnt[q]; i++) {
                 double dm;
-                int f = hv_find_visible(w, P + 3 * i, last, eps, &dm);
+                int fm, f = hv_find_visible(w, P + 3 * i, last, eps, &dm, &fm);
                 if (f < 0) {
-                    if (dm > 0 && !hv_near_add(w, (int)i)) {
+                    if (dm > 0 && !hv_near_add(w, P, (int)i, fm, eps)) {
                         st = -1;
                         goto out;
                     }
@@ -811,9 +840,9 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
             int pi = (int)(n + j);
             for (int k = 0; k < 3; k++) P[3 * pi + k] = xs[3 * (xb[q] + (size_t)corner[j]) + k] - c[k];
             double dm;
-            int f = hv_find_visible(w, P + 3 * pi, start, eps, &dm);
+            int fm, f = hv_find_visible(w, P + 3 * pi, start, eps, &dm, &fm);
             if (f < 0) {
-                if (dm > 0 && !hv_near_add(w, pi)) {
+                if (dm > 0 && !hv_near_add(w, P, pi, fm, eps)) {
                     st = -1;
                     goto out;
                 }
