@@ -18,13 +18,8 @@
 
 /* A sphere with bumps (hull excess everywhere), not centred on the origin, longer along x: the
  * diagonal and the radius are not in a simple ratio. */
-static double bumpy_r(double theta, double phi, void *user) {
-    (void)user;
-    return 1 + 0.25 * sin(3 * theta) * cos(4 * phi) + 0.1 * cos(5 * theta);
-}
-
 static void bumpy(acd_mesh *m) {
-    assert_true(mg_radial(m, 32, 24, bumpy_r, NULL));
+    assert_true(mg_radial(m, 32, 24, mg_bumpy_r, NULL));
     for (size_t i = 0; i < m->nvertices; i++) {
         m->vertices[3 * i] = 1.5 * m->vertices[3 * i] + 3;
         m->vertices[3 * i + 2] -= 2;

@@ -41,11 +41,6 @@ static int on_progress(void *user, double fraction, const char *stage) {
     return S->cancel_prefix && starts(stage, S->cancel_prefix);
 }
 
-static double bumpy_r(double theta, double phi, void *user) {
-    (void)user;
-    return 1 + 0.25 * sin(3 * theta) * cos(4 * phi) + 0.1 * cos(5 * theta);
-}
-
 /* The budget pipeline (docs/acd3d.md "Excess-driven budget") at 8 parts, refined. */
 static acd3d_params budget_params(void) {
     acd3d_params p = acd3d_default_params();
@@ -63,7 +58,7 @@ static acd3d_params budget_params(void) {
 static void test_stages_reported(void **state) {
     (void)state;
     acd_mesh m;
-    assert_true(mg_radial(&m, 48, 32, bumpy_r, NULL));
+    assert_true(mg_radial(&m, 48, 32, mg_bumpy_r, NULL));
     acd3d_params p = budget_params();
     seen S = {.last_fraction = -1};
     p.progress = on_progress;
@@ -96,7 +91,7 @@ static void test_stages_reported(void **state) {
 static void test_cancel_in_each_stage(void **state) {
     (void)state;
     acd_mesh m;
-    assert_true(mg_radial(&m, 48, 32, bumpy_r, NULL));
+    assert_true(mg_radial(&m, 48, 32, mg_bumpy_r, NULL));
     const char *stages[] = {"measuring", "budget", "merge: joining", "merge: refining"};
     for (size_t k = 0; k < sizeof stages / sizeof *stages; k++) {
         acd3d_params p = budget_params();
@@ -119,7 +114,7 @@ static void test_cancel_in_each_stage(void **state) {
 static void test_surface_merge(void **state) {
     (void)state;
     acd_mesh m;
-    assert_true(mg_radial(&m, 32, 20, bumpy_r, NULL));
+    assert_true(mg_radial(&m, 32, 20, mg_bumpy_r, NULL));
     acd3d_params p = acd3d_default_params();
     p.mode = ACD3D_SURFACE;
     p.tau = 0.05;

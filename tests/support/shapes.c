@@ -4,6 +4,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+double mg_bumpy_r(double theta, double phi, void *user) {
+    (void)user;
+    return 1 + 0.25 * sin(3 * theta) * cos(4 * phi) + 0.1 * cos(5 * theta);
+}
+
 int mg_radial(acd_mesh *m, int nu, int nv, mg_radius_fn r, void *user) {
     memset(m, 0, sizeof *m);
     size_t nvert = (size_t)nu * (size_t)(nv - 1) + 2;

@@ -9,6 +9,9 @@
  * Returns 0 on allocation failure. */
 typedef double (*mg_radius_fn)(double theta, double phi, void *user);
 int mg_radial(acd_mesh *m, int nu, int nv, mg_radius_fn r, void *user);
+/* A radius for mg_radial: a sphere with bumps (1 + 0.25 sin 3theta cos 4phi + 0.1 cos 5theta), hull
+ * excess everywhere as on a scanned surface's relief; user unused. */
+double mg_bumpy_r(double theta, double phi, void *user);
 
 /* Torus with radii R > r around the z axis. */
 int mg_torus(acd_mesh *m, int nu, int nv, double R, double r);
