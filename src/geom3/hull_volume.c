@@ -87,7 +87,9 @@ static int hv_grow_horizon(acd_hull_volume_ws *w, size_t need) {
     return 1;
 }
 
-static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, int c) {
+/* Facet (a, b, c) of the points p; nl (if not NULL): its cross product (b - a) x (c - a) and that
+ * vector's squared length, as computed here. Its index, -1 when out of memory. */
+static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, int c, const double *nl) {
     if (w->nf == w->fcap) {
         size_t nc = w->fcap ? 2 * w->fcap : 256;
         hv_facet *f = realloc(w->f, nc * sizeof *f);
@@ -102,10 +104,16 @@ static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, in
     }
     hv_facet *F = &w->f[w->nf];
     F->v[0] = a, F->v[1] = b, F->v[2] = c;
-    const double *A = p + 3 * a, *B = p + 3 * b, *C = p + 3 * c;
-    double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
-    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double *A = p + 3 * a;
+    double n[3], l;
+    if (nl) {
+        n[0] = nl[0], n[1] = nl[1], n[2] = nl[2], l = sqrt(nl[3]);
+    } else {
+        const double *B = p + 3 * b, *C = p + 3 * c;
+        double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
     if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
     memcpy(F->n, n, sizeof n);
     F->d = n[0] * A[0] + n[1] * A[1] + n[2] * A[2];
@@ -170,10 +178,12 @@ static int hv_near_add(acd_hull_volume_ws *w, const double *p, int i, int f, dou
 }
 
 /* The facets visible from point q (index pi) connected to facet fi or (if not -1) fj, into
- * w->visl; their number. */
-static size_t hv_visible(acd_hull_volume_ws *w, const double *q, int fi, int fj, double eps) {
+ * w->visl (*nv of them), and the horizon (the edges of visible facets whose neighbour is not visible,
+ * in the order of w->visl and their edges: a facet tested is visible or not for good when its
+ * neighbour is taken) into w->hor / w->horf: their number, -1 when out of memory. */
+static long hv_visible(acd_hull_volume_ws *w, const double *q, int fi, int fj, double eps, size_t *nv_out) {
     int iter = ++w->iter;
-    size_t nv = 0, ns = 0;
+    size_t nv = 0, ns = 0, nh = 0;
     int *visl = w->visl;
     w->vis[fi] = iter;
     w->stack[ns++] = fi;
@@ -181,37 +191,32 @@ static size_t hv_visible(acd_hull_volume_ws *w, const double *q, int fi, int fj,
     while (ns > 0) {
         int g = w->stack[--ns];
         visl[nv++] = g;
+        const hv_facet *G = &w->f[g];
         for (int k = 0; k < 3; k++) {
-            int h = w->f[g].nb[k];
-            if (w->f[h].mark == iter || w->vis[h] == iter) continue;
-            if (hv_dist(&w->f[h], q) > eps) {
-                w->vis[h] = iter;
-                w->stack[ns++] = h;
-            } else
-                w->f[h].mark = iter; /* checked, not visible */
-        }
-    }
-    return nv;
-}
-
-/* The horizon of the nv visible facets (edges of visible facets whose neighbour is not visible)
- * into w->hor / w->horf, and the cone of new facets from point pi over it (into w->newf); undo (if
- * not NULL) records each horizon facet's neighbour changed (facet, edge, old value). Returns the
- * number of horizon edges, -1 when out of memory, -2 when the horizon is not one simple cycle
- * (nothing changed then). */
-static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nv, int **undo, size_t *nundo, size_t *undocap) {
-    int iter = w->iter;
-    size_t nh = 0;
-    for (size_t k = 0; k < nv; k++) {
-        hv_facet *G = &w->f[w->visl[k]];
-        for (int e = 0; e < 3; e++) {
-            int h = G->nb[e];
+            int h = G->nb[k];
             if (w->vis[h] == iter) continue;
+            if (w->f[h].mark != iter) {
+                if (hv_dist(&w->f[h], q) > eps) {
+                    w->vis[h] = iter;
+                    w->stack[ns++] = h;
+                    continue;
+                }
+                w->f[h].mark = iter; /* checked, not visible */
+            }
             if (nh + 1 > w->hcap && !hv_grow_horizon(w, nh + 1)) return -1;
-            w->hor[2 * nh] = G->v[e], w->hor[2 * nh + 1] = G->v[(e + 1) % 3], w->horf[nh] = h;
+            w->hor[2 * nh] = G->v[k], w->hor[2 * nh + 1] = G->v[(k + 1) % 3], w->horf[nh] = h;
             nh++;
         }
     }
+    *nv_out = nv;
+    return (long)nh;
+}
+
+/* The cone of new facets from point pi over the nh horizon edges in w->hor / w->horf (hv_visible;
+ * into w->newf); undo (if not NULL) records each horizon facet's neighbour changed (facet, edge,
+ * old value). Returns nh, -1 when out of memory, -2 when the horizon is not one simple cycle
+ * (nothing changed then). */
+static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, int **undo, size_t *nundo, size_t *undocap) {
     int *hor = w->hor, *horf = w->horf, *newf = w->newf;
     /* a simple cycle: every vertex starts one horizon edge and ends one */
     int bad = 0;
@@ -220,12 +225,16 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nv, i
         w->start[hor[2 * k]] = (int)k;
         w->end[hor[2 * k + 1]] = (int)k;
     }
-    /* a sweep refuses a sliver (pi nearly on the line of a horizon edge: its plane would be noise) */
-    for (size_t k = 0; k < nh && !bad && w->sweep; k++) {
+    /* a sweep refuses a sliver (pi nearly on the line of a horizon edge: its plane would be noise);
+     * the new facets' cross products kept in w->pl (hv_new_facet) */
+    double *nl = w->sweep ? w->pl : NULL;
+    for (size_t k = 0; k < nh && !bad && nl; k++) {
         const double *A = p + 3 * hor[2 * k], *B = p + 3 * hor[2 * k + 1], *C = p + 3 * pi;
         double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
-        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double *n = nl + 4 * k;
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
         double l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        n[3] = l2;
         double a2 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2], b2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
         if (!(l2 > HULL_VOLUME_SLIVER * HULL_VOLUME_SLIVER * a2 * b2)) bad = 1;
     }
@@ -240,7 +249,7 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nv, i
         *undo = u, *undocap = c;
     }
     for (size_t k = 0; k < nh; k++) {
-        int nfi = hv_new_facet(w, p, hor[2 * k], hor[2 * k + 1], pi);
+        int nfi = hv_new_facet(w, p, hor[2 * k], hor[2 * k + 1], pi, nl ? nl + 4 * k : NULL);
         if (nfi < 0) return -1;
         newf[k] = nfi;
     }
@@ -337,9 +346,11 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
          * (hv_find_visible): fi may be joined to the rest of the visible region only through facets
          * within eps (two cones from q then, the facets between within eps of q) */
         int fj = added && !(w->f[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps, NULL, NULL) : -1;
-        size_t nv = hv_visible(w, q, fi, fj, eps);
+        size_t nv;
+        long r = hv_visible(w, q, fi, fj, eps, &nv);
+        if (r < 0) return -1;
         if (added) *added += hv_cone_volume(w, p, q, nv);
-        long r = u ? hv_cone(w, p, pi, nv, &u->nb, &u->nnb, &u->nbcap) : hv_cone(w, p, pi, nv, NULL, NULL, NULL);
+        r = u ? hv_cone(w, p, pi, (size_t)r, &u->nb, &u->nnb, &u->nbcap) : hv_cone(w, p, pi, (size_t)r, NULL, NULL, NULL);
         if (r < 0) return (int)r;
         if (u && u->nk + nv > u->kcap) {
             size_t c = 2 * (u->nk + nv);
@@ -485,10 +496,10 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, int c4[4
     for (int k = 0; k < 3; k++) cen0[k] = (p[3 * i0 + k] + p[3 * i1 + k] + p[3 * i2 + k] + p[3 * i3 + k]) / 4;
     memcpy(w->cen, cen0, sizeof cen0);
     for (int t = 0; t < 4; t++) {
-        if (hv_new_facet(w, p, tri[t][0], tri[t][1], tri[t][2]) < 0) return -1;
+        if (hv_new_facet(w, p, tri[t][0], tri[t][1], tri[t][2], NULL) < 0) return -1;
         if (hv_dist(&w->f[t], cen0) > 0) { /* inward: reversed */
             w->nf--;
-            if (hv_new_facet(w, p, tri[t][0], tri[t][2], tri[t][1]) < 0) return -1;
+            if (hv_new_facet(w, p, tri[t][0], tri[t][2], tri[t][1], NULL) < 0) return -1;
         }
     }
     double cen[3];
@@ -731,10 +742,16 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     size_t maxx = 0;
     double big = 0; /* the largest coordinate of every point the sweep may add: beyond the range, none
                      * is computed here (hv_simplex checks only the first prefix) */
-    for (size_t i = 0; i < 3 * n; i++) big = fmax(big, fabs(pts[i]));
+    for (size_t i = 0; i < 3 * n; i++) { /* as fmax (a NaN skipped), without its call */
+        double a = fabs(pts[i]);
+        big = a > big ? a : big;
+    }
     for (int q = 0; q < nq; q++) {
         if (xe[q] - xb[q] > maxx) maxx = xe[q] - xb[q];
-        for (size_t i = 3 * xb[q]; i < 3 * xe[q]; i++) big = fmax(big, fabs(xs[i]));
+        for (size_t i = 3 * xb[q]; i < 3 * xe[q]; i++) {
+            double a = fabs(xs[i]);
+            big = a > big ? a : big;
+        }
     }
     if (!(big <= HULL_VOLUME_RANGE)) return 0;
     double *P = malloc(3 * (n + maxx + 1) * sizeof *P), *uv = malloc(6 * (maxx + 1) * sizeof *uv);
