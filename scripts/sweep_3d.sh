@@ -4,9 +4,14 @@
 # it decomposes and verifies (exit 0) or refuses the input with a message (exit 2: not closable,
 # not a 2-manifold, ...); it fails on a verification failure (3), an internal error (5), a crash
 # (a signal) or the time limit. Prints a markdown table and the failures; exit 1 if any failed.
+# Mode "budget" runs `acd 3d FILE --budget $BUDGET --verify` (the whole budget pipeline, solid)
+# and scores its hulls with `acd eval` (coverage, concavity_max in the note, with the merge
+# tolerance the run used); such a run also fails when the hulls do not cover a closed input
+# (coverage below MIN_COVERAGE) or when `acd eval` fails or exceeds the time limit.
 #
 # usage: scripts/sweep_3d.sh [BUILD_DIR] [DIR] (env TAU=0.1 LIMIT=120 MODES="solid surface"
-#        MAX_FACES=200000: larger meshes are listed as skipped)
+#        MAX_FACES=200000: larger meshes are listed as skipped; BUDGET=16 MIN_COVERAGE=0.999
+#        for MODES="... budget"; NAMES=REGEX: only the meshes whose path matches)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build}
@@ -15,6 +20,9 @@ TAU=${TAU:-0.1}
 LIMIT=${LIMIT:-120}
 MODES=${MODES:-"solid surface"}
 MAX_FACES=${MAX_FACES:-200000}
+BUDGET=${BUDGET:-16}
+MIN_COVERAGE=${MIN_COVERAGE:-0.999}
+NAMES=${NAMES:-}
 ACD=$B/acd
 [ -x "$ACD" ] || { echo "sweep_3d: build first ($ACD missing)"; exit 1; }
 [ -d "$DIR" ] || { echo "sweep_3d: no $DIR (run scripts/fetch-data.sh)"; exit 0; }
@@ -24,6 +32,7 @@ echo "| mesh | faces | mode | exit | parts | seconds | note |"
 echo "|---|---:|---|---:|---:|---:|---|"
 while IFS= read -r f; do
   name=${f#"$DIR"/}
+  if [ -n "$NAMES" ] && ! [[ $name =~ $NAMES ]]; then continue; fi
   faces=$("$ACD" info "$f" 2>/dev/null | awk '$1 == "faces" {print $2; exit}')
   if [ -z "$faces" ]; then
     msg=$("$ACD" info "$f" 2>&1 >/dev/null | head -1 | cut -c1-90)
@@ -37,7 +46,11 @@ while IFS= read -r f; do
   for mode in $MODES; do
     runs=$((runs + 1))
     start=$(date +%s.%N)
-    timeout -s KILL "$LIMIT" "$ACD" 3d "$f" --mode "$mode" -t "$TAU" --verify --json "$T/r.json" >"$T/out" 2>"$T/err"
+    if [ "$mode" = budget ]; then
+      timeout -s KILL "$LIMIT" "$ACD" 3d "$f" --budget "$BUDGET" --verify --json "$T/r.json" -o "$T/h.obj" >"$T/out" 2>"$T/err"
+    else
+      timeout -s KILL "$LIMIT" "$ACD" 3d "$f" --mode "$mode" -t "$TAU" --verify --json "$T/r.json" >"$T/out" 2>"$T/err"
+    fi
     rc=$?
     secs=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
     parts=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["stats"]["parts"])' "$T/r.json" 2>/dev/null || echo "")
@@ -49,9 +62,30 @@ while IFS= read -r f; do
       137) note="TIME LIMIT ${LIMIT}s"; fails=$((fails + 1));;
       *) note="FAIL: $(tail -1 "$T/err" | cut -c1-110)"; fails=$((fails + 1));;
     esac
+    if [ "$mode" = budget ] && [ "$rc" -eq 0 ]; then
+      # the hulls must cover the input; coverage and concavity_max by acd eval
+      timeout -s KILL "$LIMIT" "$ACD" eval "$f" "$T/h.obj" --json >"$T/e.json" 2>"$T/eerr"
+      erc=$?
+      ev=$(python3 -c '
+import json, sys
+e = json.load(open(sys.argv[1]))
+closed = e.get("mesh_closed", False)
+low = closed and e["coverage"] < float(sys.argv[2])
+print("%d coverage %.4f%s, concavity_max %.4f, iou %.4f" % (low, e["coverage"], "" if closed else " (open input)", e["concavity_max"], e["iou"]))
+' "$T/e.json" "$MIN_COVERAGE" 2>/dev/null)
+      if [ "$erc" -ne 0 ] || [ -z "$ev" ]; then
+        note="FAIL: acd eval exit $erc: $(tail -1 "$T/eerr" | cut -c1-90)"; fails=$((fails + 1))
+      elif [ "${ev%% *}" = 1 ]; then
+        note="FAIL: ${ev#* } (below $MIN_COVERAGE)"; fails=$((fails + 1))
+      else
+        note="${ev#* }"
+      fi
+    fi
+    rm -f "$T/h.obj" "$T/e.json"
     printf '| %s | %s | %s | %s | %s | %.1f | %s |\n' "$name" "$faces" "$mode" "$rc" "$parts" "$secs" "${note//|//}"
   done
 done < <(find "$DIR"/ -type f \( -iname '*.off' -o -iname '*.obj' -o -iname '*.ply' -o -iname '*.stl' -o -iname '*.off.gz' \) | LC_ALL=C sort)
 echo
-echo "sweep_3d: $runs runs, $fails failed (tau $TAU, limit ${LIMIT}s, $(date -u +%F), $(nproc) cores)"
+case " $MODES " in *" budget "*) bud=", budget $BUDGET";; *) bud="";; esac
+echo "sweep_3d: $runs runs, $fails failed (tau $TAU$bud, limit ${LIMIT}s, $(date -u +%F), $(nproc) cores)"
 [ "$fails" -eq 0 ]
