@@ -311,7 +311,7 @@ static int verify_surface(const acd_mesh *in, const acd3d_result *r, acd_error *
 }
 
 /* --verify: checks computed here from the result, independently of the driver's bookkeeping. */
-static int verify(const acd3d_result *r, acd_error *err) {
+static int verify(const acd3d_result *r, int budget, acd_error *err) {
     /* Rounding in the volume sums grows with the sum of the tetrahedra's absolute volumes (not
      * with the net volume: a thin or tiny solid far from the origin cancels a lot), so the
      * tolerances are relative to that sum. */
@@ -340,10 +340,15 @@ static int verify(const acd3d_result *r, acd_error *err) {
         if (n->leaf_reason == ACD3D_LEAF_BUDGET && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
             return acd_fail(err, ACD_ERR_VERIFY, "budget part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
                             p->concavity, r->merge_tau);
+        /* a part left above the tolerance (no_cut, depth): in a budget run the merge tolerance, which
+         * the budget pass brings every part within (no_cut there: a part it could not) */
         if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT && n->leaf_reason != ACD3D_LEAF_BUDGET &&
-            n->leaf_reason != ACD3D_LEAF_MERGED && n->leaf_reason != ACD3D_LEAF_JOINED && p->concavity > r->tau)
-            return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g (%s)", i, p->concavity,
-                            r->tau, leaf_reason_name(n->leaf_reason));
+            n->leaf_reason != ACD3D_LEAF_MERGED && n->leaf_reason != ACD3D_LEAF_JOINED &&
+            (p->concavity > r->tau || (budget && p->concavity > r->merge_tau) ||
+             (budget && (n->leaf_reason == ACD3D_LEAF_NO_CUT || n->leaf_reason == ACD3D_LEAF_DEPTH))))
+            return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds %s %.17g (%s)", i, p->concavity,
+                            budget ? "the merge tolerance" : "tau", budget ? fmin(r->tau, r->merge_tau) : r->tau,
+                            leaf_reason_name(n->leaf_reason));
         /* inside its hull: every part vertex on the inner side of every hull facet plane */
         acd_hull h;
         acd_error herr;
@@ -669,9 +674,12 @@ int acd_cmd_3d(int argc, char **argv) {
         else
             printf("genus of the parts: 0 (all %zu)\n", r.nparts);
     }
+    /* the tolerance stuck parts stay above: in a budget run the merge tolerance (the budget pass
+     * brings every part within it when a cut can) */
+    const char *lim = p.budget_parts > 0 ? "the merge tolerance" : "tau";
     if (stuck) {
-        fprintf(stderr, "acd 3d: %zu part(s) stayed above tau: no cut could split them further (see leaf_reason)\n",
-                stuck);
+        fprintf(stderr, "acd 3d: %zu part(s) stayed above %s: no cut could split them further (see leaf_reason)\n",
+                stuck, lim);
         /* the usual cause in solid mode: the surface crosses itself, so a plane cut cannot give
          * closed, outward pieces (often a scan whose holes were closed by caps that cross it) */
         size_t npairs = 0;
@@ -681,9 +689,9 @@ int acd_cmd_3d(int argc, char **argv) {
             npairs > 0)
             acd_fail(&selfx, ACD_ERR_INVALID_INPUT,
                      "the %smesh intersects itself (%zu face pairs, first: faces %u and %u), so %zu part(s) stay "
-                     "above tau: solid mode cannot cut through crossing sheets; fix the mesh or use --mode surface "
-                     "(the outputs are written, they do not meet tau)",
-                     repaired ? "repaired " : "", npairs, pair[0], pair[1], stuck);
+                     "above %s: solid mode cannot cut through crossing sheets; fix the mesh or use --mode surface "
+                     "(the outputs are written, they do not meet %s)",
+                     repaired ? "repaired " : "", npairs, pair[0], pair[1], stuck, lim, lim);
     }
     if (hulls_path && (st = write_parts(hulls_path, &r, 1, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
     if (!code && parts_path && (st = write_parts(parts_path, &r, 0, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
@@ -708,7 +716,7 @@ int acd_cmd_3d(int argc, char **argv) {
      * (exit 2) after its outputs are written, with or without --verify */
     if (!code && selfx.status != ACD_OK) code = acd_cli_report("3d", &selfx);
     if (!code && do_verify) {
-        st = p.mode == ACD3D_SOLID ? verify(&r, &err) : verify_surface(&mesh, &r, &err);
+        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, &err) : verify_surface(&mesh, &r, &err);
         if (st != ACD_OK) code = acd_cli_report("3d", &err);
         else if (verbose)
             fprintf(stderr, p.mode == ACD3D_SOLID ? "acd 3d: verified: volumes add up, parts meet tau, parts inside hulls\n"

@@ -173,7 +173,9 @@ typedef enum acd3d_leaf_reason {
     ACD3D_LEAF_NONE = 0,      /* not a leaf: it was split */
     ACD3D_LEAF_TAU,           /* concavity <= tau */
     ACD3D_LEAF_FLAT,          /* no volume (solid) or flat (surface): convex by definition */
-    ACD3D_LEAF_NO_CUT,        /* no cut could split it further (the concavity stays above tau) */
+    ACD3D_LEAF_NO_CUT,        /* no cut could split it further (the concavity stays above tau; with
+                                 budget_parts: a part the budget pass left above merge_tau, its
+                                 concavity then its two-sided hull distance bound) */
     ACD3D_LEAF_DEPTH,         /* max_depth reached */
     ACD3D_LEAF_MERGED,        /* a split node made a part again by max_hulls (its children are dropped:
                                  leaf_reason NONE, part -1) */
@@ -189,7 +191,7 @@ typedef enum acd3d_leaf_reason {
                                  node (merged_into set), its concavity that node's bound */
     ACD3D_LEAF_BUDGET         /* a piece cut from a part by the part budget (budget_parts); its
                                  concavity is its two-sided hull distance bound (acd3/leaf_test),
-                                 <= merge_tau unless no cut could split it */
+                                 <= merge_tau (one no cut could split is ACD3D_LEAF_NO_CUT) */
 } acd3d_leaf_reason;
 
 typedef struct acd3d_node {

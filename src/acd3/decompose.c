@@ -1198,6 +1198,55 @@ static acd_status join_surface(tree *t, double eps, double tau, double tol, int 
     return st;
 }
 
+/* The parts (the np input parts idx[0..np) and the pieces idx[np..) of br) that are above limit after
+ * the budget pass (its test: acd3_leaf_test with that limit, the node's kept hull when it is its
+ * mesh's): leaf reason ACD3D_LEAF_NO_CUT, concavity the bound of that test (a value above limit)
+ * when finite, else (the test stops at the first value known above its limit, often INFINITY) a
+ * finite upper bound of the two-sided distance: the test's with the part's bounding-box diagonal as
+ * the limit, else that diagonal (no point of the part's surface or its hull's boundary is farther
+ * from the other). */
+static acd_status mark_over_limit(tree *t, const size_t *idx, size_t np, const acd3_budget_result *br, double limit,
+                                  acd_error *err) {
+    for (size_t i = 0; i < np + br->nnew; i++) {
+        work_node *w = &t->a[idx[i]];
+        if (w->node.first_child >= 0) continue;                    /* cut */
+        if (i >= np && !(br->new_bound[i - np] > limit)) continue; /* a piece within the limit */
+        acd_hull T;
+        memset(&T, 0, sizeof T);
+        T.dim = -1;
+        const acd_hull *H = &T;
+        if (w->have_hull && w->hull_of == w->mesh.vertices &&
+            acd3_kept_hull_matches(&w->hull, w->mesh.vertices, w->mesh.nvertices))
+            H = &w->hull;
+        else if (acd_hull_compute(w->mesh.vertices, w->mesh.nvertices, &T, err) != ACD_OK)
+            return acd_fail(err, ACD_ERR_NOMEM, "budget: out of memory");
+        double bound = 0, lo[3], hi[3];
+        int acc = 1;
+        acd_status st = ACD_OK;
+        if (i >= np)
+            bound = br->new_bound[i - np], acc = 0; /* the pass's test of the piece */
+        else if (H->dim == 3)
+            st = acd3_leaf_test(&w->mesh, H, limit, UINT32_MAX, &acc, &bound, err);
+        if (st == ACD_OK && !acc && !isfinite(bound)) {
+            for (int k = 0; k < 3; k++) lo[k] = INFINITY, hi[k] = -INFINITY;
+            for (size_t v = 0; v < w->mesh.nvertices; v++)
+                for (int k = 0; k < 3; k++)
+                    lo[k] = fmin(lo[k], w->mesh.vertices[3 * v + k]), hi[k] = fmax(hi[k], w->mesh.vertices[3 * v + k]);
+            const double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
+            st = acd3_leaf_test(&w->mesh, H, diag, UINT32_MAX, &acc, &bound, err);
+            if (!(bound <= diag)) bound = diag;
+            acc = 0;
+        }
+        if (H == &T) acd_hull_free(&T);
+        if (st != ACD_OK) return st;
+        if (acc) continue;
+        w->node.leaf_reason = ACD3D_LEAF_NO_CUT;
+        w->node.concavity = bound;
+    }
+    return ACD_OK;
+}
+
 /* The part budget (params.budget_parts, acd3/budget): the parts are split further, best first by
  * the hull volume a split saves, the pieces children of the parts they were cut from
  * (ACD3D_LEAF_BUDGET, their concavity the two-sided bound). */
@@ -1250,6 +1299,11 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
         nd->leaf_reason = ACD3D_LEAF_BUDGET;
         nd->concavity = br.new_bound[k];
     }
+    /* the parts the budget pass left above the limit (no cut could split them: often a solid that
+     * crosses itself) are stuck parts, ACD3D_LEAF_NO_CUT, their concavity the two-sided bound: the
+     * caller sees them as it sees parts stuck above tau (before, an input part kept its tree leaf
+     * reason and measure, below tau = 10 x radius, and the result read as meeting its tolerances) */
+    if (st == ACD_OK && br.over > 0) st = mark_over_limit(t, idx, np, &br, limit, err);
     if (st == ACD_OK) *nparts = br.nalive;
     acd3_budget_result_free(&br);
     free(idx);

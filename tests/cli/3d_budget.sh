@@ -94,6 +94,46 @@ check_usage "--tau-abs with --budget needs -t" --budget $N --tau-abs
 check_usage "--merge-tau and --merge-tau-diag" --budget $N --merge-tau 0.05 --merge-tau-diag 0.02
 for bad in 0 -1 abc nan; do check_usage "--merge-tau-diag" --budget $N --merge-tau-diag $bad; done
 check_usage "--no-merge with --merge-parts" --budget $N --no-merge --merge-parts 3
+# a part the budget pass cannot bring within the merge tolerance (no cut splits it) is a stuck part
+# (leaf_reason no_cut, its two-sided bound as its concavity): on an open wavy sheet whose closing
+# cap it crosses, the result is refused as bad input (exit 2, naming the crossing faces, the outputs
+# written), as solid mode refuses it at a small tau (3d_basic.sh); before, the budget piece kept its
+# bound above the merge tolerance (exit 3 under --verify, exit 0 without), and an input part the
+# pass could not cut at all kept its tree measure and read as within tolerance (exit 0, --verify too)
+python3 - "$T/wavy.obj" <<'PY' || fail "wavy sheet generator"
+import math, sys
+n = 12
+with open(sys.argv[1], "w") as f:
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, y = i / n, j / n
+            f.write("v %.17g %.17g %.17g\n" % (x, y, 0.3 * math.sin(3 * math.pi * x) * math.sin(math.pi * y)))
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i + 1
+            f.write("f %d %d %d\nf %d %d %d\n" % (a, a + 1, a + n + 2, a, a + n + 2, a + n + 1))
+PY
+for v in "" --verify; do
+  "$ACD" 3d "$T/wavy.obj" --budget 4 $v -o "$T/w.obj" --json "$T/w.json" > /dev/null 2> "$T/w.err"
+  rc=$?
+  [ $rc -eq 2 ] || fail "wavy sheet --budget 4 $v: exit $rc, expected 2 $(cat "$T/w.err")"
+  grep -q "stayed above the merge tolerance" "$T/w.err" || fail "wavy sheet $v: no stuck-part warning: $(cat "$T/w.err")"
+  grep -q "intersects itself (.* face pairs, first: faces [0-9]* and [0-9]*), so [0-9]* part(s) stay above the merge tolerance" \
+    "$T/w.err" || fail "wavy sheet $v: no self-intersection message: $(cat "$T/w.err")"
+  grep -q '^o ' "$T/w.obj" || fail "wavy sheet $v: hulls not written"
+  python3 - "$T/w.json" <<'PY' || fail "wavy sheet $v: json"
+import json, sys
+d = json.load(open(sys.argv[1]))
+mt = d["settings"]["merge_tau"]
+stuck = [p for p in d["parts"] if d["tree"][p["node"]]["leaf_reason"] == "no_cut"]
+assert stuck, "no part marked no_cut"
+for p in d["parts"]:
+    r = d["tree"][p["node"]]["leaf_reason"]
+    assert r in ("no_cut", "budget", "joined", "tau"), r
+    assert p["concavity"] is not None and p["concavity"] == p["concavity"], p  # finite, in the JSON
+    assert (p["concavity"] > mt) == (r == "no_cut"), (p["concavity"], mt, r)
+PY
+done
 # --help tells the short form and what it implies
 "$ACD" 3d --help | grep -q -- "--budget N .*tightest hulls" || fail "--help: no --budget"
 "$ACD" 3d --help | grep -q -- "implies" || fail "--help: no implied options"
