@@ -4,6 +4,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "acd/hull.h"
 
@@ -31,17 +34,18 @@ static double hull_volume_pts(const double *pts, size_t n) {
 #define HULL_VOLUME_SLIVER 1e-6
 
 /* The facets of acd_hull_volume_fast's hull (the workspace's array). */
-struct acd_hv_facet {
+struct acd_hv_facet { /* what the visible search reads first */
     double n[3], d;  /* unit outward normal, n.x = d on the plane */
-    double fard;
-    int head, far;   /* outside set (a list through acd_hull_volume_ws.next) and its farthest point */
     int v[3], nb[3]; /* nb[k]: across edge (v[k], v[k+1]) */
-    int alive, mark;
+    int vis, mark;   /* the visible search's stamps (acd_hull_volume_ws.iter): visible, tested and not */
+    int alive;
+    int head, far;   /* outside set (a list through acd_hull_volume_ws.next) and its farthest point */
+    double fard;
 };
 typedef struct acd_hv_facet hv_facet;
 
 void acd_hull_volume_ws_free(acd_hull_volume_ws *w) {
-    free(w->f), free(w->next), free(w->start), free(w->end), free(w->stack), free(w->vis);
+    free(w->f), free(w->next), free(w->start), free(w->end), free(w->stack);
     free(w->pend), free(w->hor), free(w->horf), free(w->horu), free(w->newf), free(w->visl), free(w->pl), free(w->near);
     memset(w, 0, sizeof *w);
 }
@@ -98,9 +102,6 @@ static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, in
         int *s = realloc(w->stack, nc * sizeof *s);
         if (!s) return -1;
         w->stack = s;
-        int *v = realloc(w->vis, nc * sizeof *v);
-        if (!v) return -1;
-        w->vis = v;
     }
     hv_facet *F = &w->f[w->nf];
     F->v[0] = a, F->v[1] = b, F->v[2] = c;
@@ -117,8 +118,7 @@ static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, in
     if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
     memcpy(F->n, n, sizeof n);
     F->d = n[0] * A[0] + n[1] * A[1] + n[2] * A[2];
-    F->head = -1, F->far = -1, F->fard = 0, F->alive = 1, F->mark = 0;
-    w->vis[w->nf] = 0;
+    F->head = -1, F->far = -1, F->fard = 0, F->alive = 1, F->mark = 0, F->vis = 0;
     return (int)w->nf++;
 }
 
@@ -185,23 +185,24 @@ static long hv_visible(acd_hull_volume_ws *w, const double *q, int fi, int fj, d
     int iter = ++w->iter;
     size_t nv = 0, ns = 0, nh = 0;
     int *visl = w->visl;
-    w->vis[fi] = iter;
+    w->f[fi].vis = iter;
     w->stack[ns++] = fi;
-    if (fj >= 0 && fj != fi) w->vis[fj] = iter, w->stack[ns++] = fj;
+    if (fj >= 0 && fj != fi) w->f[fj].vis = iter, w->stack[ns++] = fj;
     while (ns > 0) {
         int g = w->stack[--ns];
         visl[nv++] = g;
         const hv_facet *G = &w->f[g];
         for (int k = 0; k < 3; k++) {
             int h = G->nb[k];
-            if (w->vis[h] == iter) continue;
-            if (w->f[h].mark != iter) {
-                if (hv_dist(&w->f[h], q) > eps) {
-                    w->vis[h] = iter;
+            hv_facet *H = &w->f[h];
+            if (H->vis == iter) continue;
+            if (H->mark != iter) {
+                if (hv_dist(H, q) > eps) {
+                    H->vis = iter;
                     w->stack[ns++] = h;
                     continue;
                 }
-                w->f[h].mark = iter; /* checked, not visible */
+                H->mark = iter; /* checked, not visible */
             }
             if (nh + 1 > w->hcap && !hv_grow_horizon(w, nh + 1)) return -1;
             w->hor[2 * nh] = G->v[k], w->hor[2 * nh + 1] = G->v[(k + 1) % 3], w->horf[nh] = h;
@@ -328,6 +329,58 @@ static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int sta
     return dc > eps ? cur : -1;
 }
 
+/* Plane j of the planes packed in pairs for hv_first_above (n[0] of both, n[1], n[2], d). */
+static inline void hv_pack(double *pl, size_t j, const double n[3], double d) {
+    double *b = pl + 8 * (j >> 1) + (j & 1);
+    b[0] = n[0], b[2] = n[1], b[4] = n[2], b[6] = d;
+}
+
+/* The first of the nt planes packed in pl (hv_pack; an odd nt padded by a plane no point is above) that
+ * x is above by more than eps, *dd: by how much; nt when none, *jm then (if want) the first plane x is
+ * farthest above, if above 0 (else nt). Each distance is n[0] x[0] + n[1] x[1] + n[2] x[2] - d in that
+ * order, two planes at a time where SSE2 is there (the same bits). */
+static inline size_t hv_first_above(const double *pl, size_t nt, const double *x, double eps, double *dd, int want,
+                                    size_t *jm) {
+    size_t j = 0;
+#ifdef __SSE2__
+    __m128d x0 = _mm_set1_pd(x[0]), x1 = _mm_set1_pd(x[1]), x2 = _mm_set1_pd(x[2]), e = _mm_set1_pd(eps);
+    __m128d m = _mm_setzero_pd();
+    for (; j < nt; j += 2) {
+        const double *b = pl + 4 * j;
+        __m128d t = _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(b), x0), _mm_mul_pd(_mm_loadu_pd(b + 2), x1));
+        t = _mm_sub_pd(_mm_add_pd(t, _mm_mul_pd(_mm_loadu_pd(b + 4), x2)), _mm_loadu_pd(b + 6));
+        int a = _mm_movemask_pd(_mm_cmpgt_pd(t, e));
+        if (a) {
+            double two[2];
+            _mm_storeu_pd(two, t);
+            *dd = two[!(a & 1)];
+            return j + !(a & 1);
+        }
+        m = _mm_max_pd(m, t);
+    }
+    if (!want) return nt;
+    double two[2];
+    _mm_storeu_pd(two, m);
+    *jm = nt;
+    if (!(two[0] > 0 || two[1] > 0)) return nt;
+#endif
+    double mx = 0;
+    size_t best = nt;
+    for (size_t k = 0; k < nt; k++) {
+        const double *b = pl + 8 * (k >> 1) + (k & 1);
+        double t = b[0] * x[0] + b[2] * x[1] + b[4] * x[2] - b[6];
+#ifndef __SSE2__
+        if (t > eps) {
+            *dd = t;
+            return k;
+        }
+#endif
+        if (t > mx) mx = t, best = k;
+    }
+    if (want) *jm = best;
+    return nt;
+}
+
 /* What a step changed in the facets before it (to be undone): neighbours (facet, edge, old
  * value), facets removed. */
 typedef struct hv_undo {
@@ -369,21 +422,19 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
         /* the new facets' planes packed, then the horizon facets' (each once, in their first order:
          * the same first match as testing them all in order) */
         double *pl = w->pl;
-        for (size_t k = 0; k < nh; k++) {
-            const hv_facet *F = &w->f[newf[k]];
-            pl[4 * k] = F->n[0], pl[4 * k + 1] = F->n[1], pl[4 * k + 2] = F->n[2], pl[4 * k + 3] = F->d;
-        }
+        for (size_t k = 0; k < nh; k++) hv_pack(pl, k, w->f[newf[k]].n, w->f[newf[k]].d);
         int *horu = w->horu;
         size_t nu = 0;
         for (size_t k = 0; k < nh; k++) {
             int h = horf[k];
-            if (w->vis[h] == -iter) continue;
-            w->vis[h] = -iter;
-            const hv_facet *F = &w->f[h];
-            double *r4 = pl + 4 * (nh + nu);
-            r4[0] = F->n[0], r4[1] = F->n[1], r4[2] = F->n[2], r4[3] = F->d;
+            if (w->f[h].vis == -iter) continue;
+            w->f[h].vis = -iter;
+            hv_pack(pl, nh + nu, w->f[h].n, w->f[h].d);
             horu[nu++] = h;
         }
+        const double zero[3] = {0, 0, 0};
+        size_t nt = nh + nu;
+        if (nt & 1) hv_pack(pl, nt, zero, INFINITY); /* the pair's second plane: below every point */
         /* the visible facets' outside points to the new facets; not above a new facet, a point may
          * still be above a horizon facet */
         for (size_t k = 0; k < nv; k++) {
@@ -393,16 +444,8 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
             for (int i = G->head; i >= 0;) {
                 int nx = w->next[i];
                 if (i != pi) {
-                    const double *x = p + 3 * i;
-                    size_t j = 0, nt = nh + nu;
-                    double dd = 0, mx = 0;
-                    size_t jm = nt;
-                    for (; j < nt; j++) {
-                        const double *r4 = pl + 4 * j;
-                        dd = r4[0] * x[0] + r4[1] * x[1] + r4[2] * x[2] - r4[3];
-                        if (dd > eps) break;
-                        if (dd > mx) mx = dd, jm = j;
-                    }
+                    double dd = 0;
+                    size_t jm = nt, j = hv_first_above(pl, nt, p + 3 * i, eps, &dd, w->sweep, &jm);
                     if (j == nt && jm < nt && w->sweep && !hv_near_add(w, p, i, jm < nh ? newf[jm] : horu[jm - nh], eps))
                         return -1;
                     if (j < nt) {

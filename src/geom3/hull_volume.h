@@ -23,8 +23,8 @@ struct acd_hv_facet;
 typedef struct acd_hull_volume_ws {
     struct acd_hv_facet *f;
     size_t nf, fcap;
-    int *next, *start, *end, *stack, *vis; /* per point: list link, horizon edge from / to it;
-                                             per facet: search stack, visible mark */
+    int *next, *start, *end, *stack; /* per point: list link, horizon edge from / to it;
+                                       per facet: search stack */
     size_t pcap;
     int *pend, *visl;                   /* facets pending, facets visible */
     size_t pendcap, vcap;
