@@ -2,8 +2,15 @@
  * a small integer grid (3 x int8 per point, so duplicates, collinear and coplanar sets are frequent)
  * or, after a leading 'D' byte, as raw doubles. The hull's invariants are checked (vertices are input
  * points, closed manifold with consistent neighbours, every point inside every facet plane within
- * tolerance); a solid hull is then cut by the plane through three of the points and every piece must
- * be closed with the volumes adding up. Any violation aborts. */
+ * tolerance); the triangles too (the mesh written to OBJ): each facet plane passes within the
+ * tolerance of its triangle's three vertices (so a plane of every triangle encloses every point).
+ * With -DFUZZ_HULL_CHECK_WINDING, on hulls of at most CHECK_WINDING_MAX points x triangles, every
+ * point must also be within the tolerance of the triangles or inside them (winding number 1): not
+ * promised (a point within the tolerance of every plane can lie farther from a razor-thin rim:
+ * docs/results/geom3.md, corpus thin_rim), so compiled out. A solid hull is then cut by the plane
+ * through three of the points and every piece must be closed with the volumes adding up. Any
+ * violation aborts. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdint.h>
@@ -15,6 +22,66 @@
 #include "geom3/plane_cut.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+#ifdef FUZZ_HULL_CHECK_WINDING
+/* Points x triangles up to which the winding number of every point is checked. */
+#define CHECK_WINDING_MAX 20000
+
+/* Closest distance from p to the triangle a, b, c (Ericson, Real-Time Collision Detection 5.1.5). */
+static double tri_dist(const double *p, const double *a, const double *b, const double *c) {
+    double ab[3], ac[3], ap[3], bp[3], cp[3], q[3];
+    for (int k = 0; k < 3; k++)
+        ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k], bp[k] = p[k] - b[k], cp[k] = p[k] - c[k];
+#define DOT(x, y) ((x)[0] * (y)[0] + (x)[1] * (y)[1] + (x)[2] * (y)[2])
+    double d1 = DOT(ab, ap), d2 = DOT(ac, ap), d3 = DOT(ab, bp), d4 = DOT(ac, bp), d5 = DOT(ab, cp), d6 = DOT(ac, cp);
+#undef DOT
+    double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
+    if (d1 <= 0 && d2 <= 0) memcpy(q, a, sizeof q);
+    else if (d3 >= 0 && d4 <= d3) memcpy(q, b, sizeof q);
+    else if (d6 >= 0 && d5 <= d6) memcpy(q, c, sizeof q);
+    else if (vc <= 0 && d1 >= 0 && d3 <= 0)
+        for (int k = 0; k < 3; k++) q[k] = a[k] + d1 / (d1 - d3) * ab[k];
+    else if (vb <= 0 && d2 >= 0 && d6 <= 0)
+        for (int k = 0; k < 3; k++) q[k] = a[k] + d2 / (d2 - d6) * ac[k];
+    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+        for (int k = 0; k < 3; k++) q[k] = b[k] + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c[k] - b[k]);
+    else
+        for (int k = 0; k < 3; k++) q[k] = a[k] + (vb * ab[k] + vc * ac[k]) / (va + vb + vc);
+    return sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+}
+
+/* Every point within rtol (relative to the extent) of the triangles or inside them: the solid
+ * angles of the triangles seen from it sum to 4 pi (Van Oosterom and Strackee), in coordinates
+ * normalised by the box (centre, extent ext) so that any scale behaves the same. */
+static void check_winding(const acd_hull *h, const double *p, size_t n, const double *cen, double ext, double rtol) {
+    for (size_t i = 0; i < n; i++) {
+        double q[3], near = INFINITY, omega = 0;
+        for (int k = 0; k < 3; k++) q[k] = (p[3 * i + k] - cen[k]) / ext;
+        for (size_t t = 0; t < h->ntriangles; t++) {
+            double v[3][3], r[3][3], l[3];
+            for (int j = 0; j < 3; j++) {
+                for (int k = 0; k < 3; k++) {
+                    v[j][k] = (h->vertices[3 * (size_t)h->triangles[3 * t + j] + k] - cen[k]) / ext;
+                    r[j][k] = v[j][k] - q[k];
+                }
+                l[j] = sqrt(r[j][0] * r[j][0] + r[j][1] * r[j][1] + r[j][2] * r[j][2]);
+            }
+            near = fmin(near, tri_dist(q, v[0], v[1], v[2]));
+            double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                         r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+            double d01 = r[0][0] * r[1][0] + r[0][1] * r[1][1] + r[0][2] * r[1][2];
+            double d02 = r[0][0] * r[2][0] + r[0][1] * r[2][1] + r[0][2] * r[2][2];
+            double d12 = r[1][0] * r[2][0] + r[1][1] * r[2][1] + r[1][2] * r[2][2];
+            omega += 2 * atan2(det, l[0] * l[1] * l[2] + d01 * l[2] + d02 * l[1] + d12 * l[0]);
+        }
+        if (near > rtol && fabs(omega / (4 * 3.14159265358979323846) - 1) > 0.25) {
+            fprintf(stderr, "point %zu is %g (of the extent) from the triangles, winding number %g\n", i, near,
+                    omega / (4 * 3.14159265358979323846));
+            abort();
+        }
+    }
+}
+#endif
 
 static void check_hull(const acd_hull *h, const double *p, size_t n) {
     if (h->dim < 3) return;
@@ -44,8 +111,22 @@ static void check_hull(const acd_hull *h, const double *p, size_t n) {
         const double *pl = h->planes + 4 * t;
         for (size_t i = 0; i < n; i++)
             if (pl[0] * p[3 * i] + pl[1] * p[3 * i + 1] + pl[2] * p[3 * i + 2] + pl[3] > tol) abort();
+        for (int k = 0; k < 3; k++) { /* a plane of the triangle (up to the rounding of n.v + d in
+                                            these coordinates: sets far from the origin) */
+            const double *v = h->vertices + 3 * (size_t)h->triangles[3 * t + k];
+            double off = pl[0] * v[0] + pl[1] * v[1] + pl[2] * v[2] + pl[3];
+            double rnd = 8 * DBL_EPSILON * (fabs(pl[0] * v[0]) + fabs(pl[1] * v[1]) + fabs(pl[2] * v[2]) + fabs(pl[3]));
+            if (fabs(off) > tol + rnd) {
+                fprintf(stderr, "triangle %zu: vertex %d is %g off its plane (tol %g)\n", t, k, off, tol);
+                abort();
+            }
+        }
     }
     if (!(h->volume >= 0)) abort(); /* may underflow to 0 for tiny coordinates (documented) */
+#ifdef FUZZ_HULL_CHECK_WINDING
+    double cen[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+    if (n * h->ntriangles <= CHECK_WINDING_MAX) check_winding(h, p, n, cen, ext, 1e-9);
+#endif
 }
 
 static void check_cut(const acd_hull *h, const double *p, size_t n) {

@@ -14,8 +14,12 @@
  *     generator (deterministic), then gives up with ACD_ERR_DEGENERATE;
  *   - checks the facet planes it cannot trust (an ill-shaped triangle, or qhull's normal off the
  *     triangle's own) against every input point (a bounding-box tree prunes the points far below a
- *     plane) and lifts a plane that a point exceeds by more than ACD_TOL_REL_DIST x diagonal
- *     (qhull's roundoff on an ill-conditioned facet: hull_enclose).
+ *     plane) and against their triangle's vertices: a plane must have every point below it and its
+ *     triangle on it within ACD_TOL_REL_DIST x diagonal (so a plane of every triangle encloses
+ *     the input). A plane that fails is replaced by the triangle's own plane if that one encloses
+ *     every point; otherwise qhull dropped a point it should have kept (an ill-conditioned facet)
+ *     and the hull is rebuilt as the exact convex hull by a Quickhull of exact decisions
+ *     (hull_enclose, hull_repair).
  * Orientation comes from qhull's facet toporient flag (topologically consistent, counterclockwise
  * seen from outside); adjacency from the simplicial facets' neighbour sets (neighbour i is opposite
  * vertex i). */
@@ -612,13 +616,480 @@ static int hull_plane_trusted(const double *nrm, const double *a, const double *
     return diag * angle <= HULL_ENCLOSE_TRUST_SHARE * tol;
 }
 
+/* ---------- the triangles: a plane of each triangle encloses every point ----------
+ *
+ * The planes above enclose every point, but a lifted plane no longer passes through its triangle:
+ * the triangles (the mesh written to OBJ) still miss the point. What the mesh promises: each
+ * triangle has a plane that passes within the tolerance of its three vertices (a plane of the
+ * triangle) and has every input point below it within the tolerance; the planes out holds are
+ * those planes. A trusted facet's qhull plane is one (hull_plane_trusted: within a quarter of the
+ * tolerance of the triangle's own plane); for the others hull_enclose checks both halves: no point
+ * more than tol above qhull's plane and no vertex more than tol below it. When either fails, the
+ * triangle's own plane (its cross product, computed to about eps: tri_plane) is taken if every
+ * point is below it within tol. (qhull's plane of a sliver from a merged facet is the facet's, and
+ * the right one: the sliver's own plane turns about its long edge with the roundoff of its short
+ * one, and on knot1's parts it had other hull vertices 5e-6 of the diagonal above it; so the own
+ * plane is tried only after qhull's fails.) When neither plane works, qhull dropped a point it
+ * should have kept (fuzz_hull's six points: B 1.2e-7 of the extent outside facet (C, D, A), qhull
+ * took it as coplanar) and the hull is rebuilt (hull_repair): the exact convex hull, by a
+ * Quickhull of our own over the same normalised points whose every decision is exact
+ * (acd_orient3d), adding the point farthest above a triangle's own plane among those strictly
+ * above it until there is none. Its mesh is exactly convex at every step (a point strictly outside
+ * sees a disk of triangles, replaced by the cone from the point over the disk's boundary), every
+ * point is inside it, and its vertices are input points, as qhull's. (Adding only the points more
+ * than tol above a plane was tried: on the six points it kept the tetrahedron A, C, E, F, every
+ * point within tol of every plane, yet B 1.1e-6 from the solid beyond its razor-thin rim, the
+ * distance the brief was about; the exact hull has B as a vertex.) Chosen over a second qhull run
+ * (other options, or a joggled copy: the joggle moves points by its amplitude, and the result would
+ * need the same check and a fallback again) and over a local Quickhull step on qhull's mesh (tried
+ * first: qhull's mesh is convex only up to its roundoff, and on 240 of the 720 orders of the six
+ * points the step left a hull vertex 1.5e-8 above a new triangle, which no step can add): it is
+ * exact, its cost falls only on the hulls that need it, and hulls without a violation keep every
+ * bit of qhull's.
+ *
+ * The promise is on planes: near a razor-thin rim (two faces meeting at a dihedral angle phi near
+ * 0) a point within tol of every plane may lie up to about tol / sin(phi / 2) from the solid, and
+ * qhull's hull is kept when its planes pass (fuzz corpus thin_rim: 1.2e-7 of the extent).
+ *
+ * acd_hull_volume (the volume alone, no hull: no check) keeps qhull's volume: it differs from a
+ * rebuilt hull's (on the six points' flat hull 3.36084547e-7 against 3.36084586e-7, 1.2e-7 of
+ * it). Its callers rank cut planes by it and compare it only with volumes it computed itself
+ * (docs/results/geom3.md). */
+
+/* Largest angle (radians) tri_plane's normal may be off the triangle's exact normal for the
+ * triangle to have a computed plane (beyond: a triangle of near-collinear vertices). */
+#define HULL_TRI_MAX_ANGLE 1e-2
+
+/* a - b as hi + lo exactly (Knuth's two-sum of a and -b). */
+static void two_diff(double a, double b, double *hi, double *lo) {
+    double s = a - b, bv = s - a, av = s - bv;
+    *hi = s;
+    *lo = (a - av) - (b + bv);
+}
+
+/* u1 v2 - u2 v1 for factors given as exact hi + lo pairs: the high parts' products with their exact
+ * errors (fma), the terms with one low part; the two low parts' product (eps^2 of the factors' sizes)
+ * left out. Off by at most about 2 eps of the result plus 8 eps^2 |u| |v|. */
+static double cross_term(double u1h, double u1l, double v2h, double v2l, double u2h, double u2l, double v1h,
+                         double v1l) {
+    double p = u1h * v2h, q = u2h * v1h;
+    double ep = fma(u1h, v2h, -p), eq = fma(u2h, v1h, -q);
+    return (p - q) + ((ep - eq) + (u1h * v2l + u1l * v2h) - (u2h * v1l + u2l * v1h));
+}
+
+/* The triangle a, b, c's own plane: unit normal nrm (the cross product of the edges at the vertex
+ * opposite the longest, from their exact differences: cross_term), offset *d through the highest
+ * vertex along nrm and *angle, how far nrm may be off the exact plane's normal. 0 (no plane) when
+ * that angle exceeds HULL_TRI_MAX_ANGLE. */
+static int tri_plane(const double *a, const double *b, const double *c, double *nrm, double *d, double *angle) {
+    const double *v[3] = {a, b, c};
+    double len[3];
+    for (int k = 0; k < 3; k++) { /* the edge opposite v[k] */
+        double e[3];
+        sub3(v[(k + 2) % 3], v[(k + 1) % 3], e);
+        len[k] = norm3(e);
+    }
+    int o = 0;
+    for (int k = 1; k < 3; k++)
+        if (len[k] > len[o]) o = k;
+    const double *p = v[o], *q = v[(o + 1) % 3], *r = v[(o + 2) % 3];
+    double uh[3], ul[3], wh[3], wl[3];
+    for (int k = 0; k < 3; k++) {
+        two_diff(q[k], p[k], &uh[k], &ul[k]);
+        two_diff(r[k], p[k], &wh[k], &wl[k]);
+    }
+    nrm[0] = cross_term(uh[1], ul[1], wh[2], wl[2], uh[2], ul[2], wh[1], wl[1]);
+    nrm[1] = cross_term(uh[2], ul[2], wh[0], wl[0], uh[0], ul[0], wh[2], wl[2]);
+    nrm[2] = cross_term(uh[0], ul[0], wh[1], wl[1], uh[1], ul[1], wh[0], wl[0]);
+    double area2 = norm3(nrm);
+    if (!(area2 > 0)) return 0;
+    *angle = 8.0 * DBL_EPSILON + 32.0 * DBL_EPSILON * DBL_EPSILON * norm3(uh) * norm3(wh) / area2;
+    if (!(*angle <= HULL_TRI_MAX_ANGLE)) return 0;
+    for (int k = 0; k < 3; k++) nrm[k] /= area2;
+    *d = -fmax(dot3(nrm, a), fmax(dot3(nrm, b), dot3(nrm, c)));
+    return 1;
+}
+
+/* Slack of the selection by a triangle's computed plane (angle from tri_plane) in a box of
+ * diagonal diag: |n.p + d - the exact distance| <= angle x diag plus rounding. */
+static double tri_slack(double angle, double diag) { return 2.0 * angle * diag + 16.0 * DBL_EPSILON * diag; }
+
+/* p outside the exact plane of the triangle a, b, c (counterclockwise seen from outside, computed
+ * unit normal nrm) by more than tol: p - tol nrm strictly above it. */
+static int tri_outside(const double *a, const double *b, const double *c, const double *nrm, const double *p,
+                       double tol) {
+    double q[3] = {p[0] - tol * nrm[0], p[1] - tol * nrm[1], p[2] - tol * nrm[2]};
+    return acd_orient3d(a, b, c, q) < 0;
+}
+
+/* The point of the tree outside the triangle a, b, c by more than tol (tri_outside) farthest above
+ * its computed plane (nrm, d), among the points with n.p + d > thr; UINT32_MAX when none. */
+static uint32_t encl_tri_violator(const encl_tree *T, const double *nrm, double d, double thr, const double *a,
+                                  const double *b, const double *c, double tol) {
+    uint32_t stack[128], best = UINT32_MAX;
+    size_t top = 0;
+    double bestv = -INFINITY;
+    stack[top++] = 0;
+    while (top > 0) {
+        const encl_node *nd = &T->node[stack[--top]];
+        double ub = dot3(nrm, nd->c) + d + fabs(nrm[0]) * nd->h[0] + fabs(nrm[1]) * nd->h[1] + fabs(nrm[2]) * nd->h[2];
+        if (ub <= thr) continue;
+        if (!nd->child) {
+            double al = dot3(nrm, nd->m), r[3] = {nrm[0] - al * nd->m[0], nrm[1] - al * nd->m[1], nrm[2] - al * nd->m[2]};
+            ub = (al > 0 ? al * nd->mhi : al * nd->mlo) + dot3(r, nd->c) + d + fabs(r[0]) * nd->h[0] +
+                 fabs(r[1]) * nd->h[1] + fabs(r[2]) * nd->h[2];
+            if (ub <= thr) continue;
+        }
+        if (nd->child && top + 2 <= sizeof stack / sizeof *stack) {
+            stack[top++] = nd->child;
+            stack[top++] = nd->child + 1;
+            continue;
+        }
+        for (uint32_t i = nd->begin; i < nd->end; i++) {
+            const double *p = T->pts + 3 * (size_t)i;
+            double v = dot3(nrm, p) + d;
+            if (v > thr && v > bestv && tri_outside(a, b, c, nrm, p, tol)) {
+                bestv = v;
+                best = T->idx[i];
+            }
+        }
+    }
+    return best;
+}
+
+/* The mesh being repaired: triangles by input point index. */
+typedef struct rep_edge {
+    uint32_t a, b, u, t; /* horizon edge a -> b of the seen triangle t, u the triangle across */
+} rep_edge;
+
+typedef struct rep_mesh {
+    uint32_t *tri, *nb;   /* 3 per triangle: point indices, the triangle across edge (k, k+1) */
+    double *pl;           /* 4 per triangle: the plane, in input coordinates */
+    unsigned char *state; /* per triangle: 0 alive, 1 removed, 2 seen by the point being added */
+    size_t m, cap;
+    unsigned char *isv;   /* per point: a vertex of the mesh */
+    uint32_t *hstart;     /* per point: the horizon edge from it (UINT32_MAX: none) */
+    uint32_t *vis, *order;
+    rep_edge *hor;
+    size_t vcap;          /* capacity of vis, order and hor */
+} rep_mesh;
+
+static void rep_free(rep_mesh *M) {
+    free(M->tri);
+    free(M->nb);
+    free(M->pl);
+    free(M->state);
+    free(M->isv);
+    free(M->hstart);
+    free(M->vis);
+    free(M->order);
+    free(M->hor);
+}
+
+/* Room for k more triangles (and for a step over every triangle). 0 when out of memory. */
+static int rep_reserve(rep_mesh *M, size_t k) {
+    if (M->m + k > M->cap) {
+        size_t cap = 2 * (M->m + k);
+        uint32_t *tri = realloc(M->tri, 3 * cap * sizeof *tri);
+        if (tri) M->tri = tri;
+        uint32_t *nb = realloc(M->nb, 3 * cap * sizeof *nb);
+        if (nb) M->nb = nb;
+        double *pl = realloc(M->pl, 4 * cap * sizeof *pl);
+        if (pl) M->pl = pl;
+        unsigned char *state = realloc(M->state, cap);
+        if (state) M->state = state;
+        if (!tri || !nb || !pl || !state) return 0;
+        M->cap = cap;
+    }
+    if (M->vcap < M->cap) {
+        size_t cap = M->cap;
+        uint32_t *vis = realloc(M->vis, cap * sizeof *vis);
+        if (vis) M->vis = vis;
+        uint32_t *order = realloc(M->order, cap * sizeof *order);
+        if (order) M->order = order;
+        rep_edge *hor = realloc(M->hor, cap * sizeof *hor);
+        if (hor) M->hor = hor;
+        if (!vis || !order || !hor) return 0;
+        M->vcap = cap;
+    }
+    return 1;
+}
+
+/* Point p strictly above triangle t's exact plane. */
+static int rep_sees(const rep_mesh *M, const double *w, uint32_t t, const double *p) {
+    const uint32_t *tr = M->tri + 3 * (size_t)t;
+    return acd_orient3d(w + 3 * (size_t)tr[0], w + 3 * (size_t)tr[1], w + 3 * (size_t)tr[2], p) < 0;
+}
+
+/* A triangle's plane in input coordinates (points), lifted as hull_enclose lifts qhull's. */
+static void rep_plane(rep_mesh *M, size_t t, const double *points, const double *w, double s, const encl_tree *T,
+                      double tol) {
+    const uint32_t *tr = M->tri + 3 * t;
+    const double *a = w + 3 * (size_t)tr[0], *b = w + 3 * (size_t)tr[1], *c = w + 3 * (size_t)tr[2];
+    double nrm[3], e1[3], e2[3], dw = 0, d = 0, angle;
+    if (!tri_plane(a, b, c, nrm, &dw, &angle)) { /* too thin for tri_plane: the plain cross product */
+        sub3(b, a, e1);
+        sub3(c, a, e2);
+        cross3(e1, e2, nrm);
+        double len = norm3(nrm);
+        for (int k = 0; k < 3; k++) nrm[k] = len > 0 ? nrm[k] / len : 0;
+    }
+    for (int k = 0; k < 3; k++) {
+        double v = -dot3(nrm, points + 3 * (size_t)tr[k]), vw = -dot3(nrm, w + 3 * (size_t)tr[k]);
+        if (k == 0 || v < d) d = v;
+        if (k == 0 || vw < dw) dw = vw;
+    }
+    double worst = encl_worst(T, nrm, dw, tol);
+    if (worst > tol) d -= worst * s;
+    memcpy(M->pl + 4 * t, nrm, sizeof nrm);
+    M->pl[4 * t + 3] = d;
+}
+
+/* One Quickhull step: point p (no vertex yet), outside triangle t0, made a vertex. Returns 1 done,
+ * 0 not possible (the seen triangles are no disk, or p is a vertex: the mesh is unchanged), -1 out
+ * of memory. */
+static int rep_add(rep_mesh *M, const double *points, const double *w, double s, const encl_tree *T, double tol,
+                   uint32_t p, uint32_t t0) {
+    if (M->isv[p]) return 0;
+    if (!rep_reserve(M, M->m)) return -1; /* vis, order and hor: room for 2m (a horizon has at most 1.5m edges) */
+    const double *pp = w + 3 * (size_t)p;
+    size_t nvis = 0, nh = 0;
+    M->state[t0] = 2;
+    M->vis[nvis++] = t0;
+    for (size_t k = 0; k < nvis; k++) { /* the connected triangles p sees */
+        uint32_t t = M->vis[k];
+        for (int e = 0; e < 3; e++) {
+            uint32_t u = M->nb[3 * (size_t)t + e];
+            if (M->state[u] == 0 && rep_sees(M, w, u, pp)) {
+                M->state[u] = 2;
+                M->vis[nvis++] = u;
+            }
+        }
+    }
+    int ok = 1;
+    for (size_t k = 0; k < nvis && ok; k++) { /* the horizon: each vertex starts one edge */
+        uint32_t t = M->vis[k];
+        for (int e = 0; e < 3 && ok; e++) {
+            uint32_t u = M->nb[3 * (size_t)t + e];
+            if (M->state[u] == 2) continue;
+            rep_edge h = {M->tri[3 * (size_t)t + e], M->tri[3 * (size_t)t + (e + 1) % 3], u, t};
+            if (M->hstart[h.a] != UINT32_MAX || nh >= M->vcap) {
+                ok = 0;
+                break;
+            }
+            M->hstart[h.a] = (uint32_t)nh;
+            M->hor[nh++] = h;
+        }
+    }
+    if (ok && nh < 3) ok = 0;
+    for (size_t i = 0, k = 0; ok && i < nh; i++) { /* one cycle through every horizon edge */
+        M->order[i] = (uint32_t)k;
+        k = M->hstart[M->hor[k].b];
+        if (k == UINT32_MAX || (k == 0) != (i + 1 == nh)) ok = 0;
+    }
+    for (size_t i = 0; ok && i < nh; i++) { /* no flat new triangle */
+        double e1[3], e2[3], cr[3];
+        sub3(w + 3 * (size_t)M->hor[i].b, w + 3 * (size_t)M->hor[i].a, e1);
+        sub3(pp, w + 3 * (size_t)M->hor[i].a, e2);
+        cross3(e1, e2, cr);
+        if (!(dot3(cr, cr) > 0)) ok = 0;
+    }
+    if (ok && !rep_reserve(M, nh)) ok = -1;
+    if (ok != 1) {
+        for (size_t k = 0; k < nvis; k++) M->state[M->vis[k]] = 0;
+        for (size_t i = 0; i < nh; i++) M->hstart[M->hor[i].a] = UINT32_MAX;
+        return ok;
+    }
+    size_t base = M->m;
+    for (size_t i = 0; i < nh; i++) { /* the cone: (a, b, p) across a -> b from u */
+        const rep_edge *h = &M->hor[M->order[i]];
+        size_t t = base + i;
+        uint32_t *tr = M->tri + 3 * t, *nb = M->nb + 3 * t;
+        tr[0] = h->a;
+        tr[1] = h->b;
+        tr[2] = p;
+        nb[0] = h->u;
+        nb[1] = (uint32_t)(base + (i + 1) % nh);
+        nb[2] = (uint32_t)(base + (i + nh - 1) % nh);
+        M->state[t] = 0;
+        uint32_t *un = M->nb + 3 * (size_t)h->u;
+        for (int f = 0; f < 3; f++)
+            if (un[f] == h->t && M->tri[3 * (size_t)h->u + f] == h->b) un[f] = (uint32_t)t;
+    }
+    M->m += nh;
+    for (size_t k = 0; k < nvis; k++) { /* vertices inside the seen disk leave the hull */
+        const uint32_t *tr = M->tri + 3 * (size_t)M->vis[k];
+        for (int f = 0; f < 3; f++)
+            if (M->hstart[tr[f]] == UINT32_MAX) M->isv[tr[f]] = 0;
+        M->state[M->vis[k]] = 1;
+    }
+    for (size_t i = 0; i < nh; i++) M->hstart[M->hor[i].a] = UINT32_MAX;
+    M->isv[p] = 1;
+    for (size_t i = 0; i < nh; i++) rep_plane(M, base + i, points, w, s, T, tol);
+    return 1;
+}
+
+/* The first tetrahedron, of four of out's vertices (the first, the farthest from it, the farthest
+ * from their line, the farthest from their plane), its faces outward. 0 when the four are
+ * exactly coplanar (not for a solid hull: its extreme points are vertices). */
+static int rep_simplex(rep_mesh *M, const acd_hull *out, const double *w) {
+    const uint32_t *src = out->source;
+    uint32_t v[4] = {src[0], src[0], src[0], src[0]};
+    double best = 0;
+    const double *p0 = w + 3 * (size_t)v[0];
+    for (size_t k = 0; k < out->nvertices; k++) {
+        double d[3];
+        sub3(w + 3 * (size_t)src[k], p0, d);
+        if (dot3(d, d) > best) best = dot3(d, d), v[1] = src[k];
+    }
+    double u[3];
+    sub3(w + 3 * (size_t)v[1], p0, u);
+    best = 0;
+    for (size_t k = 0; k < out->nvertices; k++) {
+        double d[3], cr[3];
+        sub3(w + 3 * (size_t)src[k], p0, d);
+        cross3(u, d, cr);
+        if (dot3(cr, cr) > best) best = dot3(cr, cr), v[2] = src[k];
+    }
+    best = 0;
+    double o3 = 0;
+    for (size_t k = 0; k < out->nvertices; k++) {
+        double o = acd_orient3d(p0, w + 3 * (size_t)v[1], w + 3 * (size_t)v[2], w + 3 * (size_t)src[k]);
+        if (fabs(o) > best) best = fabs(o), o3 = o, v[3] = src[k];
+    }
+    if (!(best > 0)) return 0;
+    if (o3 < 0) { /* v[3] above (v0, v1, v2): swap two for the positive orientation */
+        uint32_t x = v[1];
+        v[1] = v[2];
+        v[2] = x;
+    }
+    static const int face[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+    for (int f = 0; f < 4; f++)
+        for (int k = 0; k < 3; k++) M->tri[3 * f + k] = v[face[f][k]];
+    for (int f = 0; f < 4; f++) /* neighbours: the face running the edge backwards */
+        for (int k = 0; k < 3; k++)
+            for (int g = 0; g < 4; g++)
+                for (int l = 0; l < 3; l++)
+                    if (M->tri[3 * g + l] == M->tri[3 * f + (k + 1) % 3] && M->tri[3 * g + (l + 1) % 3] == M->tri[3 * f + k])
+                        M->nb[3 * f + k] = (uint32_t)g;
+    memset(M->state, 0, 4);
+    M->m = 4;
+    for (int k = 0; k < 4; k++) M->isv[v[k]] = 1;
+    return 1;
+}
+
+/* The point to add for triangle t: the one farthest above its own plane among those strictly above
+ * it (exact); every point is scanned for a triangle too thin for a computed plane. UINT32_MAX when
+ * none. */
+static uint32_t rep_violator(const rep_mesh *M, size_t t, const double *w, size_t n, const encl_tree *T, double diag) {
+    const uint32_t *tr = M->tri + 3 * t;
+    const double *a = w + 3 * (size_t)tr[0], *b = w + 3 * (size_t)tr[1], *c = w + 3 * (size_t)tr[2];
+    double nrm[3], d, angle;
+    if (tri_plane(a, b, c, nrm, &d, &angle)) return encl_tri_violator(T, nrm, d, -tri_slack(angle, diag), a, b, c, 0.0);
+    uint32_t best = UINT32_MAX;
+    double bo = 0;
+    for (size_t i = 0; i < n; i++) {
+        double o = acd_orient3d(a, b, c, w + 3 * i);
+        if (o < bo) bo = o, best = (uint32_t)i;
+    }
+    return best;
+}
+
+/* Rebuilds out as the exact convex hull of the normalised points w (tree T) by a Quickhull whose
+ * decisions are exact: from a tetrahedron of out's vertices, the point farthest above a triangle's
+ * own plane among those strictly above it is added (rep_add) until no triangle has one; out keeps
+ * qhull's hull when a step is not possible (not seen: the mesh is exactly convex) or the steps
+ * exceed n. */
+static acd_status hull_repair(acd_hull *out, const double *points, const double *w, size_t n, double s, double diag,
+                              const encl_tree *T, acd_error *err) {
+    const double tol = ACD_TOL_REL_DIST * diag;
+    rep_mesh M = {0};
+    M.isv = calloc(n, 1);
+    M.hstart = malloc(n * sizeof *M.hstart);
+    int ok = M.isv && M.hstart && rep_reserve(&M, 64) ? 1 : -1;
+    if (ok == 1) {
+        for (size_t i = 0; i < n; i++) M.hstart[i] = UINT32_MAX;
+        ok = rep_simplex(&M, out, w);
+    }
+    for (size_t t = 0; ok == 1 && t < M.m; t++) rep_plane(&M, t, points, w, s, T, tol);
+    size_t steps = 0;
+    for (size_t t = 0; ok == 1 && t < M.m; t++) {
+        if (M.state[t]) continue;
+        uint32_t p = rep_violator(&M, t, w, n, T, diag);
+        if (p == UINT32_MAX) continue;
+        ok = ++steps > n ? 0 : rep_add(&M, points, w, s, T, tol, p, (uint32_t)t);
+    }
+    acd_hull h = {0};
+    uint32_t *tmap = NULL, *vmap = NULL;
+    if (ok == 1) { /* out from the alive triangles, vertices in input order (as hull_from_qhull) */
+        tmap = malloc((M.m ? M.m : 1) * sizeof *tmap);
+        vmap = malloc(n * sizeof *vmap);
+        if (!tmap || !vmap) ok = -1;
+    }
+    size_t nt = 0, nv = 0, apex = SIZE_MAX;
+    if (ok == 1) {
+        for (size_t t = 0; t < M.m; t++) tmap[t] = M.state[t] ? UINT32_MAX : (uint32_t)nt++;
+        for (size_t i = 0; i < n; i++) {
+            vmap[i] = M.isv[i] ? (uint32_t)nv++ : UINT32_MAX;
+            if (M.isv[i] && apex == SIZE_MAX) apex = i;
+        }
+        for (size_t t = 0; t < M.m && ok == 1; t++)
+            for (int k = 0; k < 3 && !M.state[t]; k++)
+                if (vmap[M.tri[3 * t + k]] == UINT32_MAX) ok = 0; /* cannot happen: a removed vertex in use */
+        if (ok == 1 && nt != 2 * nv - 4) ok = 0;
+    }
+    if (ok == 1) {
+        acd_status st = hull_alloc(&h, nv, nt, err);
+        if (st != ACD_OK) ok = -1;
+    }
+    if (ok == 1) {
+        h.dim = 3;
+        for (size_t i = 0; i < n; i++)
+            if (vmap[i] != UINT32_MAX) set_vertex(&h, vmap[i], points, i);
+        double vol = 0, area = 0;
+        const double *pa = w + 3 * apex;
+        for (size_t t = 0; t < M.m; t++) {
+            if (M.state[t]) continue;
+            size_t q = tmap[t];
+            const uint32_t *tr = M.tri + 3 * t;
+            for (int k = 0; k < 3; k++) {
+                h.triangles[3 * q + k] = vmap[tr[k]];
+                h.neighbors[3 * q + k] = tmap[M.nb[3 * t + k]];
+            }
+            memcpy(h.planes + 4 * q, M.pl + 4 * t, 4 * sizeof *h.planes);
+            const double *a = w + 3 * (size_t)tr[0], *b = w + 3 * (size_t)tr[1], *c = w + 3 * (size_t)tr[2];
+            vol += acd_orient3d(a, b, c, pa) / 6.0; /* as hull_from_qhull sums it */
+            double e1[3], e2[3], cr[3];
+            sub3(b, a, e1);
+            sub3(c, a, e2);
+            cross3(e1, e2, cr);
+            area += 0.5 * norm3(cr);
+        }
+        h.volume = vol > 0 ? vol * s * s * s : 0.0;
+        h.area = area * s * s;
+        acd_hull_free(out);
+        *out = h;
+    }
+    free(tmap);
+    free(vmap);
+    rep_free(&M);
+    if (ok < 0) {
+        acd_hull_free(&h);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory repairing a hull of %zu points", n);
+    }
+    return ACD_OK;
+}
+
 /* Checks the planes of out (built from w, the points normalised by s, box diagonal diag) that are
- * not trusted against every point and lifts those exceeded by more than ACD_TOL_REL_DIST x diag
- * (normalised units). */
-static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double s, double diag, acd_error *err) {
+ * not trusted: each must have every point below it and its triangle's vertices on it, within
+ * ACD_TOL_REL_DIST x diag (normalised units). A plane that fails is replaced by its triangle's own
+ * plane when that one has every point below it; otherwise it is lifted to its farthest point and
+ * the hull rebuilt (hull_repair; the lifted planes stay if the rebuild is not possible). */
+static acd_status hull_enclose(acd_hull *out, const double *points, const double *w, size_t n, double s, double diag,
+                               acd_error *err) {
     const double tol = ACD_TOL_REL_DIST * diag;
     encl_tree T = {0};
-    int built = 0;
+    int built = 0, missed = 0;
     acd_status st = ACD_OK;
     for (size_t t = 0; t < out->ntriangles; t++) {
         double *pl = out->planes + 4 * t;
@@ -633,14 +1104,32 @@ static acd_status hull_enclose(acd_hull *out, const double *w, size_t n, double 
                 break;
             }
         }
-        double d = 0; /* the plane's offset in normalised coordinates, as hull_from_qhull sets it */
+        double d = 0, low = 0; /* the plane's offset in normalised coordinates, as hull_from_qhull sets
+                                  it (through the highest vertex), and the lowest vertex's height */
         for (int k = 0; k < 3; k++) {
             double dv = -dot3(pl, w + 3 * (size_t)out->source[tri[k]]);
             if (k == 0 || dv < d) d = dv;
+            if (k == 0 || dv > low) low = dv;
         }
         double worst = encl_worst(&T, pl, d, tol);
+        if (worst <= tol && low - d <= tol) continue;
+        double nrm[3], dw, angle;
+        if (tri_plane(a, b, c, nrm, &dw, &angle) &&
+            encl_tri_violator(&T, nrm, dw, tol - tri_slack(angle, diag), a, b, c, tol) == UINT32_MAX) {
+            double dp = 0; /* the triangle's own plane: every point within tol below it */
+            for (int k = 0; k < 3; k++) {
+                double v = -dot3(nrm, points + 3 * (size_t)out->source[tri[k]]);
+                if (k == 0 || v < dp) dp = v;
+            }
+            double wo = encl_worst(&T, nrm, dw, tol); /* within the rounding of tol */
+            memcpy(pl, nrm, sizeof nrm);
+            pl[3] = wo > tol ? dp - wo * s : dp;
+            continue;
+        }
         if (worst > tol) pl[3] -= worst * s;
+        missed = 1;
     }
+    if (st == ACD_OK && missed) st = hull_repair(out, points, w, n, s, diag, &T, err);
     free(T.node);
     free(T.idx);
     free(T.pts);
@@ -656,7 +1145,7 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
     if (code == 0) {
         acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
         qhull_run_free(&r);
-        if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, diag, err);
+        if (st == ACD_OK && out) st = hull_enclose(out, points, w, n, s, diag, err);
         return st;
     }
     qhull_first_line(&r, msg, sizeof msg);
@@ -675,7 +1164,7 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
             acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
             qhull_run_free(&r);
             free(j);
-            if (st == ACD_OK && out) st = hull_enclose(out, w, n, s, diag, err);
+            if (st == ACD_OK && out) st = hull_enclose(out, points, w, n, s, diag, err);
             return st;
         }
         qhull_run_free(&r);
