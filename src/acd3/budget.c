@@ -65,19 +65,28 @@ static void atom_cut_free(atom *A) { cut_with_hulls_free(&A->cut, &A->cut_hulls)
 #define BUDGET_EXACT 3
 #define BUDGET_REFINE_DIRS 3
 #define BUDGET_BATCH 4
-/* Vertices scored at most by the plane search (every k-th beyond; every crossing of the sampled
- * triangles' edges too). */
+/* Vertices scored at most by the plane search (every k-th of the hull candidates beyond:
+ * acd3_budget_hull_candidates). */
 #define BUDGET_MAX_SCORED 1000
+/* Triangles whose edges' crossings are scored: every k-th, about BUDGET_TRI_SQRT * sqrt(n) of n (a
+ * section crosses about sqrt(n) of them: the crossings per plane stay about as many on a finer
+ * triangulation of the same surface; docs/acd3d.md "Triangulation density"). */
+#define BUDGET_TRI_SQRT 28.0
+/* A vertex is a hull candidate when a plane through it has the other corners of its triangles
+ * below by more than this fraction of their distance to it (rounding far below, a midpoint's
+ * neighbours on its edge never). */
+#define BUDGET_EXTREME_REL 1e-9
 #define BUDGET_OFFSETS 9
 #define BUDGET_REFINE 3
 
 /* The projections on one direction of the sample scored: the sampled vertices' (every
  * stride-th) and the sampled triangles' (every tstride-th) three corners'; computed once per direction
  * (n.p, then less the offset per plane: the same bits as n.p - c). */
-static void sample_dots(const acd_mesh *m, size_t stride, size_t tstride, const double nrm[3], double *dv, double *dt) {
+static void sample_dots(const acd_mesh *m, const size_t *sv, size_t nsv, size_t tstride, const double nrm[3], double *dv,
+                        double *dt) {
     size_t k = 0;
-    for (size_t v = 0; v < m->nvertices; v += stride, k++) {
-        const double *p = m->vertices + 3 * v;
+    for (; k < nsv; k++) {
+        const double *p = m->vertices + 3 * sv[k];
         dv[k] = nrm[0] * p[0] + nrm[1] * p[1] + nrm[2] * p[2];
     }
     k = 0;
@@ -94,17 +103,97 @@ static void sample_dots(const acd_mesh *m, size_t stride, size_t tstride, const 
  * direction is scored on its own (score_dir, refine_dir: parallel tasks over the batch's atoms and
  * directions, each computing exactly what the sequential search did). */
 typedef struct plan {
-    int nd, ok;
+    int nd, ok, nomem; /* nomem: the sample could not be allocated */
     double dirs[BUDGET_MAX_DIRS][3];
     double centroid[3];
-    size_t stride, tstride, cap, nsv, nst; /* sample strides, points per side at most, sampled vertices and triangles */
+    size_t *sv;   /* the sampled vertices (nsv; owned: plan_free) */
+    size_t tstride, cap, nsv, nst; /* triangle stride, points per side at most, sampled vertices and triangles */
     double lo[BUDGET_MAX_DIRS], st[BUDGET_MAX_DIRS], bs[BUDGET_MAX_DIRS], bc[BUDGET_MAX_DIRS];
     int ord[BUDGET_MAX_DIRS];
 } plan;
 
+size_t acd3_budget_hull_candidates(const acd_mesh *m, unsigned char *flag) {
+    size_t nv = m->nvertices, nt = m->ntriangles;
+    /* per vertex: its normal (the sum of its triangles' area vectors) and its neighbours' sum less
+     * its own position times their count (-(count) times its offset from their mean) */
+    double *acc = calloc(6 * (nv ? nv : 1), sizeof *acc);
+    if (!acc) return SIZE_MAX;
+    for (size_t v = 0; v < nv; v++) flag[v] = 0;
+    for (size_t t = 0; t < nt; t++) {
+        const uint32_t *T = m->triangles + 3 * t;
+        const double *a = m->vertices + 3 * (size_t)T[0], *b = m->vertices + 3 * (size_t)T[1], *c = m->vertices + 3 * (size_t)T[2];
+        double u[3], w[3];
+        for (int k = 0; k < 3; k++) u[k] = b[k] - a[k], w[k] = c[k] - a[k];
+        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        for (int i = 0; i < 3; i++) {
+            double *A = acc + 6 * (size_t)T[i];
+            const double *p = m->vertices + 3 * (size_t)T[i], *q = m->vertices + 3 * (size_t)T[(i + 1) % 3],
+                         *r = m->vertices + 3 * (size_t)T[(i + 2) % 3];
+            for (int k = 0; k < 3; k++) A[k] += n[k], A[3 + k] += (q[k] - p[k]) + (r[k] - p[k]);
+            flag[T[i]] = 3; /* bit 0: the normal separates so far, bit 1: the offset from the mean */
+        }
+    }
+    for (size_t t = 0; t < nt; t++) {
+        const uint32_t *T = m->triangles + 3 * t;
+        for (int i = 0; i < 3; i++) {
+            size_t v = T[i];
+            if (!flag[v]) continue;
+            const double *A = acc + 6 * v, *p = m->vertices + 3 * v;
+            double ln = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]), lm = sqrt(A[3] * A[3] + A[4] * A[4] + A[5] * A[5]);
+            for (int j = 1; j < 3; j++) {
+                const double *q = m->vertices + 3 * (size_t)T[(i + j) % 3];
+                double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+                double ld = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                /* below the plane of normal A (the normal), of normal -A[3..5] (away from the mean) */
+                if (!(A[0] * d[0] + A[1] * d[1] + A[2] * d[2] < -BUDGET_EXTREME_REL * ln * ld)) flag[v] &= (unsigned char)~1u;
+                if (!(A[3] * d[0] + A[4] * d[1] + A[5] * d[2] > BUDGET_EXTREME_REL * lm * ld)) flag[v] &= (unsigned char)~2u;
+            }
+        }
+    }
+    free(acc);
+    size_t n = 0;
+    for (size_t v = 0; v < nv; v++) n += flag[v] = flag[v] != 0;
+    return n;
+}
+
+static void plan_free(plan *P) {
+    free(P->sv);
+    P->sv = NULL;
+}
+
+/* The sampled vertices: every k-th of the hull candidates, at most BUDGET_MAX_SCORED (every k-th
+ * vertex when fewer than 4 are candidates); 0 when out of memory. */
+static int plan_sample(const acd_mesh *m, plan *P) {
+    size_t nv = m->nvertices;
+    unsigned char *flag = malloc(nv ? nv : 1);
+    if (!flag) return 0;
+    size_t nc = acd3_budget_hull_candidates(m, flag);
+    if (nc == SIZE_MAX) {
+        free(flag);
+        return 0;
+    }
+    int all = nc < 4;
+    size_t pool = all ? nv : nc, stride = (pool + BUDGET_MAX_SCORED - 1) / BUDGET_MAX_SCORED;
+    P->nsv = (pool + stride - 1) / stride;
+    P->sv = malloc((P->nsv ? P->nsv : 1) * sizeof *P->sv);
+    if (!P->sv) {
+        free(flag);
+        return 0;
+    }
+    size_t k = 0, j = 0;
+    for (size_t v = 0; v < nv; v++) {
+        if (!all && !flag[v]) continue;
+        if (j++ % stride == 0) P->sv[k++] = v;
+    }
+    P->nsv = k;
+    free(flag);
+    return 1;
+}
+
 static void plan_init(const acd_mesh *m, int ndir, plan *P) {
     P->ok = 0;
     P->nd = 0;
+    P->sv = NULL;
     if (m->nvertices < 4) return;
     acd_pca pca;
     if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return;
@@ -139,12 +228,14 @@ static void plan_init(const acd_mesh *m, int ndir, plan *P) {
     }
     P->nd = nd;
     memcpy(P->centroid, pca.centroid, sizeof P->centroid);
-    P->stride = (m->nvertices + BUDGET_MAX_SCORED - 1) / BUDGET_MAX_SCORED;
-    P->tstride = (m->ntriangles + 2 * BUDGET_MAX_SCORED - 1) / (2 * BUDGET_MAX_SCORED);
+    if (!plan_sample(m, P)) {
+        P->nomem = 1;
+        return;
+    }
+    P->tstride = (size_t)ceil(sqrt((double)m->ntriangles) / BUDGET_TRI_SQRT);
     if (P->tstride < 1) P->tstride = 1;
     /* points one side can receive: the sampled vertices and two crossings per sampled triangle
      * (three kept for safety) */
-    P->nsv = (m->nvertices + P->stride - 1) / P->stride;
     P->nst = (m->ntriangles + P->tstride - 1) / P->tstride;
     P->cap = P->nsv + 3 * P->nst + 1;
     for (int d = 0; d < nd; d++) {
@@ -220,8 +311,8 @@ static size_t sample_crossings(const acd_mesh *m, size_t tstride, const double *
 static double side_volume(const acd_mesh *m, const plan *P, const double *dv, const double *dt, double c, int above,
                           double *buf, acd_hull_volume_ws *w) {
     size_t n = 0, k = 0;
-    for (size_t v = 0; v < m->nvertices; v += P->stride, k++)
-        if ((dv[k] - c >= 0) == above) memcpy(buf + 3 * n++, m->vertices + 3 * v, sizeof(double[3]));
+    for (; k < P->nsv; k++)
+        if ((dv[k] - c >= 0) == above) memcpy(buf + 3 * n++, m->vertices + 3 * P->sv[k], sizeof(double[3]));
     n += sample_crossings(m, P->tstride, dt, c, buf + 3 * n);
     return acd_hull_volume_fast(buf, n, w, NULL);
 }
@@ -244,7 +335,7 @@ static int sweep_dir(const acd_mesh *m, const plan *P, int d, const double *cs, 
     acd_hull_volume_ws hw;
     memset(&hw, 0, sizeof hw);
     double *dv = buf + 3 * P->cap, *dt = dv + P->nsv;
-    sample_dots(m, P->stride, P->tstride, P->dirs[d], dv, dt);
+    sample_dots(m, P->sv, P->nsv, P->tstride, P->dirs[d], dv, dt);
     /* each offset's crossings */
     size_t xb[BUDGET_MAX_QUERIES], xe[BUDGET_MAX_QUERIES];
     for (int i = 0; i < nq; i++) {
@@ -254,7 +345,7 @@ static int sweep_dir(const acd_mesh *m, const plan *P, int d, const double *cs, 
     /* the sample sorted along d: side below (n.p - c < 0) a prefix, side above a suffix */
     for (size_t k = 0; k < nsv; k++) ord[k].key = dv[k], ord[k].i = k;
     keyed_sort(ord, ord + nsv, nsv);
-    for (size_t k = 0; k < nsv; k++) memcpy(srt + 3 * k, m->vertices + 3 * (ord[k].i * P->stride), sizeof(double[3]));
+    for (size_t k = 0; k < nsv; k++) memcpy(srt + 3 * k, m->vertices + 3 * P->sv[ord[k].i], sizeof(double[3]));
     size_t cntb[BUDGET_MAX_QUERIES], cnta[BUDGET_MAX_QUERIES], xba[BUDGET_MAX_QUERIES], xea[BUDGET_MAX_QUERIES];
     for (int i = 0; i < nq; i++) {
         size_t c = 0;
@@ -446,7 +537,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
     for (int j = 0; j < nb; j++) {
         atom *A = &S->a[idx[j]];
         A->evaluated = 1;
-        P[j].ok = 0, P[j].nd = 0;
+        P[j].ok = 0, P[j].nd = 0, P[j].nomem = 0, P[j].sv = NULL;
         if (A->st == ACD_OK) live = 1;
     }
     if (!live) {
@@ -521,7 +612,8 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
     int nc[BUDGET_BATCH] = {0};
     ntask = 0;
     for (int j = 0; j < nb; j++) {
-        if (!P[j].ok) continue;
+        if (P[j].nomem) fail[j] = 1;
+        if (!P[j].ok && !fail[j]) continue;
         if (fail[j]) {
             S->a[idx[j]].st = ACD_ERR_NOMEM;
             continue;
@@ -531,6 +623,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
         nc[j] = plan_planes(&P[j], S->nexact, BUDGET_REFINE_DIRS, cand[j]);
         for (int k = 0; k < nc[j]; k++) tj[ntask] = j, td[ntask] = k, ntask++;
     }
+    for (int j = 0; j < nb; j++) plan_free(&P[j]);
     free(P);
     exact_cut X[BUDGET_BATCH][BUDGET_EXACT];
 #ifdef _OPENMP

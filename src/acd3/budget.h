@@ -52,5 +52,11 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
                                    double limit, double min_gain, double extent, int threads, acd_progress_fn progress,
                                    void *progress_user, acd3_budget_result *out, acd_error *err);
 void acd3_budget_result_free(acd3_budget_result *r);
+/* The vertices the plane search samples from (flag[v] = 1, else 0; flag: room for m->nvertices):
+ * those some plane through them has strictly above the other corners of their triangles (tried:
+ * the vertex normal, the offset from the neighbours' mean), the only ones that can be a vertex of
+ * the hull of any region holding their triangles (a flat, concave or saddle vertex, a midpoint of
+ * two neighbours, never is). How many; SIZE_MAX when out of memory. */
+size_t acd3_budget_hull_candidates(const acd_mesh *m, unsigned char *flag);
 
 #endif
