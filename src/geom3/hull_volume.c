@@ -38,14 +38,13 @@ struct acd_hv_facet { /* what the visible search reads first */
     double n[3], d;  /* unit outward normal, n.x = d on the plane */
     int v[3], nb[3]; /* nb[k]: across edge (v[k], v[k+1]) */
     int vis, mark;   /* the visible search's stamps (acd_hull_volume_ws.iter): visible, tested and not */
-    int alive;
     int head, far;   /* outside set (a list through acd_hull_volume_ws.next) and its farthest point */
     double fard;
 };
 typedef struct acd_hv_facet hv_facet;
 
 void acd_hull_volume_ws_free(acd_hull_volume_ws *w) {
-    free(w->f), free(w->next), free(w->start), free(w->end), free(w->stack);
+    free(w->f), free(w->alive), free(w->next), free(w->start), free(w->end), free(w->stack);
     free(w->pend), free(w->hor), free(w->horf), free(w->horu), free(w->newf), free(w->visl), free(w->pl), free(w->near);
     memset(w, 0, sizeof *w);
 }
@@ -102,6 +101,9 @@ static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, in
         int *s = realloc(w->stack, nc * sizeof *s);
         if (!s) return -1;
         w->stack = s;
+        unsigned char *al = realloc(w->alive, nc);
+        if (!al) return -1;
+        w->alive = al;
     }
     hv_facet *F = &w->f[w->nf];
     F->v[0] = a, F->v[1] = b, F->v[2] = c;
@@ -118,7 +120,8 @@ static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, in
     if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
     memcpy(F->n, n, sizeof n);
     F->d = n[0] * A[0] + n[1] * A[1] + n[2] * A[2];
-    F->head = -1, F->far = -1, F->fard = 0, F->alive = 1, F->mark = 0, F->vis = 0;
+    F->head = -1, F->far = -1, F->fard = 0, F->mark = 0, F->vis = 0;
+    w->alive[w->nf] = 1;
     return (int)w->nf++;
 }
 
@@ -304,24 +307,26 @@ static double hv_cone_volume(const acd_hull_volume_ws *w, const double *p, const
 static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int start, double eps, double *dmax, int *fmax) {
     int cur = -1;
     double dc = -INFINITY;
-    if (start >= 0 && (size_t)start < w->nf && w->f[start].alive) {
+    if (start >= 0 && (size_t)start < w->nf && w->alive[start]) {
         cur = start;
         dc = hv_dist(&w->f[cur], q);
+        int prev = -1; /* the facet the climb came from: q is above it by less, never the next step */
         for (size_t steps = 0; steps < w->nf; steps++) {
             int bn = -1;
             double bd = dc;
             for (int k = 0; k < 3; k++) {
                 int h = w->f[cur].nb[k];
+                if (h == prev) continue;
                 double dh = hv_dist(&w->f[h], q);
                 if (dh > bd) bd = dh, bn = h;
             }
             if (bn < 0) break;
-            cur = bn, dc = bd;
+            prev = cur, cur = bn, dc = bd;
         }
         if (dc > HULL_VOLUME_CLIMB_SURE * eps) return cur;
     }
     for (size_t t = 0; t < w->nf; t++)
-        if (w->f[t].alive) {
+        if (w->alive[t]) {
             double dd = hv_dist(&w->f[t], q);
             if (dd > dc) dc = dd, cur = (int)t;
         }
@@ -391,7 +396,7 @@ typedef struct hv_undo {
 static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t top, double *added, hv_undo *u) {
     while (top > 0) {
         int fi = w->pend[--top];
-        if (!w->f[fi].alive || w->f[fi].head < 0) continue;
+        if (!w->alive[fi] || w->f[fi].head < 0) continue;
         int pi = w->f[fi].far;
         const double *q = p + 3 * pi;
         if (!hv_grow_int(&w->visl, &w->vcap, w->nf)) return -1;
@@ -439,7 +444,7 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
          * still be above a horizon facet */
         for (size_t k = 0; k < nv; k++) {
             hv_facet *G = &w->f[visl[k]];
-            G->alive = 0;
+            w->alive[visl[k]] = 0;
             if (u) u->killed[u->nk++] = visl[k];
             for (int i = G->head; i >= 0;) {
                 int nx = w->next[i];
@@ -593,7 +598,7 @@ static double hv_hull_volume(const acd_hull_volume_ws *w, const double *p) {
     double s = 0;
     for (size_t t = 0; t < w->nf; t++) {
         const hv_facet *F = &w->f[t];
-        if (!F->alive) continue;
+        if (!w->alive[t]) continue;
         const double *A = p + 3 * F->v[0], *B = p + 3 * F->v[1], *C = p + 3 * F->v[2];
         double a[3] = {A[0] - cen[0], A[1] - cen[1], A[2] - cen[2]}, b[3] = {B[0] - cen[0], B[1] - cen[1], B[2] - cen[2]},
                c[3] = {C[0] - cen[0], C[1] - cen[1], C[2] - cen[2]};
@@ -744,7 +749,7 @@ static long hv_near_retest(acd_hull_volume_ws *w, const double *P, double eps, s
         int bf = -1;
         double bd = eps;
         for (size_t t = f0; t < w->nf; t++)
-            if (w->f[t].alive) {
+            if (w->alive[t]) {
                 double dd = hv_dist(&w->f[t], x);
                 if (dd > bd) bd = dd, bf = (int)t;
             }
@@ -933,7 +938,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         if (r == 0) vol[q] = V + Vx;
         for (size_t k = 0; k < U.nk; k++) {
             hv_facet *F = &w->f[U.killed[k]];
-            F->alive = 1, F->head = -1, F->far = -1, F->fard = 0;
+            w->alive[U.killed[k]] = 1, F->head = -1, F->far = -1, F->fard = 0;
         }
         for (size_t k = U.nnb; k >= 3; k -= 3) w->f[U.nb[k - 3]].nb[U.nb[k - 2]] = U.nb[k - 1];
         if (r == -2) /* stopped midway: outside sets left on the facets made before */

@@ -22,6 +22,7 @@ struct acd_hv_facet;
 /* Scratch reused between calls (zero-initialise it; free with acd_hull_volume_ws_free). */
 typedef struct acd_hull_volume_ws {
     struct acd_hv_facet *f;
+    unsigned char *alive; /* per facet: on the hull (the full scans read these, not the facets) */
     size_t nf, fcap;
     int *next, *start, *end, *stack; /* per point: list link, horizon edge from / to it;
                                        per facet: search stack */
