@@ -5,9 +5,10 @@
 # not a 2-manifold, ...); it fails on a verification failure (3), an internal error (5), a crash
 # (a signal) or the time limit. Prints a markdown table and the failures; exit 1 if any failed.
 # Mode "budget" runs `acd 3d FILE --budget $BUDGET --verify` (the whole budget pipeline, solid)
-# and scores its hulls with `acd eval` (coverage, concavity_max in the note, with the merge
-# tolerance the run used); such a run also fails when the hulls do not cover a closed input
-# (coverage below MIN_COVERAGE) or when `acd eval` fails or exceeds the time limit.
+# and scores its hulls with `acd eval` (coverage, concavity_max, iou in the note; an input that is
+# not closed against its repair by `acd info --repair --fill-holes`, the solid acd 3d decomposed);
+# such a run also fails when the hulls do not cover that closed solid (coverage below
+# MIN_COVERAGE) or when `acd eval` fails or exceeds the time limit.
 #
 # usage: scripts/sweep_3d.sh [BUILD_DIR] [DIR] (env TAU=0.1 LIMIT=120 MODES="solid surface"
 #        MAX_FACES=200000: larger meshes are listed as skipped; BUDGET=16 MIN_COVERAGE=0.999
@@ -63,16 +64,29 @@ while IFS= read -r f; do
       *) note="FAIL: $(tail -1 "$T/err" | cut -c1-110)"; fails=$((fails + 1));;
     esac
     if [ "$mode" = budget ] && [ "$rc" -eq 0 ]; then
-      # the hulls must cover the input; coverage and concavity_max by acd eval
+      # the hulls must cover the input; coverage and concavity_max by acd eval. An input that is not
+      # closed is scored against the solid acd 3d decomposed: the input repaired as it repairs it
+      # (acd info --repair: welded, oriented, every hole closed), "(repaired)" in the note
       timeout -s KILL "$LIMIT" "$ACD" eval "$f" "$T/h.obj" --json >"$T/e.json" 2>"$T/eerr"
       erc=$?
+      rep=""
+      if [ "$erc" -eq 0 ] && ! python3 -c 'import json,sys; sys.exit(not json.load(open(sys.argv[1]))["mesh_closed"])' "$T/e.json" 2>/dev/null; then
+        rep=" (repaired)"
+        if "$ACD" info "$f" --no-self-intersections --repair "$T/rep.off" --fill-holes 1000000000 >/dev/null 2>"$T/eerr"; then
+          timeout -s KILL "$LIMIT" "$ACD" eval "$T/rep.off" "$T/h.obj" --json >"$T/e.json" 2>"$T/eerr"
+          erc=$?
+        else
+          erc=$?
+        fi
+        rm -f "$T/rep.off"
+      fi
       ev=$(python3 -c '
 import json, sys
 e = json.load(open(sys.argv[1]))
 closed = e.get("mesh_closed", False)
 low = closed and e["coverage"] < float(sys.argv[2])
-print("%d coverage %.4f%s, concavity_max %.4f, iou %.4f" % (low, e["coverage"], "" if closed else " (open input)", e["concavity_max"], e["iou"]))
-' "$T/e.json" "$MIN_COVERAGE" 2>/dev/null)
+print("%d coverage %.4f%s%s, concavity_max %.4f, iou %.4f" % (low, e["coverage"], sys.argv[3], "" if closed else " (open)", e["concavity_max"], e["iou"]))
+' "$T/e.json" "$MIN_COVERAGE" "$rep" 2>/dev/null)
       if [ "$erc" -ne 0 ] || [ -z "$ev" ]; then
         note="FAIL: acd eval exit $erc: $(tail -1 "$T/eerr" | cut -c1-90)"; fails=$((fails + 1))
       elif [ "${ev%% *}" = 1 ]; then
