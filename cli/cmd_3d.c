@@ -369,6 +369,14 @@ static int verify(const acd3d_result *r, int budget, acd_error *err) {
     return ACD_OK;
 }
 
+/* The mesh's self-intersecting face pairs: *npairs, the first in pair; 0 when the test fails. Run
+ * again only while none was found (the caller keeps npairs and pair between calls). */
+static int self_crossing(const acd_mesh *mesh, size_t *npairs, uint32_t pair[2]) {
+    if (*npairs > 0) return 1;
+    acd_error serr;
+    return acd_mesh_self_intersections(mesh, npairs, pair, 1, &serr) == ACD_OK;
+}
+
 int acd_cmd_3d(int argc, char **argv) {
     const char *input = NULL, *hulls_path = NULL, *parts_path = NULL, *json_path = NULL, *export_path = NULL,
                *model_name = NULL;
@@ -677,22 +685,32 @@ int acd_cmd_3d(int argc, char **argv) {
     /* the tolerance stuck parts stay above: in a budget run the merge tolerance (the budget pass
      * brings every part within it when a cut can) */
     const char *lim = p.budget_parts > 0 ? "the merge tolerance" : "tau";
+    size_t npairs = 0; /* the (repaired) mesh's self-intersections, computed once when needed */
+    uint32_t pair[2] = {0, 0};
     if (stuck) {
         fprintf(stderr, "acd 3d: %zu part(s) stayed above %s: no cut could split them further (see leaf_reason)\n",
                 stuck, lim);
         /* the usual cause in solid mode: the surface crosses itself, so a plane cut cannot give
          * closed, outward pieces (often a scan whose holes were closed by caps that cross it) */
-        size_t npairs = 0;
-        uint32_t pair[2];
-        acd_error serr;
-        if (p.mode == ACD3D_SOLID && acd_mesh_self_intersections(&mesh, &npairs, pair, 1, &serr) == ACD_OK &&
-            npairs > 0)
+        if (p.mode == ACD3D_SOLID && self_crossing(&mesh, &npairs, pair) && npairs > 0)
             acd_fail(&selfx, ACD_ERR_INVALID_INPUT,
                      "the %smesh intersects itself (%zu face pairs, first: faces %u and %u), so %zu part(s) stay "
                      "above %s: solid mode cannot cut through crossing sheets; fix the mesh or use --mode surface "
                      "(the outputs are written, they do not meet %s)",
                      repaired ? "repaired " : "", npairs, pair[0], pair[1], stuck, lim, lim);
     }
+    /* parts of no positive volume (not flat ones): in solid mode the mark of a solid that crosses
+     * itself (the merge pass's joins of such parts came out inverted on the budget sweep's open
+     * patches closed by crossing caps); refused as bad input as above */
+    size_t inverted = 0;
+    for (size_t i = 0; p.mode == ACD3D_SOLID && i < r.nparts; i++)
+        inverted += !(r.parts[i].volume > 0) && r.nodes[r.parts[i].node].leaf_reason != ACD3D_LEAF_FLAT;
+    if (inverted && selfx.status == ACD_OK && self_crossing(&mesh, &npairs, pair) && npairs > 0)
+        acd_fail(&selfx, ACD_ERR_INVALID_INPUT,
+                 "the %smesh intersects itself (%zu face pairs, first: faces %u and %u), so %zu part(s) have no "
+                 "positive volume: solid mode cannot cut through crossing sheets; fix the mesh or use --mode surface "
+                 "(the outputs are written, they are not valid parts)",
+                 repaired ? "repaired " : "", npairs, pair[0], pair[1], inverted);
     if (hulls_path && (st = write_parts(hulls_path, &r, 1, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
     if (!code && parts_path && (st = write_parts(parts_path, &r, 0, &err)) != ACD_OK) code = acd_cli_report("3d", &err);
     if (!code && export_path && (st = export_dir(export_path, model_name, &r, &err)) != ACD_OK)
@@ -717,6 +735,16 @@ int acd_cmd_3d(int argc, char **argv) {
     if (!code && selfx.status != ACD_OK) code = acd_cli_report("3d", &selfx);
     if (!code && do_verify) {
         st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, &err) : verify_surface(&mesh, &r, &err);
+        /* a solid-mode result that fails on a mesh crossing itself: the input's fault (exit 2), the
+         * verification's message kept */
+        if (st != ACD_OK && p.mode == ACD3D_SOLID && self_crossing(&mesh, &npairs, pair) && npairs > 0) {
+            acd_error v = err;
+            acd_fail(&err, ACD_ERR_INVALID_INPUT,
+                     "the %smesh intersects itself (%zu face pairs, first: faces %u and %u), and the result fails "
+                     "verification (%.300s): solid mode cannot cut through crossing sheets; fix the mesh or use "
+                     "--mode surface",
+                     repaired ? "repaired " : "", npairs, pair[0], pair[1], v.message);
+        }
         if (st != ACD_OK) code = acd_cli_report("3d", &err);
         else if (verbose)
             fprintf(stderr, p.mode == ACD3D_SOLID ? "acd 3d: verified: volumes add up, parts meet tau, parts inside hulls\n"

@@ -1310,7 +1310,63 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
     return st;
 }
 
+static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err);
+
+/* The vertices some triangle uses, renumbered in their order (*c: a new mesh) when there are others;
+ * *c empty (nothing allocated) when every vertex is used or an index is out of range (check_input
+ * names that). */
+static acd_status used_vertices(const acd_mesh *m, acd_mesh *c, acd_error *err) {
+    memset(c, 0, sizeof *c);
+    if (m->nvertices == 0 || m->ntriangles == 0 || !m->vertices || !m->triangles) return ACD_OK;
+    uint32_t *map = malloc(m->nvertices * sizeof *map);
+    if (!map) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    for (size_t v = 0; v < m->nvertices; v++) map[v] = UINT32_MAX;
+    for (size_t k = 0; k < 3 * m->ntriangles; k++) {
+        if (m->triangles[k] >= m->nvertices) {
+            free(map);
+            return ACD_OK;
+        }
+        map[m->triangles[k]] = 0;
+    }
+    size_t n = 0;
+    for (size_t v = 0; v < m->nvertices; v++)
+        if (map[v] == 0) map[v] = (uint32_t)n++;
+    if (n == m->nvertices) {
+        free(map);
+        return ACD_OK;
+    }
+    c->vertices = malloc((n ? 3 * n : 1) * sizeof *c->vertices);
+    c->triangles = malloc((m->ntriangles ? 3 * m->ntriangles : 1) * sizeof *c->triangles);
+    if (!c->vertices || !c->triangles) {
+        free(map);
+        acd_mesh_free(c);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    for (size_t v = 0; v < m->nvertices; v++)
+        if (map[v] != UINT32_MAX) memcpy(c->vertices + 3 * (size_t)map[v], m->vertices + 3 * v, sizeof(double[3]));
+    for (size_t k = 0; k < 3 * m->ntriangles; k++) c->triangles[k] = map[m->triangles[k]];
+    c->nvertices = n;
+    c->ntriangles = m->ntriangles;
+    free(map);
+    return ACD_OK;
+}
+
+/* Vertices no triangle uses are not part of the input: dropped before anything (before, they set
+ * the scale and entered the hull of an uncut part: the budget pass found a cube with three stray
+ * vertices 3.9 from its hull, prim.off of the budget sweep). */
 acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    if (!mesh) return decompose_mesh(mesh, params, out, err);
+    acd_mesh c;
+    acd_status st = used_vertices(mesh, &c, err);
+    if (st != ACD_OK) return st;
+    if (!c.vertices) return decompose_mesh(mesh, params, out, err);
+    st = decompose_mesh(&c, params, out, err);
+    acd_mesh_free(&c);
+    return st;
+}
+
+static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!params || params->cookie != ACD3D_PARAMS_COOKIE)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd3d_params not initialised by acd3d_default_params");
