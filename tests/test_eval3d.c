@@ -60,6 +60,30 @@ static void test_cube_is_its_own_decomposition(void **state) {
     tm_free(&cube);
 }
 
+/* A vertex no face uses is not on the surface: a cube with a stray vertex far outside scores as
+ * the cube (before, the stray vertex was a mesh sample 2.6 diagonals from the hull). */
+static void test_unused_vertex_is_not_surface(void **state) {
+    (void)state;
+    double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    tm_mesh cube = tm_box(lo, hi);
+    double *v = malloc(3 * (cube.nv + 1) * sizeof *v);
+    assert_non_null(v);
+    memcpy(v, cube.v, 3 * cube.nv * sizeof *v);
+    v[3 * cube.nv] = v[3 * cube.nv + 1] = v[3 * cube.nv + 2] = 5;
+    acd_mesh m = {v, cube.nv + 1, cube.t, cube.nt};
+    acd_hull h = box_hull(0, 1, 0, 1, 0, 1);
+    acd_eval_params p = small_params();
+    acd_eval_report r;
+    acd_error err;
+    assert_int_equal(acd_eval_hulls(&m, &h, 1, &p, &r, &err), ACD_OK);
+    assert_true(r.iou == 1.0 && r.coverage == 1.0);
+    assert_true(r.mesh_to_hulls_max < 1e-12 && r.hulls_to_mesh_max < 1e-12);
+    assert_true(r.concavity_max < 1e-12);
+    acd_hull_free(&h);
+    free(v);
+    tm_free(&cube);
+}
+
 static void test_cube_split_in_two(void **state) {
     (void)state;
     double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
@@ -257,6 +281,7 @@ static void test_eval_parts_computes_hulls(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cube_is_its_own_decomposition),
+        cmocka_unit_test(test_unused_vertex_is_not_surface),
         cmocka_unit_test(test_cube_split_in_two),
         cmocka_unit_test(test_hull_misses_half_the_cube),
         cmocka_unit_test(test_l_prism_under_one_hull),

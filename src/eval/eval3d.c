@@ -401,7 +401,14 @@ static void dist_to_boundary(const acd_hullset *hs, const double *pts, size_t n,
 
 static acd_status surface_distances(const eval_ctx *c, const acd_mesh *mesh, acd_eval_report *rep, acd_error *err) {
     const acd_hullset *hs = c->hs;
-    size_t n = c->prm->surface_samples, nv = mesh->nvertices, nm = n + nv;
+    /* the mesh's vertices join its samples: only those a triangle uses (a vertex no face uses is
+     * not on the surface; a stray one read as the surface 3.5 from the hulls of a cube) */
+    unsigned char *used = calloc(mesh->nvertices ? mesh->nvertices : 1, 1);
+    if (!used) return acd_fail(err, ACD_ERR_NOMEM, "eval: out of memory for %zu vertices", mesh->nvertices);
+    for (size_t k = 0; k < 3 * mesh->ntriangles; k++) used[mesh->triangles[k]] = 1;
+    size_t nv = 0;
+    for (size_t v = 0; v < mesh->nvertices; v++) nv += used[v];
+    size_t n = c->prm->surface_samples, nm = n + nv;
     acd_status st = ACD_OK;
     double *hp = malloc((n ? n : 1) * 3 * sizeof(double));
     uint32_t *ht = malloc((nm ? nm : 1) * sizeof(uint32_t));
@@ -470,7 +477,8 @@ static acd_status surface_distances(const eval_ctx *c, const acd_mesh *mesh, acd
     /* mesh -> boundary: mean over area-uniform samples, max over samples and mesh vertices */
     st = sample_surface(mesh->vertices, mesh->triangles, mesh->ntriangles, n, c->prm->seed, 3, mp, ht, &marea, err);
     if (st != ACD_OK) goto done;
-    memcpy(mp + 3 * n, mesh->vertices, 3 * nv * sizeof(double));
+    for (size_t v = 0, k = n; v < mesh->nvertices; v++)
+        if (used[v]) memcpy(mp + 3 * k++, mesh->vertices + 3 * v, 3 * sizeof(double));
     dist_to_boundary(hs, mp, nm, dist, flag);
     size_t inexact = 0;
     for (size_t s = 0; s < nm; s++) inexact += (size_t)!flag[s];
@@ -509,6 +517,7 @@ done:
     free(mp);
     free(dist);
     free(flag);
+    free(used);
     return st;
 }
 
