@@ -767,6 +767,39 @@ static void test_triangles_enclose_ill_conditioned(void **state) {
     free(q);
 }
 
+/* fuzz_hull's 17 points at 1e40 with tiny ones mixed in (docs/results/geom3.md): qhull lost the
+ * point of greatest y, 1.2e-9 of the extent above its well-conditioned facet of normal (0, 1, 0),
+ * which hull_enclose trusted; an extreme point outside a plane now makes every facet checked (and
+ * here the hull rebuilt). Fails on the old code (the point above a plane by 1.2e-9). */
+static void test_lost_extreme_point(void **state) {
+    (void)state;
+    static const double p[51] = {
+        0x1.4b286a3b969c8p-1022, -0x1.0a06edc98c07bp-269, -0x1.a73ca4edabfc5p-978,
+        -0x1.7d1f8e1f2bf32p+125, 0x1.8484848c7c7c7p+133, -0x1.7c7d1f8e14848p+125,
+        0x1.848484848c7c7p+133, 0x1.8484848484848p+133, 0x1.8484848074848p+133,
+        0x1.8484848484848p+133, 0x0.0000ba2e8bc48p-1022, 0x0.0000000000100p-1022,
+        0x1.8484848484800p+133, 0x1.8484848484848p+133, 0x1.8484848484848p+133,
+        0x1.848483f484848p+133, 0x1.8484848484848p+133, 0x1.8484848484848p+133,
+        0x1.8484848484848p+133, 0x1.8484848484848p+133, 0x1.8484848484848p+133,
+        0x1.8482f48484848p+133, -0x1.8484848484848p+117, 0x1.7c7c7c7c7c7c7p-83,
+        0x1.a3a3a3a3a3ac7p-92, -0x1.7c7c73a3a3a3ap+125, -0x1.7c7c7c7c7c764p+125,
+        -0x1.7c7c7c7c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125,
+        0x1.84848c7c7c7c7p+133, 0x1.8074848484848p+133, 0x1.8484848484848p+133,
+        0x0.0000148484848p-1022, 0x1.8484800000000p+133, 0x1.8484848484848p+133,
+        0x1.8484848484848p+133, 0x1.f484848484848p+132, 0x1.8484848484848p+133,
+        0x1.8484848484848p+133, 0x1.8484848484848p+133, 0x1.8484848484848p+133,
+        0x1.8484848484848p+133, 0x1.8484848484848p-267, 0x1.8484848484848p+133,
+        -0x1.7c7c7c7c74848p+125, 0x1.a3a3ac73ac7c7p-92, -0x1.a3a3a3a3a3a3ap+116,
+        -0x1.7c7c764c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125,
+    };
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(p, 17, &h, &err), ACD_OK);
+    assert_mesh_encloses(&h, p, 17);
+    assert_encloses(&h, p, 17);
+    acd_hull_free(&h);
+}
+
 /* Many ill-conditioned facets at once: points on a sphere, a third of them with a twin 1e-11 to
  * 1e-7 away in a random direction (slivers of every conditioning, on both sides of hull_enclose's
  * trust test), shuffled in: every point inside every plane. (qhull's planes already pass this
@@ -849,6 +882,7 @@ int main(void) {
         cmocka_unit_test(test_volume_only),
         cmocka_unit_test(test_enclosure_ill_conditioned),
         cmocka_unit_test(test_triangles_enclose_ill_conditioned),
+        cmocka_unit_test(test_lost_extreme_point),
         cmocka_unit_test(test_enclosure_twins),
         cmocka_unit_test(test_take),
     };
