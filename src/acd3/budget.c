@@ -159,7 +159,10 @@ static void plan_free(plan *P) {
 }
 
 /* The sampled vertices: every k-th of the hull candidates, at most BUDGET_MAX_SCORED (every k-th
- * vertex when fewer than 4 are candidates); 0 when out of memory. */
+ * vertex when fewer than 4 are candidates, and every vertex of a part of at most BUDGET_MAX_SCORED,
+ * as before the candidates: a coarse part's concave vertices carry the planes that split it; on
+ * the budget sweep, 3torus.off and P.off, scored on candidates only, stayed above the merge
+ * tolerance and were cut on for minutes); 0 when out of memory. */
 static int plan_sample(const acd_mesh *m, plan *P) {
     size_t nv = m->nvertices;
     unsigned char *flag = malloc(nv ? nv : 1);
@@ -169,7 +172,7 @@ static int plan_sample(const acd_mesh *m, plan *P) {
         free(flag);
         return 0;
     }
-    int all = nc < 4;
+    int all = nc < 4 || nv <= BUDGET_MAX_SCORED;
     size_t pool = all ? nv : nc, stride = (pool + BUDGET_MAX_SCORED - 1) / BUDGET_MAX_SCORED;
     P->nsv = (pool + stride - 1) / stride;
     P->sv = malloc((P->nsv ? P->nsv : 1) * sizeof *P->sv);

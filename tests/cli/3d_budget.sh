@@ -201,6 +201,29 @@ d = json.load(open(sys.argv[2]))
 assert abs(d["scale"] - 3 ** 0.5) < 1e-9, d["scale"]  # the cube's enclosing sphere, not the strays'
 assert abs(sum(p["hull_volume"] for p in d["parts"]) - 8) < 1e-9, d["parts"]
 PY
+# a coarse torus (6 x 4 quads): its parts have fewer than 1000 vertices, and the plane search
+# scores them all; when it scored only the hull candidates (350052a), the search missed the planes
+# through the inner ring, pieces stayed above the merge tolerance and the pass cut on for minutes
+# (3torus.off and P.off of the budget sweep). 16 parts, every one within the tolerance (timeout:
+# a hang guard only, the run takes about a second)
+python3 - "$T/tor.off" <<'PY' || fail "torus generator"
+import math, sys
+n, m, R, r = 6, 4, 2.0, 0.7
+with open(sys.argv[1], "w") as f:
+    f.write("OFF\n%d %d 0\n" % (n * m, 2 * n * m))
+    for i in range(n):
+        for j in range(m):
+            u, v = 2 * math.pi * i / n, 2 * math.pi * j / m
+            f.write("%.17g %.17g %.17g\n" % ((R + r * math.cos(v)) * math.cos(u), (R + r * math.cos(v)) * math.sin(u), r * math.sin(v)))
+    for i in range(n):
+        for j in range(m):
+            a, b, c, d = i * m + j, (i + 1) % n * m + j, (i + 1) % n * m + (j + 1) % m, i * m + (j + 1) % m
+            f.write("3 %d %d %d\n3 %d %d %d\n" % (a, b, c, a, c, d))
+PY
+timeout 120 "$ACD" 3d "$T/tor.off" --budget 16 --no-merge --verify --json "$T/t.json" > /dev/null 2> "$T/t.err" ||
+  fail "coarse torus --budget 16 --no-merge --verify: exit $? $(tail -1 "$T/t.err")"
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert len(d['parts']) == 16 and all(d['tree'][p['node']]['leaf_reason'] == 'budget' for p in d['parts']), [(p['concavity'], d['tree'][p['node']]['leaf_reason']) for p in d['parts']]" "$T/t.json" ||
+  fail "coarse torus: not 16 budget parts"
 # --help tells the short form and what it implies
 "$ACD" 3d --help | grep -q -- "--budget N .*tightest hulls" || fail "--help: no --budget"
 "$ACD" 3d --help | grep -q -- "implies" || fail "--help: no implied options"
