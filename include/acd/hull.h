@@ -44,7 +44,9 @@ void acd_hull_free(acd_hull *h);
  * one owner. */
 acd_hull acd_hull_take(acd_hull *h);
 /* The volume of the same hull (acd_hull_compute's out.volume, the same bits: 0 unless dim 3)
- * without building it. */
+ * without building it; except where acd_hull_compute had to rebuild qhull's hull because qhull lost
+ * an input point (rare ill-conditioned sets, docs/results/geom3.md): then this is still qhull's
+ * volume, which may differ in the last digits (3.36084547e-7 against 3.36084586e-7 on the fuzz case). */
 acd_status acd_hull_volume(const double *points, size_t n, double *volume, acd_error *err);
 
 /* dim 3: max over facets of n.p + d (<= 0 inside; a lower bound of the signed distance outside).

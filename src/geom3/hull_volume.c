@@ -10,7 +10,8 @@
 
 #include "acd/hull.h"
 
-/* qhull's volume (acd_hull_volume: acd_hull_compute's volume, the same bits, without the hull). */
+/* qhull's volume (acd_hull_volume: acd_hull_compute's volume, the same bits unless that hull was
+ * rebuilt, include/acd/hull.h; without the hull). */
 static double hull_volume_pts(const double *pts, size_t n) {
     double v;
     return acd_hull_volume(pts, n, &v, NULL) == ACD_OK ? v : -1;
