@@ -674,7 +674,8 @@ static void hv_uv_sort(double *uv, double *tmp, size_t n) {
 }
 
 /* The corners of the planar hull of the nx points x (on a plane of normal dir) into out (their
- * indices in x); how many. uv: room for 6 * nx doubles. */
+ * indices in x, each at most once: at most nx); how many. uv: room for 6 * nx doubles, out for
+ * 2 * nx + 2 ints (the chains before duplicates are dropped). */
 static size_t hv_corners(const double *x, size_t nx, const double dir[3], double *uv, int *out) {
     double u[3];
     int k0 = fabs(dir[0]) < fabs(dir[1]) ? (fabs(dir[0]) < fabs(dir[2]) ? 0 : 2) : (fabs(dir[1]) < fabs(dir[2]) ? 1 : 2);
@@ -703,8 +704,17 @@ static size_t hv_corners(const double *x, size_t nx, const double dir[3], double
     }
 #undef HV_CROSS
     if (m > 1) m--; /* the first point again */
-    for (size_t i = 0; i < m; i++) h[i] = (int)uv[3 * h[i] + 2];
-    return m;
+    /* to indices in x, each once: the turns are rounded, so on a nearly collinear set a point can end
+     * on both chains (anchor.off's budget run: 29 corners of 27 points, which overran the caller's
+     * room for nx); a point taken has its index slot set to -1 */
+    size_t k = 0;
+    for (size_t i = 0; i < m; i++) {
+        double *s = uv + 3 * h[i] + 2;
+        if (*s < 0) continue;
+        h[k++] = (int)*s;
+        *s = -1;
+    }
+    return k;
 }
 
 /* Point i of P into the outside set of facet f (which it sees), f onto the pending stack (of top
