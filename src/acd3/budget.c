@@ -303,8 +303,7 @@ static int xpt_cmp(const void *x, const void *y) {
 /* The n points pts (3 each, on a plane of normal nrm) reduced in place to the vertices of their
  * convex hull in that plane (monotone chain, collinear points dropped; in floating point: the points
  * only feed a score), then, beyond BUDGET_SECTION_DIRS of them, to the extreme ones in those
- * directions, kept in their input order; tmp: room for 3 * n + 1 (the points sorted, then the
- * chains: 2 * n + 1); how many. Only the hull's vertices
+ * directions, kept in their input order; tmp: room for 2 * n + 1; how many. Only the hull's vertices
  * can be vertices of a 3D hull holding the section, so a side's hull is the same from them as from
  * every crossing (less what the directions leave). */
 static size_t section_hull(double *pts, size_t n, const double nrm[3], xpt *tmp) {
@@ -400,7 +399,7 @@ static int section_crossings(const acd_mesh *m, const uint32_t *edges, size_t ne
     size_t tot = 0, mx = 0;
     for (int i = 0; i < nq; i++) xb[i] = xe[i] = tot, tot += cnt[i], mx = cnt[i] > mx ? cnt[i] : mx;
     *xs = malloc((3 * tot + 3) * sizeof **xs);
-    xpt *tmp = malloc((3 * mx + 1) * sizeof *tmp);
+    xpt *tmp = malloc((2 * mx + 1) * sizeof *tmp);
     if (!*xs || !tmp) {
         free(hit), free(*xs), free(tmp);
         *xs = NULL;
