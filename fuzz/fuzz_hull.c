@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "acd/hull.h"
+#include "geom3/bvh.h"
 #include "geom3/edge_map.h"
 #include "geom3/plane_cut.h"
 
@@ -27,35 +28,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 /* Points x triangles up to which the winding number of every point is checked. */
 #define CHECK_WINDING_MAX 20000
 
-/* Closest distance from p to the triangle a, b, c (Ericson, Real-Time Collision Detection 5.1.5). */
-static double tri_dist(const double *p, const double *a, const double *b, const double *c) {
-    double ab[3], ac[3], ap[3], bp[3], cp[3], q[3];
-    for (int k = 0; k < 3; k++)
-        ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k], bp[k] = p[k] - b[k], cp[k] = p[k] - c[k];
-#define DOT(x, y) ((x)[0] * (y)[0] + (x)[1] * (y)[1] + (x)[2] * (y)[2])
-    double d1 = DOT(ab, ap), d2 = DOT(ac, ap), d3 = DOT(ab, bp), d4 = DOT(ac, bp), d5 = DOT(ab, cp), d6 = DOT(ac, cp);
-#undef DOT
-    double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
-    if (d1 <= 0 && d2 <= 0) memcpy(q, a, sizeof q);
-    else if (d3 >= 0 && d4 <= d3) memcpy(q, b, sizeof q);
-    else if (d6 >= 0 && d5 <= d6) memcpy(q, c, sizeof q);
-    else if (vc <= 0 && d1 >= 0 && d3 <= 0)
-        for (int k = 0; k < 3; k++) q[k] = a[k] + d1 / (d1 - d3) * ab[k];
-    else if (vb <= 0 && d2 >= 0 && d6 <= 0)
-        for (int k = 0; k < 3; k++) q[k] = a[k] + d2 / (d2 - d6) * ac[k];
-    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-        for (int k = 0; k < 3; k++) q[k] = b[k] + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c[k] - b[k]);
-    else
-        for (int k = 0; k < 3; k++) q[k] = a[k] + (vb * ab[k] + vc * ac[k]) / (va + vb + vc);
-    return sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
-}
-
 /* Every point within rtol (relative to the extent) of the triangles or inside them: the solid
  * angles of the triangles seen from it sum to 4 pi (Van Oosterom and Strackee), in coordinates
  * normalised by the box (centre, extent ext) so that any scale behaves the same. */
 static void check_winding(const acd_hull *h, const double *p, size_t n, const double *cen, double ext, double rtol) {
     for (size_t i = 0; i < n; i++) {
-        double q[3], near = INFINITY, omega = 0;
+        double q[3], cq[3], near = INFINITY, omega = 0;
         for (int k = 0; k < 3; k++) q[k] = (p[3 * i + k] - cen[k]) / ext;
         for (size_t t = 0; t < h->ntriangles; t++) {
             double v[3][3], r[3][3], l[3];
@@ -66,7 +44,7 @@ static void check_winding(const acd_hull *h, const double *p, size_t n, const do
                 }
                 l[j] = sqrt(r[j][0] * r[j][0] + r[j][1] * r[j][1] + r[j][2] * r[j][2]);
             }
-            near = fmin(near, tri_dist(q, v[0], v[1], v[2]));
+            near = fmin(near, sqrt(acd_closest_point_triangle(q, v[0], v[1], v[2], cq)));
             double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
                          r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
             double d01 = r[0][0] * r[1][0] + r[0][1] * r[1][1] + r[0][2] * r[1][2];

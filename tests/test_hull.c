@@ -10,6 +10,7 @@
 #include "acd/hull.h"
 #include "core/predicates.h"
 #include "core/rng.h"
+#include "geom3/bvh.h"
 
 static double extent_of(const double *p, size_t n) {
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
@@ -498,6 +499,25 @@ static void assert_encloses(const acd_hull *h, const double *pts, size_t n) {
     assert_true(worst <= tol);
 }
 
+
+/* The six points base and n - 6 random convex combinations of them (seed 3), the six at slots
+ * 37 + 61 k: points checked through several levels of hull_enclose's tree. Owned by the caller. */
+static double *six_and_combinations(const double *base, size_t n) {
+    double *q = malloc(3 * n * sizeof *q);
+    assert_non_null(q);
+    acd_rng r;
+    acd_rng_seed(&r, 3);
+    for (size_t i = 0; i < n; i++) {
+        double wsum = 0, wt[6];
+        for (int k = 0; k < 6; k++) wsum += wt[k] = acd_rng_uniform(&r) * acd_rng_uniform(&r);
+        for (int c = 0; c < 3; c++) {
+            q[3 * i + c] = 0;
+            for (int k = 0; k < 6; k++) q[3 * i + c] += wt[k] / wsum * base[3 * k + c];
+        }
+    }
+    for (int k = 0; k < 6; k++) memcpy(q + 3 * (size_t)(37 + 61 * k), base + 3 * k, 3 * sizeof(double));
+    return q;
+}
 /* fuzz_hull's six points (docs/results/fuzz.md): C and D 1e-10 apart make the plane of facet
  * (C, D, A) ill-conditioned, and qhull took B as coplanar with it while B lies 1.1e-6 (1.2e-7 of the
  * extent) outside it. Every plane encloses every point (the hull is rebuilt since 2026-11-26:
@@ -541,19 +561,7 @@ static void test_enclosure_ill_conditioned(void **state) {
     /* with 400 convex combinations of the six (the points checked through several levels of
      * hull_enclose's tree), in shuffled order: still every point inside every plane */
     enum { NP = 406 };
-    double *q = malloc(3 * NP * sizeof *q);
-    assert_non_null(q);
-    acd_rng r;
-    acd_rng_seed(&r, 3);
-    for (size_t i = 0; i < NP; i++) {
-        double wsum = 0, wt[6];
-        for (int k = 0; k < 6; k++) wsum += wt[k] = acd_rng_uniform(&r) * acd_rng_uniform(&r);
-        for (int c = 0; c < 3; c++) {
-            q[3 * i + c] = 0;
-            for (int k = 0; k < 6; k++) q[3 * i + c] += wt[k] / wsum * base[3 * k + c];
-        }
-    }
-    for (int k = 0; k < 6; k++) memcpy(q + 3 * (size_t)(37 + 61 * k), base + 3 * k, 3 * sizeof(double));
+    double *q = six_and_combinations(base, NP);
     acd_hull h;
     acd_error err;
     assert_int_equal(acd_hull_compute(q, NP, &h, &err), ACD_OK);
@@ -561,30 +569,6 @@ static void test_enclosure_ill_conditioned(void **state) {
     assert_encloses(&h, q, NP);
     acd_hull_free(&h);
     free(q);
-}
-
-/* Closest distance from p to the triangle a, b, c (Ericson, Real-Time Collision Detection 5.1.5). */
-static double tri_dist(const double *p, const double *a, const double *b, const double *c) {
-    double ab[3], ac[3], ap[3], q[3];
-    for (int k = 0; k < 3; k++) ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k];
-#define DOT(x, y) ((x)[0] * (y)[0] + (x)[1] * (y)[1] + (x)[2] * (y)[2])
-    double d1 = DOT(ab, ap), d2 = DOT(ac, ap);
-    double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]}, cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-    double d3 = DOT(ab, bp), d4 = DOT(ac, bp), d5 = DOT(ab, cp), d6 = DOT(ac, cp);
-    double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
-    if (d1 <= 0 && d2 <= 0) memcpy(q, a, sizeof q);
-    else if (d3 >= 0 && d4 <= d3) memcpy(q, b, sizeof q);
-    else if (d6 >= 0 && d5 <= d6) memcpy(q, c, sizeof q);
-    else if (vc <= 0 && d1 >= 0 && d3 <= 0)
-        for (int k = 0; k < 3; k++) q[k] = a[k] + d1 / (d1 - d3) * ab[k];
-    else if (vb <= 0 && d2 >= 0 && d6 <= 0)
-        for (int k = 0; k < 3; k++) q[k] = a[k] + d2 / (d2 - d6) * ac[k];
-    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-        for (int k = 0; k < 3; k++) q[k] = b[k] + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c[k] - b[k]);
-    else
-        for (int k = 0; k < 3; k++) q[k] = a[k] + vb / (va + vb + vc) * ab[k] + vc / (va + vb + vc) * ac[k];
-#undef DOT
-    return sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
 }
 
 /* The hull as a mesh (what the OBJ holds) encloses every input point: vertices are input points,
@@ -640,13 +624,13 @@ static void assert_mesh_encloses(const acd_hull *h, const double *pts, size_t n)
     for (int k = 0; k < 3; k++) cen[k] = 0.5 * (lo[k] + hi[k]);
     const double pi = 3.14159265358979323846;
     for (size_t i = 0; i < n; i++) {
-        double p[3], near = INFINITY, omega = 0;
+        double p[3], cq[3], near = INFINITY, omega = 0;
         for (int k = 0; k < 3; k++) p[k] = (pts[3 * i + k] - cen[k]) / ext;
         for (size_t t = 0; t < h->ntriangles; t++) {
             double v[3][3];
             for (int j = 0; j < 3; j++)
                 for (int k = 0; k < 3; k++) v[j][k] = (h->vertices[3 * h->triangles[3 * t + j] + k] - cen[k]) / ext;
-            near = fmin(near, tri_dist(p, v[0], v[1], v[2]));
+            near = fmin(near, sqrt(acd_closest_point_triangle(p, v[0], v[1], v[2], cq)));
             double r[3][3], l[3];
             for (int j = 0; j < 3; j++) {
                 for (int k = 0; k < 3; k++) r[j][k] = v[j][k] - p[k];
@@ -742,19 +726,7 @@ static void test_triangles_enclose_ill_conditioned(void **state) {
         cnt[i]++;
     }
     enum { NP = 406 };
-    double *q = malloc(3 * NP * sizeof *q);
-    assert_non_null(q);
-    acd_rng r;
-    acd_rng_seed(&r, 3);
-    for (size_t i = 0; i < NP; i++) {
-        double wsum = 0, wt[6];
-        for (int k = 0; k < 6; k++) wsum += wt[k] = acd_rng_uniform(&r) * acd_rng_uniform(&r);
-        for (int c = 0; c < 3; c++) {
-            q[3 * i + c] = 0;
-            for (int k = 0; k < 6; k++) q[3 * i + c] += wt[k] / wsum * base[3 * k + c];
-        }
-    }
-    for (int k = 0; k < 6; k++) memcpy(q + 3 * (size_t)(37 + 61 * k), base + 3 * k, 3 * sizeof(double));
+    double *q = six_and_combinations(base, NP);
     acd_hull h;
     acd_error err;
     assert_int_equal(acd_hull_compute(q, NP, &h, &err), ACD_OK);

@@ -119,19 +119,7 @@ fi
 # an open wavy sheet: its hole closed by a flat cap that the sheet crosses, so solid mode cannot
 # split the crossing part; the result is refused as bad input (exit 2) naming the crossing faces,
 # the outputs still written; surface mode takes the sheet as it is
-python3 - "$T/wavy.obj" <<'PY' || fail "wavy sheet generator"
-import math, sys
-n = 12
-with open(sys.argv[1], "w") as f:
-    for j in range(n + 1):
-        for i in range(n + 1):
-            x, y = i / n, j / n
-            f.write("v %.17g %.17g %.17g\n" % (x, y, 0.3 * math.sin(3 * math.pi * x) * math.sin(math.pi * y)))
-    for j in range(n):
-        for i in range(n):
-            a = j * (n + 1) + i + 1
-            f.write("f %d %d %d\nf %d %d %d\n" % (a, a + 1, a + n + 2, a, a + n + 2, a + n + 1))
-PY
+python3 "$SRC/tests/cli/wavy_sheet.py" "$T/wavy.obj" || fail "wavy sheet generator"
 "$ACD" 3d "$T/wavy.obj" -t 0.2 -o "$T/wavy_h.obj" >/dev/null 2>"$T/wavy.err"
 rc=$?
 [ $rc -eq 2 ] || fail "wavy sheet (solid): exit $rc, expected 2 $(cat "$T/wavy.err")"

@@ -100,19 +100,7 @@ check_usage "--no-merge with --merge-parts" --budget $N --no-merge --merge-parts
 # written), as solid mode refuses it at a small tau (3d_basic.sh); before, the budget piece kept its
 # bound above the merge tolerance (exit 3 under --verify, exit 0 without), and an input part the
 # pass could not cut at all kept its tree measure and read as within tolerance (exit 0, --verify too)
-python3 - "$T/wavy.obj" <<'PY' || fail "wavy sheet generator"
-import math, sys
-n = 12
-with open(sys.argv[1], "w") as f:
-    for j in range(n + 1):
-        for i in range(n + 1):
-            x, y = i / n, j / n
-            f.write("v %.17g %.17g %.17g\n" % (x, y, 0.3 * math.sin(3 * math.pi * x) * math.sin(math.pi * y)))
-    for j in range(n):
-        for i in range(n):
-            a = j * (n + 1) + i + 1
-            f.write("f %d %d %d\nf %d %d %d\n" % (a, a + 1, a + n + 2, a, a + n + 2, a + n + 1))
-PY
+python3 "$SRC/tests/cli/wavy_sheet.py" "$T/wavy.obj" || fail "wavy sheet generator"
 for v in "" --verify; do
   "$ACD" 3d "$T/wavy.obj" --budget 4 $v -o "$T/w.obj" --json "$T/w.json" > /dev/null 2> "$T/w.err"
   rc=$?
