@@ -10,6 +10,7 @@
 #include "acd3/merge.h"
 #include "acd3/resolve.h"
 #include "core/error.h"
+#include "geom3/edge_map.h"
 #include "geom3/hull_volume.h"
 #include "geom3/pca.h"
 #include "geom3/plane_cut.h"
@@ -509,6 +510,18 @@ static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_
     }
     acd_error ce;
     X->cs = acd_plane_cut_flags(&A->mesh, &X->cp, ACD_PLANE_CUT_DROP_SPECKS, &X->cr, &ce);
+    /* every piece must be closed and consistently oriented, as decompose.c and merge.c ask of their
+     * cuts: rounding can leave a piece with a triangle repeating a vertex (fuzz_acd3d_tight, budget 2
+     * on a pinched sphere: a budget part not closed); such a cut is skipped */
+    for (size_t p = 0; X->cs == ACD_OK && p < X->cr.npieces; p++) {
+        const acd_mesh *pm = &X->cr.pieces[p].mesh;
+        if (X->cr.pieces[p].closed) continue;
+        acd_status es = acd_edge_map_closed(pm->triangles, pm->ntriangles, NULL, NULL);
+        if (es != ACD_OK) {
+            acd_cut_result_free(&X->cr);
+            X->cs = es == ACD_ERR_NOMEM ? ACD_ERR_NOMEM : ACD_ERR_DEGENERATE;
+        }
+    }
 }
 
 /* A cut's verdict from its pieces' volumes pv and hull volumes hv (-1: no hull): good when at
