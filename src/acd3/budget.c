@@ -10,7 +10,6 @@
 #include "acd3/merge.h"
 #include "acd3/resolve.h"
 #include "core/error.h"
-#include "geom3/edge_map.h"
 #include "geom3/hull_volume.h"
 #include "geom3/pca.h"
 #include "geom3/plane_cut.h"
@@ -513,14 +512,11 @@ static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_
     /* every piece must be closed and consistently oriented, as decompose.c and merge.c ask of their
      * cuts: rounding can leave a piece with a triangle repeating a vertex (fuzz_acd3d_tight, budget 2
      * on a pinched sphere: a budget part not closed); such a cut is skipped */
-    for (size_t p = 0; X->cs == ACD_OK && p < X->cr.npieces; p++) {
-        const acd_mesh *pm = &X->cr.pieces[p].mesh;
-        if (X->cr.pieces[p].closed) continue;
-        acd_status es = acd_edge_map_closed(pm->triangles, pm->ntriangles, NULL, NULL);
-        if (es != ACD_OK) {
-            acd_cut_result_free(&X->cr);
-            X->cs = es == ACD_ERR_NOMEM ? ACD_ERR_NOMEM : ACD_ERR_DEGENERATE;
-        }
+    if (X->cs != ACD_OK) return;
+    acd_status es = acd_cut_result_check_closed(&X->cr);
+    if (es != ACD_OK) {
+        acd_cut_result_free(&X->cr);
+        X->cs = es == ACD_ERR_NOMEM ? ACD_ERR_NOMEM : ACD_ERR_DEGENERATE;
     }
 }
 

@@ -13,7 +13,6 @@
 #include "core/u32vec.h"
 #include "acd3/volume_plane.h"
 #include "geom3/bvh.h"
-#include "geom3/edge_map.h"
 #include "geom3/plane_cut.h"
 #include "geom3/vec3.h"
 
@@ -953,12 +952,8 @@ static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_b
         /* every piece must be closed and consistently oriented, as decompose.c asks of its cuts: on
          * a part whose distinct vertices share a point (an input pinched at a vertex) the cut may
          * leave a piece with an edge used twice in one direction; such a cut is refused */
-        for (size_t p = 0; p < cr.npieces && ret == 1; p++) {
-            const acd_mesh *pm = &cr.pieces[p].mesh;
-            if (cr.pieces[p].closed) continue;
-            acd_status es = acd_edge_map_closed(pm->triangles, pm->ntriangles, NULL, NULL);
-            if (es != ACD_OK) ret = es == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
-        }
+        acd_status es = acd_cut_result_check_closed(&cr);
+        if (es != ACD_OK) ret = es == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
         if (ret != 1) {
             acd_cut_result_free(&cr);
             break;

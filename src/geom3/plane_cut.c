@@ -153,6 +153,16 @@ double acd_geom3_signed_volume(const acd_mesh *m) {
     return vol / 6.0;
 }
 
+acd_status acd_cut_result_check_closed(const acd_cut_result *r) {
+    for (size_t p = 0; p < r->npieces; p++) {
+        const acd_mesh *pm = &r->pieces[p].mesh;
+        if (r->pieces[p].closed) continue;
+        acd_status es = acd_edge_map_closed(pm->triangles, pm->ntriangles, NULL, NULL);
+        if (es != ACD_OK) return es;
+    }
+    return ACD_OK;
+}
+
 void acd_cut_result_free(acd_cut_result *r) {
     if (!r) return;
     for (size_t i = 0; i < r->npieces; i++) {

@@ -72,6 +72,11 @@ acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsig
 acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const acd_cut_plane *pl, unsigned flags,
                              acd_cut_result *out, acd_error *err);
 void acd_cut_result_free(acd_cut_result *r);
+/* Whether every piece of r is closed and consistently oriented (acd_edge_map_check_closed; a
+ * piece the cut already checked, closed = 1, is not checked again): ACD_OK, else the first failing
+ * piece's status (ACD_ERR_NOMEM when the check ran out of memory). Rounding can leave a piece with
+ * a triangle repeating a vertex, or on a pinched part an edge used twice in one direction. */
+acd_status acd_cut_result_check_closed(const acd_cut_result *r);
 
 /* Signed volume of a closed mesh (divergence theorem about the bounding-box centre). */
 double acd_geom3_signed_volume(const acd_mesh *m);
