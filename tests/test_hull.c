@@ -500,6 +500,14 @@ static void assert_encloses(const acd_hull *h, const double *pts, size_t n) {
 }
 
 
+/* fuzz_hull's six points (docs/results/fuzz.md "Hull misses a point"): A, B, C, D, E, F. */
+static const double ill_six[18] = {0, 0, -9.585035187470353,
+                                   -9.586051653338757, -9.586051653338757, -9.586052776444209,
+                                   -9.586051653338757, -9.586051653338757, -9.586051653338757,
+                                   -9.586051653338757, -9.586051653242881, -9.586051653338757,
+                                   0, -2.184312143644803e-08, 0,
+                                   0, 7.55684574833281e-12, 7.556001431015457e-12};
+
 /* The six points base and n - 6 random convex combinations of them (seed 3), the six at slots
  * 37 + 61 k: points checked through several levels of hull_enclose's tree. Owned by the caller. */
 static double *six_and_combinations(const double *base, size_t n) {
@@ -518,6 +526,7 @@ static double *six_and_combinations(const double *base, size_t n) {
     for (int k = 0; k < 6; k++) memcpy(q + 3 * (size_t)(37 + 61 * k), base + 3 * k, 3 * sizeof(double));
     return q;
 }
+
 /* fuzz_hull's six points (docs/results/fuzz.md): C and D 1e-10 apart make the plane of facet
  * (C, D, A) ill-conditioned, and qhull took B as coplanar with it while B lies 1.1e-6 (1.2e-7 of the
  * extent) outside it. Every plane encloses every point (the hull is rebuilt since 2026-11-26:
@@ -525,12 +534,7 @@ static double *six_and_combinations(const double *base, size_t n) {
  * acd_hull_volume sees it. */
 static void test_enclosure_ill_conditioned(void **state) {
     (void)state;
-    const double base[18] = {0, 0, -9.585035187470353,
-                             -9.586051653338757, -9.586051653338757, -9.586052776444209,
-                             -9.586051653338757, -9.586051653338757, -9.586051653338757,
-                             -9.586051653338757, -9.586051653242881, -9.586051653338757,
-                             0, -2.184312143644803e-08, 0,
-                             0, 7.55684574833281e-12, 7.556001431015457e-12};
+    const double *base = ill_six;
     const double scales[4] = {1, 1e-90, 1e90, 1}, shifts[4] = {0, 0, 0, 3.5};
     for (int c = 0; c < 4; c++) {
         double p[18];
@@ -677,12 +681,7 @@ static double exact_volume(const double *p, size_t n) {
  * in all 720 orders at scale 1, and with the 400 convex combinations of test_enclosure_ill_conditioned. */
 static void test_triangles_enclose_ill_conditioned(void **state) {
     (void)state;
-    const double base[18] = {0, 0, -9.585035187470353,
-                             -9.586051653338757, -9.586051653338757, -9.586052776444209,
-                             -9.586051653338757, -9.586051653338757, -9.586051653338757,
-                             -9.586051653338757, -9.586051653242881, -9.586051653338757,
-                             0, -2.184312143644803e-08, 0,
-                             0, 7.55684574833281e-12, 7.556001431015457e-12};
+    const double *base = ill_six;
     const double scales[7] = {1, 1e-3, 1e5, 1e-90, 1e90, 1, 1e-30}, shifts[7] = {0, 0, 0, 0, 0, 3.5, -7e-30};
     for (int c = 0; c < 7; c++) {
         double p[18];
