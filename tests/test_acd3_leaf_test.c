@@ -403,6 +403,87 @@ static void test_bad_stop(void **state) {
     acd_mesh_free(&m);
 }
 
+/* acd3_leaf_test_keep on m (its hull h): the verdict and bound of acd3_leaf_test, bit for bit; the
+ * tree handed out when the test got to d_out (built over m's own arrays), the facet table only when
+ * accepted: every facet of h, sorted, each bound within tau, the largest the d_out of
+ * acd3_merge_hull_reach over that tree (so at most the bound). Returns the verdict. */
+static int keep_checked(const acd_mesh *m, double tau, int expect_tree) {
+    acd_hull h;
+    acd_mesh hm;
+    hull_of(m, &h, &hm);
+    acd_error err;
+    int ok = -1, ok2 = -1;
+    double bound, bound2;
+    assert_int_equal(acd3_leaf_test(m, &h, tau, UINT32_MAX, &ok, &bound, &err), ACD_OK);
+    acd_bvh bvh;
+    acd3_facet_table tb;
+    assert_int_equal(acd3_leaf_test_keep(m, &h, tau, UINT32_MAX, &ok2, &bound2, &bvh, &tb, &err), ACD_OK);
+    assert_int_equal(ok, ok2);
+    assert_memory_equal(&bound, &bound2, sizeof bound);
+    assert_int_equal(bvh.nnodes > 0, expect_tree);
+    if (expect_tree) {
+        assert_ptr_equal(bvh.vertices, m->vertices);
+        assert_ptr_equal(bvh.triangles, m->triangles);
+        assert_int_equal(bvh.ntriangles, m->ntriangles);
+    }
+    if (!ok2) {
+        assert_null(tb.key);
+    } else {
+        assert_non_null(tb.key);
+        assert_int_equal(tb.n, h.ntriangles);
+        assert_true(tb.tau == tau);
+        double worst = 0;
+        for (size_t f = 0; f < tb.n; f++) {
+            assert_true(tb.ub[f] <= tau);
+            worst = fmax(worst, tb.ub[f]);
+            if (f) assert_true(memcmp(tb.key + 9 * (f - 1), tb.key + 9 * f, 9 * sizeof(double)) < 0);
+        }
+        for (size_t t = 0; t < h.ntriangles; t++) { /* every facet of h is in the table */
+            const uint32_t *tr = h.triangles + 3 * t;
+            int found = 0;
+            for (size_t f = 0; f < tb.n && !found; f++) {
+                int all = 1;
+                for (int c = 0; c < 3 && all; c++) {
+                    int in = 0;
+                    for (int d = 0; d < 3; d++) in |= memcmp(tb.key + 9 * f + 3 * d, h.vertices + 3 * tr[c], 3 * sizeof(double)) == 0;
+                    all = in;
+                }
+                found = all;
+            }
+            assert_true(found);
+        }
+        assert_true(worst == acd3_merge_hull_reach(&bvh, &h, tau));
+        assert_true(worst <= bound);
+    }
+    acd3_facet_table_free(&tb);
+    acd_bvh_free(&bvh);
+    acd_hull_free(&h);
+    return ok2;
+}
+
+/* What the budget pass keeps for the merge (acd3_leaf_test_keep): the shallow block is accepted (tree
+ * and table), the bent slab is refused by d_out (its tree, no table), the deep dent by d_in (neither:
+ * the test stops before building a tree). */
+static void test_keep_tree_and_table(void **state) {
+    (void)state;
+    hf s = {10, 3, 0.2, 0.95, 8, 5, 1.5};
+    acd_mesh m;
+    heightfield(&m, &s, 20);
+    assert_int_equal(keep_checked(&m, 1.0, 1), 1);
+    acd_mesh_free(&m);
+    hf deep = {10, 3, 0.2, 1.6, 8, 5, 1.5};
+    heightfield(&m, &deep, 20);
+    assert_int_equal(keep_checked(&m, 1.0, 0), 0);
+    acd_mesh_free(&m);
+    enum { N = 8 };
+    unsigned char occ[N * N];
+    for (int y = 0; y < N; y++)
+        for (int x = 0; x < N; x++) occ[y * N + x] = x == 0 || y == 0;
+    assert_true(mg_voxels(&m, occ, N, N, 1));
+    assert_int_equal(keep_checked(&m, 1.0, 1), 0);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_overreport_kept_whole),
@@ -412,6 +493,7 @@ int main(void) {
         cmocka_unit_test(test_open_cap),
         cmocka_unit_test(test_threads),
         cmocka_unit_test(test_bad_stop),
+        cmocka_unit_test(test_keep_tree_and_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

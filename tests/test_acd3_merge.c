@@ -149,6 +149,95 @@ static void test_kept_hulls_same_result(void **state) {
     acd_mesh_free(&in);
 }
 
+/* acd3_merge_adjacent_kept with the parts' trees and facet tables given (the budget pass's leaf tests
+ * hand them over): all of them, some, a tree over another part's arrays and tables made at another
+ * tau (both not used) give the parts and bounds of acd3_merge_adjacent, bit for bit, at 1 and 2
+ * threads. The trees and tables are read, not taken. And a table is really used: one whose bounds
+ * are raised (still within tau) raises the bound of the join that reuses one of its facets (the step's
+ * joint hull keeps a side facet of a part's hull). */
+static void test_kept_trees_tables_same_result(void **state) {
+    (void)state;
+    acd_mesh parts[4], in;
+    l_and_step(parts, &in);
+    acd_error err;
+    acd_hull H[4];
+    acd_bvh B[4];
+    const double taus[2] = {0.9, 1.5}, tol = 1e-9;
+    acd3_facet_table T[2][4];
+    for (int k = 0; k < 4; k++) {
+        assert_int_equal(acd_hull_compute(parts[k].vertices, parts[k].nvertices, &H[k], &err), ACD_OK);
+        assert_int_equal(acd_bvh_build(&B[k], parts[k].vertices, parts[k].nvertices, parts[k].triangles,
+                                       parts[k].ntriangles, &err), ACD_OK);
+        for (int t = 0; t < 2; t++) {
+            double reach = acd3_merge_hull_reach_table(&B[k], &H[k], taus[t], &T[t][k]);
+            assert_true(reach <= taus[t]); /* a box part: its hull's facets lie on it (bounded within tau) */
+            assert_non_null(T[t][k].key);
+            assert_int_equal(T[t][k].n, H[k].ntriangles);
+            assert_true(T[t][k].tau == taus[t]);
+            for (size_t f = 1; f < T[t][k].n; f++) /* sorted, no facet twice */
+                assert_true(memcmp(T[t][k].key + 9 * (f - 1), T[t][k].key + 9 * f, 9 * sizeof(double)) != 0);
+        }
+    }
+    const acd3_merge_opts opts[4] = {{.by_volume = 1, .stop_at = 3}, {.by_volume = 1}, {.by_volume = 0}, {.stop_at = 3}};
+    for (int o = 0; o < 4; o++)
+        for (int t = 0; t < 2; t++) {
+            acd3_merge_result ref;
+            assert_int_equal(acd3_merge_adjacent(&in, parts, 4, taus[t], tol, &opts[o], 1, &ref, &err), ACD_OK);
+            assert_true(ref.merges >= 1);
+            acd3_merge_kept sets[4][4];
+            memset(sets, 0, sizeof sets);
+            for (int k = 0; k < 4; k++) {
+                sets[0][k] = (acd3_merge_kept){&H[k], &B[k], &T[t][k]};             /* all */
+                if (k == 1 || k == 2) sets[1][k] = (acd3_merge_kept){&H[k], &B[k], &T[t][k]}; /* some */
+                sets[2][k] = (acd3_merge_kept){&H[k], &B[3 - k], &T[t][3 - k]}; /* others' trees: not used */
+                sets[3][k] = (acd3_merge_kept){&H[k], &B[k], &T[1 - t][k]};     /* another tau: not used */
+            }
+            for (int s = 0; s < 4; s++)
+                for (int th = 1; th <= 2; th++) {
+                    acd3_merge_result r;
+                    assert_int_equal(acd3_merge_adjacent_kept(&in, parts, sets[s], 4, taus[t], tol, &opts[o], th, &r, &err),
+                                     ACD_OK);
+                    assert_same_result(&ref, &r, 4);
+                    acd3_merge_result_free(&r);
+                }
+            acd3_merge_result_free(&ref);
+        }
+    /* read, not taken: still whole (the merge used them and did not free them) */
+    for (int k = 0; k < 4; k++) {
+        assert_true(B[k].nnodes > 0);
+        assert_ptr_equal(B[k].vertices, parts[k].vertices);
+        assert_non_null(T[0][k].key);
+    }
+    /* used: the tables' bounds raised to 0.89 (within tau 0.9: trusted), the step joined with the
+     * bound 0.89 where its own (an upper bound of its reach 0.75) is below */
+    {
+        const acd3_merge_opts bo = {.by_volume = 0};
+        acd3_merge_result ref, r;
+        assert_int_equal(acd3_merge_adjacent(&in, parts, 4, 0.9, tol, &bo, 1, &ref, &err), ACD_OK);
+        acd3_merge_kept raised[4];
+        for (int k = 0; k < 4; k++) {
+            for (size_t f = 0; f < T[0][k].n; f++) T[0][k].ub[f] = 0.89;
+            raised[k] = (acd3_merge_kept){&H[k], &B[k], &T[0][k]};
+        }
+        assert_int_equal(acd3_merge_adjacent_kept(&in, parts, raised, 4, 0.9, tol, &bo, 1, &r, &err), ACD_OK);
+        assert_int_equal(r.ngroups, ref.ngroups);
+        double bref = 0, br = 0;
+        for (size_t g = 0; g < ref.ngroups; g++) bref = fmax(bref, ref.bound[g]);
+        for (size_t g = 0; g < r.ngroups; g++) br = fmax(br, r.bound[g]);
+        assert_true(bref < 0.89);
+        assert_true(br == 0.89);
+        acd3_merge_result_free(&ref);
+        acd3_merge_result_free(&r);
+    }
+    for (int k = 0; k < 4; k++) {
+        for (int t = 0; t < 2; t++) acd3_facet_table_free(&T[t][k]);
+        acd_bvh_free(&B[k]);
+        acd_hull_free(&H[k]);
+        acd_mesh_free(&parts[k]);
+    }
+    acd_mesh_free(&in);
+}
+
 /* Distance from p to the nearest of the triangles (brute force). */
 static double dist_tris(const double *v, const uint32_t *t, size_t nt, const double p[3]) {
     double best = INFINITY, q[3];
@@ -215,6 +304,7 @@ int main(void) {
         cmocka_unit_test(test_volume_order_skips_refused),
         cmocka_unit_test(test_hull_reach_near_tau),
         cmocka_unit_test(test_kept_hulls_same_result),
+        cmocka_unit_test(test_kept_trees_tables_same_result),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

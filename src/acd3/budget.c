@@ -30,6 +30,8 @@ typedef struct atom {
     acd_hull *cut_hulls; /* the pieces' hulls (cut.npieces, owned), or NULL */
     acd_hull hull;   /* pieces: the hull (acd_hull_compute of mesh's vertices) while have_hull */
     int have_hull;
+    acd_bvh bvh;     /* pieces: the tree and the hull's facet table its leaf test built (empty when */
+    acd3_facet_table table; /* it did not get to them), handed out with the hull for the merge */
     const acd_hull *kept; /* input parts: the caller's hull of the part (read only), or NULL */
     double plane[4];
     acd_status st;
@@ -478,9 +480,10 @@ static void prepare(const budget_state *S, size_t i) {
     A->ok = 1;
     A->bound = 0;
     if (H->dim == 3) {
-        int acc = 0;
+        int acc = 0, own = H == &A->hull; /* a piece: its tree and table kept with its hull */
         acd_error e;
-        A->st = acd3_leaf_test(&A->mesh, H, S->limit, UINT32_MAX, &acc, &A->bound, &e);
+        A->st = acd3_leaf_test_keep(&A->mesh, H, S->limit, UINT32_MAX, &acc, &A->bound, own ? &A->bvh : NULL,
+                                    own ? &A->table : NULL, &e);
         A->ok = acc;
     }
     if (H == &T) acd_hull_free(&T);
@@ -721,6 +724,12 @@ void acd3_budget_result_free(acd3_budget_result *r) {
     if (r->new_hull)
         for (size_t k = 0; k < r->nnew; k++) acd_hull_free(&r->new_hull[k]);
     free(r->new_hull);
+    if (r->new_bvh)
+        for (size_t k = 0; k < r->nnew; k++) acd_bvh_free(&r->new_bvh[k]);
+    free(r->new_bvh);
+    if (r->new_table)
+        for (size_t k = 0; k < r->nnew; k++) acd3_facet_table_free(&r->new_table[k]);
+    free(r->new_table);
     memset(r, 0, sizeof *r);
 }
 
@@ -824,6 +833,8 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
         atom_cut_free(P);
         acd_hull_free(&P->hull); /* cut: its hull is no part's */
         P->have_hull = 0;
+        acd_bvh_free(&P->bvh);
+        acd3_facet_table_free(&P->table);
         P->alive = 0;
         nalive += np - 1;
         out->cuts++;
@@ -838,8 +849,10 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
         out->new_volume = malloc(nnew * sizeof *out->new_volume);
         out->new_bound = malloc(nnew * sizeof *out->new_bound);
         out->new_hull = calloc(nnew, sizeof *out->new_hull);
+        out->new_bvh = calloc(nnew, sizeof *out->new_bvh);
+        out->new_table = calloc(nnew, sizeof *out->new_table);
         if (!out->new_parts || !out->new_parent || !out->new_plane || !out->new_volume || !out->new_bound ||
-            !out->new_hull)
+            !out->new_hull || !out->new_bvh || !out->new_table)
             st = acd_fail(err, ACD_ERR_NOMEM, "budget: out of memory");
     }
     if (st == ACD_OK) {
@@ -858,6 +871,10 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
             if (S.a[i].alive && S.a[i].have_hull) { /* a part: its hull out (a piece cut again has none) */
                 out->new_hull[k] = acd_hull_take(&S.a[i].hull);
                 S.a[i].have_hull = 0;
+                out->new_bvh[k] = S.a[i].bvh; /* with its tree and facet table (over the same arrays) */
+                out->new_table[k] = S.a[i].table;
+                memset(&S.a[i].bvh, 0, sizeof S.a[i].bvh);
+                memset(&S.a[i].table, 0, sizeof S.a[i].table);
             }
         }
         for (size_t i = 0; i < S.n; i++) {
@@ -868,6 +885,8 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
     for (size_t i = 0; i < S.n; i++) {
         atom_cut_free(&S.a[i]);
         if (S.a[i].have_hull) acd_hull_free(&S.a[i].hull);
+        acd_bvh_free(&S.a[i].bvh);
+        acd3_facet_table_free(&S.a[i].table);
         if (i >= nparts) acd_mesh_free(&S.a[i].mesh);
     }
     free(S.a);

@@ -19,6 +19,8 @@
 #include "acd/base.h"
 #include "acd/hull.h"
 #include "acd/mesh.h"
+#include "acd3/merge.h"
+#include "geom3/bvh.h"
 
 typedef struct acd3_budget_result {
     /* pieces, numbered after the input parts (atom nparts + k is new_parts[k]); the pieces of one
@@ -32,6 +34,10 @@ typedef struct acd3_budget_result {
     acd_hull *new_hull;     /* per piece: its hull (acd_hull_compute of its vertices, the one its hull
                              * volume and bound came from) when it is a part, owned; dim -1 (nothing
                              * allocated) for a piece cut again */
+    acd_bvh *new_bvh;       /* per piece that is a part: its triangle tree over new_parts[k]'s arrays (its
+                             * leaf test's), owned; empty (nnodes 0) when none */
+    acd3_facet_table *new_table; /* per piece that is a part: new_hull's facet table at limit over
+                             * new_bvh when its leaf test accepted it (acd3/merge), owned; else empty */
     size_t nalive;          /* parts after the splits (input parts not cut and pieces not cut) */
     size_t over;            /* of them, parts above limit that no cut could split */
     size_t cuts;            /* cuts made */

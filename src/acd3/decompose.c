@@ -129,7 +129,17 @@ typedef struct work_node {
     acd_hull hull;
     int have_hull;
     const double *hull_of; /* the vertices (mesh.vertices then) the hull was computed from */
+    /* a budget piece that is a part: its tree and its hull's facet table from the budget pass's leaf
+     * test (acd3/budget new_bvh, new_table), for the merge; dropped with its mesh (kept_drop) */
+    acd_bvh bvh;
+    acd3_facet_table table;
 } work_node;
+
+/* A node's tree and facet table (work_node.bvh, table) freed. */
+static void kept_drop(work_node *w) {
+    acd_bvh_free(&w->bvh);
+    acd3_facet_table_free(&w->table);
+}
 
 typedef struct tree {
     work_node *a;
@@ -1082,17 +1092,29 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
         free(meshes);
         return st;
     }
-    /* the leaves' kept hulls (process_node): the merge's parts' hulls, not computed again */
+    /* the leaves' kept hulls (process_node) and the budget pieces' trees and facet tables: the merge's
+     * parts', not computed again */
     const acd_hull **hulls = kept_hulls(t, idx, np);
-    if (!hulls) {
+    acd3_merge_kept *kept = calloc(np, sizeof *kept);
+    if (!hulls || !kept) {
+        free(hulls);
+        free(kept);
         free(idx);
         free(meshes);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
     }
+    for (size_t i = 0; i < np; i++) {
+        const work_node *w = &t->a[idx[i]];
+        kept[i].hull = hulls[i];
+        kept[i].bvh = w->bvh.nnodes ? &w->bvh : NULL;
+        kept[i].table = w->table.key ? &w->table : NULL;
+    }
     acd3_merge_result mr;
-    st = acd3_merge_adjacent_hulls(input, meshes, hulls, np, tau, tol, mo, threads, &mr, err);
+    st = acd3_merge_adjacent_kept(input, meshes, kept, np, tau, tol, mo, threads, &mr, err);
+    free(kept);
     free(hulls);
     free(meshes);
+    for (size_t i = 0; i < np; i++) kept_drop(&t->a[idx[i]]); /* (their meshes may go below) */
     /* the refinement's pieces (acd3/merge): children of the parts they were cut from */
     size_t na = np + mr.nnew, *idx2 = st == ACD_OK ? realloc(idx, (na ? na : 1) * sizeof *idx) : NULL;
     if (st == ACD_OK && !idx2) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
@@ -1284,6 +1306,10 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
             w->hull = acd_hull_take(&br.new_hull[k]);
             w->have_hull = 1;
             w->hull_of = w->mesh.vertices;
+            w->bvh = br.new_bvh[k]; /* and its leaf test's tree and facet table (over the same arrays) */
+            w->table = br.new_table[k];
+            memset(&br.new_bvh[k], 0, sizeof br.new_bvh[k]);
+            memset(&br.new_table[k], 0, sizeof br.new_table[k]);
         }
         acd3d_node *pa = &t->a[pn].node, *nd = &w->node;
         if (pa->first_child < 0) {
@@ -1294,6 +1320,7 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
             acd_hull_free(&t->a[pn].hull); /* cut: its kept hull is no part's */
             t->a[pn].have_hull = 0;
             t->a[pn].hull_of = NULL;
+            kept_drop(&t->a[pn]);
         }
         pa->nchildren++;
         nd->leaf_reason = ACD3D_LEAF_BUDGET;
@@ -1650,7 +1677,10 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         free(perr);
         if (st != ACD_OK) goto fail;
     }
-    for (size_t i = 0; i < t.n; i++) acd_hull_free(&t.a[i].hull);
+    for (size_t i = 0; i < t.n; i++) {
+        acd_hull_free(&t.a[i].hull);
+        kept_drop(&t.a[i]);
+    }
     free(t.a);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     out->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
@@ -1660,6 +1690,7 @@ fail:
         acd_mesh_free(&t.a[i].mesh);
         measured_free(&t.a[i].cache);
         acd_hull_free(&t.a[i].hull);
+        kept_drop(&t.a[i]);
     }
     free(t.a);
     acd3d_result_free(out);

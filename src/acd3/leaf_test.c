@@ -147,8 +147,15 @@ static double inner_bound(const acd_mesh *m, const acd_hull *H, double limit, ui
 
 acd_status acd3_leaf_test(const acd_mesh *part, const acd_hull *H, double limit, uint32_t hint, int *accepted,
                           double *bound, acd_error *err) {
+    return acd3_leaf_test_keep(part, H, limit, hint, accepted, bound, NULL, NULL, err);
+}
+
+acd_status acd3_leaf_test_keep(const acd_mesh *part, const acd_hull *H, double limit, uint32_t hint, int *accepted,
+                               double *bound, acd_bvh *bvh_out, acd3_facet_table *table, acd_error *err) {
     *accepted = 0;
     *bound = INFINITY;
+    if (bvh_out) memset(bvh_out, 0, sizeof *bvh_out);
+    if (table) memset(table, 0, sizeof *table);
     if (H->dim != 3 || H->ntriangles == 0 || part->ntriangles == 0) return ACD_OK;
     double din = inner_bound(part, H, limit, hint);
     if (isnan(din)) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
@@ -159,9 +166,11 @@ acd_status acd3_leaf_test(const acd_mesh *part, const acd_hull *H, double limit,
     acd_bvh bvh;
     acd_status st = acd_bvh_build(&bvh, part->vertices, part->nvertices, part->triangles, part->ntriangles, err);
     if (st != ACD_OK) return st;
-    double dout = acd3_merge_hull_reach(&bvh, H, limit);
-    acd_bvh_free(&bvh);
+    double dout = acd3_merge_hull_reach_table(&bvh, H, limit, table);
+    if (bvh_out) *bvh_out = bvh;
+    else acd_bvh_free(&bvh);
     *bound = fmax(din, dout);
     *accepted = *bound <= limit;
+    if (table && !*accepted) acd3_facet_table_free(table); /* (din <= limit: dout was above it) */
     return ACD_OK;
 }

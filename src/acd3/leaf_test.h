@@ -33,6 +33,8 @@
 #include "acd/base.h"
 #include "acd/hull.h"
 #include "acd/mesh.h"
+#include "acd3/merge.h"
+#include "geom3/bvh.h"
 
 /* Tests part (its triangles) against its hull H (dim 3; any other dim is refused). hint: a
  * vertex to test first (the measure's witness: the likeliest to be deep), or UINT32_MAX.
@@ -41,5 +43,12 @@
  * *bound is a value above limit. Fails only on allocation failure. Deterministic. */
 acd_status acd3_leaf_test(const acd_mesh *part, const acd_hull *H, double limit, uint32_t hint, int *accepted,
                           double *bound, acd_error *err);
+/* The same, handing out what the test built for the merge's set-up (acd3_merge_kept) instead of freeing
+ * it: *bvh (when not NULL) the part's triangle tree, built over part's own arrays when the test gets
+ * to d_out (else left empty, nnodes 0); *table (when not NULL) H's facet table at limit over that tree
+ * when the part is accepted (acd3_merge_hull_reach_table; else left empty, key NULL). The caller frees
+ * both (acd_bvh_free, acd3_facet_table_free), also on failure. */
+acd_status acd3_leaf_test_keep(const acd_mesh *part, const acd_hull *H, double limit, uint32_t hint, int *accepted,
+                               double *bound, acd_bvh *bvh, acd3_facet_table *table, acd_error *err);
 
 #endif

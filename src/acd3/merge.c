@@ -39,6 +39,7 @@ typedef struct atoms {
     size_t n, cap;
     acd_mesh *mesh; /* shallow copies of the input parts (i < nparts), owned pieces beyond */
     acd_bvh *bvh;
+    unsigned char *bvh_kept; /* the caller's tree (acd3_merge_kept.bvh), read only: not freed */
     double *vol;
     double **sv; /* its vertices on the input surface */
     size_t *nsv;
@@ -636,10 +637,18 @@ int acd3_kept_hull_matches(const acd_hull *kept, const double *pts, size_t n) {
     return 1;
 }
 
+/* Whether table can stand for the facet table of H at tau (the caller promises it was made for H over
+ * the group's tree: acd3_merge_kept). */
+static int kept_table_fits(const acd3_facet_table *table, const acd_hull *H, double tau) {
+    return table && table->key && table->ub && H->dim == 3 && table->n == H->ntriangles && table->tau == tau;
+}
+
 /* The group's hull data from the hull of its part's n points pts: kept when given (and matching,
- * acd3_kept_hull_matches; read only), else computed (the same qhull run gives the same bits). */
-static acd_status group_init_hull(group *g, const double *pts, size_t n, const acd_hull *kept, double tau,
-                                  acd_error *err) {
+ * acd3_kept_hull_matches; read only), else computed (the same qhull run gives the same bits); its
+ * facet table copied from table when given for the kept hull (kept_table_fits; the bounds
+ * facet_table computes, as every facet of an accepted table is bounded), else computed. */
+static acd_status group_init_hull(group *g, const double *pts, size_t n, const acd_hull *kept,
+                                  const acd3_facet_table *table, double tau, acd_error *err) {
     acd_hull h;
     const acd_hull *H = &h;
     if (kept && acd3_kept_hull_matches(kept, pts, n)) {
@@ -649,7 +658,14 @@ static acd_status group_init_hull(group *g, const double *pts, size_t n, const a
         if (st != ACD_OK) return st;
     }
     double worst;
-    if (H->dim == 3 && !facet_table(g, NULL, H, tau, 0, &worst, &g->ft, &g->fub)) {
+    if (H == kept && kept_table_fits(table, H, tau)) {
+        size_t nf = table->n;
+        g->ft = malloc((nf ? nf : 1) * 9 * sizeof *g->ft);
+        g->fub = malloc((nf ? nf : 1) * sizeof *g->fub);
+        if (!g->ft || !g->fub) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for a hull's facets");
+        memcpy(g->ft, table->key, nf * 9 * sizeof *g->ft);
+        memcpy(g->fub, table->ub, nf * sizeof *g->fub);
+    } else if (H->dim == 3 && !facet_table(g, NULL, H, tau, 0, &worst, &g->ft, &g->fub)) {
         if (H == &h) acd_hull_free(&h);
         return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for a hull's facets");
     }
@@ -756,6 +772,7 @@ static int atoms_reserve(atoms *at, size_t n) {
     } while (0)
     ATOMS_GROW(mesh);
     ATOMS_GROW(bvh);
+    ATOMS_GROW(bvh_kept);
     ATOMS_GROW(vol);
     ATOMS_GROW(sv);
     ATOMS_GROW(nsv);
@@ -771,7 +788,9 @@ static int atoms_reserve(atoms *at, size_t n) {
 
 /* Frees atom i's data (its mesh too when owned: i >= nparts). */
 static void atom_clear(atoms *at, size_t i, size_t nparts) {
-    acd_bvh_free(&at->bvh[i]);
+    if (at->bvh_kept[i]) memset(&at->bvh[i], 0, sizeof at->bvh[i]);
+    else acd_bvh_free(&at->bvh[i]);
+    at->bvh_kept[i] = 0;
     free(at->sv[i]);
     free(at->adj[i]);
     at->sv[i] = NULL;
@@ -784,6 +803,7 @@ static void atoms_free(atoms *at, size_t nparts) {
     for (size_t i = 0; i < at->n; i++) atom_clear(at, i, nparts);
     free(at->mesh);
     free(at->bvh);
+    free(at->bvh_kept);
     free(at->vol);
     free(at->sv);
     free(at->nsv);
@@ -1246,6 +1266,27 @@ static acd_status merge_progress(const acd3_merge_opts *opts, double fraction, c
 acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *parts, const acd_hull *const *hulls,
                                      size_t nparts, double tau, double tol, const acd3_merge_opts *opts, int threads,
                                      acd3_merge_result *out, acd_error *err) {
+    if (!hulls) return acd3_merge_adjacent_kept(input, parts, NULL, nparts, tau, tol, opts, threads, out, err);
+    acd3_merge_kept *kept = calloc(nparts ? nparts : 1, sizeof *kept);
+    if (!kept) {
+        memset(out, 0, sizeof *out);
+        return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for %zu parts", nparts);
+    }
+    for (size_t i = 0; i < nparts; i++) kept[i].hull = hulls[i];
+    acd_status st = acd3_merge_adjacent_kept(input, parts, kept, nparts, tau, tol, opts, threads, out, err);
+    free(kept);
+    return st;
+}
+
+/* Whether bvh can stand for part m's tree: built over m's own arrays (the caller promises the rest). */
+static int kept_bvh_fits(const acd_bvh *bvh, const acd_mesh *m) {
+    return bvh && bvh->vertices == m->vertices && bvh->triangles == m->triangles && bvh->nvertices == m->nvertices &&
+           bvh->ntriangles == m->ntriangles && (bvh->nnodes > 0) == (m->ntriangles > 0);
+}
+
+acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts, const acd3_merge_kept *kept,
+                                    size_t nparts, double tau, double tol, const acd3_merge_opts *opts, int threads,
+                                    acd3_merge_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     const int by_volume = opts && opts->by_volume;
     const size_t stop_at = opts ? opts->stop_at : 0;
@@ -1316,12 +1357,21 @@ acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *part
             g->vol = at.vol[i];
             g->nmembers = 1;
             g->members = malloc(sizeof *g->members);
-            acd_status s2 = acd_bvh_build(&at.bvh[i], parts[i].vertices, parts[i].nvertices, parts[i].triangles,
-                                          parts[i].ntriangles, &gerr[i]);
+            const acd3_merge_kept *kp = kept ? &kept[i] : NULL;
+            acd_status s2 = ACD_OK;
+            int own_bvh = kp && kept_bvh_fits(kp->bvh, &parts[i]);
+            if (own_bvh) {
+                at.bvh[i] = *kp->bvh; /* read only (not freed: bvh_kept) */
+                at.bvh_kept[i] = 1;
+            } else {
+                s2 = acd_bvh_build(&at.bvh[i], parts[i].vertices, parts[i].nvertices, parts[i].triangles,
+                                   parts[i].ntriangles, &gerr[i]);
+            }
             if (s2 == ACD_OK && !g->members) s2 = acd_fail(&gerr[i], ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
             if (s2 == ACD_OK) {
                 g->members[0] = (uint32_t)i;
-                s2 = group_init_hull(g, parts[i].vertices, parts[i].nvertices, hulls ? hulls[i] : NULL, tau, &gerr[i]);
+                s2 = group_init_hull(g, parts[i].vertices, parts[i].nvertices, kp ? kp->hull : NULL,
+                                     own_bvh ? kp->table : NULL, tau, &gerr[i]);
             }
             gst[i] = s2;
         }
@@ -1550,7 +1600,19 @@ acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *part
     return st;
 }
 
+void acd3_facet_table_free(acd3_facet_table *t) {
+    if (!t) return;
+    free(t->key);
+    free(t->ub);
+    memset(t, 0, sizeof *t);
+}
+
 double acd3_merge_hull_reach(const acd_bvh *part, const acd_hull *H, double tau) {
+    return acd3_merge_hull_reach_table(part, H, tau, NULL);
+}
+
+double acd3_merge_hull_reach_table(const acd_bvh *part, const acd_hull *H, double tau, acd3_facet_table *table) {
+    if (table) memset(table, 0, sizeof *table);
     if (H->dim != 3) return INFINITY;
     size_t nf = H->ntriangles;
     double *key = malloc((nf ? nf : 1) * 9 * sizeof *key), *ub = malloc((nf ? nf : 1) * sizeof *ub);
@@ -1566,6 +1628,15 @@ double acd3_merge_hull_reach(const acd_bvh *part, const acd_hull *H, double tau)
         g.members = &member;
         g.nmembers = 1;
         worst = hull_facets_ub(&g, NULL, H, tau, 1, key, ub);
+        /* every facet bounded (none above tau): the table group_init_hull's facet_table makes, the
+         * same bounds in the same order, then sorted */
+        if (table && worst <= tau && sort_facets(key, ub, nf)) {
+            table->key = key;
+            table->ub = ub;
+            table->n = nf;
+            table->tau = tau;
+            return worst;
+        }
     }
     free(key);
     free(ub);

@@ -75,6 +75,29 @@ typedef struct acd3_merge_opts {
  * be NULL (bound order, no stop). */
 acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, size_t nparts, double tau, double tol,
                                const acd3_merge_opts *opts, int threads, acd3_merge_result *out, acd_error *err);
+/* A hull's facet table: per facet of a dim 3 hull H, its corners in canonical (lexicographic) order
+ * and the bound of the distance from its points to a part (the facet subdivision above, at tau;
+ * INFINITY: not bounded within tau), the facets sorted by their corners. What the merge keeps per
+ * group; acd3_merge_hull_reach_table makes one for a part (acd3/leaf_test hands it to the merge). */
+typedef struct acd3_facet_table {
+    double *key; /* 9 per facet */
+    double *ub;  /* per facet */
+    size_t n;    /* H->ntriangles */
+    double tau;  /* the tau of the bounds */
+} acd3_facet_table;
+void acd3_facet_table_free(acd3_facet_table *t);
+
+/* What the caller computed already for part i (acd3_merge_adjacent_kept), read only; each field
+ * NULL or: */
+typedef struct acd3_merge_kept {
+    const acd_hull *hull;           /* the part's hull: acd_hull_compute of exactly its vertices, in their
+                                       order (used when acd3_kept_hull_matches) */
+    const acd_bvh *bvh;             /* the part's tree: acd_bvh_build of the part's own vertex and triangle
+                                       arrays (used when it points at them) */
+    const acd3_facet_table *table;  /* hull's facet table over that tree (acd3_merge_hull_reach_table;
+                                       used with both, at the same tau) */
+} acd3_merge_kept;
+
 /* As acd3_merge_adjacent, with hulls (NULL, or per part NULL or the part's hull: acd_hull_compute of
  * exactly its vertices, in their order; read only) used instead of computing the parts' hulls again:
  * the same result, bit for bit. A hull whose vertices are not the part's points its source names is
@@ -82,6 +105,11 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
 acd_status acd3_merge_adjacent_hulls(const acd_mesh *input, const acd_mesh *parts, const acd_hull *const *hulls,
                                      size_t nparts, double tau, double tol, const acd3_merge_opts *opts, int threads,
                                      acd3_merge_result *out, acd_error *err);
+/* As acd3_merge_adjacent_hulls, with kept (NULL, or nparts records, acd3_merge_kept) used instead of
+ * computing the parts' hulls, trees and facet tables again: the same result, bit for bit. */
+acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts, const acd3_merge_kept *kept,
+                                    size_t nparts, double tau, double tol, const acd3_merge_opts *opts, int threads,
+                                    acd3_merge_result *out, acd_error *err);
 void acd3_merge_result_free(acd3_merge_result *r);
 /* Whether kept can stand for the hull of the n points pts (the test acd3_merge_adjacent_hulls
  * applies): each of its vertices is the input point its source names, bit for bit; the caller
@@ -94,5 +122,9 @@ int acd3_kept_hull_matches(const acd_hull *kept, const double *pts, size_t n);
  * soon as it exceeds tau, when the query budget runs out, or for a hull that is not dim 3. Used by
  * acd3/leaf_test. */
 double acd3_merge_hull_reach(const acd_bvh *part, const acd_hull *H, double tau);
+/* The same, and when the bound is <= tau and table is not NULL, the facet table of H over part at tau
+ * into *table (the one the merge's set-up makes for a part with this hull and tree; otherwise, or out
+ * of memory for it, *table is left empty: key NULL). */
+double acd3_merge_hull_reach_table(const acd_bvh *part, const acd_hull *H, double tau, acd3_facet_table *table);
 
 #endif
