@@ -263,6 +263,29 @@ static void test_build_deterministic_and_valid(void **state) {
     }
     for (size_t t = 0; t < s.nt; t++) assert_int_equal(seen[t], 1);
     free(seen);
+    /* every box is tight: a leaf's the bounds of its triangles' vertices, an inner node's the union of
+     * its children's (bit for bit: the boxes gathered while partitioning are range_bounds') */
+    for (size_t i = a.nnodes; i-- > 0;) {
+        const acd_bvh_node *n = &a.nodes[i];
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        if (n->count) {
+            for (uint32_t j = 0; j < n->count; j++)
+                for (int c = 0; c < 3; c++)
+                    for (int k = 0; k < 3; k++) {
+                        double x = s.v[3 * s.t[3 * a.order[n->first + j] + c] + k];
+                        lo[k] = fmin(lo[k], x);
+                        hi[k] = fmax(hi[k], x);
+                    }
+        } else {
+            for (int c = 0; c < 2; c++)
+                for (int k = 0; k < 3; k++) {
+                    lo[k] = fmin(lo[k], a.nodes[n->first + c].lo[k]);
+                    hi[k] = fmax(hi[k], a.nodes[n->first + c].hi[k]);
+                }
+        }
+        assert_memory_equal(lo, n->lo, sizeof lo);
+        assert_memory_equal(hi, n->hi, sizeof hi);
+    }
     acd_bvh_free(&a);
     acd_bvh_free(&b);
     free_soup(&s);

@@ -79,15 +79,37 @@ static void item_swap(bvh_item *a, bvh_item *b) {
     *b = x;
 }
 
-/* Partitions it[start, end) by the split; returns the first index of the right half. */
-static uint32_t partition(bvh_item *it, uint32_t start, uint32_t end, int axis, double split) {
+/* A node's box and the bounds of its triangles' centroids. */
+typedef struct node_bounds {
+    double lo[3], hi[3], clo[3], chi[3];
+} node_bounds;
+
+static void bounds_empty(node_bounds *b) {
+    box_empty(b->lo, b->hi);
+    box_empty(b->clo, b->chi);
+}
+
+static void bounds_add(node_bounds *b, const bvh_item *x) {
+    box_grow(b->lo, b->hi, x->lo, x->hi);
+    box_grow(b->clo, b->chi, x->c, x->c);
+}
+
+/* Partitions it[start, end) by the split; returns the first index of the right half. The bounds of
+ * both halves are gathered on the way (each item is classified once; min and max do not depend on
+ * the order: range_bounds' values). */
+static uint32_t partition_bounds(bvh_item *it, uint32_t start, uint32_t end, int axis, double split, node_bounds *l,
+                                 node_bounds *r) {
     uint32_t i = start, j = end;
+    bounds_empty(l);
+    bounds_empty(r);
     while (i < j) {
         if (it[i].c[axis] < split) {
+            bounds_add(l, &it[i]);
             i++;
         } else {
             j--;
             item_swap(&it[i], &it[j]);
+            bounds_add(r, &it[j]);
         }
     }
     return i;
@@ -260,6 +282,8 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
             }
         }
         uint32_t mid;
+        int have_bounds = 0;
+        node_bounds lb, rb;
         if (best_axis >= 0) {
             double leaf_cost = box_area(nd->lo, nd->hi) * n;
             if (n <= ACD_BVH_LEAF_MAX && leaf_cost <= best_cost + 0.5 * box_area(nd->lo, nd->hi)) {
@@ -267,8 +291,10 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
                 nd->count = n;
                 continue;
             }
-            mid = partition(items, it.start, it.end, best_axis, best_split);
+            mid = partition_bounds(items, it.start, it.end, best_axis, best_split, &lb, &rb);
+            have_bounds = 1;
             if (mid == it.start || mid == it.end) { /* rounding at the bin edge: fall back */
+                have_bounds = 0;
                 mid = it.start + n / 2;
                 median_split(items, it.start, it.end, best_axis, mid);
             }
@@ -296,8 +322,19 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
          * (and numbered) first */
         build_item r = {left + 1, mid, it.end, it.depth + 1, {0, 0, 0}, {0, 0, 0}};
         build_item l = {left, it.start, mid, it.depth + 1, {0, 0, 0}, {0, 0, 0}};
-        range_bounds(items, mid, it.end, bvh->nodes[left + 1].lo, bvh->nodes[left + 1].hi, r.clo, r.chi);
-        range_bounds(items, it.start, mid, bvh->nodes[left].lo, bvh->nodes[left].hi, l.clo, l.chi);
+        if (have_bounds) {
+            memcpy(bvh->nodes[left + 1].lo, rb.lo, sizeof rb.lo);
+            memcpy(bvh->nodes[left + 1].hi, rb.hi, sizeof rb.hi);
+            memcpy(r.clo, rb.clo, sizeof rb.clo);
+            memcpy(r.chi, rb.chi, sizeof rb.chi);
+            memcpy(bvh->nodes[left].lo, lb.lo, sizeof lb.lo);
+            memcpy(bvh->nodes[left].hi, lb.hi, sizeof lb.hi);
+            memcpy(l.clo, lb.clo, sizeof lb.clo);
+            memcpy(l.chi, lb.chi, sizeof lb.chi);
+        } else {
+            range_bounds(items, mid, it.end, bvh->nodes[left + 1].lo, bvh->nodes[left + 1].hi, r.clo, r.chi);
+            range_bounds(items, it.start, mid, bvh->nodes[left].lo, bvh->nodes[left].hi, l.clo, l.chi);
+        }
         stack[sp++] = r;
         stack[sp++] = l;
     }
@@ -435,14 +472,19 @@ int acd_bvh_closest(const acd_bvh *bvh, const double p[3], double max_dist2, acd
 int acd_bvh_closest_filtered(const acd_bvh *bvh, const double p[3], double max_dist2, acd_bvh_accept_fn accept,
                              void *user, acd_bvh_closest_result *out) {
     if (bvh->nnodes == 0) return 0;
+    /* the stack keeps each node's box distance, computed when it was pushed (the same value the
+     * pop would compute again) */
     uint32_t stack[BVH_STACK];
+    double sdist[BVH_STACK];
     int sp = 0, found = 0;
-    double best = max_dist2;
-    if (box_dist2(&bvh->nodes[0], p) > best) return 0;
-    stack[sp++] = 0;
+    double best = max_dist2, d0 = box_dist2(&bvh->nodes[0], p);
+    if (d0 > best) return 0;
+    stack[sp] = 0;
+    sdist[sp++] = d0;
     while (sp > 0) {
-        const acd_bvh_node *n = &bvh->nodes[stack[--sp]];
-        if (box_dist2(n, p) > best) continue;
+        --sp;
+        if (sdist[sp] > best) continue;
+        const acd_bvh_node *n = &bvh->nodes[stack[sp]];
         if (n->count) {
             for (uint32_t i = 0; i < n->count; i++) {
                 /* a triangle whose box is farther than the best cannot be closer (nor tie) */
@@ -471,11 +513,11 @@ int acd_bvh_closest_filtered(const acd_bvh *bvh, const double p[3], double max_d
         if (sp + 2 > BVH_STACK) return found; /* cannot happen for a tree built here */
         /* visit the nearer child first (push it last) */
         if (dl <= dr) {
-            if (dr <= best) stack[sp++] = n->first + 1;
-            if (dl <= best) stack[sp++] = n->first;
+            if (dr <= best) stack[sp] = n->first + 1, sdist[sp++] = dr;
+            if (dl <= best) stack[sp] = n->first, sdist[sp++] = dl;
         } else {
-            if (dl <= best) stack[sp++] = n->first;
-            if (dr <= best) stack[sp++] = n->first + 1;
+            if (dl <= best) stack[sp] = n->first, sdist[sp++] = dl;
+            if (dr <= best) stack[sp] = n->first + 1, sdist[sp++] = dr;
         }
     }
     return found;
