@@ -815,21 +815,111 @@ static void atoms_free(atoms *at, size_t nparts) {
     memset(at, 0, sizeof *at);
 }
 
+/* The input for the test of a vertex on its surface: its tree, and its used vertices by their
+ * coordinates (an open-addressing table of vertex ids, UINT32_MAX empty) with the triangles around each
+ * (inc[inc_off[v] .. inc_off[v + 1]]). */
+typedef struct in_surface {
+    acd_bvh bvh;
+    const acd_mesh *m;
+    uint32_t *slot;
+    size_t mask;
+    uint32_t *inc_off, *inc;
+} in_surface;
+
+static void in_surface_free(in_surface *S) {
+    acd_bvh_free(&S->bvh);
+    free(S->slot);
+    free(S->inc_off);
+    free(S->inc);
+    memset(S, 0, sizeof *S);
+}
+
+static size_t point_hash(const double p[3]) {
+    uint64_t h = 0x9e3779b97f4a7c15u;
+    for (int k = 0; k < 3; k++) {
+        uint64_t x;
+        memcpy(&x, p + k, sizeof x);
+        h = (h ^ x) * 0xff51afd7ed558ccdu;
+        h ^= h >> 32;
+    }
+    return (size_t)h;
+}
+
+/* The table and the triangles around each vertex (the tree is built apart); 0 out of memory (the
+ * test then uses the tree alone). */
+static int in_surface_index(in_surface *S, const acd_mesh *m) {
+    size_t nv = m->nvertices, nt = m->ntriangles, cap = 16;
+    S->m = m;
+    while (cap < 2 * nv) cap *= 2;
+    S->slot = malloc(cap * sizeof *S->slot);
+    S->inc_off = calloc(nv + 1, sizeof *S->inc_off);
+    S->inc = malloc((nt ? 3 * nt : 1) * sizeof *S->inc);
+    uint32_t *cur = malloc((nv ? nv : 1) * sizeof *cur);
+    if (!S->slot || !S->inc_off || !S->inc || !cur || nt >= UINT32_MAX / 3) {
+        free(S->slot), free(S->inc_off), free(S->inc), free(cur);
+        S->slot = S->inc_off = S->inc = NULL;
+        return 0;
+    }
+    S->mask = cap - 1;
+    for (size_t k = 0; k < 3 * nt; k++) S->inc_off[m->triangles[k] + 1]++;
+    for (size_t v = 0; v < nv; v++) S->inc_off[v + 1] += S->inc_off[v];
+    memcpy(cur, S->inc_off, nv * sizeof *cur);
+    for (size_t t = 0; t < nt; t++)
+        for (int c = 0; c < 3; c++) S->inc[cur[m->triangles[3 * t + c]]++] = (uint32_t)t;
+    free(cur);
+    for (size_t k = 0; k < cap; k++) S->slot[k] = UINT32_MAX;
+    for (size_t v = 0; v < nv; v++) {
+        if (S->inc_off[v + 1] == S->inc_off[v]) continue; /* unused: not a point of the surface */
+        const double *p = m->vertices + 3 * v;
+        size_t h = point_hash(p) & S->mask;
+        while (S->slot[h] != UINT32_MAX && memcmp(m->vertices + 3 * (size_t)S->slot[h], p, sizeof(double[3])) != 0)
+            h = (h + 1) & S->mask;
+        if (S->slot[h] == UINT32_MAX) S->slot[h] = (uint32_t)v; /* the first of equal points */
+    }
+    return 1;
+}
+
+/* Whether p is within on_tol of the input (acd_bvh_closest on its tree finds a point within on_tol).
+ * A point that is an input vertex (bit for bit) is first tried against the triangles around that
+ * vertex: one of them within on_tol is a triangle the tree's search finds within on_tol too (its box
+ * holds p: never pruned), so the answer is the tree's; otherwise the tree answers. */
+static int on_input(const in_surface *S, const double p[3], double on_tol) {
+    if (S->slot) {
+        size_t h = point_hash(p) & S->mask;
+        while (S->slot[h] != UINT32_MAX) {
+            const double *v = S->m->vertices + 3 * (size_t)S->slot[h];
+            if (memcmp(v, p, sizeof(double[3])) == 0) {
+                uint32_t u = S->slot[h];
+                for (uint32_t k = S->inc_off[u]; k < S->inc_off[u + 1]; k++) {
+                    const uint32_t *tr = S->m->triangles + 3 * (size_t)S->inc[k];
+                    double q[3];
+                    if (acd_closest_point_triangle(p, S->m->vertices + 3 * (size_t)tr[0], S->m->vertices + 3 * (size_t)tr[1],
+                                                   S->m->vertices + 3 * (size_t)tr[2], q) <= on_tol * on_tol)
+                        return 1;
+                }
+                break;
+            }
+            h = (h + 1) & S->mask;
+        }
+    }
+    acd_bvh_closest_result q;
+    return acd_bvh_closest(&S->bvh, p, on_tol * on_tol, &q);
+}
+
 /* Atom i's surface vertices (within on_tol of the input). */
-static acd_status atom_surface(atoms *at, size_t i, const acd_bvh *in_bvh, double on_tol, acd_error *err) {
+static acd_status atom_surface(atoms *at, size_t i, const in_surface *in, double on_tol, acd_error *err) {
     const acd_mesh *m = &at->mesh[i];
     at->sv[i] = malloc((m->nvertices ? m->nvertices : 1) * 3 * sizeof(double));
     if (!at->sv[i]) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for part %zu", i);
     for (size_t v = 0; v < m->nvertices; v++) {
-        acd_bvh_closest_result q;
         const double *p = m->vertices + 3 * v;
-        if (acd_bvh_closest(in_bvh, p, on_tol * on_tol, &q)) memcpy(at->sv[i] + 3 * at->nsv[i]++, p, sizeof(double[3]));
+        if (on_input(in, p, on_tol)) memcpy(at->sv[i] + 3 * at->nsv[i]++, p, sizeof(double[3]));
     }
     return ACD_OK;
 }
 
 /* Atom i's surface vertices and tree. */
-static acd_status atom_init(atoms *at, size_t i, const acd_bvh *in_bvh, double on_tol, acd_error *err) {
+static acd_status atom_init(atoms *at, size_t i, const in_surface *in_bvh, double on_tol, acd_error *err) {
     const acd_mesh *m = &at->mesh[i];
     acd_status st = atom_surface(at, i, in_bvh, on_tol, err);
     if (st != ACD_OK) return st;
@@ -941,7 +1031,7 @@ static int side_group(group *S, const atoms *at, const uint32_t *mem, size_t n, 
 /* Cuts group X by its volume plane: its members crossing the plane are cut (the pieces appended to
  * the atoms, owner unset), the two sides' groups made in S. Returns 1 (both sides within tau;
  * *gain: X's hull volume minus theirs), 0 refused (the atoms as before), or -(status). */
-static int try_cut(const group *X, atoms *at, size_t nparts, const acd_bvh *in_bvh, double on_tol, double diag,
+static int try_cut(const group *X, atoms *at, size_t nparts, const in_surface *in_bvh, double on_tol, double diag,
                    double tau, group S[2], double *gain, acd_error *err) {
     acd_cut_plane cp;
     if (acd_cut_plane_from_normal(X->est_plane.point, X->est_plane.normal, diag, &cp, NULL) != ACD_OK) return 0;
@@ -1311,7 +1401,7 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
     group *G = calloc(capg, sizeof *G);
     pair *P = NULL;
     size_t np = 0, capp = 0;
-    acd_bvh in_bvh;
+    in_surface in_bvh;
     memset(&in_bvh, 0, sizeof in_bvh);
     atoms at;
     memset(&at, 0, sizeof at);
@@ -1342,8 +1432,9 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
 #endif
         for (long li = 0; li <= (long)nparts; li++) {
             if (li == 0) {
-                gst[nparts] = acd_bvh_build(&in_bvh, input->vertices, input->nvertices, input->triangles,
+                gst[nparts] = acd_bvh_build(&in_bvh.bvh, input->vertices, input->nvertices, input->triangles,
                                             input->ntriangles, &gerr[nparts]);
+                if (gst[nparts] == ACD_OK) in_surface_index(&in_bvh, input); /* (none: the tree alone) */
                 continue;
             }
             size_t i = (size_t)li - 1;
@@ -1592,7 +1683,7 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
     }
     for (size_t g = 0; g < ng; g++) group_free(&G[g]);
     atoms_free(&at, nparts);
-    acd_bvh_free(&in_bvh);
+    in_surface_free(&in_bvh);
     for (size_t i = 0; i < np; i++) pair_free(&P[i]);
     free(G);
     free(P);
