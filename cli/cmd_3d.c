@@ -19,6 +19,7 @@ static void usage(FILE *f) {
             "usage: acd 3d INPUT [--budget N] [-t TAU] [--tau-abs] [-o HULLS.obj] [--parts PARTS.obj] [--json FILE]\n"
             "              [--mode solid|surface] [--max-hulls N] [--max-hull-vertices N] [--threads N] [--region-cuts]\n"
             "              [--no-merge] [--merge-tau T] [--merge-tau-diag F] [--merge-order bound|volume]\n"
+            "              [--trim-coverage F]\n"
             "              [--merge-parts N] [--merge-refine N]\n"
             "              [--cut-choice concavity|volume|band] [--no-close-holes] [--resolver global|witness|notch]\n"
             "              [--cut-weight ratio|product] [--surface-cut strip|cycle|cycle-witness] [--eps-ratio R]\n"
@@ -84,11 +85,16 @@ static void usage(FILE *f) {
             "  --stop hull         also when its surface and its hull's boundary are within TAU of each\n"
             "                      other both ways (upper bounds; leaf reason \"hull_distance\")\n"
             "  --max-hull-vertices N  each hull replaced by an enclosing one of at most N (>= 4) vertices\n"
+            "  --trim-coverage F   solid mode: trim the hulls where they are mostly air over the parts' relief\n"
+            "                      (caps cut off by planes), leaving at most F (<= 0.01) of the input's volume\n"
+            "                      outside the union of hulls; the hulls stay convex. Off by default: every\n"
+            "                      hull then encloses its part\n"
             "  --threads N         worker threads (default: all cores); the output is the same for any N\n"
             "  --no-close-holes    solid mode refuses an open mesh instead of closing its holes (by default\n"
             "                      an open or unoriented input is welded, oriented and its holes closed)\n"
             "  --verify            check: part volumes add up to the input's, every part meets tau (or says\n"
-            "                      why not), every part lies inside its hull; exit 3 otherwise\n"
+            "                      why not), every part lies inside its hull (with --trim-coverage: the parts'\n"
+            "                      volume outside their hulls is within F of the input's); exit 3 otherwise\n"
             "  -v                  report progress and statistics on stderr\n");
 }
 
@@ -231,12 +237,20 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
     cJSON_AddNumberToObject(o, "tau_relative", r->scale > 0 ? r->tau / r->scale : 0);
     cJSON_AddNumberToObject(o, "scale", r->scale);
     cJSON_AddNumberToObject(o, "input_volume", r->input_volume);
+    if (p->trim_coverage > 0) { /* only with --trim-coverage: other runs' JSON unchanged */
+        cJSON *t = cJSON_AddObjectToObject(o, "trim");
+        cJSON_AddNumberToObject(t, "coverage", p->trim_coverage);
+        cJSON_AddNumberToObject(t, "cuts", (double)r->trim_cuts);
+        cJSON_AddNumberToObject(t, "trimmed_volume", r->trimmed_volume);
+        cJSON_AddNumberToObject(t, "depth_max", r->trim_depth_max);
+    }
     cJSON *parts = cJSON_AddArrayToObject(o, "parts");
     for (size_t i = 0; i < r->nparts; i++) {
         cJSON *q = cJSON_CreateObject();
         cJSON_AddNumberToObject(q, "concavity", r->parts[i].concavity);
         cJSON_AddNumberToObject(q, "volume", r->parts[i].volume);
         cJSON_AddNumberToObject(q, "hull_volume", r->parts[i].hull_volume);
+        if (p->trim_coverage > 0) cJSON_AddNumberToObject(q, "trimmed_volume", r->parts[i].trimmed_volume);
         cJSON_AddNumberToObject(q, "vertices", (double)r->parts[i].mesh.nvertices);
         cJSON_AddNumberToObject(q, "hull_vertices", (double)r->parts[i].hull.nvertices);
         cJSON_AddNumberToObject(q, "node", r->parts[i].node);
@@ -311,7 +325,7 @@ static int verify_surface(const acd_mesh *in, const acd3d_result *r, acd_error *
 }
 
 /* --verify: checks computed here from the result, independently of the driver's bookkeeping. */
-static int verify(const acd3d_result *r, int budget, acd_error *err) {
+static int verify(const acd3d_result *r, int budget, double trim, double *outside_bound, acd_error *err) {
     /* Rounding in the volume sums grows with the sum of the tetrahedra's absolute volumes (not
      * with the net volume: a thin or tiny solid far from the origin cancels a lot), so the
      * tolerances are relative to that sum. */
@@ -321,6 +335,7 @@ static int verify(const acd3d_result *r, int budget, acd_error *err) {
         for (size_t t = 0; t < m->ntriangles; t++) abs_sum += fabs(tet6(m, t)) / 6.0;
     }
     const double vtol = 1e-9 * fabs(r->input_volume) + 1e-12 * abs_sum;
+    double outside = 0; /* with trim: an upper bound of the parts' volume outside their hulls */
     for (size_t i = 0; i < r->nparts; i++) {
         const acd3d_part *p = &r->parts[i];
         const acd3d_node *n = &r->nodes[p->node];
@@ -359,10 +374,43 @@ static int verify(const acd3d_result *r, int budget, acd_error *err) {
             double d = acd_hull_plane_distance(&h, m->vertices + 3 * k);
             if (d > worst) worst = d;
         }
+        /* trimmed hulls: the part's volume beyond each plane of a facet it sticks out of, summed
+         * over distinct planes (the triangles of one facet share its plane; a region beyond two
+         * planes is counted twice: an upper bound of the part's volume outside its hull) */
+        if (trim > 0 && h.dim == 3 && worst > 1e-9 * r->scale) {
+            double *pl = malloc(4 * h.ntriangles * sizeof *pl);
+            if (!pl) {
+                acd_hull_free(&h);
+                return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            }
+            size_t npl = 0;
+            for (size_t f = 0; f < h.ntriangles; f++) {
+                const double *q = h.planes + 4 * f;
+                double w = -INFINITY;
+                for (size_t k = 0; k < m->nvertices; k++) {
+                    const double *v = m->vertices + 3 * k;
+                    w = fmax(w, q[0] * v[0] + q[1] * v[1] + q[2] * v[2] + q[3]);
+                }
+                if (!(w > 1e-9 * r->scale)) continue;
+                int seen = 0;
+                for (size_t j = 0; j < npl && !seen; j++)
+                    seen = fabs(pl[4 * j] - q[0]) <= 1e-9 && fabs(pl[4 * j + 1] - q[1]) <= 1e-9 &&
+                           fabs(pl[4 * j + 2] - q[2]) <= 1e-9 && fabs(pl[4 * j + 3] - q[3]) <= 1e-9 * r->scale;
+                if (seen) continue;
+                memcpy(pl + 4 * npl++, q, 4 * sizeof *pl);
+                outside += fmax(0.0, acd_mesh_volume_beyond(m, q));
+            }
+            free(pl);
+        }
         acd_hull_free(&h);
-        if (worst > 1e-9 * r->scale)
+        if (!(trim > 0) && worst > 1e-9 * r->scale)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu sticks out of its hull by %g", i, worst);
     }
+    *outside_bound = outside;
+    if (trim > 0 && outside > trim * r->input_volume * (1 + 1e-6) + vtol)
+        return acd_fail(err, ACD_ERR_VERIFY,
+                        "the parts' volume outside their trimmed hulls, up to %.17g, exceeds %g of the input's %.17g",
+                        outside, trim, r->input_volume);
     if (fabs(sum - r->input_volume) > vtol)
         return acd_fail(err, ACD_ERR_VERIFY, "part volumes add up to %.17g, the input's is %.17g", sum,
                         r->input_volume);
@@ -520,6 +568,14 @@ int acd_cmd_3d(int argc, char **argv) {
             }
             got_merge_tau_diag = 1;
             i++;
+        } else if (!strcmp(a, "--trim-coverage")) {
+            if (!acd_cli_parse_double("3d", a, val, &p.trim_coverage) ||
+                !(p.trim_coverage >= 0 && p.trim_coverage <= ACD3D_TRIM_COVERAGE_MAX)) {
+                fprintf(stderr, "acd 3d: %s needs a number in [0, %g] (the fraction of the input's volume the hulls "
+                                "may leave out)\n", a, ACD3D_TRIM_COVERAGE_MAX);
+                return ACD_EXIT_USAGE;
+            }
+            i++;
         } else if (!strcmp(a, "--no-merge")) {
             p.merge = 0;
         } else if (!strcmp(a, "--region-cuts")) {
@@ -670,6 +726,11 @@ int acd_cmd_3d(int argc, char **argv) {
     printf("%zu parts, max concavity %.6g (tau %.6g = %.4g x radius %.6g), %.3f s\n", r.nparts, r.max_concavity, r.tau,
            r.scale > 0 ? r.tau / r.scale : 0.0, r.scale, r.seconds);
     if (show_settings) print_settings(&r, &p);
+    if (p.trim_coverage > 0)
+        printf("trimmed hulls: %zu caps cut off, at most %.3g of the input's volume outside the hulls (limit %g), "
+               "deepest cut %.3g (%.3g of the radius)\n",
+               r.trim_cuts, r.input_volume > 0 ? r.trimmed_volume / r.input_volume : 0.0, p.trim_coverage,
+               r.trim_depth_max, r.scale > 0 ? r.trim_depth_max / r.scale : 0.0);
     {
         size_t handled = 0;
         long gmax = 0;
@@ -734,7 +795,8 @@ int acd_cmd_3d(int argc, char **argv) {
      * (exit 2) after its outputs are written, with or without --verify */
     if (!code && selfx.status != ACD_OK) code = acd_cli_report("3d", &selfx);
     if (!code && do_verify) {
-        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, &err) : verify_surface(&mesh, &r, &err);
+        double outside = 0;
+        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, p.trim_coverage, &outside, &err) : verify_surface(&mesh, &r, &err);
         /* a solid-mode result that fails on a mesh crossing itself: the input's fault (exit 2), the
          * verification's message kept */
         if (st != ACD_OK && p.mode == ACD3D_SOLID && self_crossing(&mesh, &npairs, pair) && npairs > 0) {
@@ -746,6 +808,10 @@ int acd_cmd_3d(int argc, char **argv) {
                      repaired ? "repaired " : "", npairs, pair[0], pair[1], v.message);
         }
         if (st != ACD_OK) code = acd_cli_report("3d", &err);
+        else if (verbose && p.trim_coverage > 0)
+            fprintf(stderr, "acd 3d: verified: volumes add up, parts meet tau, at most %.3g of the input's volume "
+                            "outside the trimmed hulls (limit %g)\n", r.input_volume > 0 ? outside / r.input_volume : 0.0,
+                    p.trim_coverage);
         else if (verbose)
             fprintf(stderr, p.mode == ACD3D_SOLID ? "acd 3d: verified: volumes add up, parts meet tau, parts inside hulls\n"
                                                   : "acd 3d: verified: the parts tile the surface and meet tau\n");

@@ -149,6 +149,14 @@ typedef struct acd3d_params {
                                  acd3d_decompose turns it into the relative tolerance merge_tau_diag x
                                  diagonal / scale (result.merge_tau_relative): the run is the one
                                  merge_tau = that value gives (with tau relative) */
+    double trim_coverage;     /* solid mode: 0 (default): every hull encloses its part. In (0, 0.01]:
+                                 the hulls are trimmed at the end (acd3/trim): caps of a hull that are
+                                 mostly air over the part's relief are cut off by planes, best ratio of
+                                 hull volume to part volume removed first, while the part volume left
+                                 outside its hull stays within trim_coverage x the input's volume; the
+                                 union of hulls then covers at least 1 - trim_coverage of the input and
+                                 the hulls stay convex (docs/acd3d.md "Trimmed hulls"). With
+                                 max_hull_vertices, a cut that would exceed it is not made */
 } acd3d_params;
 
 acd3d_params acd3d_default_params(void);
@@ -159,6 +167,8 @@ acd3d_params acd3d_default_params(void);
 #define ACD3D_BUDGET_MERGE_TAU_DIAG 0.0195 /* merge_tau_diag: joined parts within 0.0195 of the diagonal
                                              (under the 0.02 of the issue's concavity target) */
 #define ACD3D_BUDGET_MERGE_REFINE 40      /* merge_refine */
+
+#define ACD3D_TRIM_COVERAGE_MAX 0.01 /* trim_coverage: at most 1% of the input's volume left uncovered */
 
 /* acd3d_default_params() set for a part budget of `parts` (> 0): budget_parts = merge_parts = parts,
  * tau = ACD3D_BUDGET_TAU (relative), merge_tau_diag = ACD3D_BUDGET_MERGE_TAU_DIAG (merge_tau 0),
@@ -216,6 +226,9 @@ typedef struct acd3d_part {
     long genus;               /* handles of the part (Euler characteristic with its boundary loops,
                                  summed over its connected components) */
     size_t boundary_loops;    /* openings of the part (0 for a closed solid) */
+    double trimmed_volume;    /* with trim_coverage: the part's volume beyond the planes its hull was
+                                 cut by (an upper bound of its volume outside its hull); else 0. The
+                                 concavity above is measured against the untrimmed hull */
 } acd3d_part;
 
 typedef struct acd3d_result {
@@ -233,6 +246,10 @@ typedef struct acd3d_result {
                                  when given relative, merge_tau_diag x diagonal / scale when derived from
                                  merge_tau_diag (then merge_tau = merge_tau_relative x scale exactly), else
                                  merge_tau / scale (0 when scale is 0) */
+    double trimmed_volume;    /* the parts' trimmed_volume summed: at most trim_coverage x input_volume;
+                                 the input's volume outside the union of hulls is at most this */
+    size_t trim_cuts;         /* caps cut off the hulls (trim_coverage) */
+    double trim_depth_max;    /* the deepest trim cut below its hull facet, model units */
 } acd3d_result;
 
 /* Decomposes a closed (solid) or any (surface) triangle mesh. The input should have been

@@ -67,6 +67,11 @@ acd_status acd_mesh_write(const char *path, const acd_mesh *m, acd_mesh_format f
 acd_status acd_mesh_write_memory(const acd_mesh *m, acd_mesh_format fmt, void **data, size_t *size,
                                  acd_error *err);
 
+/* The volume of the solid bounded by the closed, outward mesh m beyond the plane n.x + d = 0
+ * (plane = {n, d}; the side n.x + d > 0; n need not be unit): the divergence theorem over the
+ * triangles clipped to that side. 0 for an empty mesh; NaN for a zero or non-finite plane. */
+double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]);
+
 /* ---------------------------------------------------------------------------------------
  * Multi-part meshes: one mesh per OBJ o/g group, e.g. the convex parts written by V-HACD or
  * CoACD. */

@@ -30,6 +30,7 @@
 #include "acd3/surface_cut.h"
 #include "acd3/surface_merge.h"
 #include "acd3/topology.h"
+#include "acd3/trim.h"
 #include "acd3/volume_plane.h"
 #include "core/error.h"
 #include "core/tolerance.h"
@@ -1403,6 +1404,9 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "merge_tau must be a finite number >= 0");
     if (!(params->merge_tau_diag >= 0) || !isfinite(params->merge_tau_diag))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "merge_tau_diag must be a finite number >= 0");
+    if (!(params->trim_coverage >= 0 && params->trim_coverage <= ACD3D_TRIM_COVERAGE_MAX))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "trim_coverage must be a number in [0, %g]",
+                        ACD3D_TRIM_COVERAGE_MAX);
     if (params->max_hull_vertices > 0 && params->max_hull_vertices < 4)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "max_hull_vertices must be 0 (no limit) or at least 4");
     if (params->mode != ACD3D_SOLID && params->mode != ACD3D_SURFACE)
@@ -1417,6 +1421,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
                           : params->merge_parts > 0                   ? "merge_parts (--merge-parts)"
                           : params->merge_refine > 0                  ? "merge_refine (--merge-refine)"
                           : params->budget_parts > 0                  ? "budget_parts (--budget)"
+                          : params->trim_coverage > 0                 ? "trim_coverage (--trim-coverage)"
                                                                       : NULL;
         if (opt) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "%s is for solid mode only", opt);
     }
@@ -1676,6 +1681,15 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         free(pst);
         free(perr);
         if (st != ACD_OK) goto fail;
+    }
+    if (solid && params->trim_coverage > 0) { /* the hulls trimmed within the coverage budget (acd3/trim) */
+        acd3_trim_stats ts;
+        st = acd3_trim_hulls(out->parts, out->nparts, vol, params->trim_coverage * vol, ACD3_TRIM_MIN_GAIN_REL * vol,
+                             params->max_hull_vertices, nthreads, params->progress, params->progress_user, &ts, err);
+        if (st != ACD_OK) goto fail;
+        out->trimmed_volume = ts.removed_part;
+        out->trim_cuts = ts.cuts;
+        out->trim_depth_max = ts.max_depth;
     }
     for (size_t i = 0; i < t.n; i++) {
         acd_hull_free(&t.a[i].hull);

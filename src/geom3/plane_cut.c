@@ -153,6 +153,61 @@ double acd_geom3_signed_volume(const acd_mesh *m) {
     return vol / 6.0;
 }
 
+double acd_geom3_triangle_volume_beyond(const double a[3], const double b[3], const double c[3], const double n[3],
+                                        double off, const double apex[3]) {
+    const double *p[3] = {a, b, c};
+    double s[3], poly[4][3];
+    int nbeyond = 0, np = 0;
+    for (int k = 0; k < 3; k++) {
+        s[k] = n[0] * p[k][0] + n[1] * p[k][1] + n[2] * p[k][2] - off;
+        nbeyond += s[k] > 0;
+    }
+    if (nbeyond == 0) return 0;
+    /* the triangle clipped to s > 0 (Sutherland-Hodgman: at most 4 corners) */
+    for (int k = 0; k < 3; k++) {
+        int j = k == 2 ? 0 : k + 1;
+        if (s[k] > 0)
+            for (int q = 0; q < 3; q++) poly[np][q] = p[k][q] - apex[q];
+        np += s[k] > 0;
+        if ((s[k] > 0) != (s[j] > 0)) {
+            double t = s[k] / (s[k] - s[j]);
+            for (int q = 0; q < 3; q++) poly[np][q] = p[k][q] + t * (p[j][q] - p[k][q]) - apex[q];
+            np++;
+        }
+    }
+    double v = 0;
+    for (int k = 1; k + 1 < np; k++) {
+        double bc[3];
+        cross3(poly[k], poly[k + 1], bc);
+        v += poly[0][0] * bc[0] + poly[0][1] * bc[1] + poly[0][2] * bc[2];
+    }
+    return v / 6.0;
+}
+
+double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
+    if (!m || m->nvertices == 0 || m->ntriangles == 0) return 0;
+    double nn = plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2];
+    if (!(nn > 0) || !isfinite(nn) || !isfinite(plane[3])) return NAN;
+    double lo[3], hi[3], o[3];
+    for (size_t v = 0; v < m->nvertices; v++)
+        for (int k = 0; k < 3; k++) {
+            double x = m->vertices[3 * v + k];
+            if (v == 0 || x < lo[k]) lo[k] = x;
+            if (v == 0 || x > hi[k]) hi[k] = x;
+        }
+    /* the apex: the bounding-box centre projected onto the plane (near the mesh, for rounding) */
+    for (int k = 0; k < 3; k++) o[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
+    double s = (plane[0] * o[0] + plane[1] * o[1] + plane[2] * o[2] + plane[3]) / nn;
+    for (int k = 0; k < 3; k++) o[k] -= s * plane[k];
+    double vol = 0;
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        const uint32_t *tr = m->triangles + 3 * t;
+        vol += acd_geom3_triangle_volume_beyond(m->vertices + 3 * (size_t)tr[0], m->vertices + 3 * (size_t)tr[1],
+                                                m->vertices + 3 * (size_t)tr[2], plane, -plane[3], o);
+    }
+    return vol;
+}
+
 acd_status acd_cut_result_check_closed(const acd_cut_result *r) {
     for (size_t p = 0; p < r->npieces; p++) {
         const acd_mesh *pm = &r->pieces[p].mesh;

@@ -1,0 +1,49 @@
+/* acd3/trim: hulls trimmed within a coverage budget (params.trim_coverage, `acd 3d --trim-coverage F`;
+ * docs/acd3d.md "Trimmed hulls").
+ *
+ * A part's convex hull holds the part and the air over its concave relief. Where a hull facet spans
+ * a few protruding tips (the skin of a scan), a plane a little below the facet cuts off a cap of
+ * the hull that is mostly air and holds a sliver of the part. This pass cuts such caps, greedily
+ * by the ratio of the hull volume removed to the part volume removed, while the part volume
+ * removed stays within `budget` (model units, summed over all parts). The union of the trimmed
+ * hulls then covers all of the input but at most `budget` of its volume (each part is covered by
+ * its own hull outside the caps cut from it; the sum counts a region beyond two cuts twice, so it
+ * is an upper bound), and the hulls stay convex (each is the hull of its old vertices below the
+ * plane and of its edges' crossings). A cut is taken only when it raises the IoU of input and union:
+ * removing hull volume g holding part volume l does when g / l > 1 + U / V (U the hulls' volume
+ * sum, V the input's), the floor used here.
+ *
+ * Candidates: every hull facet's plane moved inward by ACD3_TRIM_DEPTHS depths (fractions of the
+ * cube root of the part's initial hull volume); a cut must remove at least min_gain of hull volume.
+ * With max_vertices >= 4 a cut leaving more hull vertices than that is refused (the hull is then
+ * left as it is). Deterministic for any thread count: the hulls' best cuts are searched in
+ * parallel, the choices are made in order (ACD3_TRIM_BATCH distinct hulls per round, by ratio). */
+#ifndef ACD_ACD3_TRIM_H
+#define ACD_ACD3_TRIM_H
+
+#include <stddef.h>
+
+#include "acd/acd3d.h"
+#include "acd/base.h"
+
+/* min_gain as acd3d_decompose passes it: a cut removes at least this fraction of the input's volume
+ * of hull volume */
+#define ACD3_TRIM_MIN_GAIN_REL 1e-5
+
+typedef struct acd3_trim_stats {
+    size_t cuts;          /* caps cut off */
+    double removed_hull;  /* hull volume removed (sum over the cuts) */
+    double removed_part;  /* part volume beyond the cut planes (sum over the cuts: >= the volume the
+                             union of hulls leaves uncovered) */
+    double max_depth;     /* deepest cut, model units (how far below its old facet a plane went) */
+} acd3_trim_stats;
+
+/* Trims parts[i].hull (and hull_volume) of solid parts in place, setting parts[i].trimmed_volume.
+ * budget, min_gain: model volume units; budget <= 0 does nothing. progress: NULL or called from the
+ * calling thread between rounds (fraction of the budget spent); non-zero cancels
+ * (ACD_ERR_CANCELLED, the parts' hulls then partly trimmed: the caller discards the result). */
+acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
+                           size_t max_vertices, int threads, acd_progress_fn progress, void *progress_user,
+                           acd3_trim_stats *stats, acd_error *err);
+
+#endif

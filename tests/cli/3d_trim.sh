@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# acd 3d --trim-coverage F (docs/acd3d.md "Trimmed hulls"): on a bumpy sphere at a part budget the
+# hulls are trimmed (caps cut off, reported on stdout and in --json's "trim"), --verify passes with
+# the trimmed volume within F of the input's, and acd eval (independent code) finds the union's
+# coverage at least 1 - F (up to sampling) and a higher IoU than without trimming; a run without the
+# option writes no "trim"; bad values and surface mode are usage errors.
+set -u
+ACD=$1; SRC=$2
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+M="$T/bumpy.off"
+python3 - "$M" <<'PY'
+import math, sys
+nu, nv = 48, 32
+V = [(0.0, 0.0, 1.0)]
+F = []
+def r(t, p): return 1 + 0.25 * math.sin(3 * t) * math.cos(4 * p) + 0.1 * math.cos(5 * t)
+for i in range(1, nv):
+    t = math.pi * i / nv
+    for j in range(nu):
+        p = 2 * math.pi * j / nu
+        R = r(t, p)
+        V.append((R * math.sin(t) * math.cos(p), R * math.sin(t) * math.sin(p), R * math.cos(t)))
+V.append((0.0, 0.0, -r(math.pi, 0)))
+V[0] = (0.0, 0.0, r(0, 0))
+ring = lambda i, j: 1 + (i - 1) * nu + j % nu
+for j in range(nu): F.append((0, ring(1, j), ring(1, j + 1)))
+for i in range(1, nv - 1):
+    for j in range(nu):
+        a, b, c, d = ring(i, j), ring(i, j + 1), ring(i + 1, j + 1), ring(i + 1, j)
+        F += [(a, d, c), (a, c, b)]
+s = len(V) - 1
+for j in range(nu): F.append((s, ring(nv - 1, j + 1), ring(nv - 1, j)))
+with open(sys.argv[1], "w") as f:
+    f.write("OFF\n%d %d 0\n" % (len(V), len(F)))
+    f.writelines("%.17g %.17g %.17g\n" % v for v in V)
+    f.writelines("3 %d %d %d\n" % t for t in F)
+PY
+"$ACD" 3d "$M" --budget 6 -o "$T/p.obj" --json "$T/p.json" > "$T/p.txt" 2> "$T/p.err" || fail "untrimmed: $(cat "$T/p.err")"
+"$ACD" 3d "$M" --budget 6 --trim-coverage 0.002 --verify -o "$T/t.obj" --json "$T/t.json" > "$T/t.txt" 2> "$T/t.err" ||
+  fail "--trim-coverage 0.002 --verify: exit $? $(cat "$T/t.err")"
+grep -q "^trimmed hulls: [1-9][0-9]* caps cut off, at most [0-9.e-]* of the input's volume outside the hulls (limit 0.002)" "$T/t.txt" ||
+  fail "trim line: $(cat "$T/t.txt")"
+grep -q "^trimmed" "$T/p.txt" && fail "untrimmed run prints a trim line"
+python3 - "$T/p.json" "$T/t.json" <<'PY' || fail "json"
+import json, sys
+p, t = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert "trim" not in p and all("trimmed_volume" not in q for q in p["parts"]), "untrimmed json has trim keys"
+tr = t["trim"]
+assert tr["coverage"] == 0.002 and tr["cuts"] > 0, tr
+assert 0 < tr["trimmed_volume"] <= 0.002 * t["input_volume"] * (1 + 1e-12), tr
+s = sum(q["trimmed_volume"] for q in t["parts"])
+assert abs(s - tr["trimmed_volume"]) <= 1e-9 * t["input_volume"], (s, tr)
+assert len(p["parts"]) == len(t["parts"])
+hp = sum(q["hull_volume"] for q in p["parts"]); ht = sum(q["hull_volume"] for q in t["parts"])
+assert ht < hp, (ht, hp)
+for a, b in zip(p["parts"], t["parts"]):
+    assert a["volume"] == b["volume"] and b["hull_volume"] <= a["hull_volume"] * (1 + 1e-12), (a, b)
+PY
+"$ACD" eval "$M" "$T/p.obj" --json -o "$T/pe.json" > /dev/null 2>&1 || fail "eval untrimmed"
+"$ACD" eval "$M" "$T/t.obj" --json -o "$T/te.json" > /dev/null 2>&1 || fail "eval trimmed"
+python3 - "$T/pe.json" "$T/te.json" <<'PY' || fail "eval: trimmed union"
+import json, sys
+p, t = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert p["coverage"] > 0.9999, p["coverage"]
+assert t["coverage"] >= 1 - 0.002 - 5e-4, t["coverage"]
+assert t["iou"] > p["iou"], (t["iou"], p["iou"])
+PY
+for v in -0.001 0.02 abc nan; do
+  "$ACD" 3d "$M" --budget 6 --trim-coverage "$v" > /dev/null 2> "$T/e.err"; rc=$?
+  [ $rc -eq 1 ] || fail "--trim-coverage $v: exit $rc, expected 1"
+done
+"$ACD" 3d "$M" --mode surface --trim-coverage 0.001 > /dev/null 2> "$T/e.err"; rc=$?
+[ $rc -eq 1 ] || fail "surface mode --trim-coverage: exit $rc, expected 1 $(cat "$T/e.err")"
+grep -q "solid mode only" "$T/e.err" || fail "surface mode message: $(cat "$T/e.err")"
+echo ok

@@ -1,0 +1,206 @@
+/* Tests of the trimmed hulls (acd3d_params.trim_coverage, acd3/trim; docs/acd3d.md "Trimmed hulls")
+ * and of acd_mesh_volume_beyond, the volume they are accounted with:
+ * - the volume beyond a plane of a cube and of a sphere against the closed forms;
+ * - on a bumpy sphere at a part budget: the parts are those of the untrimmed run, every trimmed hull
+ *   lies within the untrimmed one and holds less volume, the reported trimmed volumes add up and stay
+ *   within the budget, the union of hulls scored by acd eval (independent code) covers at least
+ *   1 - trim_coverage of the input and has a higher IoU; the same output for 1 and 2 threads;
+ * - max_hull_vertices still holds with trimming; bad values and surface mode are refused. */
+#include "testutil.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/acd3d.h"
+#include "acd/eval.h"
+#include "acd/hull.h"
+#include "shapes.h"
+
+static void cube(acd_mesh *m) {
+    static const double V[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1};
+    static const uint32_t T[] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
+                                 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
+    m->nvertices = 8;
+    m->ntriangles = 12;
+    m->vertices = malloc(sizeof V);
+    m->triangles = malloc(sizeof T);
+    memcpy(m->vertices, V, sizeof V);
+    memcpy(m->triangles, T, sizeof T);
+}
+
+static void test_volume_beyond_cube(void **state) {
+    (void)state;
+    acd_mesh m;
+    cube(&m);
+    const double x25[4] = {1, 0, 0, -0.25};     /* x > 0.25 */
+    const double x25s[4] = {-2, 0, 0, 0.5};     /* x < 0.25, normal not unit */
+    const double diag[4] = {1, 1, 0, -1};       /* x + y > 1: half the cube */
+    const double corner[4] = {1, 1, 1, -2.5};   /* x + y + z > 2.5: a corner tetrahedron, 1/48 */
+    const double none[4] = {0, 0, 1, -3};       /* z > 3 */
+    const double all[4] = {0, 0, 1, 3};         /* z > -3 */
+    assert_float_equal(acd_mesh_volume_beyond(&m, x25), 0.75, 1e-14);
+    assert_float_equal(acd_mesh_volume_beyond(&m, x25s), 0.25, 1e-14);
+    assert_float_equal(acd_mesh_volume_beyond(&m, diag), 0.5, 1e-14);
+    assert_float_equal(acd_mesh_volume_beyond(&m, corner), 1.0 / 48, 1e-14);
+    assert_float_equal(acd_mesh_volume_beyond(&m, none), 0.0, 1e-15);
+    assert_float_equal(acd_mesh_volume_beyond(&m, all), 1.0, 1e-14);
+    const double zero[4] = {0, 0, 0, 1}, bad[4] = {NAN, 0, 1, 0};
+    assert_true(isnan(acd_mesh_volume_beyond(&m, zero)));
+    assert_true(isnan(acd_mesh_volume_beyond(&m, bad)));
+    acd_mesh_free(&m);
+}
+
+static double radius2(double theta, double phi, void *user) {
+    (void)theta, (void)phi, (void)user;
+    return 2.0;
+}
+
+/* a sphere's cap against the closed form pi h^2 (3r - h) / 3, within the polyhedron's error */
+static void test_volume_beyond_sphere(void **state) {
+    (void)state;
+    acd_mesh m;
+    double r = 2.0;
+    assert_true(mg_radial(&m, 96, 64, radius2, NULL));
+    for (size_t i = 0; i < m.nvertices; i++) m.vertices[3 * i] += 10; /* off the origin */
+    for (double h = 0.25; h < 4; h += 0.75) {
+        const double pl[4] = {0, 0, 1, -(r - h)}; /* z > r - h */
+        double exact = 3.14159265358979323846 * h * h * (3 * r - h) / 3;
+        assert_true(fabs(acd_mesh_volume_beyond(&m, pl) - exact) < 0.01 * exact);
+    }
+    acd_mesh_free(&m);
+}
+
+static void bumpy(acd_mesh *m) { assert_true(mg_radial(m, 48, 32, mg_bumpy_r, NULL)); }
+
+static double hulls_volume(const acd3d_result *r) {
+    double s = 0;
+    for (size_t i = 0; i < r->nparts; i++) s += r->parts[i].hull_volume;
+    return s;
+}
+
+static void eval_result(const acd_mesh *m, const acd3d_result *r, acd_eval_report *rep) {
+    acd_hull *h = calloc(r->nparts, sizeof *h);
+    acd_error err;
+    for (size_t i = 0; i < r->nparts; i++)
+        assert_int_equal(acd_hull_compute(r->parts[i].hull.vertices, r->parts[i].hull.nvertices, &h[i], &err), ACD_OK);
+    acd_eval_params ep = acd_eval_default_params();
+    ep.samples = 200000;
+    ep.surface_samples = 20000;
+    assert_int_equal(acd_eval_hulls(m, h, r->nparts, &ep, rep, &err), ACD_OK);
+    for (size_t i = 0; i < r->nparts; i++) acd_hull_free(&h[i]);
+    free(h);
+}
+
+static void test_trim_bumpy(void **state) {
+    (void)state;
+    acd_mesh m;
+    bumpy(&m);
+    acd_error err;
+    acd3d_params p = acd3d_budget_params(6);
+    p.threads = 1;
+    acd3d_result plain, trimmed, trimmed2;
+    assert_int_equal(acd3d_decompose(&m, &p, &plain, &err), ACD_OK);
+    const double F = 0.002;
+    p.trim_coverage = F;
+    assert_int_equal(acd3d_decompose(&m, &p, &trimmed, &err), ACD_OK);
+    p.threads = 2;
+    assert_int_equal(acd3d_decompose(&m, &p, &trimmed2, &err), ACD_OK);
+    assert_int_equal(plain.nparts, trimmed.nparts);
+    assert_true(trimmed.trim_cuts > 0);
+    assert_true(plain.trim_cuts == 0 && plain.trimmed_volume == 0);
+    double tsum = 0;
+    for (size_t i = 0; i < trimmed.nparts; i++) {
+        const acd3d_part *a = &plain.parts[i], *b = &trimmed.parts[i];
+        /* the same part, its hull inside the untrimmed one and no larger */
+        assert_int_equal(a->mesh.nvertices, b->mesh.nvertices);
+        assert_memory_equal(a->mesh.vertices, b->mesh.vertices, 3 * a->mesh.nvertices * sizeof(double));
+        assert_true(b->hull_volume <= a->hull_volume * (1 + 1e-12));
+        assert_true(b->trimmed_volume >= 0);
+        tsum += b->trimmed_volume;
+        acd_hull ha;
+        assert_int_equal(acd_hull_compute(a->hull.vertices, a->hull.nvertices, &ha, &err), ACD_OK);
+        for (size_t v = 0; v < b->hull.nvertices; v++)
+            assert_true(acd_hull_plane_distance(&ha, b->hull.vertices + 3 * v) <= 1e-9 * plain.scale);
+        acd_hull_free(&ha);
+        /* a hull with nothing trimmed is the untrimmed one */
+        if (b->trimmed_volume == 0) assert_true(b->hull_volume == a->hull_volume);
+    }
+    assert_float_equal(tsum, trimmed.trimmed_volume, 1e-9 * trimmed.input_volume);
+    assert_true(trimmed.trimmed_volume <= F * trimmed.input_volume * (1 + 1e-12));
+    assert_true(trimmed.trimmed_volume > 0);
+    assert_true(hulls_volume(&trimmed) < hulls_volume(&plain) - 1e-4 * trimmed.input_volume);
+    /* the union scored independently: coverage within the budget (sampling error: 1e-3), higher IoU */
+    acd_eval_report e0, e1;
+    eval_result(&m, &plain, &e0);
+    eval_result(&m, &trimmed, &e1);
+    assert_true(e0.coverage > 0.9999);
+    assert_true(e1.coverage >= 1 - F - 1e-3);
+    assert_true(e1.iou > e0.iou);
+    /* the same output for 1 and 2 threads */
+    assert_int_equal(trimmed.nparts, trimmed2.nparts);
+    assert_int_equal(trimmed.trim_cuts, trimmed2.trim_cuts);
+    for (size_t i = 0; i < trimmed.nparts; i++) {
+        assert_int_equal(trimmed.parts[i].hull.nvertices, trimmed2.parts[i].hull.nvertices);
+        assert_memory_equal(trimmed.parts[i].hull.vertices, trimmed2.parts[i].hull.vertices,
+                            3 * trimmed.parts[i].hull.nvertices * sizeof(double));
+    }
+    acd3d_result_free(&plain);
+    acd3d_result_free(&trimmed);
+    acd3d_result_free(&trimmed2);
+    acd_mesh_free(&m);
+}
+
+static void test_trim_max_vertices(void **state) {
+    (void)state;
+    acd_mesh m;
+    bumpy(&m);
+    acd_error err;
+    acd3d_params p = acd3d_budget_params(4);
+    p.trim_coverage = 0.005;
+    p.max_hull_vertices = 24;
+    acd3d_result r;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    for (size_t i = 0; i < r.nparts; i++) assert_true(r.parts[i].hull.nvertices <= 24);
+    assert_true(r.trimmed_volume <= 0.005 * r.input_volume * (1 + 1e-12));
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+}
+
+static void test_trim_refused(void **state) {
+    (void)state;
+    acd_mesh m;
+    cube(&m);
+    acd_error err;
+    acd3d_result r;
+    const double bad[] = {-1e-3, 0.02, NAN, INFINITY};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        acd3d_params p = acd3d_default_params();
+        p.trim_coverage = bad[k];
+        assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+        assert_non_null(strstr(err.message, "trim_coverage"));
+    }
+    acd3d_params p = acd3d_default_params();
+    p.mode = ACD3D_SURFACE;
+    p.trim_coverage = 0.001;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_INVALID_ARGUMENT);
+    assert_non_null(strstr(err.message, "solid mode only"));
+    /* a convex input: nothing to trim, the hull is the cube */
+    p = acd3d_default_params();
+    p.trim_coverage = 0.01;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.nparts, 1);
+    assert_int_equal(r.trim_cuts, 0);
+    assert_float_equal(r.parts[0].hull_volume, 1.0, 1e-12);
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_volume_beyond_cube),   cmocka_unit_test(test_volume_beyond_sphere),
+        cmocka_unit_test(test_trim_bumpy),           cmocka_unit_test(test_trim_max_vertices),
+        cmocka_unit_test(test_trim_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
