@@ -29,16 +29,34 @@ typedef struct trim_plane {
     int have_loss;
 } trim_plane;
 
+/* A convex polytope as outward triangles (a hull cut by planes: its triangles clipped, the section
+ * fanned); vertices may repeat a position where a cut passed through a vertex. */
+typedef struct trim_poly {
+    double *v;        /* 3 * nv */
+    size_t nv;
+    uint32_t *t;      /* 3 * nt */
+    size_t nt;
+    double *pl;       /* 4 * nt: the plane each triangle lies in, n.x + d = 0, n outward unit */
+} trim_poly;
+
+static void poly_free(trim_poly *P) {
+    free(P->v);
+    free(P->t);
+    free(P->pl);
+    memset(P, 0, sizeof *P);
+}
+
 typedef struct trim_hull {
-    acd_hull h;       /* the current hull (dim 3) */
+    trim_poly h;      /* the current hull */
     acd_bvh bvh;      /* over the part's triangles */
     double unit;      /* depth unit: cube root of the initial hull volume */
     double centre[3]; /* of the initial hull's bounding box (apexes of the cones) */
     int active;       /* a solid hull that may still be cut */
     trim_plane *pl;   /* candidate planes */
     size_t npl, cappl;
-    double *removed;  /* 3 * nremoved: the corners of the last cut's removed cap */
-    size_t nremoved;
+    double *cap;      /* 9 * ncap: the last cut's removed cap, outward triangles as corner triples */
+    size_t ncap, capcap;
+    int cut;          /* cut at least once */
     int have;         /* best cut found */
     double plane[3], off, gain, loss, ratio, depth;
 } trim_hull;
@@ -111,11 +129,11 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain) {
     double off[NDEPTHS], apex[NDEPTHS][3];
     plane_offsets(T, P, off, apex);
     memset(P->gain, 0, sizeof P->gain);
-    const acd_hull *h = &T->h;
-    for (size_t t = 0; t < h->ntriangles; t++) {
-        const uint32_t *tr = h->triangles + 3 * t;
-        add_beyond(h->vertices + 3 * (size_t)tr[0], h->vertices + 3 * (size_t)tr[1], h->vertices + 3 * (size_t)tr[2],
-                   P->n, off, (const double(*)[3])apex, P->gain);
+    const trim_poly *h = &T->h;
+    for (size_t t = 0; t < h->nt; t++) {
+        const uint32_t *tr = h->t + 3 * t;
+        add_beyond(h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2], P->n, off,
+                   (const double(*)[3])apex, P->gain);
     }
     if (P->have_loss || !(P->gain[NDEPTHS - 1] >= min_gain)) return; /* the deepest cap holds the others */
     memset(P->loss, 0, sizeof P->loss);
@@ -170,80 +188,188 @@ static int after_cut(trim_hull *T, double min_gain) {
         trim_plane *P = &T->pl[j];
         double deepest = P->off0 - ACD3_TRIM_DEPTHS[NDEPTHS - 1] * T->unit;
         int meets = 0;
-        for (size_t v = 0; v < T->nremoved && !meets; v++) meets = dot3(P->n, T->removed + 3 * v) > deepest;
-        if (meets) plane_measure(T, P, min_gain);
+        for (size_t v = 0; v < 3 * T->ncap && !meets; v++) meets = dot3(P->n, T->cap + 3 * v) > deepest;
+        if (!meets) continue;
+        /* the plane's caps lose what they held of the removed cap: its volume beyond each depth */
+        double off[NDEPTHS], apex[NDEPTHS][3], lost[NDEPTHS] = {0};
+        plane_offsets(T, P, off, apex);
+        for (size_t t = 0; t < T->ncap; t++)
+            add_beyond(T->cap + 9 * t, T->cap + 9 * t + 3, T->cap + 9 * t + 6, P->n, off, (const double(*)[3])apex, lost);
+        for (size_t k = 0; k < NDEPTHS; k++) P->gain[k] = fmax(0.0, P->gain[k] - lost[k]);
     }
     if (!add_plane(T, T->plane, T->off)) return 0;
     plane_measure(T, &T->pl[T->npl - 1], min_gain);
     return 1;
 }
 
-/* The hull's facet planes as candidates, measured (a facet split into triangles once: the triangle
- * of lowest index among its neighbours of the same plane; a few repeats are only extra work). */
+static int plane_cmp(const void *a, const void *b) { return memcmp(a, b, 4 * sizeof(double)); }
+
+/* The hull's facet planes as candidates, measured (a facet split into triangles once: its
+ * triangles carry the same plane). */
 static int init_planes(trim_hull *T, double min_gain) {
-    const acd_hull *h = &T->h;
-    for (size_t f = 0; f < h->ntriangles; f++) {
-        const double *pl = h->planes + 4 * f;
-        int repeat = 0;
-        for (int e = 0; e < 3 && !repeat; e++) {
-            uint32_t g = h->neighbors[3 * f + e];
-            repeat = g < f && !memcmp(h->planes + 4 * (size_t)g, pl, 4 * sizeof *pl);
-        }
-        if (repeat) continue;
-        if (!add_plane(T, pl, -pl[3])) return 0;
-        plane_measure(T, &T->pl[T->npl - 1], min_gain);
+    const trim_poly *h = &T->h;
+    double *sorted = malloc(4 * h->nt * sizeof *sorted);
+    if (!sorted) return 0;
+    memcpy(sorted, h->pl, 4 * h->nt * sizeof *sorted);
+    qsort(sorted, h->nt, 4 * sizeof *sorted, plane_cmp);
+    int ok = 1;
+    for (size_t f = 0; f < h->nt && ok; f++) {
+        const double *pl = sorted + 4 * f;
+        if (f > 0 && !memcmp(pl - 4, pl, 4 * sizeof *pl)) continue;
+        ok = add_plane(T, pl, -pl[3]);
+        if (ok) plane_measure(T, &T->pl[T->npl - 1], min_gain);
     }
-    return 1;
+    free(sorted);
+    return ok;
 }
 
-/* The hull cut by the plane: the hull of its vertices at or below it and of its edges' crossings
- * (the corners of the removed cap, the vertices beyond and the crossings, kept in T->removed).
- * 1 done, 0 refused (degenerate, or more than max_vertices), -1 out of memory. */
+typedef struct sect_pt {
+    double ang;
+    uint32_t v;
+} sect_pt;
+
+static int sect_cmp(const void *a, const void *b) {
+    const sect_pt *x = a, *y = b;
+    return x->ang < y->ang ? -1 : x->ang > y->ang ? 1 : (x->v > y->v) - (x->v < y->v);
+}
+
+/* The hull cut by the plane n.x = off (T->plane, T->off), by clipping its triangles: those below
+ * kept, those crossing clipped (the crossing of an edge computed once, from its lower vertex
+ * index), the section (the crossings and the vertices on the plane, in convex position) fanned in
+ * angular order; the removed cap kept in T->cap (the parts beyond, the section reversed).
+ * 1 done, 0 refused (more than max_vertices, or nothing removed), -1 out of memory. */
 static int cut_hull(trim_hull *T, size_t max_vertices) {
-    const acd_hull *h = &T->h;
-    size_t room = h->nvertices + 3 * h->ntriangles;
-    double *pts = malloc(3 * room * sizeof *pts), *rem = realloc(T->removed, 3 * room * sizeof *rem);
-    if (!pts || !rem) {
-        free(pts);
-        if (rem) T->removed = rem;
-        return -1;
-    }
-    T->removed = rem;
-    size_t np = 0, nr = 0;
-    for (size_t v = 0; v < h->nvertices; v++) {
-        const double *x = h->vertices + 3 * v;
-        if (dot3(T->plane, x) <= T->off)
-            memcpy(pts + 3 * np++, x, 3 * sizeof *pts);
-        else
-            memcpy(rem + 3 * nr++, x, 3 * sizeof *rem);
-    }
-    for (size_t t = 0; t < h->ntriangles; t++)
-        for (int e = 0; e < 3; e++) { /* each edge once: from the triangle of lower index */
-            uint32_t g = h->neighbors[3 * t + e];
-            if (g < t) continue;
-            const double *a = h->vertices + 3 * (size_t)h->triangles[3 * t + e];
-            const double *b = h->vertices + 3 * (size_t)h->triangles[3 * t + (e == 2 ? 0 : e + 1)];
-            double sa = dot3(T->plane, a) - T->off, sb = dot3(T->plane, b) - T->off;
-            if ((sa > 0) == (sb > 0)) continue;
-            double x = sa / (sa - sb);
-            for (int q = 0; q < 3; q++) pts[3 * np + q] = a[q] + x * (b[q] - a[q]);
-            memcpy(rem + 3 * nr++, pts + 3 * np, 3 * sizeof *rem);
-            np++;
+    const trim_poly *h = &T->h;
+    const double *n = T->plane;
+    size_t nv = h->nv, nt = h->nt;
+    double *s = malloc(nv * sizeof *s);
+    uint32_t *map = malloc(nv * sizeof *map);
+    /* crossings: per triangle edge (3 * nt slots), the new vertex of that edge (found through the
+     * edge's twin by a search over the vertex's triangles would cost more: an edge key table) */
+    size_t ekcap = 1;
+    while (ekcap < 6 * nt + 16) ekcap <<= 1;
+    uint64_t *ekey = malloc(ekcap * sizeof *ekey);
+    uint32_t *eval = malloc(ekcap * sizeof *eval);
+    trim_poly out = {0};
+    size_t vcap = nv + 3 * nt + 8, tcap = 5 * nt + 16;
+    out.v = malloc(3 * vcap * sizeof *out.v);
+    out.t = malloc(3 * tcap * sizeof *out.t);
+    out.pl = malloc(4 * tcap * sizeof *out.pl);
+    sect_pt *sec = malloc(vcap * sizeof *sec);
+    size_t ccap = 3 * nt + vcap;
+    if (T->capcap < ccap) {
+        double *nc = realloc(T->cap, 9 * ccap * sizeof *nc);
+        if (nc) {
+            T->cap = nc;
+            T->capcap = ccap;
         }
-    T->nremoved = nr;
-    acd_hull nh;
-    acd_error e;
-    acd_status st = acd_hull_compute(pts, np, &nh, &e);
-    free(pts);
-    if (st == ACD_ERR_NOMEM) return -1;
-    if (st != ACD_OK) return 0;
-    if (nh.dim != 3 || (max_vertices >= 4 && nh.nvertices > max_vertices)) {
-        acd_hull_free(&nh);
-        return 0;
     }
-    acd_hull_free(&T->h);
-    T->h = nh;
-    return 1;
+    int ret = -1;
+    if (!s || !map || !ekey || !eval || !out.v || !out.t || !out.pl || !sec || T->capcap < ccap) goto done;
+    memset(ekey, 0xff, ekcap * sizeof *ekey);
+    size_t nbeyond = 0;
+    for (size_t v = 0; v < nv; v++) {
+        s[v] = dot3(n, h->v + 3 * v) - T->off;
+        map[v] = UINT32_MAX;
+        nbeyond += s[v] > 0;
+    }
+    ret = 0;
+    if (nbeyond == 0) goto done;
+    size_t nsec = 0;
+    T->ncap = 0;
+#define ADD_V(p) (memcpy(out.v + 3 * out.nv, (p), 3 * sizeof(double)), (uint32_t)out.nv++)
+    for (size_t t = 0; t < nt; t++) {
+        const uint32_t *tr = h->t + 3 * t;
+        int nb = (s[tr[0]] > 0) + (s[tr[1]] > 0) + (s[tr[2]] > 0);
+        if (nb == 3) { /* beyond: to the cap */
+            for (int k = 0; k < 3; k++) memcpy(T->cap + 9 * T->ncap + 3 * k, h->v + 3 * (size_t)tr[k], 3 * sizeof(double));
+            T->ncap++;
+            continue;
+        }
+        uint32_t below[4];
+        double beyond[4][3];
+        int nbl = 0, nby = 0;
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = tr[k], b = tr[k == 2 ? 0 : k + 1];
+            if (!(s[a] > 0)) { /* at or below: kept (on the plane: also a corner of the section and of the cap) */
+                if (map[a] == UINT32_MAX) {
+                    map[a] = ADD_V(h->v + 3 * (size_t)a);
+                    if (s[a] == 0) sec[nsec++].v = map[a];
+                }
+                below[nbl++] = map[a];
+            }
+            if (s[a] >= 0) memcpy(beyond[nby++], h->v + 3 * (size_t)a, sizeof beyond[0]);
+            if ((s[a] < 0 && s[b] > 0) || (s[a] > 0 && s[b] < 0)) { /* a crossing edge */
+                uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
+                uint64_t key = (uint64_t)lo << 32 | hi;
+                size_t slot = (size_t)((key * 0x9E3779B97F4A7C15ull) >> 20) & (ekcap - 1);
+                while (ekey[slot] != UINT64_MAX && ekey[slot] != key) slot = (slot + 1) & (ekcap - 1);
+                if (ekey[slot] != key) {
+                    double x = s[lo] / (s[lo] - s[hi]), p[3];
+                    for (int q = 0; q < 3; q++) p[q] = h->v[3 * (size_t)lo + q] + x * (h->v[3 * (size_t)hi + q] - h->v[3 * (size_t)lo + q]);
+                    ekey[slot] = key;
+                    eval[slot] = ADD_V(p);
+                    sec[nsec++].v = eval[slot];
+                }
+                below[nbl++] = eval[slot];
+                memcpy(beyond[nby++], out.v + 3 * (size_t)eval[slot], sizeof beyond[0]);
+            }
+        }
+        for (int k = 1; k + 1 < nbl; k++) { /* the part below, fanned, in the triangle's plane */
+            uint32_t *o = out.t + 3 * out.nt;
+            o[0] = below[0], o[1] = below[k], o[2] = below[k + 1];
+            memcpy(out.pl + 4 * out.nt, h->pl + 4 * t, 4 * sizeof(double));
+            out.nt++;
+        }
+        for (int k = 1; k + 1 < nby && nb > 0; k++) { /* the part beyond, to the cap */
+            memcpy(T->cap + 9 * T->ncap, beyond[0], 3 * sizeof(double));
+            memcpy(T->cap + 9 * T->ncap + 3, beyond[k], 3 * sizeof(double));
+            memcpy(T->cap + 9 * T->ncap + 6, beyond[k + 1], 3 * sizeof(double));
+            T->ncap++;
+        }
+    }
+#undef ADD_V
+    if (nsec >= 3) { /* the section, counterclockwise seen from the side beyond (outward for the kept part) */
+        double c[3] = {0, 0, 0}, u[3], w[3];
+        for (size_t i = 0; i < nsec; i++)
+            for (int q = 0; q < 3; q++) c[q] += out.v[3 * (size_t)sec[i].v + q] / (double)nsec;
+        int ax = fabs(n[0]) < fabs(n[1]) ? (fabs(n[0]) < fabs(n[2]) ? 0 : 2) : (fabs(n[1]) < fabs(n[2]) ? 1 : 2);
+        double e[3] = {0, 0, 0};
+        e[ax] = 1;
+        double un = 0;
+        u[0] = n[1] * e[2] - n[2] * e[1], u[1] = n[2] * e[0] - n[0] * e[2], u[2] = n[0] * e[1] - n[1] * e[0];
+        un = sqrt(dot3(u, u));
+        for (int q = 0; q < 3; q++) u[q] /= un;
+        w[0] = n[1] * u[2] - n[2] * u[1], w[1] = n[2] * u[0] - n[0] * u[2], w[2] = n[0] * u[1] - n[1] * u[0];
+        for (size_t i = 0; i < nsec; i++) {
+            const double *p = out.v + 3 * (size_t)sec[i].v;
+            double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+            sec[i].ang = atan2(dot3(d, w), dot3(d, u));
+        }
+        qsort(sec, nsec, sizeof *sec, sect_cmp);
+        const double pl[4] = {n[0], n[1], n[2], -T->off};
+        for (size_t i = 1; i + 1 < nsec; i++) {
+            uint32_t *o = out.t + 3 * out.nt;
+            o[0] = sec[0].v, o[1] = sec[i].v, o[2] = sec[i + 1].v;
+            memcpy(out.pl + 4 * out.nt, pl, sizeof pl);
+            out.nt++;
+            double *cp = T->cap + 9 * T->ncap; /* reversed: outward for the cap */
+            memcpy(cp, out.v + 3 * (size_t)sec[0].v, 3 * sizeof(double));
+            memcpy(cp + 3, out.v + 3 * (size_t)sec[i + 1].v, 3 * sizeof(double));
+            memcpy(cp + 6, out.v + 3 * (size_t)sec[i].v, 3 * sizeof(double));
+            T->ncap++;
+        }
+    }
+    if (out.nt < 4 || (max_vertices >= 4 && out.nv > max_vertices)) goto done; /* refused */
+    poly_free(&T->h);
+    T->h = out;
+    memset(&out, 0, sizeof out);
+    T->cut = 1;
+    ret = 1;
+done:
+    poly_free(&out);
+    free(s), free(map), free(ekey), free(eval), free(sec);
+    return ret;
 }
 
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
@@ -271,22 +397,31 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
     for (long j = 0; j < (long)nparts; j++) {
         trim_hull *H = &T[j];
         const acd3d_part *p = &parts[j];
-        H->h.dim = -1;
         if (!(p->volume > 0) || p->hull.nvertices < 4) continue;
         acd_error e;
-        pst[j] = acd_hull_compute(p->hull.vertices, p->hull.nvertices, &H->h, &e);
-        if (pst[j] != ACD_OK || H->h.dim != 3) continue;
+        acd_hull h0;
+        pst[j] = acd_hull_compute(p->hull.vertices, p->hull.nvertices, &h0, &e);
+        if (pst[j] != ACD_OK) continue;
+        if (h0.dim != 3) {
+            acd_hull_free(&h0);
+            continue;
+        }
+        H->unit = cbrt(h0.volume);
+        H->h.v = h0.vertices, H->h.nv = h0.nvertices;
+        H->h.t = h0.triangles, H->h.nt = h0.ntriangles;
+        H->h.pl = h0.planes;
+        h0.vertices = NULL, h0.triangles = NULL, h0.planes = NULL;
+        acd_hull_free(&h0);
         pst[j] = acd_bvh_build(&H->bvh, p->mesh.vertices, p->mesh.nvertices, p->mesh.triangles, p->mesh.ntriangles, &e);
         if (pst[j] != ACD_OK) continue;
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        for (size_t v = 0; v < H->h.nvertices; v++)
+        for (size_t v = 0; v < H->h.nv; v++)
             for (int k = 0; k < 3; k++) {
-                double x = H->h.vertices[3 * v + k];
+                double x = H->h.v[3 * v + k];
                 lo[k] = fmin(lo[k], x);
                 hi[k] = fmax(hi[k], x);
             }
         for (int k = 0; k < 3; k++) H->centre[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
-        H->unit = cbrt(H->h.volume);
         H->active = 1;
         if (!init_planes(H, min_gain)) pst[j] = ACD_ERR_NOMEM;
     }
@@ -351,25 +486,33 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             if (H->depth > stats->max_depth) stats->max_depth = H->depth;
         }
     }
-    /* the trimmed hulls out */
-    for (size_t i = 0; i < nparts && st == ACD_OK; i++) {
-        trim_hull *H = &T[i];
-        if (!(parts[i].trimmed_volume > 0)) continue;
-        acd_mesh *m = &parts[i].hull;
+    /* the trimmed hulls out: the hull of each cut polytope's vertices (facets merged as qhull does) */
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1 && st == ACD_OK)
+#endif
+    for (long j = 0; j < (long)nparts; j++) {
+        trim_hull *H = &T[j];
+        pst[j] = ACD_OK;
+        if (st != ACD_OK || !H->cut) continue;
+        acd_hull nh;
+        acd_error e;
+        pst[j] = acd_hull_compute(H->h.v, H->h.nv, &nh, &e);
+        if (pst[j] != ACD_OK) continue;
+        acd_mesh *m = &parts[j].hull;
         acd_mesh_free(m);
-        m->vertices = H->h.vertices;
-        m->nvertices = H->h.nvertices;
-        m->triangles = H->h.triangles;
-        m->ntriangles = H->h.ntriangles;
-        parts[i].hull_volume = H->h.volume;
-        H->h.vertices = NULL;
-        H->h.triangles = NULL;
+        m->vertices = nh.vertices, m->nvertices = nh.nvertices;
+        m->triangles = nh.triangles, m->ntriangles = nh.ntriangles;
+        parts[j].hull_volume = nh.volume;
+        nh.vertices = NULL, nh.triangles = NULL;
+        acd_hull_free(&nh);
     }
+    for (size_t i = 0; i < nparts && st == ACD_OK; i++)
+        if (pst[i] != ACD_OK) st = acd_fail(err, pst[i], "trim: a trimmed hull could not be computed");
     for (size_t i = 0; i < nparts; i++) {
-        acd_hull_free(&T[i].h);
+        poly_free(&T[i].h);
         acd_bvh_free(&T[i].bvh);
         free(T[i].pl);
-        free(T[i].removed);
+        free(T[i].cap);
     }
     free(T);
     free(pst);
