@@ -374,33 +374,15 @@ static int verify(const acd3d_result *r, int budget, double trim, double *outsid
             double d = acd_hull_plane_distance(&h, m->vertices + 3 * k);
             if (d > worst) worst = d;
         }
-        /* trimmed hulls: the part's volume beyond each plane of a facet it sticks out of, summed
-         * over distinct planes (the triangles of one facet share its plane; a region beyond two
-         * planes is counted twice: an upper bound of the part's volume outside its hull) */
-        if (trim > 0 && h.dim == 3 && worst > 1e-9 * r->scale) {
-            double *pl = malloc(4 * h.ntriangles * sizeof *pl);
-            if (!pl) {
+        /* trimmed hulls: an upper bound of the part's volume outside its hull (the part beyond the
+         * distinct planes of the facets it sticks out of) */
+        if (trim > 0 && worst > 1e-9 * r->scale) {
+            double b = acd_hull_volume_outside_bound(&h, m, 1e-9 * r->scale, r->scale);
+            if (isnan(b)) {
                 acd_hull_free(&h);
                 return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
             }
-            size_t npl = 0;
-            for (size_t f = 0; f < h.ntriangles; f++) {
-                const double *q = h.planes + 4 * f;
-                double w = -INFINITY;
-                for (size_t k = 0; k < m->nvertices; k++) {
-                    const double *v = m->vertices + 3 * k;
-                    w = fmax(w, q[0] * v[0] + q[1] * v[1] + q[2] * v[2] + q[3]);
-                }
-                if (!(w > 1e-9 * r->scale)) continue;
-                int seen = 0;
-                for (size_t j = 0; j < npl && !seen; j++)
-                    seen = fabs(pl[4 * j] - q[0]) <= 1e-9 && fabs(pl[4 * j + 1] - q[1]) <= 1e-9 &&
-                           fabs(pl[4 * j + 2] - q[2]) <= 1e-9 && fabs(pl[4 * j + 3] - q[3]) <= 1e-9 * r->scale;
-                if (seen) continue;
-                memcpy(pl + 4 * npl++, q, 4 * sizeof *pl);
-                outside += fmax(0.0, acd_mesh_volume_beyond(m, q));
-            }
-            free(pl);
+            outside += b;
         }
         acd_hull_free(&h);
         if (!(trim > 0) && worst > 1e-9 * r->scale)

@@ -9,13 +9,17 @@
  *            acd_mesh_repair as `acd 3d` does), bit 5 max_hulls, bit 6 no merge pass;
  *   data[1]: tau; data[2]: merge_parts (bits 0-2), merge_refine (bits 3-4), max_hull_vertices
  *            (bits 5-7: none, 4 .. 10); data[3]: max_hulls (bits 0-1, 1 .. 4), budget_parts (bits
- *            2-3: off, off, 2, 4), merge_tau (bits 4-5).
+ *            2-3: off, off, 2, 4), merge_tau (bits 4-5), trim_coverage (bits 6-7: off, 0.001, 0.005,
+ *            0.01).
  *
  * Checked on every accepted run (any violation aborts):
  *  - a failure carries a message;
  *  - every part closed, with positive volume, the volumes adding up to the input's;
  *  - every part inside its hull (the hull's own planes, rebuilt by qhull from its vertices), at
- *    most max_hull_vertices hull vertices, the hull's volume at least the part's;
+ *    most max_hull_vertices hull vertices, the hull's volume at least the part's; with
+ *    trim_coverage: the part's volume outside its trimmed hull (acd_hull_volume_outside_bound) at
+ *    most its trimmed_volume, the hull's volume at least the part's less that, the trimmed volumes
+ *    adding up to the result's, within trim_coverage of the input's volume;
  *  - every part meets tau unless its leaf reason says why not (no_cut, depth, merged by
  *    max_hulls, budget: its bound is merge_tau's unless no cut could split it); joined and refined
  *    parts meet merge_tau; max_concavity is the parts' maximum;
@@ -41,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 #define FZ_HEADER 4
 
 static void check(const acd3d_params *p, const acd3d_result *r) {
-    double sum = 0, maxc = 0;
+    double sum = 0, maxc = 0, trimmed = 0;
     if (p->max_hulls && r->nparts > p->max_hulls) abort();
     for (size_t i = 0; i < r->nparts; i++) {
         const acd3d_part *q = &r->parts[i];
@@ -68,14 +72,23 @@ static void check(const acd3d_params *p, const acd3d_result *r) {
         if (!(q->volume > 0)) abort();
         if (fabs(q->volume - fz_mesh_volume(&q->mesh)) > 1e-9 * (fabs(q->volume) + r->input_volume)) abort();
         if (p->max_hull_vertices && q->hull.nvertices > p->max_hull_vertices) abort();
-        if (!(q->hull_volume >= q->volume * (1 - 1e-9) - 1e-12 * r->input_volume)) abort();
+        if (!(q->trimmed_volume >= 0) || (p->trim_coverage == 0 && q->trimmed_volume != 0)) abort();
+        trimmed += q->trimmed_volume;
+        if (!(q->hull_volume >= q->volume * (1 - 1e-9) - q->trimmed_volume - 1e-12 * r->input_volume)) abort();
         acd_hull h;
         if (acd_hull_compute(q->hull.vertices, q->hull.nvertices, &h, &e) != ACD_OK) abort();
-        for (size_t v = 0; v < q->mesh.nvertices; v++)
-            if (acd_hull_plane_distance(&h, q->mesh.vertices + 3 * v) > 1e-9 * r->scale) abort();
+        if (q->trimmed_volume > 0) {
+            double out = acd_hull_volume_outside_bound(&h, &q->mesh, 1e-9 * r->scale, r->scale);
+            if (!(out <= q->trimmed_volume * (1 + 1e-6) + 1e-9 * r->input_volume)) abort();
+        } else {
+            for (size_t v = 0; v < q->mesh.nvertices; v++)
+                if (acd_hull_plane_distance(&h, q->mesh.vertices + 3 * v) > 1e-9 * r->scale) abort();
+        }
         acd_hull_free(&h);
     }
     if (maxc != r->max_concavity) abort();
+    if (fabs(trimmed - r->trimmed_volume) > 1e-9 * r->input_volume) abort();
+    if (!(r->trimmed_volume <= p->trim_coverage * r->input_volume * (1 + 1e-12))) abort();
     if (fabs(sum - r->input_volume) > 1e-9 * fabs(r->input_volume)) abort();
     for (size_t n = 0; n < r->nnodes; n++) {
         const acd3d_node *nd = &r->nodes[n];
@@ -112,6 +125,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     p.merge_tau = mtaus[(data[3] >> 4) & 3] * p.tau;
     static const size_t budgets[4] = {0, 0, 2, 4}; /* 8 took 5 s under ASan on a seed */
     p.budget_parts = budgets[(data[3] >> 2) & 3];
+    static const double trims[4] = {0, 0.001, 0.005, 0.01};
+    p.trim_coverage = trims[data[3] >> 6];
     if ((data[0] & 16) && size > FZ_HEADER + FZ_NV) fz_delete_faces(&m, data + FZ_HEADER + FZ_NV, size - FZ_HEADER - FZ_NV);
     acd3d_result r;
     acd_error err;

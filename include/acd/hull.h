@@ -4,6 +4,7 @@
 #define ACD_HULL_H
 
 #include "acd/base.h"
+#include "acd/mesh.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -57,6 +58,14 @@ double acd_hull_plane_distance(const acd_hull *h, const double p[3]);
 /* An undirected hull edge v[0] < v[1]: left is the triangle that runs v[0] -> v[1] (the facet on the
  * left walking from v[0] to v[1], seen from outside), right the one that runs v[1] -> v[0];
  * ACD_HULL_NO_NEIGHBOR on the boundary of a planar hull. */
+/* An upper bound of the volume of the closed, outward solid m outside the hull h (dim 3): the
+ * solid's volume beyond each plane of a facet some vertex of m lies beyond by more than tol, summed
+ * over the distinct planes (the triangles of one facet share its plane, planes within 1e-9 in
+ * normal and 1e-9 x tol_scale in offset count once; a region beyond two planes is counted twice).
+ * 0 when every vertex of m is within tol of h. NaN when out of memory. Used to check trimmed hulls
+ * (acd3d_params.trim_coverage). */
+double acd_hull_volume_outside_bound(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale);
+
 typedef struct acd_hull_edge {
     uint32_t v[2];
     uint32_t left, right;

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd/hull.h"
 #include "core/error.h"
 #include "core/union_find.h"
 #include "core/predicates.h"
@@ -206,6 +207,34 @@ double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
                                                 m->vertices + 3 * (size_t)tr[2], plane, -plane[3], o);
     }
     return vol;
+}
+
+double acd_hull_volume_outside_bound(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale) {
+    if (h->dim != 3 || m->nvertices == 0) return 0;
+    double *seen = NULL, sum = 0;
+    size_t nseen = 0;
+    for (size_t f = 0; f < h->ntriangles; f++) {
+        const double *q = h->planes + 4 * f;
+        double w = -INFINITY;
+        for (size_t k = 0; k < m->nvertices; k++) {
+            const double *v = m->vertices + 3 * k;
+            w = fmax(w, q[0] * v[0] + q[1] * v[1] + q[2] * v[2] + q[3]);
+        }
+        if (!(w > tol)) continue;
+        int dup = 0;
+        for (size_t j = 0; j < nseen && !dup; j++)
+            dup = fabs(seen[4 * j] - q[0]) <= 1e-9 && fabs(seen[4 * j + 1] - q[1]) <= 1e-9 &&
+                  fabs(seen[4 * j + 2] - q[2]) <= 1e-9 && fabs(seen[4 * j + 3] - q[3]) <= 1e-9 * tol_scale;
+        if (dup) continue;
+        if (!seen) {
+            seen = malloc(4 * h->ntriangles * sizeof *seen);
+            if (!seen) return NAN;
+        }
+        memcpy(seen + 4 * nseen++, q, 4 * sizeof *seen);
+        sum += fmax(0.0, acd_mesh_volume_beyond(m, q));
+    }
+    free(seen);
+    return sum;
 }
 
 acd_status acd_cut_result_check_closed(const acd_cut_result *r) {
