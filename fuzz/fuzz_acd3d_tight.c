@@ -18,7 +18,7 @@
  *  - every part inside its hull (the hull's own planes, rebuilt by qhull from its vertices), at
  *    most max_hull_vertices hull vertices, the hull's volume at least the part's; with
  *    trim_coverage: the part's volume outside its trimmed hull (acd_hull_volume_outside_bound) at
- *    most its trimmed_volume, the hull's volume at least the part's less that, the trimmed volumes
+ *    most its trimmed_volume (a part with none may still stick out by a fin of no volume), the hull's volume at least the part's less that, the trimmed volumes
  *    adding up to the result's, within trim_coverage of the input's volume;
  *  - every part meets tau unless its leaf reason says why not (no_cut, depth, merged by
  *    max_hulls, budget: its bound is merge_tau's unless no cut could split it); joined and refined
@@ -77,7 +77,7 @@ static void check(const acd3d_params *p, const acd3d_result *r) {
         if (!(q->hull_volume >= q->volume * (1 - 1e-9) - q->trimmed_volume - 1e-12 * r->input_volume)) abort();
         acd_hull h;
         if (acd_hull_compute(q->hull.vertices, q->hull.nvertices, &h, &e) != ACD_OK) abort();
-        if (q->trimmed_volume > 0) {
+        if (p->trim_coverage > 0) { /* (a part may stick out of its trimmed hull by a flat fin: no volume) */
             double out = acd_hull_volume_outside_bound(&h, &q->mesh, 1e-9 * r->scale, r->scale);
             if (!(out <= q->trimmed_volume * (1 + 1e-6) + 1e-9 * r->input_volume)) abort();
         } else {
