@@ -4,9 +4,8 @@
  * (3 x int8 each, so duplicates, collinear and coplanar sets are frequent) or, after a leading 'D'
  * byte, raw doubles. The points are sorted along the direction; up to 8 queries take growing
  * prefixes, each with some of the later points projected onto the query's plane (as a plane cut's
- * section crossings). Every volume acd_hull_volume_fast gives (and the sweep's, when built with
- * -DHV_FUZZ_CHECK_SWEEP: after e9b520d CI's run found another degenerate query it underestimates,
- * docs/results/fuzz.md "Open"; the sweep may decline a query: -3) must be within HV_FUZZ_TOL_REL x extent^2 x max(extent, the coordinates' magnitude) of
+ * section crossings). Every volume acd_hull_volume_fast and the sweep give (the sweep may decline a
+ * query: -3) must be within HV_FUZZ_TOL_REL x extent^2 x max(extent, the coordinates' magnitude) of
  * acd_hull_volume's (qhull's) on the same set: the estimate's tolerances (a point within 1e-10, a set flat within
  * 1e-8) are relative to the coordinates' magnitude, so its slack is far below that; a wrong
  * horizon or a lost point off by more is a defect. Out of memory (-1) is allowed; anything else aborts. */
@@ -119,11 +118,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         memcpy(set + 3 * cnt[q], xs + 3 * xb[q], 3 * (xe[q] - xb[q]) * sizeof(double));
         double ref = -1;
         if (acd_hull_volume(set, m, &ref, NULL) != ACD_OK) continue; /* qhull refused: nothing to compare */
-#ifdef HV_FUZZ_CHECK_SWEEP /* off: the sweep still underestimates some degenerate queries (docs/results/fuzz.md, "Open") */
         if (r == 0) check(vol[q], ref, tol);
-#else
-        (void)r;
-#endif
         check(acd_hull_volume_fast(set, m, &w, NULL), ref, tol);
     }
     acd_hull_volume_ws_free(&w);

@@ -3,7 +3,7 @@
  * box-surface and grid sets, by itself (the qhull fallback hardly used), is 0 for a flat set and
  * for fewer than 4 points; a workspace reused across sets of different sizes gives the same
  * volumes as a fresh one; the sweep (acd_hull_volume_sweep) gives each query the volume of its set
- * computed alone. */
+ * computed alone, also on the degenerate sets fuzz_hull_volume found. */
 #include "testutil.h"
 
 #include <math.h>
@@ -273,6 +273,37 @@ static void test_extreme_scales(void **state) {
     acd_hull_volume_ws_free(&w);
 }
 
+/* fuzz_hull_volume's queries on 23 points sorted along (68, -56, 105) with the 20 section points xs:
+ * prefixes of 2, 5, ..., 23 points, each with a few of xs. Whether every query the sweep computes is
+ * within the target's tolerance of qhull's volume (1e-6 x extent^2 x max(extent, magnitude)), and the
+ * last two are computed. */
+static int sweep_fuzz_queries(const double *pts, const double *xs) {
+    const size_t cnt[8] = {2, 5, 8, 11, 14, 17, 20, 23}, xb[8] = {0, 5, 9, 9, 9, 11, 17, 20}, xe[8] = {5, 9, 9, 9, 11, 17, 20, 20};
+    double dir[3] = {68, -56, 105}, l = sqrt(68.0 * 68 + 56 * 56 + 105 * 105);
+    for (int k = 0; k < 3; k++) dir[k] /= l;
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) lo[k] = hi[k] = pts[k];
+    for (int i = 1; i < 23; i++)
+        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], pts[3 * i + k]), hi[k] = fmax(hi[k], pts[3 * i + k]);
+    double ext = 0, mag = 0;
+    for (int k = 0; k < 3; k++) ext = fmax(ext, hi[k] - lo[k]), mag = fmax(mag, fmax(fabs(lo[k]), fabs(hi[k])));
+    double tol = 1e-6 * ext * ext * fmax(ext, mag); /* fuzz_hull_volume's HV_FUZZ_TOL_REL */
+    acd_hull_volume_ws w;
+    memset(&w, 0, sizeof w);
+    double vol[8], set[3 * 29];
+    int ok = acd_hull_volume_sweep(pts, 23, dir, cnt, xs, xb, xe, 8, vol, &w) == 0;
+    for (int q = 0; q < 8 && ok; q++) {
+        size_t m = cnt[q] + xe[q] - xb[q];
+        memcpy(set, pts, 3 * cnt[q] * sizeof *set);
+        memcpy(set + 3 * cnt[q], xs + 3 * xb[q], 3 * (xe[q] - xb[q]) * sizeof *set);
+        double ref;
+        if (acd_hull_volume(set, m, &ref, NULL) != ACD_OK || vol[q] == -3) continue;
+        ok = fabs(vol[q] - ref) <= tol;
+    }
+    acd_hull_volume_ws_free(&w);
+    return ok && vol[6] > 0 && vol[7] > 0;
+}
+
 /* fuzz_hull_volume's sweep underestimate (fuzz/corpus/hull_volume/sweep_thin_prefix): 23 points at
  * 1e-42 sorted along dir (most on the plane x = y, 1.6e-8 of the extent off it, near-duplicates),
  * eight queries. The prefix of 17 points is a hull that thin: point 19 lies 6.5e-3 of the extent
@@ -330,31 +361,68 @@ static void test_sweep_thin_prefix(void **state) {
         8.325922826811719e-43, 1.71652623032731e-43, 7.1917870860458253e-43,
         8.3263698095092182e-43, 1.7166464273540235e-43, 7.191561716617883e-43
     };
-    const size_t cnt[8] = {2, 5, 8, 11, 14, 17, 20, 23}, xb[8] = {0, 5, 9, 9, 9, 11, 17, 20}, xe[8] = {5, 9, 9, 9, 11, 17, 20, 20};
-    double dir[3] = {68, -56, 105}, l = sqrt(68.0 * 68 + 56 * 56 + 105 * 105);
-    for (int k = 0; k < 3; k++) dir[k] /= l;
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; k++) lo[k] = hi[k] = pts[k];
-    for (int i = 1; i < 23; i++)
-        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], pts[3 * i + k]), hi[k] = fmax(hi[k], pts[3 * i + k]);
-    double ext = 0, mag = 0;
-    for (int k = 0; k < 3; k++) ext = fmax(ext, hi[k] - lo[k]), mag = fmax(mag, fmax(fabs(lo[k]), fabs(hi[k])));
-    double tol = 1e-6 * ext * ext * fmax(ext, mag); /* fuzz_hull_volume's HV_FUZZ_TOL_REL */
-    acd_hull_volume_ws w;
-    memset(&w, 0, sizeof w);
-    double vol[8], set[3 * 29];
-    assert_int_equal(acd_hull_volume_sweep(pts, 23, dir, cnt, xs, xb, xe, 8, vol, &w), 0);
-    for (int q = 0; q < 8; q++) {
-        size_t m = cnt[q] + xe[q] - xb[q];
-        memcpy(set, pts, 3 * cnt[q] * sizeof *set);
-        memcpy(set + 3 * cnt[q], xs + 3 * xb[q], 3 * (xe[q] - xb[q]) * sizeof *set);
-        double ref;
-        if (acd_hull_volume(set, m, &ref, NULL) != ACD_OK) continue;
-        if (vol[q] == -3) continue;
-        assert_true(fabs(vol[q] - ref) <= tol);
-    }
-    assert_true(vol[6] > 0 && vol[7] > 0);
-    acd_hull_volume_ws_free(&w);
+    assert_true(sweep_fuzz_queries(pts, xs));
+}
+
+/* fuzz_hull_volume's second sweep underestimate (fuzz/corpus/hull_volume/sweep_thin_prefix2, a
+ * mutation of the set above; the same queries). Point 13 of the prefix of 14 is 1.6e-53 (1.5e-11 of
+ * the extent, within the tolerance) above facet (4, 6, 10) and 2.2e-47 beyond vertex 10, nearly on
+ * the line of edge (10, 6): the cone over the horizon edge (10, 6) made facet (10, 6, 13), whose
+ * plane is y = const while (4, 6, 10) is tilted, so vertex 4 lay 1.1e-44 (1.1e-2 of the extent) above
+ * it: a fold, the hull no longer convex. Point 19 (9e-5 of the extent above facet (4, 6, 10)) was then
+ * never tested against that facet, and queries 6 and 7 came out 1.33e-131 (11 times the target's
+ * tolerance) below qhull's volume. A step whose new facet has its horizon facet's third vertex above
+ * it is now numerically ambiguous (the prefix's hull built again from scratch). */
+static void test_sweep_fold(void **state) {
+    (void)state;
+    static const double pts[3 * 23] = {
+        1.3980432860952889e-76, 1.3980432860952889e-76, 1.107644006727337e-47,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.3980433222694975e-76,
+        1.0409897442638362e-42, 1.0410273767909543e-42, 1.6936477909996416e-43,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.6951804611949969e-43,
+        1.0410273767909543e-42, 1.0522377645055528e-42, 2.6025684419773857e-43,
+        1.0410273767909543e-42, 1.0410273767961745e-42, 2.6025684419773857e-43,
+        1.3980432860952889e-76, 1.0410273767909531e-42, 1.0410814307844512e-42,
+        1.0410273767909543e-42, 2.0049457978885926e-76, 1.3980432860952889e-76,
+        1.2444927205786585e-47, 1.2460995198351858e-47, 1.0410273783105702e-42,
+        1.0410273767909543e-42, 1.0410273767178709e-42, 1.0409897442638362e-42,
+        1.0410054815024492e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273764568587e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767896492e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273762167275e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0478587068045377e-42,
+        1.0410272912657054e-42, 1.3980432860933274e-76, 1.0410273767175843e-42,
+        1.0410276106494882e-42, 1.5707759177945867e-76, 1.0410273767909531e-42,
+        1.0410869042724818e-42, 6.014732326702936e-67, 1.0410273767906677e-42
+    };
+    static const double xs[3 * 20] = {
+        9.7662506446780998e-43, 1.0940335836817993e-42, 6.9978141179629702e-44,
+        9.7659517826589558e-43, 1.0940891873410026e-42, 7.0027151338159007e-44,
+        9.4437873632490886e-43, 1.1318307625364136e-42, 1.1101997288987444e-43,
+        9.4210622334128836e-43, 1.1224918561076642e-42, 1.0751094548869556e-43,
+        -1.3945226646364721e-43, 1.1558704197610156e-42, 8.2575072521558424e-43,
+        1.0387548638073336e-42, 1.0428988580768032e-42, 2.567478167965597e-43,
+        -4.2803625997601872e-44, 1.0762774217301546e-42, 9.7498759652344826e-43,
+        9.2664422322878801e-43, 9.4197891168842767e-44, -1.7662104594158018e-43,
+        -2.5380296760380701e-43, 2.090369183736795e-43, 6.491065207259181e-43,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42,
+        1.0410273766745499e-42, 1.0410273763125899e-42, 1.0410273766112122e-42,
+        1.0384308531658816e-42, 1.0431656903645435e-42, 1.043849368854058e-42,
+        8.2999551831774982e-43, 1.737908718394928e-43, 7.1516949201853532e-43,
+        8.2999575905609942e-43, 1.737909366063202e-43, 7.151693706541028e-43,
+        8.3004045732584918e-43, 1.7380295630899154e-43, 7.1514683371130856e-43,
+        8.3259204194282247e-43, 1.7165255826590361e-43, 7.1917882996901505e-43,
+        8.325922826811719e-43, 1.71652623032731e-43, 7.1917870860458253e-43,
+        8.3263698095092182e-43, 1.7166464273540235e-43, 7.191561716617883e-43
+    };
+    assert_true(sweep_fuzz_queries(pts, xs));
 }
 
 int main(void) {
@@ -364,6 +432,7 @@ int main(void) {
         cmocka_unit_test(test_sweep),
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_sweep_thin_prefix),
+        cmocka_unit_test(test_sweep_fold),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -30,13 +30,14 @@ typedef struct acd_hull_volume_ws {
     int *pend, *visl;                   /* facets pending, facets visible */
     size_t pendcap, vcap;
     int *hor, *horf, *horu, *newf;      /* horizon: edges, facets (all, each once), new facets */
+    size_t nnarrow;                     /* horizon edges a sweep's point is near the line of (in horu) */
     double *pl;                         /* planes of the new and horizon facets */
     size_t hcap;
     int *near;                          /* acd_hull_volume_sweep: points near the hull (see there) */
     size_t nnear, nearcap;
     int iter;  /* the visible search's stamp (vis, facets' marks) */
     int lastf; /* a facet made by the last step */
-    int sweep; /* in acd_hull_volume_sweep (slivers refused) */
+    int sweep; /* in acd_hull_volume_sweep (slivers and folds refused) */
     double cen[3]; /* the initial simplex's centroid: inside every facet of a valid hull */
 } acd_hull_volume_ws;
 
@@ -54,8 +55,9 @@ double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, 
  * corners of their planar hull) are added and undone. A point found inside but above a facet (within
  * the tolerance) is kept and tested against the facets made later: beyond the rim of a nearly flat
  * prefix it can lie far outside (fuzz_hull_volume). vol[q]: the volume, or -3 when not computed
- * (fewer than 4 points, a flat prefix, or a numerically ambiguous step: the caller computes those
- * with acd_hull_volume_fast). Returns 0, -1 when out of memory. */
+ * (fewer than 4 points, a flat prefix, or a numerically ambiguous step: a sliver, or a new facet
+ * folding over its horizon facet; the caller computes those with acd_hull_volume_fast). Returns 0,
+ * -1 when out of memory. */
 int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
                           const size_t *xb, const size_t *xe, int nq, double *vol, acd_hull_volume_ws *w);
 
