@@ -21,6 +21,7 @@
 #include "geom3/bvh.h"
 #include "geom3/edge_map.h"
 #include "geom3/plane_cut.h"
+#include "hull_winding.h" /* tests/support */
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -28,33 +29,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 /* Points x triangles up to which the winding number of every point is checked. */
 #define CHECK_WINDING_MAX 20000
 
-/* Every point within rtol (relative to the extent) of the triangles or inside them: the solid
- * angles of the triangles seen from it sum to 4 pi (Van Oosterom and Strackee), in coordinates
- * normalised by the box (centre, extent ext) so that any scale behaves the same. */
+/* Every point within rtol (relative to the extent) of the triangles or inside them (winding number
+ * 1: tests/support/hull_winding.h), in coordinates normalised by the box (centre, extent ext). */
 static void check_winding(const acd_hull *h, const double *p, size_t n, const double *cen, double ext, double rtol) {
     for (size_t i = 0; i < n; i++) {
-        double q[3], cq[3], near = INFINITY, omega = 0;
-        for (int k = 0; k < 3; k++) q[k] = (p[3 * i + k] - cen[k]) / ext;
-        for (size_t t = 0; t < h->ntriangles; t++) {
-            double v[3][3], r[3][3], l[3];
-            for (int j = 0; j < 3; j++) {
-                for (int k = 0; k < 3; k++) {
-                    v[j][k] = (h->vertices[3 * (size_t)h->triangles[3 * t + j] + k] - cen[k]) / ext;
-                    r[j][k] = v[j][k] - q[k];
-                }
-                l[j] = sqrt(r[j][0] * r[j][0] + r[j][1] * r[j][1] + r[j][2] * r[j][2]);
-            }
-            near = fmin(near, sqrt(acd_closest_point_triangle(q, v[0], v[1], v[2], cq)));
-            double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
-                         r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
-            double d01 = r[0][0] * r[1][0] + r[0][1] * r[1][1] + r[0][2] * r[1][2];
-            double d02 = r[0][0] * r[2][0] + r[0][1] * r[2][1] + r[0][2] * r[2][2];
-            double d12 = r[1][0] * r[2][0] + r[1][1] * r[2][1] + r[1][2] * r[2][2];
-            omega += 2 * atan2(det, l[0] * l[1] * l[2] + d01 * l[2] + d02 * l[1] + d12 * l[0]);
-        }
-        if (near > rtol && fabs(omega / (4 * 3.14159265358979323846) - 1) > 0.25) {
-            fprintf(stderr, "point %zu is %g (of the extent) from the triangles, winding number %g\n", i, near,
-                    omega / (4 * 3.14159265358979323846));
+        double near, wn = hull_winding(h, p + 3 * i, cen, ext, &near);
+        if (near > rtol && fabs(wn - 1) > 0.25) {
+            fprintf(stderr, "point %zu is %g (of the extent) from the triangles, winding number %g\n", i, near, wn);
             abort();
         }
     }

@@ -446,7 +446,8 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
  * altitudes under 1e-3 of the extent on 4.6%, 4.3%, 10%); fuzz_hull still checks every plane.
  * That trusts qhull to have kept every point below a well-conditioned facet; it once did not (a
  * point lost 1.2e-9 of the extent above one), so when one of 14 extreme points of the set is
- * outside a plane (hull_extremes_outside) no facet is trusted. */
+ * outside a plane (hull_extremes_outside), or qhull repaired a non-convexity on the way
+ * (qhull_repaired), no facet is trusted. */
 
 /* Points per leaf of the tree (the check's time on the hulls of a bunny00 run, against 64:
  * 1.7x with 16, 1.2x with 32, the same with 128). */
@@ -1122,16 +1123,27 @@ static int hull_extremes_outside(const acd_hull *out, const double *w, size_t n,
     return 0;
 }
 
+/* Whether qhull repaired a non-convexity while building (its own statistics): a new facet flipped
+ * (its normal against its horizon) or a concave ridge between two facets within its merge tolerance
+ * of coplanar. Both are merged away, and a point partitioned before the merge may end up above the
+ * merged facet, however well shaped: fuzz_hull's 17 points spanning 1e45 to 1e-314 (a flipped facet,
+ * a concave-coplanar ridge) left one 1.35e-9 of the extent above a trusted facet, extreme in none of
+ * hull_extremes_outside's directions; its 17 points at 1e40 (test_lost_extreme_point) had a
+ * concave-coplanar ridge too. Rare on real parts: 1 hull in about 850 of the bunny00 and fandisk
+ * budget runs, no flipped facet (docs/results/geom3.md). */
+static int qhull_repaired(qhT *qh) { return zzval_(Zflippedfacets) > 0 || zzval_(Zconcavecoplanarridge) > 0; }
+
 /* Checks the planes of out (built from w, the points normalised by s, box diagonal diag) that are
- * not trusted (none when an extreme point is outside: hull_extremes_outside): each must have every point below it and its triangle's vertices on it, within
- * ACD_TOL_REL_DIST x diag (normalised units). A plane that fails is replaced by its triangle's own
- * plane when that one has every point below it; otherwise it is lifted to its farthest point and
+ * not trusted (none when qhull repaired a non-convexity, repaired: qhull_repaired, or an extreme
+ * point is outside: hull_extremes_outside): each must have every point below it and its triangle's
+ * vertices on it, within ACD_TOL_REL_DIST x diag (normalised units). A plane that fails is replaced by its triangle's
+ * own plane when that one has every point below it; otherwise it is lifted to its farthest point and
  * the hull rebuilt (hull_repair; the lifted planes stay if the rebuild is not possible). */
 static acd_status hull_enclose(acd_hull *out, const double *points, const double *w, size_t n, double s, double diag,
-                               acd_error *err) {
+                               int repaired, acd_error *err) {
     const double tol = ACD_TOL_REL_DIST * diag;
     encl_tree T = {0};
-    int built = 0, missed = 0, lost = hull_extremes_outside(out, w, n, tol);
+    int built = 0, missed = 0, lost = repaired || hull_extremes_outside(out, w, n, tol);
     acd_status st = ACD_OK;
     for (size_t t = 0; t < out->ntriangles; t++) {
         double *pl = out->planes + 4 * t;
@@ -1186,8 +1198,9 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
     char msg[200] = "";
     if (code == 0) {
         acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
+        int repaired = qhull_repaired(r.qh);
         qhull_run_free(&r);
-        if (st == ACD_OK && out) st = hull_enclose(out, points, w, n, s, diag, err);
+        if (st == ACD_OK && out) st = hull_enclose(out, points, w, n, s, diag, repaired, err);
         return st;
     }
     qhull_first_line(&r, msg, sizeof msg);
@@ -1204,9 +1217,10 @@ static acd_status hull_solid(const double *points, double *w, size_t n, double s
         code = qhull_run_do(&r, j, n);
         if (code == 0) {
             acd_status st = hull_from_qhull(&r, points, w, n, s, out, volume, err);
+            int repaired = qhull_repaired(r.qh);
             qhull_run_free(&r);
             free(j);
-            if (st == ACD_OK && out) st = hull_enclose(out, points, w, n, s, diag, err);
+            if (st == ACD_OK && out) st = hull_enclose(out, points, w, n, s, diag, repaired, err);
             return st;
         }
         qhull_run_free(&r);
