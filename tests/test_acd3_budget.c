@@ -297,6 +297,51 @@ static void test_budget_subdivided(void **state) {
     acd_mesh_free(&m[1]);
 }
 
+/* The diagonal of m's bounding box. */
+static double box_diagonal(const acd_mesh *m) {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, d2 = 0;
+    for (size_t v = 0; v < m->nvertices; v++)
+        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], m->vertices[3 * v + k]), hi[k] = fmax(hi[k], m->vertices[3 * v + k]);
+    for (int k = 0; k < 3; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    return sqrt(d2);
+}
+
+/* Phase 1 (the cuts of parts above the limit after the budget) ends: with a limit no part of a bumpy
+ * sphere can meet (1e-9 of its size), the pass stops within its cap of 32 x (budget + parts) phase-1
+ * cuts, the parts left above the limit counted in `over` with a reason, and every phase-1 cut made
+ * progress (each piece's bounding-box diagonal at most 0.95 of its part's). Before the rule and the
+ * caps the pass had no bound but its 20000 atoms (anchor.off --budget 16 with the section-hull
+ * scores: 1% slivers shaved off thin parts for minutes). */
+static void test_phase1_terminates(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 24, 16, bumpy_r, NULL));
+    acd_error err;
+    acd3_budget_result r;
+    const size_t budget = 2;
+    assert_int_equal(acd3_budget_split(&m, 1, budget, 1e-9, 0, 4.0, 2, &r, &err), ACD_OK);
+    print_message("limit 1e-9: %zu cuts (%zu in phase 1), %zu parts, %zu over: %s\n", r.cuts, r.phase1_cuts, r.nalive,
+                  r.over, r.phase1_stop ? r.phase1_stop : "-");
+    assert_true(r.phase1_cuts >= 1);
+    assert_true(r.phase1_cuts <= 32 * (budget + 1));
+    assert_true(r.over >= 1);
+    assert_non_null(r.phase1_stop);
+    /* the cuts in order (each cut's pieces consecutive); the last phase1_cuts are phase 1's */
+    size_t ncut = 0;
+    for (size_t k = 0; k < r.nnew; k++) ncut += k == 0 || r.new_parent[k] != r.new_parent[k - 1];
+    assert_int_equal(ncut, r.cuts);
+    size_t c = 0;
+    for (size_t k = 0; k < r.nnew; k++) {
+        c += k == 0 || r.new_parent[k] != r.new_parent[k - 1];
+        if (c <= r.cuts - r.phase1_cuts) continue;
+        uint32_t pa = r.new_parent[k];
+        double pd = box_diagonal(pa == 0 ? &m : &r.new_parts[pa - 1]);
+        assert_true(box_diagonal(&r.new_parts[k]) <= 0.95 * pd);
+    }
+    acd3_budget_result_free(&r);
+    acd_mesh_free(&m);
+}
+
 static void test_decompose_budget(void **state) {
     (void)state;
     acd_mesh m;
@@ -383,6 +428,7 @@ int main(void) {
         cmocka_unit_test(test_decompose_budget),
         cmocka_unit_test(test_hull_candidates),
         cmocka_unit_test(test_budget_subdivided),
+        cmocka_unit_test(test_phase1_terminates),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

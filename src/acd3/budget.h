@@ -7,9 +7,14 @@
  * volumes; the part whose best split saves the most is cut, until `budget` parts exist. Every part
  * must also meet `limit` both ways (acd3/leaf_test: its surface and its hull's boundary within
  * limit of each other, the merge pass's kind of bound): a part that does not is cut (its best
- * split, whatever it saves) even beyond the budget. A part no cut splits (slivers refused) stays
- * as it is (counted in `over` when above limit). Deterministic for any thread count (the
- * candidate planes are scored in parallel, every choice is sequential). */
+ * split, whatever it saves) even beyond the budget, but only by a cut that makes progress (each
+ * piece's bounding-box diagonal at most 0.95 of the part's: its best such cut among its candidates
+ * and the midplanes of its bounding box), at most 96 such cuts deep and 32 x (budget + nparts) in
+ * all (budget.c, BUDGET_P1_SHRINK: the termination argument; docs/acd3d.md "Excess-driven budget").
+ * A part no cut splits (slivers refused) or none makes progress on stays as it is (counted in
+ * `over` when above limit, phase1_stop saying why).
+ * Deterministic for any thread count (the candidate planes are scored in parallel, every choice is
+ * sequential). */
 #ifndef ACD_ACD3_BUDGET_H
 #define ACD_ACD3_BUDGET_H
 
@@ -41,6 +46,8 @@ typedef struct acd3_budget_result {
     size_t nalive;          /* parts after the splits (input parts not cut and pieces not cut) */
     size_t over;            /* of them, parts above limit that no cut could split */
     size_t cuts;            /* cuts made */
+    size_t phase1_cuts;     /* of them, cuts of parts above limit once the budget was spent */
+    const char *phase1_stop; /* when parts stay above limit (over > 0), why (a static string), else NULL */
     double hull_volume;     /* the sum of the parts' hull volumes */
 } acd3_budget_result;
 
