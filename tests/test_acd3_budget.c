@@ -269,9 +269,10 @@ static void test_hull_candidates(void **state) {
 }
 
 /* The budget pass on a bumpy sphere and on its subdivision x16 (the same surface): hull volume sums
- * at 8 parts within 0.5% of each other (with the plane search's sample by index stride alone, before
- * 2026-11-26: 4.904 and 5.043, +2.8%). The greedy choices compound, so a small difference in a
- * score can still change a later cut: a loose tolerance, few parts. */
+ * at 24 parts within 0.7% of each other (the sections scored by their own hull: +0.42%; with the
+ * crossings of a triangle sample, 223861c-0d6e8ea: +1.39%, +0.16% at 8 parts; with the plane
+ * search's sample by index stride alone, before 2026-11-26: +2.8% at 8 parts). The greedy choices
+ * compound, so a small difference in a score can still change a later cut: a loose tolerance. */
 static void test_budget_subdivided(void **state) {
     (void)state;
     acd_mesh m[2], t;
@@ -280,7 +281,7 @@ static void test_budget_subdivided(void **state) {
     midpoint_subdivide(&t, &m[1]);
     acd_mesh_free(&t);
     acd_error err;
-    for (size_t budget = 8; budget <= 8; budget++) {
+    for (size_t budget = 24; budget <= 24; budget++) {
         double hv[2];
         for (int i = 0; i < 2; i++) {
             acd3_budget_result r;
@@ -291,7 +292,7 @@ static void test_budget_subdivided(void **state) {
         }
         print_message("budget %zu: hull volume sums %.9g, subdivided x16 %.9g (%+.3f%%)\n", budget, hv[0], hv[1],
                       100 * (hv[1] / hv[0] - 1));
-        assert_true(fabs(hv[1] / hv[0] - 1) <= 0.005);
+        assert_true(fabs(hv[1] / hv[0] - 1) <= 0.007);
     }
     acd_mesh_free(&m[0]);
     acd_mesh_free(&m[1]);
