@@ -5,7 +5,8 @@
  *   lies within the untrimmed one and holds less volume, the reported trimmed volumes add up and stay
  *   within the budget, the union of hulls scored by acd eval (independent code) covers at least
  *   1 - trim_coverage of the input and has a higher IoU; the same output for 1 and 2 threads;
- * - max_hull_vertices still holds with trimming; bad values and surface mode are refused. */
+ * - max_hull_vertices still holds with trimming; bad values and surface mode are refused;
+ * - an input that intersects itself is not trimmed (its signed volumes bound nothing), and says so. */
 #include "testutil.h"
 
 #include <math.h>
@@ -196,11 +197,45 @@ static void test_trim_refused(void **state) {
     acd_mesh_free(&m);
 }
 
+/* two bumpy spheres overlapping: one closed, outward mesh that crosses itself */
+static void test_trim_self_crossing(void **state) {
+    (void)state;
+    acd_mesh a, b, m;
+    bumpy(&a);
+    bumpy(&b);
+    m.nvertices = a.nvertices + b.nvertices;
+    m.ntriangles = a.ntriangles + b.ntriangles;
+    m.vertices = malloc(3 * m.nvertices * sizeof *m.vertices);
+    m.triangles = malloc(3 * m.ntriangles * sizeof *m.triangles);
+    memcpy(m.vertices, a.vertices, 3 * a.nvertices * sizeof *m.vertices);
+    for (size_t i = 0; i < b.nvertices; i++) {
+        m.vertices[3 * (a.nvertices + i)] = b.vertices[3 * i] + 0.8;
+        m.vertices[3 * (a.nvertices + i) + 1] = b.vertices[3 * i + 1];
+        m.vertices[3 * (a.nvertices + i) + 2] = b.vertices[3 * i + 2];
+    }
+    memcpy(m.triangles, a.triangles, 3 * a.ntriangles * sizeof *m.triangles);
+    for (size_t t = 0; t < 3 * b.ntriangles; t++) m.triangles[3 * a.ntriangles + t] = b.triangles[t] + (uint32_t)a.nvertices;
+    acd_error err;
+    acd3d_params p = acd3d_budget_params(4);
+    p.trim_coverage = 0.005;
+    acd3d_result r;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_true(r.trim_crossings > 0);
+    assert_true(r.trim_crossing[0] < m.ntriangles && r.trim_crossing[1] < m.ntriangles);
+    assert_int_equal(r.trim_cuts, 0);
+    assert_true(r.trimmed_volume == 0);
+    for (size_t i = 0; i < r.nparts; i++) assert_true(r.parts[i].trimmed_volume == 0);
+    acd3d_result_free(&r);
+    acd_mesh_free(&a);
+    acd_mesh_free(&b);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_volume_beyond_cube),   cmocka_unit_test(test_volume_beyond_sphere),
         cmocka_unit_test(test_trim_bumpy),           cmocka_unit_test(test_trim_max_vertices),
-        cmocka_unit_test(test_trim_refused),
+        cmocka_unit_test(test_trim_refused),         cmocka_unit_test(test_trim_self_crossing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -156,7 +156,8 @@ typedef struct acd3d_params {
                                  outside its hull stays within trim_coverage x the input's volume; the
                                  union of hulls then covers at least 1 - trim_coverage of the input and
                                  the hulls stay convex (docs/acd3d.md "Trimmed hulls"). With
-                                 max_hull_vertices, a cut that would exceed it is not made */
+                                 max_hull_vertices, a cut that would exceed it is not made. Not
+                                 done on an input that intersects itself (result.trim_crossings) */
 } acd3d_params;
 
 acd3d_params acd3d_default_params(void);
@@ -250,6 +251,11 @@ typedef struct acd3d_result {
                                  the input's volume outside the union of hulls is at most this */
     size_t trim_cuts;         /* caps cut off the hulls (trim_coverage) */
     double trim_depth_max;    /* the deepest trim cut below its hull facet, model units */
+    size_t trim_crossings;    /* with trim_coverage: the input's self-intersecting face pairs; when
+                                 any, the hulls are not trimmed (the volumes the budget is accounted
+                                 in are signed sums, not the volume inside a mesh that crosses
+                                 itself) and trim_crossing holds the first pair */
+    uint32_t trim_crossing[2];
 } acd3d_result;
 
 /* Decomposes a closed (solid) or any (surface) triangle mesh. The input should have been
