@@ -132,9 +132,9 @@ int acd_cut_plane_side(const acd_cut_plane *pl, const double v[3]) {
     return -acd_orient3d_sign(a, b, c, w);
 }
 
-double acd_geom3_signed_volume(const acd_mesh *m) {
-    if (m->nvertices == 0) return 0;
-    double lo[3], hi[3], o[3];
+/* the centre of m's bounding box (m has vertices) */
+static void box_centre(const acd_mesh *m, double o[3]) {
+    double lo[3], hi[3];
     for (size_t v = 0; v < m->nvertices; v++)
         for (int k = 0; k < 3; k++) {
             double x = m->vertices[3 * v + k];
@@ -142,6 +142,12 @@ double acd_geom3_signed_volume(const acd_mesh *m) {
             if (v == 0 || x > hi[k]) hi[k] = x;
         }
     for (int k = 0; k < 3; k++) o[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
+}
+
+double acd_geom3_signed_volume(const acd_mesh *m) {
+    if (m->nvertices == 0) return 0;
+    double o[3];
+    box_centre(m, o);
     double vol = 0;
     for (size_t t = 0; t < m->ntriangles; t++) {
         const double *p[3];
@@ -189,15 +195,9 @@ double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
     if (!m || m->nvertices == 0 || m->ntriangles == 0) return 0;
     double nn = plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2];
     if (!(nn > 0) || !isfinite(nn) || !isfinite(plane[3])) return NAN;
-    double lo[3], hi[3], o[3];
-    for (size_t v = 0; v < m->nvertices; v++)
-        for (int k = 0; k < 3; k++) {
-            double x = m->vertices[3 * v + k];
-            if (v == 0 || x < lo[k]) lo[k] = x;
-            if (v == 0 || x > hi[k]) hi[k] = x;
-        }
     /* the apex: the bounding-box centre projected onto the plane (near the mesh, for rounding) */
-    for (int k = 0; k < 3; k++) o[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
+    double o[3];
+    box_centre(m, o);
     double s = (plane[0] * o[0] + plane[1] * o[1] + plane[2] * o[2] + plane[3]) / nn;
     for (int k = 0; k < 3; k++) o[k] -= s * plane[k];
     double vol = 0;
