@@ -243,8 +243,7 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
         cJSON_AddNumberToObject(t, "cuts", (double)r->trim_cuts);
         cJSON_AddNumberToObject(t, "trimmed_volume", r->trimmed_volume);
         cJSON_AddNumberToObject(t, "depth_max", r->trim_depth_max);
-        cJSON_AddBoolToObject(t, "done", r->trim_crossings == 0);
-        if (r->trim_crossings) cJSON_AddNumberToObject(t, "self_intersections", (double)r->trim_crossings);
+        cJSON_AddNumberToObject(t, "parts_left_whole", (double)r->trim_skipped);
     }
     cJSON *parts = cJSON_AddArrayToObject(o, "parts");
     for (size_t i = 0; i < r->nparts; i++) {
@@ -710,13 +709,12 @@ int acd_cmd_3d(int argc, char **argv) {
     printf("%zu parts, max concavity %.6g (tau %.6g = %.4g x radius %.6g), %.3f s\n", r.nparts, r.max_concavity, r.tau,
            r.scale > 0 ? r.tau / r.scale : 0.0, r.scale, r.seconds);
     if (show_settings) print_settings(&r, &p);
-    if (p.trim_coverage > 0 && r.trim_crossings > 0)
+    if (p.trim_coverage > 0 && r.trim_skipped > 0)
         fprintf(stderr,
-                "acd 3d: warning: the hulls are not trimmed (--trim-coverage): the %smesh intersects itself (%zu face "
-                "pairs, first: faces %u and %u), so the volume left outside cannot be bounded; every hull encloses "
-                "its part\n",
-                repaired ? "repaired " : "", r.trim_crossings, r.trim_crossing[0], r.trim_crossing[1]);
-    else if (p.trim_coverage > 0)
+                "acd 3d: warning: %zu part(s) intersect themselves (the %smesh crosses itself): their hulls are "
+                "left whole (--trim-coverage accounts in volumes such a part does not have)\n",
+                r.trim_skipped, repaired ? "repaired " : "");
+    if (p.trim_coverage > 0)
         printf("trimmed hulls: %zu caps cut off, at most %.3g of the input's volume outside the hulls (limit %g), "
                "deepest cut %.3g (%.3g of the radius)\n",
                r.trim_cuts, r.input_volume > 0 ? r.trimmed_volume / r.input_volume : 0.0, p.trim_coverage,
@@ -786,7 +784,7 @@ int acd_cmd_3d(int argc, char **argv) {
     if (!code && selfx.status != ACD_OK) code = acd_cli_report("3d", &selfx);
     if (!code && do_verify) {
         double outside = 0;
-        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, r.trim_crossings ? 0.0 : p.trim_coverage, &outside, &err) : verify_surface(&mesh, &r, &err);
+        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, p.trim_coverage, &outside, &err) : verify_surface(&mesh, &r, &err);
         /* a solid-mode result that fails on a mesh crossing itself: the input's fault (exit 2), the
          * verification's message kept */
         if (st != ACD_OK && p.mode == ACD3D_SOLID && self_crossing(&mesh, &npairs, pair) && npairs > 0) {
@@ -798,7 +796,7 @@ int acd_cmd_3d(int argc, char **argv) {
                      repaired ? "repaired " : "", npairs, pair[0], pair[1], v.message);
         }
         if (st != ACD_OK) code = acd_cli_report("3d", &err);
-        else if (verbose && p.trim_coverage > 0 && r.trim_crossings == 0)
+        else if (verbose && p.trim_coverage > 0)
             fprintf(stderr, "acd 3d: verified: volumes add up, parts meet tau, at most %.3g of the input's volume "
                             "outside the trimmed hulls (limit %g)\n", r.input_volume > 0 ? outside / r.input_volume : 0.0,
                     p.trim_coverage);

@@ -156,8 +156,8 @@ typedef struct acd3d_params {
                                  outside its hull stays within trim_coverage x the input's volume; the
                                  union of hulls then covers at least 1 - trim_coverage of the input and
                                  the hulls stay convex (docs/acd3d.md "Trimmed hulls"). With
-                                 max_hull_vertices, a cut that would exceed it is not made. Not
-                                 done on an input that intersects itself (result.trim_crossings) */
+                                 max_hull_vertices, a cut that would exceed it is not made. A part
+                                 that intersects itself keeps its whole hull (result.trim_skipped) */
 } acd3d_params;
 
 acd3d_params acd3d_default_params(void);
@@ -251,11 +251,9 @@ typedef struct acd3d_result {
                                  the input's volume outside the union of hulls is at most this */
     size_t trim_cuts;         /* caps cut off the hulls (trim_coverage) */
     double trim_depth_max;    /* the deepest trim cut below its hull facet, model units */
-    size_t trim_crossings;    /* with trim_coverage: the input's self-intersecting face pairs; when
-                                 any, the hulls are not trimmed (the volumes the budget is accounted
-                                 in are signed sums, not the volume inside a mesh that crosses
-                                 itself) and trim_crossing holds the first pair */
-    uint32_t trim_crossing[2];
+    size_t trim_skipped;      /* with trim_coverage: parts whose hulls were left whole because the part
+                                 intersects itself (the budget is accounted in signed volumes, which
+                                 are not the volume inside a solid that crosses itself) */
 } acd3d_result;
 
 /* Decomposes a closed (solid) or any (surface) triangle mesh. The input should have been

@@ -1683,14 +1683,6 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         if (st != ACD_OK) goto fail;
     }
     if (solid && params->trim_coverage > 0) { /* the hulls trimmed within the coverage budget (acd3/trim) */
-        /* The budget is accounted in signed volumes (the divergence theorem): on a mesh that crosses
-         * itself they are not the volumes of the regions inside, so no coverage can be promised: the
-         * hulls are left whole (measured: three_peaks.off, its hole closed by a cap crossing the
-         * surface: 0.00092 of the volume outside where the accounts said at most 0.0008) */
-        st = acd_mesh_self_intersections(mesh, &out->trim_crossings, out->trim_crossing, 1, err);
-        if (st != ACD_OK) goto fail;
-    }
-    if (solid && params->trim_coverage > 0 && out->trim_crossings == 0) {
         acd3_trim_stats ts;
         st = acd3_trim_hulls(out->parts, out->nparts, vol, params->trim_coverage * vol, ACD3_TRIM_MIN_GAIN_REL * vol,
                              params->max_hull_vertices, nthreads, params->progress, params->progress_user, &ts, err);
@@ -1698,6 +1690,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         out->trimmed_volume = ts.removed_part;
         out->trim_cuts = ts.cuts;
         out->trim_depth_max = ts.max_depth;
+        out->trim_skipped = ts.skipped;
     }
     for (size_t i = 0; i < t.n; i++) {
         acd_hull_free(&t.a[i].hull);

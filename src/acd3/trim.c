@@ -57,6 +57,7 @@ typedef struct trim_hull {
     double *cap;      /* 9 * ncap: the last cut's removed cap, outward triangles as corner triples */
     size_t ncap, capcap;
     int cut;          /* cut at least once */
+    int crossing;     /* the part intersects itself: not trimmed */
     int have;         /* best cut found */
     double plane[3], off, gain, loss, ratio, depth;
 } trim_hull;
@@ -77,18 +78,24 @@ static void apex_on(const double centre[3], const double n[3], double off, doubl
 
 /* the volumes beyond the planes n.x = off[k] of the triangle (a, b, c), added to v[k] (offsets
  * decreasing: once a plane is above the triangle the shallower ones are too) */
-static void add_beyond(const double *a, const double *b, const double *c, const double n[3], const double *off,
-                       const double (*apex)[3], double *v) {
+static void add_beyond_from(const double *a, const double *b, const double *c, const double n[3], const double *off,
+                            const double (*apex)[3], size_t k_lo, double *v) {
     double top = fmax(dot3(n, a), fmax(dot3(n, b), dot3(n, c)));
-    for (size_t k = NDEPTHS; k-- > 0;) {
+    for (size_t k = NDEPTHS; k-- > k_lo;) {
         if (!(top > off[k])) break;
         v[k] += acd_geom3_triangle_volume_beyond(a, b, c, n, off[k], apex[k]);
     }
 }
 
+static void add_beyond(const double *a, const double *b, const double *c, const double n[3], const double *off,
+                       const double (*apex)[3], double *v) {
+    add_beyond_from(a, b, c, n, off, apex, 0, v);
+}
+
 /* The part's triangles beyond the deepest plane, through the BVH (a node whose box lies below it
  * holds none). */
-static void part_beyond(const acd_bvh *bvh, const double n[3], const double *off, const double (*apex)[3], double *v) {
+static void part_beyond(const acd_bvh *bvh, const double n[3], const double *off, const double (*apex)[3], size_t k_lo,
+                        double *v) {
     if (bvh->nnodes == 0) return;
     uint32_t stack[128];
     int sp = 0;
@@ -100,8 +107,8 @@ static void part_beyond(const acd_bvh *bvh, const double n[3], const double *off
         if (nd->count > 0) {
             for (uint32_t i = nd->first; i < nd->first + nd->count; i++) {
                 const uint32_t *t = bvh->triangles + 3 * (size_t)bvh->order[i];
-                add_beyond(bvh->vertices + 3 * (size_t)t[0], bvh->vertices + 3 * (size_t)t[1],
-                           bvh->vertices + 3 * (size_t)t[2], n, off, apex, v);
+                add_beyond_from(bvh->vertices + 3 * (size_t)t[0], bvh->vertices + 3 * (size_t)t[1],
+                                bvh->vertices + 3 * (size_t)t[2], n, off, apex, k_lo, v);
             }
         } else if (sp + 2 <= (int)(sizeof stack / sizeof stack[0])) {
             stack[sp++] = nd->first;
@@ -109,8 +116,8 @@ static void part_beyond(const acd_bvh *bvh, const double n[3], const double *off
         } else { /* deeper than the stack (not with the SAH build's depths): the whole subtree, linearly */
             for (size_t i = 0; i < bvh->ntriangles; i++) {
                 const uint32_t *t = bvh->triangles + 3 * i;
-                add_beyond(bvh->vertices + 3 * (size_t)t[0], bvh->vertices + 3 * (size_t)t[1],
-                           bvh->vertices + 3 * (size_t)t[2], n, off, apex, v);
+                add_beyond_from(bvh->vertices + 3 * (size_t)t[0], bvh->vertices + 3 * (size_t)t[1],
+                                bvh->vertices + 3 * (size_t)t[2], n, off, apex, k_lo, v);
             }
             return;
         }
@@ -171,7 +178,10 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
     }
     if (P->have_loss || !(P->gain[NDEPTHS - 1] >= min_gain)) return; /* the deepest cap holds the others */
     memset(P->loss, 0, sizeof P->loss);
-    part_beyond(&T->bvh, P->n, off, (const double(*)[3])apex, P->loss);
+    /* only the depths whose cap can be cut: gains only fall, so a cap under min_gain stays under */
+    size_t k_lo = 0;
+    while (!(P->gain[k_lo] >= min_gain)) k_lo++;
+    part_beyond(&T->bvh, P->n, off, (const double(*)[3])apex, k_lo, P->loss);
     for (size_t k = 0; k < NDEPTHS; k++) P->loss[k] = fmax(P->loss[k], 0.0);
     P->have_loss = 1;
 }
@@ -447,6 +457,13 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         const acd3d_part *p = &parts[j];
         if (!(p->volume > 0) || p->hull.nvertices < 4) continue;
         acd_error e;
+        size_t crossings = 0;
+        pst[j] = acd_mesh_self_intersections(&p->mesh, &crossings, NULL, 0, &e);
+        if (pst[j] != ACD_OK) continue;
+        if (crossings > 0) {
+            H->crossing = 1;
+            continue;
+        }
         acd_hull h0;
         pst[j] = acd_hull_compute(p->hull.vertices, p->hull.nvertices, &h0, &e);
         if (pst[j] != ACD_OK) continue;
@@ -477,8 +494,10 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         acd_hull_free(&h0);
     }
     acd_status st = ACD_OK;
-    for (size_t i = 0; i < nparts && st == ACD_OK; i++)
+    for (size_t i = 0; i < nparts && st == ACD_OK; i++) {
         if (pst[i] == ACD_ERR_NOMEM) st = acd_fail(err, ACD_ERR_NOMEM, "trim: out of memory");
+        stats->skipped += T[i].crossing;
+    }
     double spent = 0;
     size_t batch[ACD3_TRIM_BATCH];
     while (st == ACD_OK) {

@@ -16,7 +16,9 @@
  * Candidates: every hull facet's plane moved inward by ACD3_TRIM_DEPTHS depths (fractions of the
  * cube root of the part's initial hull volume); a cut must remove at least min_gain of hull volume.
  * With max_vertices >= 4 a cut leaving more hull vertices than that is refused (the hull is then
- * left as it is). Deterministic for any thread count: the hulls' best cuts are searched in
+ * left as it is). A part that intersects itself (acd_mesh_self_intersections) keeps its whole hull:
+ * its signed volumes, which the budget is accounted in, are not the volume inside it (found on
+ * three_peaks.off, whose hole is closed by a cap crossing the surface). Deterministic for any thread count: the hulls' best cuts are searched in
  * parallel, the choices are made in order (ACD3_TRIM_BATCH distinct hulls per round, by ratio). */
 #ifndef ACD_ACD3_TRIM_H
 #define ACD_ACD3_TRIM_H
@@ -36,6 +38,7 @@ typedef struct acd3_trim_stats {
     double removed_part;  /* part volume beyond the cut planes (sum over the cuts: >= the volume the
                              union of hulls leaves uncovered) */
     double max_depth;     /* deepest cut, model units (how far below its old facet a plane went) */
+    size_t skipped;       /* solid parts left whole because they intersect themselves */
 } acd3_trim_stats;
 
 /* Trims parts[i].hull (and hull_volume) of solid parts in place, setting parts[i].trimmed_volume.
