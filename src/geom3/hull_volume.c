@@ -36,7 +36,8 @@ static double hull_volume_pts(const double *pts, size_t n) {
 #define HULL_VOLUME_SLIVER 1e-6
 #define HULL_VOLUME_FOLD 1e3
 /* Distance from a horizon edge's line (in tolerances) below which a sweep's new facet is checked for
- * a fold: 2 D / HULL_VOLUME_FOLD, D (the extent's diagonal) at most 1.8e10 tolerances. */
+ * a fold: twice D / HULL_VOLUME_FOLD (a margin for the rounding), D (the extent's diagonal) at most
+ * 1.8e10 tolerances. */
 #define HULL_VOLUME_NARROW 4e7
 
 /* The facets of acd_hull_volume_fast's hull (the workspace's array). */
@@ -445,9 +446,9 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
          * extent above the horizon facet, its volume 1.6e-5 below qhull's). Numerically ambiguous: the
          * query is declined, a prefix's hull built again from scratch. The vertex (within the extent D
          * of the edge's line) is above the new plane by at most about D eps / d, d q's distance from
-         * that line, so only the edges with d under HULL_VOLUME_NARROW eps (D / HULL_VOLUME_FOLD) are
-         * checked (hv_cone's, in w->horu). Smaller folds are left: on fandisk's budget run 131 of its
-         * 137 folds beyond eps were within 100 eps (each refusal costs a rebuild). */
+         * that line, so only the edges with d under HULL_VOLUME_NARROW eps (twice D / HULL_VOLUME_FOLD)
+         * are checked (hv_cone's, in w->horu). Smaller folds are left: on fandisk's budget run 131 of
+         * its 137 folds beyond eps were within 100 eps (each refusal costs a rebuild). */
         for (size_t j = 0; j < w->nnarrow; j++) {
             int k = w->horu[j];
             const hv_facet *H = &w->f[horf[k]];
