@@ -431,8 +431,8 @@ done:
 }
 
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
-                           size_t max_vertices, int threads, acd_progress_fn progress, void *progress_user,
-                           acd3_trim_stats *stats, acd_error *err) {
+                           size_t max_vertices, int check_parts, int threads, acd_progress_fn progress,
+                           void *progress_user, acd3_trim_stats *stats, acd_error *err) {
     memset(stats, 0, sizeof *stats);
     for (size_t i = 0; i < nparts; i++) parts[i].trimmed_volume = 0;
     if (!(budget > 0) || nparts == 0 || !(input_volume > 0)) return ACD_OK;
@@ -458,7 +458,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         if (!(p->volume > 0) || p->hull.nvertices < 4) continue;
         acd_error e;
         size_t crossings = 0;
-        pst[j] = acd_mesh_self_intersections(&p->mesh, &crossings, NULL, 0, &e);
+        if (check_parts) pst[j] = acd_mesh_self_intersections(&p->mesh, &crossings, NULL, 0, &e);
         if (pst[j] != ACD_OK) continue;
         if (crossings > 0) {
             H->crossing = 1;
