@@ -1683,14 +1683,11 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         if (st != ACD_OK) goto fail;
     }
     if (solid && params->trim_coverage > 0) { /* the hulls trimmed within the coverage budget (acd3/trim) */
-        /* on an input that crosses itself, its parts are tested for crossings (acd3/trim) */
-        size_t crossings = 0;
-        st = acd_mesh_self_intersections(mesh, &crossings, NULL, 0, err);
-        if (st != ACD_OK) goto fail;
+        /* (on an input that crosses itself, its parts are tested for crossings: acd3/trim) */
         acd3_trim_stats ts;
         st = acd3_trim_hulls(out->parts, out->nparts, vol, params->trim_coverage * vol, ACD3_TRIM_MIN_GAIN_REL * vol,
-                             params->max_hull_vertices, crossings > 0, nthreads, params->progress,
-                             params->progress_user, &ts, err);
+                             params->max_hull_vertices, mesh, nthreads, params->progress, params->progress_user, &ts,
+                             err);
         if (st != ACD_OK) goto fail;
         out->trimmed_volume = ts.removed_part;
         out->trim_cuts = ts.cuts;

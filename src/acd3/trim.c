@@ -431,7 +431,7 @@ done:
 }
 
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
-                           size_t max_vertices, int check_parts, int threads, acd_progress_fn progress,
+                           size_t max_vertices, const acd_mesh *input, int threads, acd_progress_fn progress,
                            void *progress_user, acd3_trim_stats *stats, acd_error *err) {
     memset(stats, 0, sizeof *stats);
     for (size_t i = 0; i < nparts; i++) parts[i].trimmed_volume = 0;
@@ -449,21 +449,21 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
      * removes exceeds 1 + |M u U| / |M n U|; the hulls' sum over the input's volume bounds that */
     const double ratio_floor = 1.0 + hull_sum / input_volume;
     const double loss_floor = ACD3_TRIM_LOSS_FLOOR * min_gain;
+    size_t input_crossings = 0;
+    acd_status input_st = ACD_OK;
+    /* the parts' planes, and (task -1) the input's self-intersections */
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
 #endif
-    for (long j = 0; j < (long)nparts; j++) {
+    for (long j = -1; j < (long)nparts; j++) {
+        acd_error e;
+        if (j < 0) {
+            if (input) input_st = acd_mesh_self_intersections(input, &input_crossings, NULL, 0, &e);
+            continue;
+        }
         trim_hull *H = &T[j];
         const acd3d_part *p = &parts[j];
         if (!(p->volume > 0) || p->hull.nvertices < 4) continue;
-        acd_error e;
-        size_t crossings = 0;
-        if (check_parts) pst[j] = acd_mesh_self_intersections(&p->mesh, &crossings, NULL, 0, &e);
-        if (pst[j] != ACD_OK) continue;
-        if (crossings > 0) {
-            H->crossing = 1;
-            continue;
-        }
         acd_hull h0;
         pst[j] = acd_hull_compute(p->hull.vertices, p->hull.nvertices, &h0, &e);
         if (pst[j] != ACD_OK) continue;
@@ -493,7 +493,21 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         if (!init_planes(H, min_gain, h0.neighbors)) pst[j] = ACD_ERR_NOMEM;
         acd_hull_free(&h0);
     }
-    acd_status st = ACD_OK;
+    /* an input that crosses itself: its parts that cross themselves are left whole */
+    if (input_st == ACD_OK && input_crossings > 0) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1)
+#endif
+        for (long j = 0; j < (long)nparts; j++) {
+            if (!T[j].active) continue;
+            size_t crossings = 0;
+            acd_error e;
+            pst[j] = acd_mesh_self_intersections(&parts[j].mesh, &crossings, NULL, 0, &e);
+            if (pst[j] != ACD_OK || crossings > 0) T[j].active = 0;
+            T[j].crossing = pst[j] == ACD_OK && crossings > 0;
+        }
+    }
+    acd_status st = input_st == ACD_OK ? ACD_OK : acd_fail(err, input_st, "trim: out of memory");
     for (size_t i = 0; i < nparts && st == ACD_OK; i++) {
         if (pst[i] == ACD_ERR_NOMEM) st = acd_fail(err, ACD_ERR_NOMEM, "trim: out of memory");
         stats->skipped += T[i].crossing;

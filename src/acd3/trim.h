@@ -16,13 +16,14 @@
  * Candidates: every hull facet's plane moved inward by ACD3_TRIM_DEPTHS depths (fractions of the
  * cube root of the part's initial hull volume); a cut must remove at least min_gain of hull volume.
  * With max_vertices >= 4 a cut leaving more hull vertices than that is refused (the hull is then
- * left as it is). With check_parts (the caller's input intersects itself), a part that intersects
- * itself (acd_mesh_self_intersections) keeps its whole hull: its signed volumes, which the budget is
- * accounted in, are not the volume inside it (found on three_peaks.off, whose hole is closed by a cap
- * crossing the surface). The parts of an input that does not are not tested: a joined part's
- * internal walls (a section twice, opposite ways) count as intersections there, but cancel in the
- * signed volumes. Deterministic for any thread count: the hulls' best cuts are searched in
- * parallel, the choices are made in order (ACD3_TRIM_BATCH distinct hulls per round, by ratio). */
+ * left as it is). When the input (the mesh the parts tile; NULL: not checked) intersects itself, a
+ * part that intersects itself (acd_mesh_self_intersections) keeps its whole hull: its signed
+ * volumes, which the budget is accounted in, are not the volume inside it (found on three_peaks.off,
+ * whose hole is closed by a cap crossing the surface). The parts of an input that does not are not
+ * tested: a joined part's internal walls (a section twice, opposite ways) count as intersections
+ * there, but cancel in the signed volumes. Deterministic for any thread count: the planes of all
+ * hulls are measured in parallel (with the input's test), the rounds of cuts are sequential
+ * (ACD3_TRIM_BATCH distinct hulls per round, by ratio). */
 #ifndef ACD_ACD3_TRIM_H
 #define ACD_ACD3_TRIM_H
 
@@ -49,7 +50,7 @@ typedef struct acd3_trim_stats {
  * calling thread between rounds (fraction of the budget spent); non-zero cancels
  * (ACD_ERR_CANCELLED, the parts' hulls then partly trimmed: the caller discards the result). */
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
-                           size_t max_vertices, int check_parts, int threads, acd_progress_fn progress,
+                           size_t max_vertices, const acd_mesh *input, int threads, acd_progress_fn progress,
                            void *progress_user, acd3_trim_stats *stats, acd_error *err);
 
 #endif
