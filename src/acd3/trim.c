@@ -58,6 +58,7 @@ typedef struct trim_hull {
     size_t ncap, capcap;
     int cut;          /* cut at least once */
     int crossing;     /* the part intersects itself: not trimmed */
+    int stale;        /* the best cut to choose again (the hull was cut) */
     int have;         /* best cut found */
     double plane[3], off, gain, loss, ratio, depth;
 } trim_hull;
@@ -228,9 +229,16 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
  * meets that convex region exactly when one of its corners is beyond the plane), and the cut's
  * plane added as a candidate of its own. 0 when out of memory. */
 static int after_cut(trim_hull *T, double min_gain) {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t v = 0; v < 3 * T->ncap; v++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], T->cap[3 * v + k]);
+            hi[k] = fmax(hi[k], T->cap[3 * v + k]);
+        }
     for (size_t j = 0; j < T->npl; j++) {
         trim_plane *P = &T->pl[j];
         double deepest = P->off0 - ACD3_TRIM_DEPTHS[NDEPTHS - 1] * T->unit;
+        if (!(box_max_proj(P->n, lo, hi) > deepest)) continue; /* the cap's box is below: so is the cap */
         int meets = 0;
         for (size_t v = 0; v < 3 * T->ncap && !meets; v++) meets = dot3(P->n, T->cap + 3 * v) > deepest;
         if (!meets) continue;
@@ -490,6 +498,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             }
         for (int k = 0; k < 3; k++) H->centre[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
         H->active = 1;
+        H->stale = 1;
         if (!init_planes(H, min_gain, h0.neighbors)) pst[j] = ACD_ERR_NOMEM;
         acd_hull_free(&h0);
     }
@@ -520,7 +529,13 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             break;
         }
         const double room = budget - spent;
-        for (size_t j = 0; j < nparts; j++) choose(&T[j], room, min_gain, ratio_floor, loss_floor);
+        /* a hull's best cut stands while the hull is not cut and the cut fits the room (the room only
+         * shrinks: the best of fewer candidates, the same when it is still among them) */
+        for (size_t j = 0; j < nparts; j++)
+            if (T[j].stale || (T[j].have && !(T[j].loss <= room))) {
+                choose(&T[j], room, min_gain, ratio_floor, loss_floor);
+                T[j].stale = 0;
+            }
         /* the round: up to ACD3_TRIM_BATCH hulls of best ratio (ties: lower index), in that order,
          * while their cuts fit the budget */
         int nb = 0;
@@ -549,6 +564,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         for (int b = 0; b < take; b++) {
             res[b] = cut_hull(&T[batch[b]], max_vertices);
             if (res[b] == 1 && !after_cut(&T[batch[b]], min_gain)) res[b] = -1;
+            T[batch[b]].stale = 1;
         }
         for (int b = 0; b < take; b++) {
             trim_hull *H = &T[batch[b]];
