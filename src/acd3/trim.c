@@ -27,6 +27,7 @@ typedef struct trim_plane {
     double n[3], off0;               /* n.x = off0: the facet's plane (n unit, outward) */
     double gain[NDEPTHS], loss[NDEPTHS];
     int have_loss;
+    int dirty;                       /* gains measured before the last cuts: upper bounds */
 } trim_plane;
 
 /* A convex polytope as outward triangles (a hull cut by planes: its triangles clipped, the section
@@ -207,27 +208,35 @@ static int add_plane(trim_hull *T, const double n[3], double off0) {
 static void choose(trim_hull *T, double room, double min_gain, double ratio_floor, double loss_floor) {
     T->have = 0;
     if (!T->active) return;
-    for (size_t j = 0; j < T->npl; j++) {
-        const trim_plane *P = &T->pl[j];
-        if (!P->have_loss) continue;
-        for (size_t k = 0; k < NDEPTHS; k++) {
-            if (!(P->gain[k] >= min_gain) || !(P->loss[k] <= room)) continue;
-            double r = P->gain[k] / fmax(P->loss[k], loss_floor);
-            if (!(r > ratio_floor) || (T->have && !(r > T->ratio))) continue;
-            T->have = 1;
-            memcpy(T->plane, P->n, sizeof T->plane);
-            T->off = P->off0 - ACD3_TRIM_DEPTHS[k] * T->unit;
-            T->gain = P->gain[k];
-            T->loss = P->loss[k];
-            T->ratio = r;
-            T->depth = ACD3_TRIM_DEPTHS[k] * T->unit;
+    /* lazily: a plane whose caps met a removed cap keeps its old gains, upper bounds (gains only
+     * fall); when the best is such a plane its gains are measured again on the hull and the search
+     * repeated, so the choice is the best of the exact ratios */
+    for (;;) {
+        size_t bj = SIZE_MAX;
+        T->have = 0;
+        for (size_t j = 0; j < T->npl; j++) {
+            const trim_plane *P = &T->pl[j];
+            if (!P->have_loss) continue;
+            for (size_t k = 0; k < NDEPTHS; k++) {
+                if (!(P->gain[k] >= min_gain) || !(P->loss[k] <= room)) continue;
+                double r = P->gain[k] / fmax(P->loss[k], loss_floor);
+                if (!(r > ratio_floor) || (T->have && !(r > T->ratio))) continue;
+                T->have = 1;
+                bj = j;
+                memcpy(T->plane, P->n, sizeof T->plane);
+                T->off = P->off0 - ACD3_TRIM_DEPTHS[k] * T->unit;
+                T->gain = P->gain[k];
+                T->loss = P->loss[k];
+                T->ratio = r;
+                T->depth = ACD3_TRIM_DEPTHS[k] * T->unit;
+            }
         }
+        if (!T->have || !T->pl[bj].dirty) return;
+        T->pl[bj].dirty = 0;
+        plane_measure(T, &T->pl[bj], min_gain, NULL, 0); /* (its losses are kept) */
     }
 }
 
-/* After a cut: the planes whose deepest cap reached into the removed cap measured again (a cap
- * meets that convex region exactly when one of its corners is beyond the plane), and the cut's
- * plane added as a candidate of its own. 0 when out of memory. */
 static int after_cut(trim_hull *T, double min_gain) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < 3 * T->ncap; v++)
@@ -241,13 +250,7 @@ static int after_cut(trim_hull *T, double min_gain) {
         if (!(box_max_proj(P->n, lo, hi) > deepest)) continue; /* the cap's box is below: so is the cap */
         int meets = 0;
         for (size_t v = 0; v < 3 * T->ncap && !meets; v++) meets = dot3(P->n, T->cap + 3 * v) > deepest;
-        if (!meets) continue;
-        /* the plane's caps lose what they held of the removed cap: its volume beyond each depth */
-        double off[NDEPTHS], apex[NDEPTHS][3], lost[NDEPTHS] = {0};
-        plane_offsets(T, P, off, apex);
-        for (size_t t = 0; t < T->ncap; t++)
-            add_beyond(T->cap + 9 * t, T->cap + 9 * t + 3, T->cap + 9 * t + 6, P->n, off, (const double(*)[3])apex, lost);
-        for (size_t k = 0; k < NDEPTHS; k++) P->gain[k] = fmax(0.0, P->gain[k] - lost[k]);
+        if (meets) P->dirty = 1; /* its caps lost what they held of the removed cap: measured when needed */
     }
     if (!add_plane(T, T->plane, T->off)) return 0;
     plane_measure(T, &T->pl[T->npl - 1], min_gain, NULL, 0);
