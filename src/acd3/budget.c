@@ -289,37 +289,41 @@ static void plan_init(const acd_mesh *m, int ndir, plan *P) {
 }
 
 
+/* A merge sort of TYPE arrays by LESS (a strict total order, so the result is the one any sort
+ * gives), inlined rather than qsort's callback: NAME(a, n, tmp) sorts a[0..n) through tmp (room for
+ * n): runs of 8 by insertion, then bottom-up merges. */
+#define BUDGET_MERGE_SORT(NAME, TYPE, LESS)                                                                    \
+    static void NAME(TYPE *a, size_t n, TYPE *tmp) {                                                          \
+        for (size_t r = 0; r < n; r += 8) {                                                                   \
+            size_t e = r + 8 < n ? r + 8 : n;                                                                 \
+            for (size_t i = r + 1; i < e; i++) {                                                              \
+                TYPE x = a[i];                                                                                \
+                size_t j = i;                                                                                 \
+                for (; j > r && LESS(&x, &a[j - 1]); j--) a[j] = a[j - 1];                                    \
+                a[j] = x;                                                                                     \
+            }                                                                                                 \
+        }                                                                                                     \
+        TYPE *src = a, *dst = tmp;                                                                            \
+        for (size_t w = 8; w < n; w *= 2) {                                                                   \
+            for (size_t r = 0; r < n; r += 2 * w) {                                                           \
+                size_t m = r + w < n ? r + w : n, e = r + 2 * w < n ? r + 2 * w : n, i = r, j = m, k = r;     \
+                while (i < m && j < e) dst[k++] = LESS(&src[j], &src[i]) ? src[j++] : src[i++];               \
+                while (i < m) dst[k++] = src[i++];                                                            \
+                while (j < e) dst[k++] = src[j++];                                                            \
+            }                                                                                                 \
+            TYPE *t = src;                                                                                    \
+            src = dst, dst = t;                                                                               \
+        }                                                                                                     \
+        if (src != a) memcpy(a, src, n * sizeof *a);                                                          \
+    }
+
 /* The sampled vertices' order along a direction (by projection, then index). */
 typedef struct keyed {
     double key;
     size_t i;
 } keyed;
 static int keyed_less(const keyed *x, const keyed *y) { return x->key < y->key || (x->key == y->key && x->i < y->i); }
-
-/* a[0..n) sorted (keyed_less) through tmp (room for n): a merge sort, runs of 8 by insertion. */
-static void keyed_sort(keyed *a, keyed *tmp, size_t n) {
-    for (size_t r = 0; r < n; r += 8) {
-        size_t e = r + 8 < n ? r + 8 : n;
-        for (size_t i = r + 1; i < e; i++) {
-            keyed x = a[i];
-            size_t j = i;
-            for (; j > r && keyed_less(&x, &a[j - 1]); j--) a[j] = a[j - 1];
-            a[j] = x;
-        }
-    }
-    keyed *src = a, *dst = tmp;
-    for (size_t w = 8; w < n; w *= 2) {
-        for (size_t r = 0; r < n; r += 2 * w) {
-            size_t m = r + w < n ? r + w : n, e = r + 2 * w < n ? r + 2 * w : n, i = r, j = m, k = r;
-            while (i < m && j < e) dst[k++] = keyed_less(&src[j], &src[i]) ? src[j++] : src[i++];
-            while (i < m) dst[k++] = src[i++];
-            while (j < e) dst[k++] = src[j++];
-        }
-        keyed *t = src;
-        src = dst, dst = t;
-    }
-    if (src != a) memcpy(a, src, n * sizeof *a);
-}
+BUDGET_MERGE_SORT(keyed_sort, keyed, keyed_less)
 
 /* A crossing in the plane's own frame, for the section's hull. */
 typedef struct xpt {
@@ -332,33 +336,8 @@ static int xpt_less(const xpt *a, const xpt *b) {
     return a->i < b->i;
 }
 
-/* p[0..n) sorted by (u, v, i) (a strict total order: the same result as any sort), bottom-up merges
- * through buf (room for n) after insertion sorts of runs of 8; qsort's callbacks were 4.5% of a
- * bunny00 budget run. */
-static void xpt_sort(xpt *p, size_t n, xpt *buf) {
-    const size_t R = 8;
-    for (size_t a = 0; a < n; a += R) {
-        size_t b = a + R < n ? a + R : n;
-        for (size_t j = a + 1; j < b; j++) {
-            xpt t = p[j];
-            size_t l = j;
-            for (; l > a && xpt_less(&t, &p[l - 1]); l--) p[l] = p[l - 1];
-            p[l] = t;
-        }
-    }
-    xpt *src = p, *dst = buf;
-    for (size_t w = R; w < n; w *= 2) {
-        for (size_t a = 0; a < n; a += 2 * w) {
-            size_t m = a + w < n ? a + w : n, b = a + 2 * w < n ? a + 2 * w : n, i = a, j = m, k = a;
-            while (i < m && j < b) dst[k++] = xpt_less(&src[j], &src[i]) ? src[j++] : src[i++];
-            while (i < m) dst[k++] = src[i++];
-            while (j < b) dst[k++] = src[j++];
-        }
-        xpt *t = src;
-        src = dst, dst = t;
-    }
-    if (src != p) memcpy(p, src, n * sizeof *p);
-}
+/* (qsort's callbacks were 4.5% of a bunny00 budget run) */
+BUDGET_MERGE_SORT(xpt_sort, xpt, xpt_less)
 
 /* The n points pts (3 each, on a plane of normal nrm) reduced in place to the vertices of their
  * convex hull in that plane (monotone chain, collinear points dropped; in floating point: the points
@@ -518,7 +497,7 @@ static int sweep_dir(const acd_mesh *m, const plan *P, int d, const double *cs, 
     memset(&hw, 0, sizeof hw);
     /* the sample sorted along d: side below (n.p - c < 0) a prefix, side above a suffix */
     for (size_t k = 0; k < nsv; k++) ord[k].key = dv[k], ord[k].i = k;
-    keyed_sort(ord, ord + nsv, nsv);
+    keyed_sort(ord, nsv, ord + nsv);
     for (size_t k = 0; k < nsv; k++) memcpy(srt + 3 * k, m->vertices + 3 * P->sv[ord[k].i], sizeof(double[3]));
     size_t cntb[BUDGET_MAX_QUERIES], cnta[BUDGET_MAX_QUERIES], xba[BUDGET_MAX_QUERIES], xea[BUDGET_MAX_QUERIES];
     for (int i = 0; i < nq; i++) {
