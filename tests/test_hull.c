@@ -788,6 +788,39 @@ static void test_lost_point_repaired(void **state) {
     acd_hull_free(&h);
 }
 
+/* fuzz_hull (CI at ad28b14): 17 points spanning 1e45 to 1e-314 whose qhull hull left point 4 1.3e-9
+ * of the extent above a trusted facet, with neither a repaired non-convexity nor an extreme point
+ * outside to flag it; the hull is thin (volume about 4e-8 of the diagonal cubed), and hull_enclose
+ * now trusts no facet of a thin hull. */
+static void test_lost_point_thin(void **state) {
+    (void)state;
+    static const double p[51] = {
+        0x1.4b286a3b969c8p-686, -0x1.ac7bedc000000p+116, 0x0.00000c7c7c7c7p-1022,
+        0.0, -0x1.7a26e00000000p+125, 0x0.00002c7c7c7c7p-1022,
+        -0x1.7c1c700000000p+125, -0x1.7c7c7c7c70700p+125, -0x1.7c7c7ffc7c7c7p+125,
+        0x1.a3a3a3a3a3ac7p-92, -0x1.7c7c7c7c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125,
+        0x1.d2dc7c7c7c7c7p-301, -0x1.7c72d2d2d2d2dp+125, 0x1.9494949c7c7c7p+149,
+        0x1.9494949494949p-1019, 0.0, -0x1.7c7a26e000000p+125,
+        0x0.0000002c7c7c7p-1022, 0x1.7c7c1c7000000p-1011, -0x1.7c7c7c7c7c707p+125,
+        -0x1.7c7c7c7ffc7c7p+125, -0x1.73a3a3a3a3a3ap+125, 0x0.00bc7c7c7c7c7p-1022,
+        0x1.d2d0000000c00p-301, -0x1.7c7c5c72d2d2dp+125, 0x1.94949494949c7p+149,
+        0x1.9494949494949p+149, 0x1.4c7f5c7c74949p-975, -0x1.7c7006907feffp+125,
+        -0x1.7c7c787c7c7c7p+109, 0x1.a3a3ac7c3c7c7p-92, 0x1.a3a3a3a3a3a3ap-92,
+        -0x1.7c7c7c7e728c7p+125, 0x0.1c70018c7c7c7p-1022, -0x1.7c7c7c7c71600p+125,
+        -0x1.7c73ac7c7c7c7p+125, -0x1.7c7c7c7c7cfc7p+125, -0x1.7c7c7c7c74139p+125,
+        -0x1.7c7c7c7c7c7c7p+125, 0x1.d2d2d2d2d2d2dp-301, 0x1.9c7c741c7c7c7p+149,
+        0x1.9494949494949p+149, -0x1.9494949494949p+117, 0x1.0000404c7f5c7p-911,
+        -0x1.7c7c7c7c70069p+125, 0x1.7c7c7c7c7c787p-1011, 0.0,
+        -0x1.7c7c7c7c70000p+125, -0x1.7c7c7c73ac7c7p+125, -0x1.3c7c7c7c7c7d7p-917,
+    };
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(p, 17, &h, &err), ACD_OK);
+    assert_mesh_encloses(&h, p, 17);
+    assert_encloses(&h, p, 17);
+    acd_hull_free(&h);
+}
+
 /* Many ill-conditioned facets at once: points on a sphere, a third of them with a twin 1e-11 to
  * 1e-7 away in a random direction (slivers of every conditioning, on both sides of hull_enclose's
  * trust test), shuffled in: every point inside every plane. (qhull's planes already pass this
@@ -872,6 +905,7 @@ int main(void) {
         cmocka_unit_test(test_triangles_enclose_ill_conditioned),
         cmocka_unit_test(test_lost_extreme_point),
         cmocka_unit_test(test_lost_point_repaired),
+        cmocka_unit_test(test_lost_point_thin),
         cmocka_unit_test(test_enclosure_twins),
         cmocka_unit_test(test_take),
     };

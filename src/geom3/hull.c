@@ -600,6 +600,9 @@ static double encl_worst(const encl_tree *T, const double *nrm, double d, double
 /* Rounding of a triangle's cross product, in units of DBL_EPSILON x L / h (3 in the analysis, with
  * a margin), and the share of the tolerance a trusted plane may be off by. */
 #define HULL_ENCLOSE_ROUNDOFF 8.0
+/* A hull whose volume is under this fraction of its points' box diagonal cubed is thin (hull_enclose
+ * then trusts none of its facets). */
+#define HULL_THIN_REL 1e-6
 #define HULL_ENCLOSE_TRUST_SHARE 0.25
 
 /* A facet plane (unit normal nrm) of the triangle a, b, c that no point of a box of diagonal diag
@@ -1143,7 +1146,12 @@ static acd_status hull_enclose(acd_hull *out, const double *points, const double
                                int repaired, acd_error *err) {
     const double tol = ACD_TOL_REL_DIST * diag;
     encl_tree T = {0};
-    int built = 0, missed = 0, lost = repaired || hull_extremes_outside(out, w, n, tol);
+    /* a thin hull (volume under HULL_THIN_REL x diag^3, normalised units): qhull's precision is
+     * weakest there, and fuzz_hull found a point 1.3e-9 of the extent above a trusted facet of one
+     * (17 points spanning 1e45 to 1e-314, neither repaired nor an extreme outside): every plane checked */
+    const double vn = out->volume / (s * s * s);
+    int thin = !(vn >= HULL_THIN_REL * diag * diag * diag);
+    int built = 0, missed = 0, lost = repaired || thin || hull_extremes_outside(out, w, n, tol);
     acd_status st = ACD_OK;
     for (size_t t = 0; t < out->ntriangles; t++) {
         double *pl = out->planes + 4 * t;
