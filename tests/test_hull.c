@@ -720,6 +720,16 @@ static void test_triangles_enclose_ill_conditioned(void **state) {
     free(q);
 }
 
+/* The hull of the n points p: every point inside every plane and inside the mesh of its triangles. */
+static void hull_of_encloses(const double *p, size_t n) {
+    acd_hull h;
+    acd_error err;
+    assert_int_equal(acd_hull_compute(p, n, &h, &err), ACD_OK);
+    assert_mesh_encloses(&h, p, n);
+    assert_encloses(&h, p, n);
+    acd_hull_free(&h);
+}
+
 /* fuzz_hull's 17 points at 1e40 with tiny ones mixed in (docs/results/geom3.md): qhull lost the
  * point of greatest y, 1.2e-9 of the extent above its well-conditioned facet of normal (0, 1, 0),
  * which hull_enclose trusted; an extreme point outside a plane now makes every facet checked (and
@@ -745,12 +755,7 @@ static void test_lost_extreme_point(void **state) {
         -0x1.7c7c7c7c74848p+125, 0x1.a3a3ac73ac7c7p-92, -0x1.a3a3a3a3a3a3ap+116,
         -0x1.7c7c764c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125,
     };
-    acd_hull h;
-    acd_error err;
-    assert_int_equal(acd_hull_compute(p, 17, &h, &err), ACD_OK);
-    assert_mesh_encloses(&h, p, 17);
-    assert_encloses(&h, p, 17);
-    acd_hull_free(&h);
+    hull_of_encloses(p, 17);
 }
 
 /* fuzz_hull's 17 points spanning 1e45 to 1e-314 (docs/results/geom3.md): qhull flipped a facet and
@@ -780,12 +785,7 @@ static void test_lost_point_repaired(void **state) {
         -0x1.7c7c7c7c70069p+125, 0x1.7c7c7c7c7c787p-1011, 0.0,
         -0x1.7c7c7c7c70000p+125, -0x1.7c7c7c73ac7c7p+125, -0x1.3c7c7c7c7c7d7p-917,
     };
-    acd_hull h;
-    acd_error err;
-    assert_int_equal(acd_hull_compute(p, 17, &h, &err), ACD_OK);
-    assert_mesh_encloses(&h, p, 17);
-    assert_encloses(&h, p, 17);
-    acd_hull_free(&h);
+    hull_of_encloses(p, 17);
 }
 
 /* fuzz_hull (CI at ad28b14): 17 points spanning 1e45 to 1e-314 whose qhull hull left point 4 1.3e-9
@@ -813,12 +813,7 @@ static void test_lost_point_thin(void **state) {
         -0x1.7c7c7c7c70069p+125, 0x1.7c7c7c7c7c787p-1011, 0.0,
         -0x1.7c7c7c7c70000p+125, -0x1.7c7c7c73ac7c7p+125, -0x1.3c7c7c7c7c7d7p-917,
     };
-    acd_hull h;
-    acd_error err;
-    assert_int_equal(acd_hull_compute(p, 17, &h, &err), ACD_OK);
-    assert_mesh_encloses(&h, p, 17);
-    assert_encloses(&h, p, 17);
-    acd_hull_free(&h);
+    hull_of_encloses(p, 17);
 }
 
 /* Many ill-conditioned facets at once: points on a sphere, a third of them with a twin 1e-11 to
