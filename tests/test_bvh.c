@@ -192,6 +192,21 @@ static void test_box_and_line_queries(void **state) {
                 if (k != axis && (lo[k] < tl[k] || lo[k] > th[k])) meets = 0;
             assert_int_equal(c.seen[t], meets);
         }
+        /* the halfspace n.x > off: exactly the triangles whose box reaches beyond, among them every
+         * triangle with a vertex beyond */
+        double n[3], off = 0.5 * acd_rng_uniform(&r);
+        for (int k = 0; k < 3; k++) n[k] = 2 * acd_rng_uniform(&r) - 1;
+        memset(c.seen, 0, s.nt);
+        acd_bvh_query_halfspace(&b, n, off, mark_tri, &c);
+        for (size_t t = 0; t < s.nt; t++) {
+            double tl[3], th[3], top = 0, vmax = -INFINITY;
+            tri_bounds(&s, t, tl, th);
+            for (int k = 0; k < 3; k++) top += n[k] * (n[k] >= 0 ? th[k] : tl[k]);
+            for (int j = 0; j < 3; j++)
+                vmax = fmax(vmax, n[0] * s.v[9 * t + 3 * j] + n[1] * s.v[9 * t + 3 * j + 1] + n[2] * s.v[9 * t + 3 * j + 2]);
+            assert_int_equal(c.seen[t], top > off);
+            if (vmax > off) assert_int_equal(c.seen[t], 1);
+        }
     }
     free(c.seen);
     acd_bvh_free(&b);

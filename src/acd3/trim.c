@@ -94,36 +94,29 @@ static void add_beyond(const double *a, const double *b, const double *c, const 
     add_beyond_from(a, b, c, n, off, apex, 0, v);
 }
 
-/* The part's triangles beyond the deepest plane, through the BVH (a node whose box lies below it
- * holds none). */
+/* The part's triangles that reach beyond the deepest plane (acd_bvh_query_halfspace), their volumes
+ * beyond the planes from depth k_lo on added to v. */
+typedef struct beyond_visit {
+    const acd_bvh *bvh;
+    const double *n, *off;
+    const double (*apex)[3];
+    size_t k_lo;
+    double *v;
+} beyond_visit;
+
+static int beyond_tri(void *user, uint32_t t) {
+    const beyond_visit *q = user;
+    const uint32_t *tr = q->bvh->triangles + 3 * (size_t)t;
+    const double *V = q->bvh->vertices;
+    add_beyond_from(V + 3 * (size_t)tr[0], V + 3 * (size_t)tr[1], V + 3 * (size_t)tr[2], q->n, q->off, q->apex, q->k_lo,
+                    q->v);
+    return 0;
+}
+
 static void part_beyond(const acd_bvh *bvh, const double n[3], const double *off, const double (*apex)[3], size_t k_lo,
                         double *v) {
-    if (bvh->nnodes == 0) return;
-    uint32_t stack[128];
-    int sp = 0;
-    stack[sp++] = 0;
-    const double deepest = off[NDEPTHS - 1];
-    while (sp > 0) {
-        const acd_bvh_node *nd = &bvh->nodes[stack[--sp]];
-        if (!(box_max_proj(n, nd->lo, nd->hi) > deepest)) continue;
-        if (nd->count > 0) {
-            for (uint32_t i = nd->first; i < nd->first + nd->count; i++) {
-                const uint32_t *t = bvh->triangles + 3 * (size_t)bvh->order[i];
-                add_beyond_from(bvh->vertices + 3 * (size_t)t[0], bvh->vertices + 3 * (size_t)t[1],
-                                bvh->vertices + 3 * (size_t)t[2], n, off, apex, k_lo, v);
-            }
-        } else if (sp + 2 <= (int)(sizeof stack / sizeof stack[0])) {
-            stack[sp++] = nd->first;
-            stack[sp++] = nd->first + 1;
-        } else { /* deeper than the stack (not with the SAH build's depths): the whole subtree, linearly */
-            for (size_t i = 0; i < bvh->ntriangles; i++) {
-                const uint32_t *t = bvh->triangles + 3 * i;
-                add_beyond_from(bvh->vertices + 3 * (size_t)t[0], bvh->vertices + 3 * (size_t)t[1],
-                                bvh->vertices + 3 * (size_t)t[2], n, off, apex, k_lo, v);
-            }
-            return;
-        }
-    }
+    beyond_visit q = {bvh, n, off, apex, k_lo, v};
+    acd_bvh_query_halfspace(bvh, n, off[NDEPTHS - 1], beyond_tri, &q);
 }
 
 static void plane_offsets(const trim_hull *T, const trim_plane *P, double *off, double (*apex)[3]) {

@@ -631,6 +631,35 @@ int acd_bvh_query_box(const acd_bvh *bvh, const double lo[3], const double hi[3]
     return 0;
 }
 
+/* max of n.x over the box (lo, hi) */
+static inline double box_max_dot(const double n[3], const double lo[3], const double hi[3]) {
+    double s = 0;
+    for (int k = 0; k < 3; k++) s += n[k] * (n[k] >= 0 ? hi[k] : lo[k]);
+    return s;
+}
+
+int acd_bvh_query_halfspace(const acd_bvh *bvh, const double n[3], double off, acd_bvh_tri_fn fn, void *user) {
+    if (bvh->nnodes == 0) return 0;
+    uint32_t stack[BVH_STACK];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const acd_bvh_node *nd = &bvh->nodes[stack[--sp]];
+        if (!(box_max_dot(n, nd->lo, nd->hi) > off)) continue;
+        if (nd->count) {
+            for (uint32_t i = 0; i < nd->count; i++) {
+                const double *tb = tbox_sorted(bvh, nd->first + i);
+                if (box_max_dot(n, tb, tb + 3) > off && fn(user, bvh->order[nd->first + i])) return 1;
+            }
+            continue;
+        }
+        if (sp + 2 > BVH_STACK) return 0; /* cannot happen for a tree built here (see BVH_STACK) */
+        stack[sp++] = nd->first;
+        stack[sp++] = nd->first + 1;
+    }
+    return 0;
+}
+
 static inline int line_meets(const double lo[3], const double hi[3], const double p[3], int axis, int forward) {
     int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
     if (p[a1] < lo[a1] || p[a1] > hi[a1] || p[a2] < lo[a2] || p[a2] > hi[a2]) return 0;

@@ -85,6 +85,11 @@ typedef int (*acd_bvh_pair_fn)(void *user, uint32_t a, uint32_t b);
  * the traversal, else 0. */
 int acd_bvh_query_box(const acd_bvh *bvh, const double lo[3], const double hi[3], acd_bvh_tri_fn fn, void *user);
 
+/* Calls fn for every triangle whose box reaches beyond the plane n.x = off (some corner with
+ * n.x > off): every triangle with a point beyond it, and some without. Returns 1 if fn stopped the
+ * traversal, else 0. */
+int acd_bvh_query_halfspace(const acd_bvh *bvh, const double n[3], double off, acd_bvh_tri_fn fn, void *user);
+
 /* Calls fn for every triangle whose box meets the line through p parallel to coordinate axis
  * `axis` (0, 1, 2), restricted to coordinates >= p[axis] when `forward` is non-zero. */
 int acd_bvh_query_axis_line(const acd_bvh *bvh, const double p[3], int axis, int forward, acd_bvh_tri_fn fn,
