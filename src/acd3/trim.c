@@ -55,8 +55,9 @@ typedef struct trim_hull {
     int active;       /* a solid hull that may still be cut */
     trim_plane *pl;   /* candidate planes */
     size_t npl, cappl;
-    double *cap;      /* 9 * ncap: the last cut's removed cap, outward triangles as corner triples */
-    size_t ncap, capcap;
+    double *corner;   /* 3 * ncorner: the corners of the last cut's removed cap (the vertices at or
+                         beyond the plane and the crossings) */
+    size_t ncorner, cornercap;
     int cut;          /* cut at least once */
     int crossing;     /* the part intersects itself: not trimmed */
     int stale;        /* the best cut to choose again (the hull was cut) */
@@ -126,7 +127,6 @@ static void plane_offsets(const trim_hull *T, const trim_plane *P, double *off, 
     }
 }
 
-/* P's gains for the current hull, and its losses when not known and some gain reaches min_gain */
 /* The triangles of a hull with their neighbours, for plane_measure's search from a facet. */
 typedef struct trim_adj {
     const uint32_t *nbr; /* 3 * nt: the triangle across each edge */
@@ -232,17 +232,17 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
 
 static int after_cut(trim_hull *T, double min_gain) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t v = 0; v < 3 * T->ncap; v++)
+    for (size_t v = 0; v < T->ncorner; v++)
         for (int k = 0; k < 3; k++) {
-            lo[k] = fmin(lo[k], T->cap[3 * v + k]);
-            hi[k] = fmax(hi[k], T->cap[3 * v + k]);
+            lo[k] = fmin(lo[k], T->corner[3 * v + k]);
+            hi[k] = fmax(hi[k], T->corner[3 * v + k]);
         }
     for (size_t j = 0; j < T->npl; j++) {
         trim_plane *P = &T->pl[j];
         double deepest = P->off0 - ACD3_TRIM_DEPTHS[NDEPTHS - 1] * T->unit;
         if (!(box_max_proj(P->n, lo, hi) > deepest)) continue; /* the cap's box is below: so is the cap */
         int meets = 0;
-        for (size_t v = 0; v < 3 * T->ncap && !meets; v++) meets = dot3(P->n, T->cap + 3 * v) > deepest;
+        for (size_t v = 0; v < T->ncorner && !meets; v++) meets = dot3(P->n, T->corner + 3 * v) > deepest;
         if (meets) P->dirty = 1; /* its caps lost what they held of the removed cap: measured when needed */
     }
     if (!add_plane(T, T->plane, T->off)) return 0;
@@ -298,7 +298,7 @@ static int sect_cmp(const void *a, const void *b) {
 /* The hull cut by the plane n.x = off (T->plane, T->off), by clipping its triangles: those below
  * kept, those crossing clipped (the crossing of an edge computed once, from its lower vertex
  * index), the section (the crossings and the vertices on the plane, in convex position) fanned in
- * angular order; the removed cap kept in T->cap (the parts beyond, the section reversed).
+ * angular order; the removed cap's corners kept in T->corner.
  * 1 done, 0 refused (more than max_vertices, or nothing removed), -1 out of memory. */
 static int cut_hull(trim_hull *T, size_t max_vertices) {
     const trim_poly *h = &T->h;
@@ -318,39 +318,34 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
     out.t = malloc(3 * tcap * sizeof *out.t);
     out.pl = malloc(4 * tcap * sizeof *out.pl);
     sect_pt *sec = malloc(vcap * sizeof *sec);
-    size_t ccap = 3 * nt + vcap;
-    if (T->capcap < ccap) {
-        double *nc = realloc(T->cap, 9 * ccap * sizeof *nc);
+    if (T->cornercap < vcap) {
+        double *nc = realloc(T->corner, 3 * vcap * sizeof *nc);
         if (nc) {
-            T->cap = nc;
-            T->capcap = ccap;
+            T->corner = nc;
+            T->cornercap = vcap;
         }
     }
     int ret = -1;
-    if (!s || !map || !ekey || !eval || !out.v || !out.t || !out.pl || !sec || T->capcap < ccap) goto done;
+    if (!s || !map || !ekey || !eval || !out.v || !out.t || !out.pl || !sec || T->cornercap < vcap) goto done;
     memset(ekey, 0xff, ekcap * sizeof *ekey);
     size_t nbeyond = 0;
+    T->ncorner = 0;
     for (size_t v = 0; v < nv; v++) {
         s[v] = dot3(n, h->v + 3 * v) - T->off;
         map[v] = UINT32_MAX;
         nbeyond += s[v] > 0;
+        if (s[v] >= 0) memcpy(T->corner + 3 * T->ncorner++, h->v + 3 * v, 3 * sizeof(double));
     }
     ret = 0;
     if (nbeyond == 0) goto done;
     size_t nsec = 0;
-    T->ncap = 0;
 #define ADD_V(p) (memcpy(out.v + 3 * out.nv, (p), 3 * sizeof(double)), (uint32_t)out.nv++)
     for (size_t t = 0; t < nt; t++) {
         const uint32_t *tr = h->t + 3 * t;
         int nb = (s[tr[0]] > 0) + (s[tr[1]] > 0) + (s[tr[2]] > 0);
-        if (nb == 3) { /* beyond: to the cap */
-            for (int k = 0; k < 3; k++) memcpy(T->cap + 9 * T->ncap + 3 * k, h->v + 3 * (size_t)tr[k], 3 * sizeof(double));
-            T->ncap++;
-            continue;
-        }
+        if (nb == 3) continue; /* beyond: removed */
         uint32_t below[4];
-        double beyond[4][3];
-        int nbl = 0, nby = 0;
+        int nbl = 0;
         for (int k = 0; k < 3; k++) {
             uint32_t a = tr[k], b = tr[k == 2 ? 0 : k + 1];
             if (!(s[a] > 0)) { /* at or below: kept (on the plane: also a corner of the section and of the cap) */
@@ -360,7 +355,6 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
                 }
                 below[nbl++] = map[a];
             }
-            if (s[a] >= 0) memcpy(beyond[nby++], h->v + 3 * (size_t)a, sizeof beyond[0]);
             if ((s[a] < 0 && s[b] > 0) || (s[a] > 0 && s[b] < 0)) { /* a crossing edge */
                 uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
                 uint64_t key = (uint64_t)lo << 32 | hi;
@@ -372,9 +366,9 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
                     ekey[slot] = key;
                     eval[slot] = ADD_V(p);
                     sec[nsec++].v = eval[slot];
+                    memcpy(T->corner + 3 * T->ncorner++, p, sizeof p);
                 }
                 below[nbl++] = eval[slot];
-                memcpy(beyond[nby++], out.v + 3 * (size_t)eval[slot], sizeof beyond[0]);
             }
         }
         for (int k = 1; k + 1 < nbl; k++) { /* the part below, fanned, in the triangle's plane */
@@ -382,12 +376,6 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
             o[0] = below[0], o[1] = below[k], o[2] = below[k + 1];
             memcpy(out.pl + 4 * out.nt, h->pl + 4 * t, 4 * sizeof(double));
             out.nt++;
-        }
-        for (int k = 1; k + 1 < nby && nb > 0; k++) { /* the part beyond, to the cap */
-            memcpy(T->cap + 9 * T->ncap, beyond[0], 3 * sizeof(double));
-            memcpy(T->cap + 9 * T->ncap + 3, beyond[k], 3 * sizeof(double));
-            memcpy(T->cap + 9 * T->ncap + 6, beyond[k + 1], 3 * sizeof(double));
-            T->ncap++;
         }
     }
 #undef ADD_V
@@ -415,11 +403,6 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
             o[0] = sec[0].v, o[1] = sec[i].v, o[2] = sec[i + 1].v;
             memcpy(out.pl + 4 * out.nt, pl, sizeof pl);
             out.nt++;
-            double *cp = T->cap + 9 * T->ncap; /* reversed: outward for the cap */
-            memcpy(cp, out.v + 3 * (size_t)sec[0].v, 3 * sizeof(double));
-            memcpy(cp + 3, out.v + 3 * (size_t)sec[i + 1].v, 3 * sizeof(double));
-            memcpy(cp + 6, out.v + 3 * (size_t)sec[i].v, 3 * sizeof(double));
-            T->ncap++;
         }
     }
     if (out.nt < 4 || (max_vertices >= 4 && out.nv > max_vertices)) goto done; /* refused */
@@ -553,7 +536,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             planned += H->loss;
             take = b + 1;
         }
-        if (take == 0) continue;
+        if (take == 0) break; /* (cannot happen: the best cut of the first hull fits the room) */
         int res[ACD3_TRIM_BATCH];
         /* sequential: a round is a few milliseconds, and a parallel region per round cost more in
          * waits than it saved on a loaded machine (camel: 0.28 s on one thread, 1.8 s on two) */
@@ -607,7 +590,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         poly_free(&T[i].h);
         acd_bvh_free(&T[i].bvh);
         free(T[i].pl);
-        free(T[i].cap);
+        free(T[i].corner);
     }
     free(T);
     free(pst);
