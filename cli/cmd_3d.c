@@ -245,6 +245,14 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
         cJSON_AddNumberToObject(t, "depth_max", r->trim_depth_max);
         cJSON_AddNumberToObject(t, "parts_left_whole", (double)r->trim_skipped);
     }
+    if (p->budget_parts > 0) { /* only with --budget: other runs' JSON unchanged */
+        cJSON *b = cJSON_AddObjectToObject(o, "budget");
+        cJSON_AddNumberToObject(b, "cuts", (double)r->budget_cuts);
+        cJSON_AddNumberToObject(b, "phase1_cuts", (double)r->budget_phase1_cuts);
+        cJSON_AddNumberToObject(b, "parts_over", (double)r->budget_over);
+        if (r->budget_stop) cJSON_AddStringToObject(b, "stop", r->budget_stop);
+        else cJSON_AddNullToObject(b, "stop");
+    }
     cJSON *parts = cJSON_AddArrayToObject(o, "parts");
     for (size_t i = 0; i < r->nparts; i++) {
         cJSON *q = cJSON_CreateObject();
@@ -709,6 +717,9 @@ int acd_cmd_3d(int argc, char **argv) {
     printf("%zu parts, max concavity %.6g (tau %.6g = %.4g x radius %.6g), %.3f s\n", r.nparts, r.max_concavity, r.tau,
            r.scale > 0 ? r.tau / r.scale : 0.0, r.scale, r.seconds);
     if (show_settings) print_settings(&r, &p);
+    if (p.budget_parts > 0 && r.budget_over > 0)
+        printf("budget: the pass left %zu part(s) above the merge tolerance after %zu cuts (%zu past the budget): %s\n",
+               r.budget_over, r.budget_cuts, r.budget_phase1_cuts, r.budget_stop ? r.budget_stop : "?");
     if (p.trim_coverage > 0 && r.trim_skipped > 0)
         fprintf(stderr,
                 "acd 3d: warning: %zu part(s) intersect themselves (the %smesh crosses itself): their hulls are "

@@ -254,6 +254,16 @@ typedef struct acd3d_result {
     size_t trim_skipped;      /* with trim_coverage: parts whose hulls were left whole because the part
                                  intersects itself (the budget is accounted in signed volumes, which
                                  are not the volume inside a solid that crosses itself) */
+    /* The part budget pass (budget_parts > 0; all 0 / NULL otherwise). It cuts best first until
+     * budget_parts parts exist, then (phase 1) keeps cutting parts above the merge tolerance, by cuts
+     * that make progress, within caps (docs/acd3d.md "Excess-driven budget"). */
+    size_t budget_cuts;        /* cuts the budget pass made, phase 1's included */
+    size_t budget_phase1_cuts; /* of them, cuts of parts above the merge tolerance once the budget was spent */
+    size_t budget_over;        /* parts the pass left above the merge tolerance (leaf_reason NO_CUT) */
+    const char *budget_stop;   /* when budget_over > 0, why phase 1 stopped (a static string: "the phase-1
+                                  cut cap was reached", "the atom cap was reached", "a part reached the
+                                  phase-1 generation cap", "no cut of a part above the limit splits it with
+                                  progress"); NULL when no part is left above the tolerance */
 } acd3d_result;
 
 /* Decomposes a closed (solid) or any (surface) triangle mesh. The input should have been

@@ -1272,9 +1272,11 @@ static acd_status mark_over_limit(tree *t, const size_t *idx, size_t np, const a
 
 /* The part budget (params.budget_parts, acd3/budget): the parts are split further, best first by
  * the hull volume a split saves, the pieces children of the parts they were cut from
- * (ACD3D_LEAF_BUDGET, their concavity the two-sided bound). */
+ * (ACD3D_LEAF_BUDGET, their concavity the two-sided bound). The pass's counts and phase-1 stop
+ * reason go to res (budget_cuts, budget_phase1_cuts, budget_over, budget_stop). */
 static acd_status split_to_budget(tree *t, size_t budget, double limit, double min_gain, double extent,
-                                  int threads, const acd3d_params *params, size_t *nparts, acd_error *err) {
+                                  int threads, const acd3d_params *params, size_t *nparts, acd3d_result *res,
+                                  acd_error *err) {
     size_t np, *idx;
     acd_mesh *meshes;
     acd_status st = collect_parts(t, &np, &idx, &meshes, err);
@@ -1332,7 +1334,13 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
      * caller sees them as it sees parts stuck above tau (before, an input part kept its tree leaf
      * reason and measure, below tau = 10 x radius, and the result read as meeting its tolerances) */
     if (st == ACD_OK && br.over > 0) st = mark_over_limit(t, idx, np, &br, limit, err);
-    if (st == ACD_OK) *nparts = br.nalive;
+    if (st == ACD_OK) {
+        *nparts = br.nalive;
+        res->budget_cuts = br.cuts;
+        res->budget_phase1_cuts = br.phase1_cuts;
+        res->budget_over = br.over;
+        res->budget_stop = br.over > 0 ? br.phase1_stop : NULL;
+    }
     acd3_budget_result_free(&br);
     free(idx);
     return st;
@@ -1608,7 +1616,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
 
     if (params->budget_parts > 0) {
         st = split_to_budget(&t, params->budget_parts, out->merge_tau, ACD3_BUDGET_MIN_GAIN_REL * vol, sc.extent,
-                             nthreads, params, &nleaves, err);
+                             nthreads, params, &nleaves, out, err);
         if (st != ACD_OK) goto fail;
     }
 
