@@ -411,23 +411,30 @@ static int section_crossings(const acd_mesh *m, const uint32_t *edges, size_t ne
                              const double *cs, int nq, double **xs, size_t *xb, size_t *xe) {
     size_t cnt[BUDGET_MAX_QUERIES] = {0}, nh = 0, hcap = 1024;
     uint32_t *hit = malloc(hcap * sizeof *hit); /* (edge, offset) pairs */
+    uint8_t *le = malloc(m->nvertices + 1); /* per vertex: how many offsets lie at or below it */
     *xs = NULL;
-    if (!hit) return 0;
+    if (!hit || !le) {
+        free(hit), free(le);
+        return 0;
+    }
+    _Static_assert(BUDGET_MAX_QUERIES < 256, "a vertex's offset count must fit a byte");
+    for (size_t v = 0; v < m->nvertices; v++) {
+        unsigned c = 0;
+        for (int i = 0; i < nq; i++) c += cs[i] <= dall[v];
+        le[v] = (uint8_t)c;
+    }
     for (size_t k = 0; k < ne; k++) {
-        double da = dall[edges[2 * k]], db = dall[edges[2 * k + 1]], lo = da < db ? da : db, hi = da < db ? db : da;
-        /* the planes it crosses: (da - c >= 0) != (db - c >= 0), i.e. lo < c <= hi */
-        if (!(cs[0] <= hi) || !(cs[nq - 1] > lo)) continue;
-        int i0 = 0, i1 = nq; /* the first offset above lo */
-        while (i0 < i1) {
-            int md = (i0 + i1) / 2;
-            if (cs[md] > lo) i1 = md;
-            else i0 = md + 1;
-        }
-        for (int i = i0; i < nq && cs[i] <= hi; i++) {
+        /* the planes it crosses: (da - c >= 0) != (db - c >= 0), i.e. lo < c <= hi for its ends' lower
+         * and higher projections: the offsets (increasing) from le[lo] (the first above lo) to before
+         * le[hi] (the first above hi) */
+        int la = le[edges[2 * k]], lb = le[edges[2 * k + 1]];
+        if (la == lb) continue;
+        int i0 = la < lb ? la : lb, i1 = la < lb ? lb : la;
+        for (int i = i0; i < i1; i++) {
             if (nh + 2 > hcap) {
                 uint32_t *nhit = realloc(hit, 2 * hcap * sizeof *hit);
                 if (!nhit) {
-                    free(hit);
+                    free(hit), free(le);
                     return 0;
                 }
                 hit = nhit, hcap *= 2;
@@ -436,6 +443,7 @@ static int section_crossings(const acd_mesh *m, const uint32_t *edges, size_t ne
             cnt[i]++;
         }
     }
+    free(le);
     size_t tot = 0, mx = 0;
     for (int i = 0; i < nq; i++) xb[i] = xe[i] = tot, tot += cnt[i], mx = cnt[i] > mx ? cnt[i] : mx;
     *xs = malloc((3 * tot + 3) * sizeof **xs);
