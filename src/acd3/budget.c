@@ -508,9 +508,9 @@ static int sweep_dir(const acd_mesh *m, const plan *P, int d, const double *cs, 
     keyed_sort(ord, nsv, ord + nsv);
     for (size_t k = 0; k < nsv; k++) memcpy(srt + 3 * k, m->vertices + 3 * P->sv[ord[k].i], sizeof(double[3]));
     size_t cntb[BUDGET_MAX_QUERIES], cnta[BUDGET_MAX_QUERIES], xba[BUDGET_MAX_QUERIES], xea[BUDGET_MAX_QUERIES];
-    for (int i = 0; i < nq; i++) {
-        size_t c = 0;
-        for (size_t k = 0; k < nsv; k++) c += dv[k] - cs[i] < 0;
+    size_t c = 0;
+    for (int i = 0; i < nq; i++) { /* the sampled vertices below offset i: a prefix of the sorted sample */
+        while (c < nsv && ord[c].key < cs[i]) c++;
         cntb[i] = c;
         cnta[nq - 1 - i] = nsv - c;
         xba[nq - 1 - i] = xb[i], xea[nq - 1 - i] = xe[i];
