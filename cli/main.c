@@ -1,8 +1,28 @@
 /* acd: command-line entry point; dispatches to one file per subcommand. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#if defined(_OPENMP) && defined(__linux__)
+#include <unistd.h>
+#endif
 
 #include "cli.h"
+
+#if defined(_OPENMP) && defined(__linux__)
+/* OpenMP's idle threads wait for the next parallel region by spinning (libgomp, OMP_WAIT_POLICY
+ * unset: some 300,000 spins before they sleep). The 3D pipelines open hundreds of short regions, and
+ * on cores that other processes use a spinning thread takes turns from the working ones: measured
+ * 2026-11-26 on 2 cores (docs/results/3d-speed.md, "Threads on a busy machine"), fandisk --budget 40
+ * --trim-coverage 0.0008 took 1.72 s wall with both cores busy, 1.05 s with passive waiting, the
+ * armadillo's 5.42 s against 3.67 s; on idle cores the two are within the noise. libgomp reads the
+ * policy once, when it is loaded, so the CLI sets it and runs itself again; the user's own
+ * OMP_WAIT_POLICY or GOMP_SPINCOUNT wins. Without /proc the default policy stays. */
+static void passive_omp_wait(char **argv) {
+    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
+    if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
+    execv("/proc/self/exe", argv);
+}
+#endif
 
 typedef struct command {
     const char *name;
@@ -29,6 +49,9 @@ static void usage(FILE *f) {
 }
 
 int main(int argc, char **argv) {
+#if defined(_OPENMP) && defined(__linux__)
+    passive_omp_wait(argv);
+#endif
     if (argc < 2) {
         usage(stderr);
         return ACD_EXIT_USAGE;
