@@ -62,6 +62,14 @@ int main(int argc, char **argv) {
     }
     if (!strcmp(argv[1], "--version")) {
         printf("acd %s\n", ACD_VERSION_STRING);
+#ifdef _OPENMP
+        const char *wp = getenv("OMP_WAIT_POLICY"), *sc = getenv("GOMP_SPINCOUNT");
+        printf("threads: OpenMP, OMP_WAIT_POLICY=%s", wp ? wp : "(unset)");
+        if (sc) printf(", GOMP_SPINCOUNT=%s", sc);
+        printf("\n");
+#else
+        printf("threads: none (built without OpenMP)\n");
+#endif
         return ACD_EXIT_OK;
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
