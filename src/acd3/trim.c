@@ -501,7 +501,8 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         stats->skipped += T[i].crossing;
     }
     double spent = 0;
-    size_t batch[ACD3_TRIM_BATCH];
+    size_t batch[ACD3_TRIM_BATCH], *pick = st == ACD_OK ? malloc(nparts * sizeof *pick) : NULL;
+    if (st == ACD_OK && !pick) st = acd_fail(err, ACD_ERR_NOMEM, "trim: out of memory");
     while (st == ACD_OK) {
         if (progress && progress(progress_user, fmin(1.0, spent / budget), "trim")) {
             st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled while trimming the hulls after %zu cuts", stats->cuts);
@@ -510,11 +511,16 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         const double room = budget - spent;
         /* a hull's best cut stands while the hull is not cut and the cut fits the room (the room only
          * shrinks: the best of fewer candidates, the same when it is still among them) */
+        size_t nch = 0;
         for (size_t j = 0; j < nparts; j++)
-            if (T[j].stale || (T[j].have && !(T[j].loss <= room))) {
-                choose(&T[j], room, min_gain, ratio_floor, loss_floor);
-                T[j].stale = 0;
-            }
+            if (T[j].stale || (T[j].have && !(T[j].loss <= room))) pick[nch++] = j;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nch > 1)
+#endif
+        for (long c = 0; c < (long)nch; c++) { /* each touches its own hull */
+            choose(&T[pick[c]], room, min_gain, ratio_floor, loss_floor);
+            T[pick[c]].stale = 0;
+        }
         /* the round: up to ACD3_TRIM_BATCH hulls of best ratio (ties: lower index), in that order,
          * while their cuts fit the budget */
         int nb = 0;
@@ -570,6 +576,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             if (H->depth > stats->max_depth) stats->max_depth = H->depth;
         }
     }
+    free(pick);
     /* the trimmed hulls out: the hull of each cut polytope's vertices (facets merged as qhull does) */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1 && st == ACD_OK)
