@@ -68,6 +68,8 @@ typedef struct atom {
     int p1;          /* evaluated for phase 1: its cut makes progress (BUDGET_P1_SHRINK) or it has none */
     int progress;    /* its cut's pieces' box diagonals are each at most BUDGET_P1_SHRINK of its own */
     int p1gen;       /* phase-1 cuts between it and the last atom a budget-phase cut made */
+    int tested;      /* leaf_test done: ok and bound hold */
+    int use_kept;    /* its hull is `kept` */
 } atom;
 
 typedef struct budget_state {
@@ -651,40 +653,55 @@ static int box_midplanes(const acd_mesh *m, acd3_plane_candidate *out) {
     return n;
 }
 
-/* The atom's hull volume and bound (touches only the atom). Its hull: a piece's from its parent's
- * exact cut (computed once: its volume chose the cut), an input part's the caller's when it matches,
- * else computed (kept for a piece, dropped for an input part). */
+/* The atom's hull volume (touches only the atom). Its hull: a piece's from its parent's exact cut
+ * (computed once: its volume chose the cut), an input part's the caller's when it matches, else
+ * computed (kept until the atom's leaf test). An input part's bound waits for leaf_test: it is used
+ * only when the part is not cut before phase 1 or the end (the caller measures a part left above
+ * the limit itself), so an input part the budget phase cuts is never tested (the armadillo's single
+ * part: 52,000 triangles, alone on one thread); a piece's is its tree node's concavity, tested at
+ * once (prepare_range). */
 static void prepare(const budget_state *S, size_t i) {
     atom *A = &S->a[i];
     A->st = ACD_OK;
     A->gain = -INFINITY;
-    acd_hull T;
-    memset(&T, 0, sizeof T);
-    T.dim = -1;
-    const acd_hull *H = &T;
+    A->tested = 0;
+    A->use_kept = 0;
+    A->ok = 1;
+    A->bound = 0;
+    const acd_hull *H;
     if (A->have_hull)
         H = &A->hull;
-    else if (A->kept && acd3_kept_hull_matches(A->kept, A->mesh.vertices, A->mesh.nvertices))
+    else if (A->kept && acd3_kept_hull_matches(A->kept, A->mesh.vertices, A->mesh.nvertices)) {
         H = A->kept;
-    else if (acd_hull_compute(A->mesh.vertices, A->mesh.nvertices, &T, NULL) != ACD_OK) {
+        A->use_kept = 1;
+    } else if (acd_hull_compute(A->mesh.vertices, A->mesh.nvertices, &A->hull, NULL) != ACD_OK) {
         A->st = ACD_ERR_NOMEM;
         return;
-    } else if (i >= S->nparts) {
-        A->hull = T;
+    } else {
         A->have_hull = 1;
         H = &A->hull;
     }
     A->hvol = hull_vol(H);
-    A->ok = 1;
-    A->bound = 0;
+}
+
+/* The atom's bound (acd3/leaf_test; touches only the atom), once. A piece keeps the leaf test's tree
+ * and facet table with its hull (for the merge); an input part's hull computed by prepare is dropped. */
+static void leaf_test(const budget_state *S, size_t i) {
+    atom *A = &S->a[i];
+    if (A->tested || A->st != ACD_OK) return;
+    A->tested = 1;
+    const acd_hull *H = A->use_kept ? A->kept : &A->hull;
     if (H->dim == 3) {
-        int acc = 0, own = H == &A->hull; /* a piece: its tree and table kept with its hull */
+        int acc = 0, own = i >= S->nparts; /* a piece: its tree and table kept with its hull */
         acd_error e;
         A->st = acd3_leaf_test_keep(&A->mesh, H, S->limit, UINT32_MAX, &acc, &A->bound, own ? &A->bvh : NULL,
                                     own ? &A->table : NULL, &e);
         A->ok = acc;
     }
-    if (H == &T) acd_hull_free(&T);
+    if (i < S->nparts && A->have_hull) {
+        acd_hull_free(&A->hull);
+        A->have_hull = 0;
+    }
 }
 
 /* One exact cut of an atom by a candidate plane: its pieces and the sum of their hull volumes. */
@@ -977,7 +994,23 @@ static void prepare_range(const budget_state *S, size_t b0, size_t b1, int threa
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && b1 - b0 > 1)
 #endif
-    for (long j = (long)b0; j < (long)b1; j++) prepare(S, (size_t)j);
+    for (long j = (long)b0; j < (long)b1; j++) {
+        prepare(S, (size_t)j);
+        if ((size_t)j >= S->nparts) leaf_test(S, (size_t)j); /* a piece's bound is its tree node's concavity */
+    }
+}
+
+/* The leaf tests of the atoms alive and not tested yet. */
+static void test_alive(const budget_state *S, int threads) {
+    (void)threads;
+    size_t n = 0;
+    for (size_t i = 0; i < S->n; i++) n += S->a[i].alive && !S->a[i].tested && S->a[i].st == ACD_OK;
+    if (n == 0) return;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && n > 1)
+#endif
+    for (long j = 0; j < (long)S->n; j++)
+        if (S->a[j].alive) leaf_test(S, (size_t)j);
 }
 
 void acd3_budget_result_free(acd3_budget_result *r) {
@@ -1046,6 +1079,7 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
         for (; phase < 2 && pick == SIZE_MAX && nb == 0; phase++) {
             if (phase == 0 && nalive >= budget) continue;
             if (phase == 1) {
+                test_alive(&S, threads); /* the parts' bounds, for the parts above the limit */
                 if (out->phase1_cuts >= p1cap) {
                     out->phase1_stop = "the phase-1 cut cap was reached";
                     break;
@@ -1132,6 +1166,11 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
         out->cuts++;
         out->phase1_cuts += phase == 1;
         prepare_range(&S, b0, S.n, threads);
+    }
+    if (st == ACD_OK) { /* the bounds of the parts not tested yet (phase 1 did not run) */
+        test_alive(&S, threads);
+        for (size_t i = 0; i < S.n && st == ACD_OK; i++)
+            if (S.a[i].st != ACD_OK) st = acd_fail(err, S.a[i].st, "budget: out of memory");
     }
     /* the pieces out; the atoms' cached splits freed */
     size_t nnew = S.n - nparts;
