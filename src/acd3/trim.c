@@ -545,10 +545,11 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         if (take == 0) break; /* (cannot happen: the best cut of the first hull fits the room) */
         int res[ACD3_TRIM_BATCH];
         /* the round's hulls in parallel (each task touches its own hull). Measured 2026-11-26: the
-         * armadillo's trimmed run 1.92 -> 1.85 s wall on 2 idle cores; on cores busy with two other
-         * processes the region's waits cost more (camel's trimmed run 2.4 -> 2.6-2.8 s; the first
-         * try, on a busier machine, was 0.28 s on one thread against 1.8 s on two): with the cores
-         * taken, --threads 1 is the faster setting */
+         * armadillo's trimmed run 1.92 -> 1.85 s wall on 2 idle cores. With libgomp's spinning wait
+         * (OMP_WAIT_POLICY unset) and both cores busy with other processes, the region's waits cost
+         * more than they saved (camel's trimmed run 2.4 -> 2.6-2.8 s; a first try on a busier machine:
+         * 0.28 s on one thread, 1.8 s on two); with the passive wait the CLI sets (cli/main.c) the
+         * same as sequential rounds there (fandisk 1.10 s both) */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && take > 1)
 #endif
