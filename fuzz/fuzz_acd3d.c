@@ -28,7 +28,15 @@
 #include "acd/hull.h"
 #include "acd/mesh.h"
 #include "fuzz_sphere.h"
+#include "core/tolerance.h"
 #include "geom3/edge_map.h"
+
+/* The slack of the tau checks, relative to r->scale (the enclosing sphere's radius): the library
+ * takes a part within tau up to ACD_TOL_REL_DIST of the bounding box's diagonal (decompose.c:
+ * "tau = 0: up to rounding"), and that diagonal is at most 2 sqrt(3) radii. (It was 1e-12: a part
+ * at tau = 0 with concavity 5.2e-11 x the radius, accepted by the library, aborted the harness:
+ * corpus acd3d/tau0_rounding.) */
+#define FZ_TAU_SLACK (ACD_TOL_REL_DIST * 2 * 1.7320508075688772)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -46,7 +54,7 @@ static void check(const acd_mesh *in, const acd3d_params *p, const acd3d_result 
         if (q->node < 0 || (size_t)q->node >= r->nnodes) abort();
         const acd3d_node *nd = &r->nodes[q->node];
         if (nd->part != (int)i || (nd->first_child != -1 && nd->leaf_reason != ACD3D_LEAF_MERGED)) abort();
-        if (q->concavity > r->tau * (1 + 1e-9) + 1e-12 * r->scale && nd->leaf_reason != ACD3D_LEAF_NO_CUT &&
+        if (q->concavity > r->tau * (1 + 1e-9) + FZ_TAU_SLACK * r->scale && nd->leaf_reason != ACD3D_LEAF_NO_CUT &&
             nd->leaf_reason != ACD3D_LEAF_DEPTH && nd->leaf_reason != ACD3D_LEAF_MERGED)
             abort();
         faces += q->mesh.ntriangles;
@@ -66,7 +74,7 @@ static void check(const acd_mesh *in, const acd3d_params *p, const acd3d_result 
         for (size_t v = 0; v < q->mesh.nvertices; v++) {
             double pd = acd_hull_plane_distance(&h, q->mesh.vertices + 3 * v);
             if (pd > 1e-9 * r->scale) abort();
-            if (nd->leaf_reason == ACD3D_LEAF_HULL && -pd > r->tau * (1 + 1e-9) + 1e-12 * r->scale) abort();
+            if (nd->leaf_reason == ACD3D_LEAF_HULL && -pd > r->tau * (1 + 1e-9) + FZ_TAU_SLACK * r->scale) abort();
         }
         acd_hull_free(&h);
     }

@@ -35,7 +35,15 @@
 #include "acd/hull.h"
 #include "acd/mesh.h"
 #include "fuzz_sphere.h"
+#include "core/tolerance.h"
 #include "geom3/edge_map.h"
+
+/* The slack of the tau checks, relative to r->scale (the enclosing sphere's radius): the library
+ * takes a part within tau up to ACD_TOL_REL_DIST of the bounding box's diagonal (decompose.c:
+ * "tau = 0: up to rounding"), and that diagonal is at most 2 sqrt(3) radii. (It was 1e-12: a part
+ * at tau = 0 with concavity 5.2e-11 x the radius, accepted by the library, aborted the harness:
+ * corpus acd3d/tau0_rounding.) */
+#define FZ_TAU_SLACK (ACD_TOL_REL_DIST * 2 * 1.7320508075688772)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -54,7 +62,7 @@ static void check(const acd3d_params *p, const acd3d_result *r) {
         if (nd->part != (int)i || nd->merged_into != -1) abort();
         if (nd->first_child != -1 && nd->leaf_reason != ACD3D_LEAF_MERGED) abort();
         if (q->concavity > maxc) maxc = q->concavity;
-        double slack = 1e-12 * r->scale;
+        double slack = FZ_TAU_SLACK * r->scale;
         if (nd->leaf_reason == ACD3D_LEAF_JOINED) {
             if (q->concavity > r->merge_tau * (1 + 1e-9) + slack) abort();
         } else if (q->concavity > r->tau * (1 + 1e-9) + slack && nd->leaf_reason != ACD3D_LEAF_NO_CUT &&

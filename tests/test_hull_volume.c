@@ -425,6 +425,41 @@ static void test_sweep_fold(void **state) {
     assert_true(sweep_fuzz_queries(pts, xs));
 }
 
+/* fuzz_hull_volume (fuzz/corpus/hull_volume/sweep_tiny_prefix): ten points, the first six within
+ * 6e-25 of the origin, the other four near 0.9 (here scaled by 2^43 from the fuzz input). The sweep's
+ * first prefix (the six) started the hull with its own tolerance, 6e-35; the four far points were
+ * then tested against that tolerance and the hull of all ten lost a corner: 4.0e-6 for qhull's
+ * 8.0e-6. A prefix under HULL_VOLUME_PREFIX_REL of the sweep's extent no longer starts the hull.
+ * Every query the sweep computes must be qhull's volume of its prefix (or left, -3). */
+static void test_sweep_tiny_prefix(void **state) {
+    (void)state;
+    double pts[10][3] = {
+        {1.0410273767909543e-42, 1.0410273767909543e-42, 2.4238307419953734e-52},
+        {1.0410276106494882e-42, 1.5707759177945867e-76, 9.1622164797543344e-72},
+        {1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767896492e-42},
+        {1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42},
+        {1.0410273767909543e-42, 1.0410273765821445e-42, 1.0410273767909543e-42},
+        {6.8247549143607734e-38, 3.6860247183499265e-40, 5.2009192740295908e-42},
+        {1.0387856152602562e-13, 1.0387856152602562e-13, 1.0410273765821445e-42},
+        {1.0410273767909543e-42, 1.0410273767909543e-42, 1.0387856152602562e-13},
+        {1.0387528880247567e-13, 1.0387856152602562e-13, 1.0387856152602562e-13},
+        {1.0387856152602562e-13, 1.0387856152602562e-13, 1.0387856152602562e-13}};
+    for (int i = 0; i < 10; i++)
+        for (int k = 0; k < 3; k++) pts[i][k] *= 8796093022208.0; /* 2^43 */
+    const double l = sqrt(68.0 * 68 + 56 * 56 + 105 * 105), dir[3] = {68 / l, -56 / l, 105 / l};
+    static const size_t cnt[5] = {5, 6, 7, 8, 10};
+    size_t xb[5] = {0}, xe[5] = {0};
+    double vol[5], ref[5];
+    for (int q = 0; q < 5; q++) assert_int_equal(acd_hull_volume(&pts[0][0], cnt[q], &ref[q], NULL), ACD_OK);
+    acd_hull_volume_ws w;
+    memset(&w, 0, sizeof w);
+    assert_int_equal(acd_hull_volume_sweep(&pts[0][0], 10, dir, cnt, NULL, xb, xe, 5, vol, &w), 0);
+    for (int q = 0; q < 5; q++) /* (the prefixes of 6-8 points are flat to qhull: 0 or left) */
+        if (vol[q] != -3) assert_true(fabs(vol[q] - ref[q]) <= 1e-9 * ref[4]);
+    assert_true(vol[4] != -3 && fabs(vol[4] - ref[4]) <= 1e-9 * ref[4]); /* was 4.0e-6 */
+    acd_hull_volume_ws_free(&w);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hull_volume),
@@ -433,6 +468,7 @@ int main(void) {
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_sweep_thin_prefix),
         cmocka_unit_test(test_sweep_fold),
+        cmocka_unit_test(test_sweep_tiny_prefix),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

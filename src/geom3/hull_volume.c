@@ -39,6 +39,14 @@ static double hull_volume_pts(const double *pts, size_t n) {
  * a fold: twice D / HULL_VOLUME_FOLD (a margin for the rounding), D (the extent's diagonal) at most
  * 1.8e10 tolerances. */
 #define HULL_VOLUME_NARROW 4e7
+/* A sweep starts its hull only from a prefix whose scale (its largest coordinate or extent) is at
+ * least this fraction of the extent of all the points the sweep may add: the tolerance is the
+ * prefix's (HULL_VOLUME_EPS of its scale), and the facets later points make carry the rounding of
+ * their own scale. fuzz_hull_volume: six points within 6e-25 of the origin, then four at 0.9; the
+ * tolerance of the first six (6e-35) made the hull lose a corner and half its volume (4.0e-6 for
+ * qhull's 8.0e-6). A prefix this small is skipped (its queries left to acd_hull_volume_fast, which
+ * scales by the whole set) and the hull starts at the next query. */
+#define HULL_VOLUME_PREFIX_REL 1e-3
 
 /* The facets of acd_hull_volume_fast's hull (the workspace's array). */
 struct acd_hv_facet { /* what the visible search reads first */
@@ -804,13 +812,16 @@ static long hv_near_retest(acd_hull_volume_ws *w, const double *P, double eps, s
 }
 
 /* The sweep's hull of the first n points of P from scratch (Quickhull, then its points near the hull
- * tested again: hv_near_retest), its volume in *V and tolerance in *eps: 1; 0 when flat or
- * numerically ambiguous; -1 when out of memory. */
-static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, double *eps, double *V) {
+ * tested again: hv_near_retest), its volume in *V and tolerance in *eps: 1; 0 when flat, numerically
+ * ambiguous or too small for the sweep (its scale under HULL_VOLUME_PREFIX_REL of `whole`, the
+ * extent of every point the sweep may add); -1 when out of memory. */
+static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, double whole, double *eps, double *V) {
     size_t top = 0;
     w->nnear = 0;
     int r = hv_simplex(P, n, w, eps, &top);
     if (r != 1) return r == -1 || r == -4 ? r : 0;
+    /* (hv_simplex's tolerance is HULL_VOLUME_EPS times the prefix's scale) */
+    if (!(*eps >= HULL_VOLUME_EPS * HULL_VOLUME_PREFIX_REL * whole)) return 0;
     w->lastf = 0;
     for (;;) {
         r = hv_expand(w, P, *eps, top, NULL, NULL);
@@ -842,6 +853,13 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         }
     }
     if (!(big <= HULL_VOLUME_RANGE)) return 0;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, whole = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], pts[3 * i + k]), hi[k] = fmax(hi[k], pts[3 * i + k]);
+    for (int q = 0; q < nq; q++)
+        for (size_t i = xb[q]; i < xe[q]; i++)
+            for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], xs[3 * i + k]), hi[k] = fmax(hi[k], xs[3 * i + k]);
+    for (int k = 0; k < 3; k++) whole = hi[k] > lo[k] ? fmax(whole, hi[k] - lo[k]) : whole;
     double *P = malloc(3 * (n + maxx + 1) * sizeof *P), *uv = malloc(6 * (maxx + 1) * sizeof *uv);
     int *corner = malloc((2 * maxx + 2) * sizeof *corner), *stamp = malloc((n + maxx + 1) * sizeof *stamp);
     hv_undo U;
@@ -862,7 +880,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     size_t top = 0;
     for (; q0 < nq; q0++) {
         if (cnt[q0] < 4) continue;
-        int r = hv_chain_start(w, P, cnt[q0], &eps, &V);
+        int r = hv_chain_start(w, P, cnt[q0], whole, &eps, &V);
         if (r == -1) {
             st = -1;
             goto out;
@@ -906,7 +924,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
                         goto out;
                     }
                     if (r == -2) { /* the hull of this prefix again from scratch, then on */
-                        r = hv_chain_start(w, P, cnt[q], &eps, &V);
+                        r = hv_chain_start(w, P, cnt[q], whole, &eps, &V);
                         if (r == -1) st = -1;
                         if (r != 1) goto out;
                         last = w->lastf;
