@@ -35,15 +35,7 @@
 #include "acd/hull.h"
 #include "acd/mesh.h"
 #include "fuzz_sphere.h"
-#include "core/tolerance.h"
 #include "geom3/edge_map.h"
-
-/* The slack of the tau checks, relative to r->scale (the enclosing sphere's radius): the library
- * takes a part within tau up to ACD_TOL_REL_DIST of the bounding box's diagonal (decompose.c:
- * "tau = 0: up to rounding"), and that diagonal is at most 2 sqrt(3) radii. (It was 1e-12: a part
- * at tau = 0 with concavity 5.2e-11 x the radius, accepted by the library, aborted the harness:
- * corpus acd3d/tau0_rounding.) */
-#define FZ_TAU_SLACK (ACD_TOL_REL_DIST * 2 * 1.7320508075688772)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
