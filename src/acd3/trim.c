@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
+#include "geom3/vec3.h"
 
 /* The depths a facet's plane is moved inward by, as fractions of the cube root of the part's
  * initial hull volume (increasing). */
@@ -66,13 +67,6 @@ typedef struct trim_hull {
 } trim_hull;
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-/* max of n.x over the box (lo, hi) */
-static double box_max_proj(const double n[3], const double lo[3], const double hi[3]) {
-    double s = 0;
-    for (int k = 0; k < 3; k++) s += n[k] * (n[k] >= 0 ? hi[k] : lo[k]);
-    return s;
-}
 
 static void apex_on(const double centre[3], const double n[3], double off, double o[3]) {
     double s = dot3(n, centre) - off; /* n unit */
@@ -240,7 +234,7 @@ static int after_cut(trim_hull *T, double min_gain) {
     for (size_t j = 0; j < T->npl; j++) {
         trim_plane *P = &T->pl[j];
         double deepest = P->off0 - ACD3_TRIM_DEPTHS[NDEPTHS - 1] * T->unit;
-        if (!(box_max_proj(P->n, lo, hi) > deepest)) continue; /* the cap's box is below: so is the cap */
+        if (!(acd_box_max_dot(P->n, lo, hi) > deepest)) continue; /* the cap's box is below: so is the cap */
         int meets = 0;
         for (size_t v = 0; v < T->ncorner && !meets; v++) meets = dot3(P->n, T->corner + 3 * v) > deepest;
         if (meets) P->dirty = 1; /* its caps lost what they held of the removed cap: measured when needed */

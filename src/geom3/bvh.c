@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "geom3/vec3.h"
 
 #define BVH_BINS 16
 #define BVH_STACK 128 /* depth bound: the SAH/median split always separates, depth < 64 in practice */
@@ -631,13 +632,6 @@ int acd_bvh_query_box(const acd_bvh *bvh, const double lo[3], const double hi[3]
     return 0;
 }
 
-/* max of n.x over the box (lo, hi) */
-static inline double box_max_dot(const double n[3], const double lo[3], const double hi[3]) {
-    double s = 0;
-    for (int k = 0; k < 3; k++) s += n[k] * (n[k] >= 0 ? hi[k] : lo[k]);
-    return s;
-}
-
 int acd_bvh_query_halfspace(const acd_bvh *bvh, const double n[3], double off, acd_bvh_tri_fn fn, void *user) {
     if (bvh->nnodes == 0) return 0;
     uint32_t stack[BVH_STACK];
@@ -645,11 +639,11 @@ int acd_bvh_query_halfspace(const acd_bvh *bvh, const double n[3], double off, a
     stack[sp++] = 0;
     while (sp > 0) {
         const acd_bvh_node *nd = &bvh->nodes[stack[--sp]];
-        if (!(box_max_dot(n, nd->lo, nd->hi) > off)) continue;
+        if (!(acd_box_max_dot(n, nd->lo, nd->hi) > off)) continue;
         if (nd->count) {
             for (uint32_t i = 0; i < nd->count; i++) {
                 const double *tb = tbox_sorted(bvh, nd->first + i);
-                if (box_max_dot(n, tb, tb + 3) > off && fn(user, bvh->order[nd->first + i])) return 1;
+                if (acd_box_max_dot(n, tb, tb + 3) > off && fn(user, bvh->order[nd->first + i])) return 1;
             }
             continue;
         }

@@ -11,6 +11,13 @@ static inline double acd_dist3(const double a[3], const double b[3]) {
     return sqrt(x * x + y * y + z * z);
 }
 
+/* The largest n.x over the axis-aligned box (lo, hi): whether any of it reaches beyond a plane. */
+static inline double acd_box_max_dot(const double n[3], const double lo[3], const double hi[3]) {
+    double s = 0;
+    for (int k = 0; k < 3; k++) s += n[k] * (n[k] >= 0 ? hi[k] : lo[k]);
+    return s;
+}
+
 /* Triangle t (corners a, b, c: 9 coordinates) split at its edges' midpoints into four, written to
  * sub (9 coordinates each): the triangles at a, b and c, then the middle one. */
 static inline void acd_tri_split4(const double t[9], double sub[4][9]) {
