@@ -708,7 +708,9 @@ static void leaf_test(const budget_state *S, size_t i) {
 typedef struct exact_cut {
     acd_status cs;
     int good;
-    double sum, maxbox; /* maxbox: its pieces' largest box diagonal over the atom's */
+    double sum, maxbox; /* maxbox: its pieces' largest box diagonal over the atom's (boxratio) when
+                         * good, else infinite */
+    double boxratio;    /* that ratio, computed with the cut (exact_cut_do: in its task) */
     acd_cut_plane cp;
     acd_cut_result cr;
     acd_hull *hulls; /* the pieces' hulls (cr.npieces), or NULL */
@@ -717,7 +719,8 @@ typedef struct exact_cut {
 /* A candidate cut dropped. */
 static void exact_cut_free(exact_cut *X) { cut_with_hulls_free(&X->cr, &X->hulls); }
 
-/* The cut itself (the pieces' volumes and hulls are tasks of their own: exact_cut_pieces). */
+/* The cut itself and its pieces' largest box diagonal over the atom's (the pieces' volumes and
+ * hulls are tasks of their own, in evaluate_batch). */
 static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_candidate *cand, exact_cut *X) {
     memset(X, 0, sizeof *X);
     X->cs = acd_cut_plane_from_normal(cand->point, cand->normal, S->extent, &X->cp, NULL);
@@ -735,7 +738,12 @@ static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_
     if (es != ACD_OK) {
         acd_cut_result_free(&X->cr);
         X->cs = es == ACD_ERR_NOMEM ? ACD_ERR_NOMEM : ACD_ERR_DEGENERATE;
+        return;
     }
+    double mb = 0, lo[3], hi[3];
+    for (size_t p = 0; p < X->cr.npieces; p++) mb = fmax(mb, box_diag(&X->cr.pieces[p].mesh, lo, hi));
+    double d = box_diag(&A->mesh, lo, hi);
+    X->boxratio = d > 0 ? mb / d : INFINITY;
 }
 
 /* A cut's verdict from its pieces' volumes pv and hull volumes hv (-1: no hull): good when at
@@ -743,15 +751,13 @@ static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_
  * hull computed, and for a phase-1 evaluation (A->p1) when it makes progress (no piece's box
  * diagonal above BUDGET_P1_SHRINK of the atom's); sum, the hull volumes' sum in the pieces' order. */
 static void exact_cut_judge(const atom *A, exact_cut *X, const double *pv, const double *hv) {
-    double sum = 0, mb = 0, lo[3], hi[3];
+    double sum = 0;
     int good = X->cr.npieces >= 2;
     for (size_t p = 0; p < X->cr.npieces && good; p++) {
         if (!(pv[p] > BUDGET_MIN_PIECE_FRACTION * A->vol) || hv[p] < 0) good = 0;
         sum += hv[p];
-        mb = fmax(mb, box_diag(&X->cr.pieces[p].mesh, lo, hi));
     }
-    double d = box_diag(&A->mesh, lo, hi);
-    X->maxbox = good && d > 0 ? mb / d : INFINITY;
+    X->maxbox = good ? X->boxratio : INFINITY;
     if (A->p1 && !(X->maxbox <= BUDGET_P1_SHRINK)) good = 0;
     X->good = good;
     X->sum = sum;
