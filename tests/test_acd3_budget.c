@@ -9,7 +9,8 @@
  * bumpy star: at most N parts, volumes add up, the pieces are tree nodes under the parts they were
  * cut from, every budget part within the merge tolerance, and the sum of the hulls' volumes below
  * that of the tau-driven tree merged to the same N, and every budget part's output hull the bits of
- * its mesh's hull (handed from the budget pass). (The plane scores' hull volume:
+ * its mesh's hull (handed from the budget pass). The screen's fallback chooses as the full
+ * comparison. (The plane scores' hull volume:
  * tests/test_hull_volume.c.) */
 #include "testutil.h"
 
@@ -423,6 +424,42 @@ static void test_decompose_budget(void **state) {
     acd_mesh_free(&m);
 }
 
+/* The screen before the exact candidates' qhull hulls (budget.c, BUDGET_SCREEN_REL) and its
+ * fallback: with the margin -1 no candidate passes, so every evaluation takes the fallback (the
+ * others get their hulls, screen_fallbacks counts it); with INFINITY every candidate gets its hull
+ * at once, no fallback. On a bumpy sphere (budget 8, and a limit that forces phase-1 cuts) and the
+ * voxel U, both give the default's result bit for bit: the fallback path chooses as the full
+ * comparison does, and the default screen drops no cut the full comparison would choose. */
+static void test_screen_fallback(void **state) {
+    (void)state;
+    acd_mesh m[2];
+    assert_true(mg_radial(&m[0], 24, 16, bumpy_r, NULL));
+    voxel_u(&m[1]);
+    const double limit[2][2] = {{10.0, 0.05}, {10.0, 0.2}};
+    acd_error err;
+    for (int i = 0; i < 2; i++)
+        for (int l = 0; l < 2; l++) {
+            acd3_budget_result def, none, all;
+            assert_int_equal(acd3_budget_split(&m[i], 1, 8, limit[i][l], 0, 4.0, 2, &def, &err), ACD_OK);
+            assert_int_equal(acd3_budget_split_screen(&m[i], 1, 8, limit[i][l], 0, 4.0, 2, -1.0, &none, &err), ACD_OK);
+            assert_int_equal(acd3_budget_split_screen(&m[i], 1, 8, limit[i][l], 0, 4.0, 2, INFINITY, &all, &err), ACD_OK);
+            print_message("mesh %d limit %g: %zu cuts (%zu in phase 1); fallbacks: default %zu, margin -1 %zu, "
+                          "none %zu\n",
+                          i, limit[i][l], def.cuts, def.phase1_cuts, def.screen_fallbacks, none.screen_fallbacks,
+                          all.screen_fallbacks);
+            assert_true(def.cuts >= 1);
+            assert_true(none.screen_fallbacks >= def.cuts);
+            assert_int_equal(all.screen_fallbacks, 0);
+            assert_same_result(&none, &def);
+            assert_same_result(&all, &def);
+            acd3_budget_result_free(&def);
+            acd3_budget_result_free(&none);
+            acd3_budget_result_free(&all);
+        }
+    acd_mesh_free(&m[0]);
+    acd_mesh_free(&m[1]);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_module_on_voxels),
@@ -430,6 +467,7 @@ int main(void) {
         cmocka_unit_test(test_hull_candidates),
         cmocka_unit_test(test_budget_subdivided),
         cmocka_unit_test(test_phase1_terminates),
+        cmocka_unit_test(test_screen_fallback),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -77,6 +77,8 @@ typedef struct budget_state {
     size_t n, cap, nparts;
     double limit, extent;
     int ndir, nexact;
+    double screen_rel;      /* BUDGET_SCREEN_REL, or the caller's (acd3_budget_split_screen) */
+    size_t *fallbacks;      /* the result's screen_fallbacks */
 } budget_state;
 
 /* A hull's volume as acd_hull_volume gives it for the same points (0 unless dim 3: the same bits,
@@ -933,7 +935,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
         }
         for (int t = 0; t < ntask; t++) {
             const exact_cut *x = &X[tj[t]][td[t]];
-            if (tj[t] == j && x->cs == ACD_OK && x->good && x->sum <= fbest * (1 + BUDGET_SCREEN_REL)) need[t] = 1;
+            if (tj[t] == j && x->cs == ACD_OK && x->good && x->sum <= fbest * (1 + S->screen_rel)) need[t] = 1;
         }
     }
     for (int round = 0; round < 2 && npc > 0; round++) {
@@ -963,9 +965,11 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
                 good |= need[t] == 2 && X[tj[t]][td[t]].good;
                 left |= !need[t];
             }
-            if (!good && left)
+            if (!good && left) {
+                (*S->fallbacks)++;
                 for (int t = 0; t < ntask; t++)
                     if (tj[t] == j && X[tj[t]][td[t]].cs == ACD_OK && !need[t]) need[t] = 1, again = 1;
+            }
         }
         if (!again) break;
     }
@@ -1044,11 +1048,30 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
     return acd3_budget_split_hulls(parts, NULL, nparts, budget, limit, min_gain, extent, threads, NULL, NULL, out, err);
 }
 
+static acd_status budget_split(const acd_mesh *parts, const acd_hull *const *hulls, size_t nparts, size_t budget,
+                               double limit, double min_gain, double extent, int threads, double screen_rel,
+                               acd_progress_fn progress, void *progress_user, acd3_budget_result *out, acd_error *err);
+
 acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const *hulls, size_t nparts, size_t budget,
                                    double limit, double min_gain, double extent, int threads, acd_progress_fn progress,
                                    void *progress_user, acd3_budget_result *out, acd_error *err) {
+    return budget_split(parts, hulls, nparts, budget, limit, min_gain, extent, threads, BUDGET_SCREEN_REL, progress,
+                        progress_user, out, err);
+}
+
+acd_status acd3_budget_split_screen(const acd_mesh *parts, size_t nparts, size_t budget, double limit, double min_gain,
+                                    double extent, int threads, double screen_rel, acd3_budget_result *out,
+                                    acd_error *err) {
+    return budget_split(parts, NULL, nparts, budget, limit, min_gain, extent, threads, screen_rel, NULL, NULL, out, err);
+}
+
+static acd_status budget_split(const acd_mesh *parts, const acd_hull *const *hulls, size_t nparts, size_t budget,
+                               double limit, double min_gain, double extent, int threads, double screen_rel,
+                               acd_progress_fn progress, void *progress_user, acd3_budget_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     budget_state S = {0};
+    S.screen_rel = screen_rel;
+    S.fallbacks = &out->screen_fallbacks;
     S.nparts = nparts;
     S.limit = limit;
     S.extent = extent;

@@ -49,6 +49,8 @@ typedef struct acd3_budget_result {
     size_t phase1_cuts;     /* of them, cuts of parts above limit once the budget was spent */
     const char *phase1_stop; /* when parts stay above limit (over > 0), why (a static string), else NULL */
     double hull_volume;     /* the sum of the parts' hull volumes */
+    size_t screen_fallbacks; /* evaluations in which no candidate the screen left was good, so the
+                             * others got their qhull hulls too (budget.c, BUDGET_SCREEN_REL) */
 } acd3_budget_result;
 
 /* parts: the closed parts tiling a closed input (every one tested against limit too); limit in
@@ -64,6 +66,14 @@ acd_status acd3_budget_split(const acd_mesh *parts, size_t nparts, size_t budget
 acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const *hulls, size_t nparts, size_t budget,
                                    double limit, double min_gain, double extent, int threads, acd_progress_fn progress,
                                    void *progress_user, acd3_budget_result *out, acd_error *err);
+/* As acd3_budget_split with the screen's margin screen_rel instead of BUDGET_SCREEN_REL (budget.c:
+ * an atom's exact candidates whose estimated hull volume sum lies more than screen_rel above its best
+ * estimated sum get qhull hulls only when none of the others is good; INFINITY: every candidate gets
+ * them; -1: none passes, every evaluation takes the fallback). The choice is the same for any margin
+ * unless an estimate is off by more than it; for the tests of the fallback. */
+acd_status acd3_budget_split_screen(const acd_mesh *parts, size_t nparts, size_t budget, double limit, double min_gain,
+                                    double extent, int threads, double screen_rel, acd3_budget_result *out,
+                                    acd_error *err);
 void acd3_budget_result_free(acd3_budget_result *r);
 /* The vertices the plane search samples from (flag[v] = 1, else 0; flag: room for m->nvertices):
  * those some plane through them has strictly above the other corners of their triangles (tried:
