@@ -306,6 +306,57 @@ static void test_build_deterministic_and_valid(void **state) {
     free_soup(&s);
 }
 
+/* acd_bvh_build_threads gives acd_bvh_build's tree bit for bit (its subtrees built by parallel tasks,
+ * numbered as the sequential build numbers them), at any thread count, also when called inside a
+ * parallel region: random soups (one subtree level of tasks; several), and a soup with thousands of
+ * coincident triangles and exponentially spaced ones (the median and the index-order splits). */
+static void assert_same_tree(const acd_bvh *a, const acd_bvh *b) {
+    assert_int_equal(a->nnodes, b->nnodes);
+    assert_memory_equal(a->nodes, b->nodes, a->nnodes * sizeof *a->nodes);
+    assert_memory_equal(a->order, b->order, a->ntriangles * sizeof *a->order);
+    assert_memory_equal(a->boxes, b->boxes, a->ntriangles * 6 * sizeof *a->boxes);
+}
+
+static void test_build_threads_same_tree(void **state) {
+    (void)state;
+    soup s[3] = {make_soup(6000, 7), make_soup(60000, 8), {0}};
+    size_t n = 12000;
+    s[2].nv = 3 * n, s[2].nt = n;
+    s[2].v = malloc(3 * n * 3 * sizeof(double));
+    s[2].t = malloc(3 * n * sizeof(uint32_t));
+    assert_non_null(s[2].v);
+    assert_non_null(s[2].t);
+    for (size_t i = 0; i < n; i++) {
+        double x = i < n / 2 ? 0.0 : ldexp(1.0, -(int)(i - n / 2) / 4);
+        double tri[9] = {x, 0, 0, x + 1e-3, 0, 0, x, 1e-3, 0};
+        memcpy(s[2].v + 9 * i, tri, sizeof tri);
+        for (int k = 0; k < 3; k++) s[2].t[3 * i + k] = (uint32_t)(3 * i + k);
+    }
+    for (int m = 0; m < 3; m++) {
+        acd_bvh a;
+        assert_int_equal(acd_bvh_build(&a, s[m].v, s[m].nv, s[m].t, s[m].nt, NULL), ACD_OK);
+        for (int threads = 1; threads <= 4; threads++) {
+            acd_bvh b;
+            assert_int_equal(acd_bvh_build_threads(&b, s[m].v, s[m].nv, s[m].t, s[m].nt, threads, NULL), ACD_OK);
+            assert_same_tree(&a, &b);
+            acd_bvh_free(&b);
+        }
+        acd_bvh c[2];
+        acd_status st[2];
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(2)
+#endif
+        for (int k = 0; k < 2; k++) st[k] = acd_bvh_build_threads(&c[k], s[m].v, s[m].nv, s[m].t, s[m].nt, 2, NULL);
+        for (int k = 0; k < 2; k++) {
+            assert_int_equal(st[k], ACD_OK);
+            assert_same_tree(&a, &c[k]);
+            acd_bvh_free(&c[k]);
+        }
+        acd_bvh_free(&a);
+        free_soup(&s[m]);
+    }
+}
+
 static void test_coincident_and_skewed_input(void **state) {
     (void)state;
     /* 500 copies of one triangle, then triangles at exponentially spaced positions */
@@ -397,6 +448,7 @@ int main(void) {
         cmocka_unit_test(test_box_and_line_queries),
         cmocka_unit_test(test_overlap_pairs_match_brute_force),
         cmocka_unit_test(test_build_deterministic_and_valid),
+        cmocka_unit_test(test_build_threads_same_tree),
         cmocka_unit_test(test_coincident_and_skewed_input),
         cmocka_unit_test(test_bad_input),
     };

@@ -962,6 +962,14 @@ static void estimate(group *g, int naxes) {
 
 static int pair_union(const group *A, const group *B, group *U);
 
+/* What estimate(g, naxes) costs, roughly (measured on the armadillo's budget run: about linear in
+ * the vertices, the plane search once per axis and the sides' hulls once): for the order of a batch. */
+static double estimate_work(const group *g, int naxes) {
+    size_t nv = 0;
+    for (size_t k = 0; k < g->nmembers; k++) nv += g->at->mesh[g->members[k]].nvertices;
+    return (double)nv * (naxes + 1);
+}
+
 /* The volume plane of the union of the pair's groups and the hull volume it saves against theirs. */
 static void estimate_pair(const group *G, pair *p) {
     group U;
@@ -1028,69 +1036,133 @@ static int side_group(group *S, const atoms *at, const uint32_t *mem, size_t n, 
     return 1;
 }
 
+/* One member of the group try_cut cuts: the side it lies on (0: +, 1: -) when it does not cross the
+ * plane, else (-1) its cut and the statuses of the cut and of the pieces' closedness check. */
+typedef struct cut_member {
+    int side;
+    acd_status cs, es;
+    acd_cut_result cr;
+} cut_member;
+
 /* Cuts group X by its volume plane: its members crossing the plane are cut (the pieces appended to
  * the atoms, owner unset), the two sides' groups made in S. Returns 1 (both sides within tau;
- * *gain: X's hull volume minus theirs), 0 refused (the atoms as before), or -(status). */
+ * *gain: X's hull volume minus theirs), 0 refused (the atoms as before), or -(status). The members'
+ * cuts, the pieces' surface vertices and trees, and the two sides' groups are made in parallel
+ * (threads); the result is the sequential one: the members in order, the first failure deciding, the
+ * second side refused when the first is. */
 static int try_cut(const group *X, atoms *at, size_t nparts, const in_surface *in_bvh, double on_tol, double diag,
-                   double tau, group S[2], double *gain, acd_error *err) {
+                   double tau, int threads, group S[2], double *gain, acd_error *err) {
     acd_cut_plane cp;
     if (acd_cut_plane_from_normal(X->est_plane.point, X->est_plane.normal, diag, &cp, NULL) != ACD_OK) return 0;
     double d = -(cp.normal[0] * cp.a[0] + cp.normal[1] * cp.a[1] + cp.normal[2] * cp.a[2]);
-    size_t n0 = at->n;
+    const size_t n0 = at->n, nm = X->nmembers;
     acd_u32vec mem[2] = {{0}, {0}};
-    int ret = 1;
-    for (size_t k = 0; k < X->nmembers && ret == 1; k++) {
-        uint32_t a = X->members[k];
-        const acd_mesh *M = &at->mesh[a];
+    cut_member *cm = calloc(nm ? nm : 1, sizeof *cm);
+    if (!cm) {
+        acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory cutting a part");
+        return -(int)ACD_ERR_NOMEM;
+    }
+    /* the members' sides and the crossing members' cuts, independently */
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nm > 1)
+#endif
+    for (long k = 0; k < (long)nm; k++) {
+        cut_member *c = &cm[k];
+        const acd_mesh *M = &at->mesh[X->members[k]];
         int pos = 0, neg = 0;
         for (size_t v = 0; v < M->nvertices && !(pos && neg); v++) {
-            int s = acd_cut_plane_side(&cp, M->vertices + 3 * v);
-            pos |= s > 0;
-            neg |= s < 0;
+            int sd = acd_cut_plane_side(&cp, M->vertices + 3 * v);
+            pos |= sd > 0;
+            neg |= sd < 0;
         }
         if (!pos || !neg) {
-            if (!acd_u32vec_push(&mem[neg ? 1 : 0], a)) ret = -(int)ACD_ERR_NOMEM;
+            c->side = neg ? 1 : 0;
             continue;
         }
-        acd_cut_result cr;
+        c->side = -1;
         acd_error ce;
-        acd_status cs = acd_plane_cut_flags(M, &cp, ACD_PLANE_CUT_DROP_SPECKS, &cr, &ce);
-        if (cs != ACD_OK) {
-            ret = cs == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
-            break;
-        }
+        c->cs = acd_plane_cut_flags(M, &cp, ACD_PLANE_CUT_DROP_SPECKS, &c->cr, &ce);
         /* every piece must be closed and consistently oriented, as decompose.c asks of its cuts: on
          * a part whose distinct vertices share a point (an input pinched at a vertex) the cut may
          * leave a piece with an edge used twice in one direction; such a cut is refused */
-        acd_status es = acd_cut_result_check_closed(&cr);
-        if (es != ACD_OK) ret = es == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
-        if (ret != 1) {
-            acd_cut_result_free(&cr);
+        if (c->cs == ACD_OK) c->es = acd_cut_result_check_closed(&c->cr);
+    }
+    /* the pieces become atoms, in member order, up to the first member whose cut failed (kstop; its
+     * verdict fail) */
+    int fail = 1;
+    size_t kstop = nm;
+    for (size_t k = 0; k < nm && fail == 1; k++) {
+        cut_member *c = &cm[k];
+        if (c->side >= 0) continue;
+        if (c->cs != ACD_OK) fail = c->cs == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
+        else if (c->es != ACD_OK) fail = c->es == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
+        else if (!atoms_reserve(at, at->n + c->cr.npieces)) fail = -(int)ACD_ERR_NOMEM;
+        if (fail != 1) {
+            kstop = k;
             break;
         }
-        if (!atoms_reserve(at, at->n + cr.npieces)) ret = -(int)ACD_ERR_NOMEM;
-        for (size_t p = 0; p < cr.npieces && ret == 1; p++) {
+        for (size_t p = 0; p < c->cr.npieces; p++) {
             size_t i = at->n++;
-            at->mesh[i] = cr.pieces[p].mesh;
-            memset(&cr.pieces[p].mesh, 0, sizeof cr.pieces[p].mesh);
-            at->vol[i] = acd_geom3_signed_volume(&at->mesh[i]);
+            at->mesh[i] = c->cr.pieces[p].mesh;
+            memset(&c->cr.pieces[p].mesh, 0, sizeof c->cr.pieces[p].mesh);
             at->owner[i] = UINT32_MAX;
-            at->parent[i] = a;
+            at->parent[i] = X->members[k];
             memcpy(at->plane[i], cp.normal, sizeof(double[3]));
             at->plane[i][3] = d;
-            acd_status as = atom_init(at, i, in_bvh, on_tol, err);
-            if (as != ACD_OK) ret = as == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
-            else if (!acd_u32vec_push(&mem[cr.pieces[p].side > 0 ? 0 : 1], (uint32_t)i))
-                ret = -(int)ACD_ERR_NOMEM;
         }
-        acd_cut_result_free(&cr);
     }
+    /* the pieces' volumes, surface vertices and trees, independently */
+    const size_t npc = at->n - n0;
+    acd_status *ist = calloc(npc ? npc : 1, sizeof *ist);
+    acd_error *ierr = calloc(npc ? npc : 1, sizeof *ierr);
+    int ret = ist && ierr ? 1 : -(int)ACD_ERR_NOMEM;
+    if (ret == 1) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && npc > 1)
+#endif
+        for (long j = 0; j < (long)npc; j++) {
+            size_t i = n0 + (size_t)j;
+            at->vol[i] = acd_geom3_signed_volume(&at->mesh[i]);
+            ist[j] = atom_init(at, i, in_bvh, on_tol, &ierr[j]);
+        }
+    }
+    /* the sides' members in order; the first failure decides, as in a sequential pass */
+    size_t j = 0;
+    for (size_t k = 0; k < kstop && ret == 1; k++) {
+        cut_member *c = &cm[k];
+        if (c->side >= 0) {
+            if (!acd_u32vec_push(&mem[c->side], X->members[k])) ret = -(int)ACD_ERR_NOMEM;
+            continue;
+        }
+        for (size_t p = 0; p < c->cr.npieces && ret == 1; p++, j++) {
+            if (ist[j] != ACD_OK) {
+                if (err) *err = ierr[j];
+                ret = ist[j] == ACD_ERR_NOMEM ? -(int)ACD_ERR_NOMEM : 0;
+            } else if (!acd_u32vec_push(&mem[c->cr.pieces[p].side > 0 ? 0 : 1], (uint32_t)(n0 + j))) {
+                ret = -(int)ACD_ERR_NOMEM;
+            }
+        }
+    }
+    if (ret == 1) ret = fail;
+    free(ist);
+    free(ierr);
+    for (size_t k = 0; k < nm; k++)
+        if (cm[k].side < 0 && cm[k].cs == ACD_OK) acd_cut_result_free(&cm[k].cr);
+    free(cm);
     if (ret == 1 && (!mem[0].n || !mem[1].n)) ret = 0;
     if (ret == 1) {
-        int r0 = side_group(&S[0], at, mem[0].a, mem[0].n, tau);
-        int r1 = r0 == 1 ? side_group(&S[1], at, mem[1].a, mem[1].n, tau) : 0;
-        if (r0 == 1 && r1 != 1) group_free(&S[0]);
-        ret = r0 < 0 || r1 < 0 ? -(int)ACD_ERR_NOMEM : r0 == 1 && r1 == 1;
+        /* both sides at once; the second counts only when the first is within tau */
+        int r[2];
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
+#endif
+        for (int s = 0; s < 2; s++) r[s] = side_group(&S[s], at, mem[s].a, mem[s].n, tau);
+        if (r[0] != 1) {
+            if (r[1] == 1) group_free(&S[1]);
+            r[1] = 0;
+        }
+        if (r[0] == 1 && r[1] != 1) group_free(&S[0]);
+        ret = r[0] < 0 || r[1] < 0 ? -(int)ACD_ERR_NOMEM : r[0] == 1 && r[1] == 1;
     }
     if (ret == 1) *gain = X->hvol - S[0].hvol - S[1].hvol;
     if (ret != 1) {
@@ -1420,23 +1492,22 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
         }
     const double diag = acd_dist3(lo, hi), on_tol = MERGE_ON_SURFACE_REL * diag;
     double in_vol = 0;
-    /* one group per part (independently: in parallel): first the input's tree (task 0) and the parts'
-     * trees and hulls, then the parts' surface vertices (they need the input's tree) */
+    /* the input's tree (its subtrees in parallel: with the parts' trees, hulls and facet tables kept,
+     * as after the budget pass, the tree was most of the set-up, built by one thread while the other
+     * had nothing to do); then one group per part (independently: in parallel): the parts' trees and
+     * hulls, then the parts' surface vertices (they need the input's tree) */
     ng = nparts;
     acd_status *gst = calloc(nparts + 1, sizeof *gst);
     acd_error *gerr = calloc(nparts + 1, sizeof *gerr);
     if (!gst || !gerr) st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for %zu parts", nparts);
     if (st == ACD_OK) {
+        gst[nparts] = acd_bvh_build_threads(&in_bvh.bvh, input->vertices, input->nvertices, input->triangles,
+                                            input->ntriangles, threads, &gerr[nparts]);
+        if (gst[nparts] == ACD_OK) in_surface_index(&in_bvh, input); /* (none: the tree alone) */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1)
 #endif
-        for (long li = 0; li <= (long)nparts; li++) {
-            if (li == 0) {
-                gst[nparts] = acd_bvh_build(&in_bvh.bvh, input->vertices, input->nvertices, input->triangles,
-                                            input->ntriangles, &gerr[nparts]);
-                if (gst[nparts] == ACD_OK) in_surface_index(&in_bvh, input); /* (none: the tree alone) */
-                continue;
-            }
+        for (long li = 1; li <= (long)nparts; li++) {
             size_t i = (size_t)li - 1;
             group *g = &G[i];
             at.mesh[i] = parts[i];
@@ -1570,12 +1641,29 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
             if (st != ACD_OK || !nc) break;
             qsort(cands, nc, sizeof *cands, cmp_refine_cand);
             if (nc > MERGE_REFINE_BATCH) nc = MERGE_REFINE_BATCH;
+            /* the batch run longest first (each estimate writes only its own record: any order gives
+             * the same estimates; longest first leaves the threads the least idle at its end) */
+            size_t run[MERGE_REFINE_BATCH];
+            double work[MERGE_REFINE_BATCH];
+            for (size_t k = 0; k < nc; k++) {
+                run[k] = k;
+                work[k] = cands[k].pair ? estimate_work(&G[P[cands[k].i].a], MERGE_REFINE_PAIR_AXES) +
+                                              estimate_work(&G[P[cands[k].i].b], MERGE_REFINE_PAIR_AXES)
+                                        : estimate_work(&G[cands[k].i], 3);
+            }
+            for (size_t k = 1; k < nc; k++)
+                for (size_t m = k; m > 0 && work[run[m]] > work[run[m - 1]]; m--) {
+                    size_t x = run[m];
+                    run[m] = run[m - 1];
+                    run[m - 1] = x;
+                }
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nc > 1)
 #endif
             for (long k = 0; k < (long)nc; k++) {
-                if (!cands[k].pair) estimate(&G[cands[k].i], 3);
-                else estimate_pair(G, &P[cands[k].i]);
+                const refine_cand *c = &cands[run[k]];
+                if (!c->pair) estimate(&G[c->i], 3);
+                else estimate_pair(G, &P[c->i]);
             }
         }
         if (st != ACD_OK) break;
@@ -1601,10 +1689,10 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
                 break;
             }
             U.est_plane = P[q].est_plane;
-            r = try_cut(&U, &at, nparts, &in_bvh, on_tol, diag, tau, S, &gain, err);
+            r = try_cut(&U, &at, nparts, &in_bvh, on_tol, diag, tau, threads, S, &gain, err);
             free(U.members);
         } else {
-            r = try_cut(&G[x], &at, nparts, &in_bvh, on_tol, diag, tau, S, &gain, err);
+            r = try_cut(&G[x], &at, nparts, &in_bvh, on_tol, diag, tau, threads, S, &gain, err);
             gain -= c0x;
         }
         if (r < 0) {

@@ -165,8 +165,263 @@ static void range_bounds(const bvh_item *it, uint32_t start, uint32_t end, doubl
     }
 }
 
+/* One step of the build: node nd (its box set) of item it is made a leaf (returns 0: first and count
+ * set) or split (returns 1: the halves' items l and r, their node field unset, and their boxes into
+ * ln and rn; nd's first and count are the caller's). The items of it are permuted in place. */
+static int split_step(bvh_item *items, acd_bvh_node *nd, const build_item *itp, build_item *lp, build_item *rp,
+                      acd_bvh_node *ln, acd_bvh_node *rn) {
+    const build_item it = *itp;
+    const double *clo = it.clo, *chi = it.chi;
+    uint32_t n = it.end - it.start;
+    if (n <= 2) {
+        nd->first = it.start;
+        nd->count = n;
+        return 0;
+    }
+    /* binned SAH over the three axes (the bins of all three filled in one pass) */
+    int best_axis = -1;
+    double best_cost = INFINITY, best_split = 0;
+    double blo[3][BVH_BINS][3], bhi[3][BVH_BINS][3], scale[3];
+    uint32_t bcnt[3][BVH_BINS];
+    int active[3], nactive = 0;
+    for (int ax = 0; ax < 3; ax++) {
+        double ext = chi[ax] - clo[ax];
+        active[ax] = 0;
+        if (!(ext > 0) || it.depth >= BVH_SAH_DEPTH) continue;
+        scale[ax] = BVH_BINS / ext;
+        if (!isfinite(scale[ax])) continue; /* a subnormal extent: no binning on this axis */
+        active[ax] = 1;
+        nactive++;
+        for (int b = 0; b < BVH_BINS; b++) {
+            box_empty(blo[ax][b], bhi[ax][b]);
+            bcnt[ax][b] = 0;
+        }
+    }
+    if (nactive > 0)
+        for (uint32_t i = it.start; i < it.end; i++) {
+            const bvh_item *x = &items[i];
+            for (int ax = 0; ax < 3; ax++) {
+                if (!active[ax]) continue;
+                /* clamp in floating point before converting (NaN and overflow go to a bin too) */
+                double fb = (x->c[ax] - clo[ax]) * scale[ax];
+                int b = fb >= BVH_BINS ? BVH_BINS - 1 : fb > 0 ? (int)fb : 0;
+                bcnt[ax][b]++;
+                box_grow(blo[ax][b], bhi[ax][b], x->lo, x->hi);
+            }
+        }
+    for (int ax = 0; ax < 3; ax++) {
+        if (!active[ax]) continue;
+        double rarea[BVH_BINS];
+        uint32_t rcnt[BVH_BINS];
+        double lo[3], hi[3];
+        box_empty(lo, hi);
+        uint32_t c = 0;
+        for (int b = BVH_BINS - 1; b > 0; b--) {
+            box_grow(lo, hi, blo[ax][b], bhi[ax][b]);
+            c += bcnt[ax][b];
+            rarea[b] = box_area(lo, hi);
+            rcnt[b] = c;
+        }
+        box_empty(lo, hi);
+        c = 0;
+        for (int b = 0; b < BVH_BINS - 1; b++) {
+            box_grow(lo, hi, blo[ax][b], bhi[ax][b]);
+            c += bcnt[ax][b];
+            if (c == 0 || rcnt[b + 1] == 0) continue;
+            double cost = box_area(lo, hi) * c + rarea[b + 1] * rcnt[b + 1];
+            if (cost < best_cost) {
+                best_cost = cost;
+                best_axis = ax;
+                best_split = clo[ax] + (b + 1) / scale[ax];
+            }
+        }
+    }
+    uint32_t mid;
+    int have_bounds = 0;
+    node_bounds lb, rb;
+    if (best_axis >= 0) {
+        double leaf_cost = box_area(nd->lo, nd->hi) * n;
+        if (n <= ACD_BVH_LEAF_MAX && leaf_cost <= best_cost + 0.5 * box_area(nd->lo, nd->hi)) {
+            nd->first = it.start;
+            nd->count = n;
+            return 0;
+        }
+        mid = partition_bounds(items, it.start, it.end, best_axis, best_split, &lb, &rb);
+        have_bounds = 1;
+        if (mid == it.start || mid == it.end) { /* rounding at the bin edge: fall back */
+            have_bounds = 0;
+            mid = it.start + n / 2;
+            median_split(items, it.start, it.end, best_axis, mid);
+        }
+    } else if (it.depth >= BVH_SAH_DEPTH && n > ACD_BVH_LEAF_MAX) {
+        int ax = 0;
+        for (int k = 1; k < 3; k++)
+            if (chi[k] - clo[k] > chi[ax] - clo[ax]) ax = k;
+        mid = it.start + n / 2;
+        median_split(items, it.start, it.end, ax, mid);
+    } else {
+        /* all centroids coincide: split the index range in half (sorted for determinism) */
+        if (n <= ACD_BVH_LEAF_MAX) {
+            nd->first = it.start;
+            nd->count = n;
+            return 0;
+        }
+        qsort(items + it.start, n, sizeof *items, cmp_item_t);
+        mid = it.start + n / 2;
+    }
+    /* the children's boxes and centroid bounds */
+    build_item r = {0, mid, it.end, it.depth + 1, {0, 0, 0}, {0, 0, 0}};
+    build_item l = {0, it.start, mid, it.depth + 1, {0, 0, 0}, {0, 0, 0}};
+    if (have_bounds) {
+        memcpy(rn->lo, rb.lo, sizeof rb.lo);
+        memcpy(rn->hi, rb.hi, sizeof rb.hi);
+        memcpy(r.clo, rb.clo, sizeof rb.clo);
+        memcpy(r.chi, rb.chi, sizeof rb.chi);
+        memcpy(ln->lo, lb.lo, sizeof lb.lo);
+        memcpy(ln->hi, lb.hi, sizeof lb.hi);
+        memcpy(l.clo, lb.clo, sizeof lb.clo);
+        memcpy(l.chi, lb.chi, sizeof lb.chi);
+    } else {
+        range_bounds(items, mid, it.end, rn->lo, rn->hi, r.clo, r.chi);
+        range_bounds(items, it.start, mid, ln->lo, ln->hi, l.clo, l.chi);
+    }
+    *lp = l;
+    *rp = r;
+    return 1;
+}
+
+/* Builds the subtree of item root (its node's box set, in nodes[root.node]) in nodes, new nodes
+ * numbered from nnodes on, children after their parent, the left subtree before the right; returns
+ * the node count. */
+static size_t build_loop(bvh_item *items, acd_bvh_node *nodes, build_item *stack, build_item root, size_t nnodes) {
+    size_t sp = 0;
+    stack[sp++] = root;
+    while (sp > 0) {
+        build_item it = stack[--sp], l, r;
+        acd_bvh_node *nd = &nodes[it.node];
+        uint32_t left = (uint32_t)nnodes;
+        if (!split_step(items, nd, &it, &l, &r, &nodes[left], &nodes[left + 1])) continue;
+        nnodes += 2;
+        nd->first = left;
+        nd->count = 0;
+        l.node = left;
+        r.node = left + 1;
+        /* push right first so the left subtree is built (and numbered) first */
+        stack[sp++] = r;
+        stack[sp++] = l;
+    }
+    return nnodes;
+}
+
+/* A subtree built apart (acd_bvh_build_threads): its root split here into two such subtrees (split,
+ * kid), or built whole by build_loop into nodes[0 .. nnodes) (nodes[0] its root, the rest numbered
+ * from 1 on as build_loop numbers them). */
+typedef struct bvh_sub {
+    build_item it;
+    acd_bvh_node root; /* its box; its leaf fields when a leaf */
+    int split;
+    struct bvh_sub *kid; /* [2] when split */
+    acd_bvh_node *nodes;
+    size_t nnodes;
+} bvh_sub;
+
+/* Builds subtree s: split in two tasks while it has at least par_min triangles, else whole. Sets
+ * *fail out of memory. */
+static void sub_build(bvh_item *items, bvh_sub *s, uint32_t par_min, int *fail) {
+    uint32_t n = s->it.end - s->it.start;
+    if (n >= par_min) {
+        build_item l, r;
+        acd_bvh_node ln, rn;
+        if (!split_step(items, &s->root, &s->it, &l, &r, &ln, &rn)) return; /* a leaf (split 0, no nodes) */
+        s->kid = calloc(2, sizeof *s->kid);
+        if (!s->kid) {
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+            *fail = 1;
+            return;
+        }
+        s->split = 1;
+        s->kid[0].it = l;
+        s->kid[0].root = ln;
+        s->kid[1].it = r;
+        s->kid[1].root = rn;
+        bvh_sub *k0 = &s->kid[0], *k1 = &s->kid[1];
+#ifdef _OPENMP
+#pragma omp task default(none) firstprivate(items, k1, par_min, fail)
+#endif
+        sub_build(items, k1, par_min, fail);
+        sub_build(items, k0, par_min, fail);
+#ifdef _OPENMP
+#pragma omp taskwait
+#endif
+        return;
+    }
+    size_t cap = 2 * (size_t)n;
+    s->nodes = malloc(cap * sizeof *s->nodes);
+    build_item *stack = malloc(cap * sizeof *stack);
+    if (!s->nodes || !stack) {
+        free(stack);
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+        *fail = 1;
+        return;
+    }
+    s->nodes[0] = s->root;
+    build_item root = s->it;
+    root.node = 0;
+    s->nnodes = build_loop(items, s->nodes, stack, root, 1);
+    free(stack);
+}
+
+/* Copies subtree s into out with the numbering of the sequential build: its root at gi, its new
+ * nodes from *next on. */
+static void sub_place(const bvh_sub *s, acd_bvh_node *out, size_t gi, size_t *next) {
+    if (s->split) {
+        size_t left = *next;
+        *next += 2;
+        out[gi] = s->root;
+        out[gi].first = (uint32_t)left;
+        out[gi].count = 0;
+        sub_place(&s->kid[0], out, left, next);
+        sub_place(&s->kid[1], out, left + 1, next);
+        return;
+    }
+    if (!s->nodes) { /* a leaf split_step made */
+        out[gi] = s->root;
+        return;
+    }
+    /* local node k >= 1 is node base + k - 1 */
+    size_t base = *next;
+    for (size_t k = 0; k < s->nnodes; k++) {
+        acd_bvh_node nd = s->nodes[k];
+        if (nd.count == 0) nd.first = (uint32_t)(base + nd.first - 1);
+        out[k ? base + k - 1 : gi] = nd;
+    }
+    *next += s->nnodes - 1;
+}
+
+static void sub_free(bvh_sub *s) {
+    if (s->kid) {
+        sub_free(&s->kid[0]);
+        sub_free(&s->kid[1]);
+        free(s->kid);
+    }
+    free(s->nodes);
+}
+
+/* Below this many triangles the build is sequential; subtrees of fewer than (the larger of) this
+ * and 1/8 of the triangles are built whole by one task. */
+#define BVH_PAR_MIN 4096
+
 acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
                          size_t ntriangles, acd_error *err) {
+    return acd_bvh_build_threads(bvh, vertices, nvertices, triangles, ntriangles, 1, err);
+}
+
+acd_status acd_bvh_build_threads(acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
+                                 size_t ntriangles, int threads, acd_error *err) {
     memset(bvh, 0, sizeof *bvh);
     if (ntriangles > 0 && (!vertices || !triangles))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "bvh: NULL vertex or triangle array");
@@ -195,159 +450,66 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
     bvh->order = malloc(ntriangles * sizeof *bvh->order);
     bvh->boxes = malloc(ntriangles * 6 * sizeof(double));
     bvh_item *items = malloc(ntriangles * sizeof *items);
-    build_item *stack = malloc(maxnodes * sizeof *stack);
-    if (!bvh->nodes || !bvh->order || !bvh->boxes || !items || !stack) {
+    const int par = threads > 1 && ntriangles >= BVH_PAR_MIN;
+    build_item *stack = par ? NULL : malloc(maxnodes * sizeof *stack);
+    if (!bvh->nodes || !bvh->order || !bvh->boxes || !items || (!par && !stack)) {
         free(items);
         free(stack);
         acd_bvh_free(bvh);
         return acd_fail(err, ACD_ERR_NOMEM, "bvh: out of memory for %zu triangles", ntriangles);
     }
-    for (uint32_t t = 0; t < (uint32_t)ntriangles; t++) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads) if (par)
+#endif
+    for (long lt = 0; lt < (long)ntriangles; lt++) {
+        uint32_t t = (uint32_t)lt;
         bvh_item *x = &items[t];
         tri_box(bvh, t, x->lo, x->hi);
         for (int k = 0; k < 3; k++) x->c[k] = 0.5 * (x->lo[k] + x->hi[k]);
         x->t = t;
     }
-    size_t nnodes = 1, sp = 0;
-    {
-        build_item root = {0, 0, (uint32_t)ntriangles, 0, {0, 0, 0}, {0, 0, 0}};
-        range_bounds(items, 0, (uint32_t)ntriangles, bvh->nodes[0].lo, bvh->nodes[0].hi, root.clo, root.chi);
-        stack[sp++] = root;
+    build_item root = {0, 0, (uint32_t)ntriangles, 0, {0, 0, 0}, {0, 0, 0}};
+    range_bounds(items, 0, (uint32_t)ntriangles, bvh->nodes[0].lo, bvh->nodes[0].hi, root.clo, root.chi);
+    if (!par) {
+        bvh->nnodes = build_loop(items, bvh->nodes, stack, root, 1);
+        free(stack);
+    } else {
+        /* the same splits, subtrees in parallel tasks, then numbered as the sequential build does */
+        bvh_sub top;
+        memset(&top, 0, sizeof top);
+        top.it = root;
+        top.root = bvh->nodes[0];
+        uint32_t par_min = (uint32_t)(ntriangles / 8);
+        if (par_min < BVH_PAR_MIN) par_min = BVH_PAR_MIN;
+        int fail = 0;
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads)
+#pragma omp single
+#endif
+        sub_build(items, &top, par_min, &fail);
+        if (!fail) {
+            size_t next = 1;
+            sub_place(&top, bvh->nodes, 0, &next);
+            bvh->nnodes = next;
+        }
+        sub_free(&top);
+        if (fail) {
+            free(items);
+            acd_bvh_free(bvh);
+            return acd_fail(err, ACD_ERR_NOMEM, "bvh: out of memory for %zu triangles", ntriangles);
+        }
     }
-    while (sp > 0) {
-        build_item it = stack[--sp];
-        acd_bvh_node *nd = &bvh->nodes[it.node];
-        const double *clo = it.clo, *chi = it.chi;
-        uint32_t n = it.end - it.start;
-        if (n <= 2) {
-            nd->first = it.start;
-            nd->count = n;
-            continue;
-        }
-        /* binned SAH over the three axes (the bins of all three filled in one pass) */
-        int best_axis = -1;
-        double best_cost = INFINITY, best_split = 0;
-        double blo[3][BVH_BINS][3], bhi[3][BVH_BINS][3], scale[3];
-        uint32_t bcnt[3][BVH_BINS];
-        int active[3], nactive = 0;
-        for (int ax = 0; ax < 3; ax++) {
-            double ext = chi[ax] - clo[ax];
-            active[ax] = 0;
-            if (!(ext > 0) || it.depth >= BVH_SAH_DEPTH) continue;
-            scale[ax] = BVH_BINS / ext;
-            if (!isfinite(scale[ax])) continue; /* a subnormal extent: no binning on this axis */
-            active[ax] = 1;
-            nactive++;
-            for (int b = 0; b < BVH_BINS; b++) {
-                box_empty(blo[ax][b], bhi[ax][b]);
-                bcnt[ax][b] = 0;
-            }
-        }
-        if (nactive > 0)
-            for (uint32_t i = it.start; i < it.end; i++) {
-                const bvh_item *x = &items[i];
-                for (int ax = 0; ax < 3; ax++) {
-                    if (!active[ax]) continue;
-                    /* clamp in floating point before converting (NaN and overflow go to a bin too) */
-                    double fb = (x->c[ax] - clo[ax]) * scale[ax];
-                    int b = fb >= BVH_BINS ? BVH_BINS - 1 : fb > 0 ? (int)fb : 0;
-                    bcnt[ax][b]++;
-                    box_grow(blo[ax][b], bhi[ax][b], x->lo, x->hi);
-                }
-            }
-        for (int ax = 0; ax < 3; ax++) {
-            if (!active[ax]) continue;
-            double rarea[BVH_BINS];
-            uint32_t rcnt[BVH_BINS];
-            double lo[3], hi[3];
-            box_empty(lo, hi);
-            uint32_t c = 0;
-            for (int b = BVH_BINS - 1; b > 0; b--) {
-                box_grow(lo, hi, blo[ax][b], bhi[ax][b]);
-                c += bcnt[ax][b];
-                rarea[b] = box_area(lo, hi);
-                rcnt[b] = c;
-            }
-            box_empty(lo, hi);
-            c = 0;
-            for (int b = 0; b < BVH_BINS - 1; b++) {
-                box_grow(lo, hi, blo[ax][b], bhi[ax][b]);
-                c += bcnt[ax][b];
-                if (c == 0 || rcnt[b + 1] == 0) continue;
-                double cost = box_area(lo, hi) * c + rarea[b + 1] * rcnt[b + 1];
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best_axis = ax;
-                    best_split = clo[ax] + (b + 1) / scale[ax];
-                }
-            }
-        }
-        uint32_t mid;
-        int have_bounds = 0;
-        node_bounds lb, rb;
-        if (best_axis >= 0) {
-            double leaf_cost = box_area(nd->lo, nd->hi) * n;
-            if (n <= ACD_BVH_LEAF_MAX && leaf_cost <= best_cost + 0.5 * box_area(nd->lo, nd->hi)) {
-                nd->first = it.start;
-                nd->count = n;
-                continue;
-            }
-            mid = partition_bounds(items, it.start, it.end, best_axis, best_split, &lb, &rb);
-            have_bounds = 1;
-            if (mid == it.start || mid == it.end) { /* rounding at the bin edge: fall back */
-                have_bounds = 0;
-                mid = it.start + n / 2;
-                median_split(items, it.start, it.end, best_axis, mid);
-            }
-        } else if (it.depth >= BVH_SAH_DEPTH && n > ACD_BVH_LEAF_MAX) {
-            int ax = 0;
-            for (int k = 1; k < 3; k++)
-                if (chi[k] - clo[k] > chi[ax] - clo[ax]) ax = k;
-            mid = it.start + n / 2;
-            median_split(items, it.start, it.end, ax, mid);
-        } else {
-            /* all centroids coincide: split the index range in half (sorted for determinism) */
-            if (n <= ACD_BVH_LEAF_MAX) {
-                nd->first = it.start;
-                nd->count = n;
-                continue;
-            }
-            qsort(items + it.start, n, sizeof *items, cmp_item_t);
-            mid = it.start + n / 2;
-        }
-        uint32_t left = (uint32_t)nnodes;
-        nnodes += 2;
-        nd->first = left;
-        nd->count = 0;
-        /* the children's boxes and centroid bounds; push right first so the left subtree is built
-         * (and numbered) first */
-        build_item r = {left + 1, mid, it.end, it.depth + 1, {0, 0, 0}, {0, 0, 0}};
-        build_item l = {left, it.start, mid, it.depth + 1, {0, 0, 0}, {0, 0, 0}};
-        if (have_bounds) {
-            memcpy(bvh->nodes[left + 1].lo, rb.lo, sizeof rb.lo);
-            memcpy(bvh->nodes[left + 1].hi, rb.hi, sizeof rb.hi);
-            memcpy(r.clo, rb.clo, sizeof rb.clo);
-            memcpy(r.chi, rb.chi, sizeof rb.chi);
-            memcpy(bvh->nodes[left].lo, lb.lo, sizeof lb.lo);
-            memcpy(bvh->nodes[left].hi, lb.hi, sizeof lb.hi);
-            memcpy(l.clo, lb.clo, sizeof lb.clo);
-            memcpy(l.chi, lb.chi, sizeof lb.chi);
-        } else {
-            range_bounds(items, mid, it.end, bvh->nodes[left + 1].lo, bvh->nodes[left + 1].hi, r.clo, r.chi);
-            range_bounds(items, it.start, mid, bvh->nodes[left].lo, bvh->nodes[left].hi, l.clo, l.chi);
-        }
-        stack[sp++] = r;
-        stack[sp++] = l;
-    }
-    bvh->nnodes = nnodes;
     /* triangles and their boxes in leaf order, for the queries */
-    for (size_t i = 0; i < ntriangles; i++) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads) if (par)
+#endif
+    for (long li = 0; li < (long)ntriangles; li++) {
+        size_t i = (size_t)li;
         bvh->order[i] = items[i].t;
         memcpy(bvh->boxes + 6 * i, items[i].lo, 3 * sizeof(double));
         memcpy(bvh->boxes + 6 * i + 3, items[i].hi, 3 * sizeof(double));
     }
     free(items);
-    free(stack);
     return ACD_OK;
 }
 

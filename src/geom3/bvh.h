@@ -2,8 +2,8 @@
  *
  * Build: binned surface-area heuristic (16 bins per axis, split on triangle centroids), median
  * split when the centroids coincide on every axis; leaves hold at most ACD_BVH_LEAF_MAX
- * triangles. The build is sequential and depends only on the input: the same mesh always gives
- * the same tree (node numbering included).
+ * triangles. The build depends only on the input: the same mesh always gives the same tree (node
+ * numbering included), built sequentially or (acd_bvh_build_threads) by parallel subtree tasks.
  *
  * Queries: closest point on the mesh to a point, first hit of a ray, triangles whose boxes meet
  * a box or an axis-parallel line, and every pair of triangles whose (optionally enlarged) boxes
@@ -46,6 +46,11 @@ typedef struct acd_bvh {
  * ntriangles == 0 gives an empty tree (queries then find nothing). On failure *bvh is empty. */
 acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
                          size_t ntriangles, acd_error *err);
+/* The same tree, bit for bit (nodes, order, boxes), built with up to `threads` OpenMP workers
+ * (<= 1: acd_bvh_build): a large tree's subtrees are built by parallel tasks and numbered as the
+ * sequential build numbers them. Inside an active parallel region it runs on the calling thread. */
+acd_status acd_bvh_build_threads(acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
+                                 size_t ntriangles, int threads, acd_error *err);
 void acd_bvh_free(acd_bvh *bvh);
 
 /* Closest point of triangle (a, b, c) to p (also for degenerate triangles); returns the
