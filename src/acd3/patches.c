@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/minheap.h"
+#include "geom3/vec3.h"
 
 /* Lloyd iterations: the first clustering runs up to 20 (spec §3.3); after a patch split only the
  * neighbourhood changes, and a few iterations settle it. After SPLIT_ROUNDS_MAX split rounds the
@@ -68,18 +69,17 @@ static int vadj_build(const acd_hull *h, vadj *va) {
     return 1;
 }
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* max over hull vertices of N.v: a linear function's local maximum on a convex polytope's vertex
  * graph is global, so climb from `start`. */
 static double support(const acd_hull *h, const vadj *va, uint32_t start, const double N[3]) {
     uint32_t v = start;
-    double best = dot3(N, h->vertices + 3 * (size_t)v);
+    double best = acd_dot3(N, h->vertices + 3 * (size_t)v);
     for (;;) {
         uint32_t next = v;
         for (size_t k = va->row[v]; k < va->row[v + 1]; k++) {
             uint32_t u = va->adj[k];
-            double s = dot3(N, h->vertices + 3 * (size_t)u);
+            double s = acd_dot3(N, h->vertices + 3 * (size_t)u);
             if (s > best) {
                 best = s;
                 next = u;

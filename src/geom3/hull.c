@@ -38,6 +38,7 @@
 #include "core/predicates.h"
 #include "core/rng.h"
 #include "core/tolerance.h"
+#include "geom3/vec3.h"
 
 /* Joggle tried when qhull fails on a nearly degenerate full-dimensional set, relative to the
  * normalised extent (1); each retry multiplies it by 100. */
@@ -55,8 +56,7 @@ static void cross3(const double *a, const double *b, double *r) {
     r[1] = a[2] * b[0] - a[0] * b[2];
     r[2] = a[0] * b[1] - a[1] * b[0];
 }
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static double norm3(const double *a) { return sqrt(dot3(a, a)); }
+static double norm3(const double *a) { return sqrt(acd_dot3(a, a)); }
 
 void acd_hull_free(acd_hull *h) {
     if (!h) return;
@@ -104,7 +104,7 @@ static size_t farthest_from_point(const double *w, size_t n, const double *a, do
     for (size_t i = 0; i < n; i++) {
         double d[3];
         sub3(w + 3 * i, a, d);
-        double v = dot3(d, d);
+        double v = acd_dot3(d, d);
         if (v > bd) {
             bd = v;
             best = i;
@@ -191,7 +191,7 @@ static acd_status hull_planar(const double *points, const double *w, size_t n, c
     for (size_t k = 0; k < m; k++) set_vertex(out, k, points, pp[hidx[k]].idx);
     double d = 0;
     for (size_t k = 0; k < m; k++) {
-        double v = -dot3(un, out->vertices + 3 * k);
+        double v = -acd_dot3(un, out->vertices + 3 * k);
         if (k == 0 || v < d) d = v;
     }
     double area = 0;
@@ -297,7 +297,7 @@ static int outward_flip(qhT *qh, const double *w) {
         sub3(pv[1], pv[0], e1);
         sub3(pv[2], pv[0], e2);
         cross3(e1, e2, cr);
-        double dt = dot3(cr, facet->normal);
+        double dt = acd_dot3(cr, facet->normal);
         if (fabs(dt) > bestdot) {
             bestdot = fabs(dt);
             flip = (dt > 0) != (facet->toporient != 0);
@@ -401,7 +401,7 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
             for (int c3 = 0; c3 < 3; c3++) nrm[c3] /= len;
         double d = 0;
         for (int k = 0; k < 3; k++) {
-            double dv = -dot3(nrm, out->vertices + 3 * tri[k]);
+            double dv = -acd_dot3(nrm, out->vertices + 3 * tri[k]);
             if (k == 0 || dv < d) d = dv;
         }
         memcpy(out->planes + 4 * t, nrm, sizeof nrm);
@@ -496,7 +496,7 @@ static void encl_slab(const double *w, const uint32_t *idx, encl_node *nd) {
     for (uint32_t i = nd->begin; i < nd->end; i++) {
         const double *q = w + 3 * (size_t)idx[i];
         sub3(q, p0, u);
-        double v = dot3(u, u);
+        double v = acd_dot3(u, u);
         if (v > best) best = v, p1 = q;
     }
     sub3(p1, p0, u);
@@ -506,14 +506,14 @@ static void encl_slab(const double *w, const uint32_t *idx, encl_node *nd) {
         double d[3], cr[3];
         sub3(q, p0, d);
         cross3(u, d, cr);
-        double v = dot3(cr, cr);
+        double v = acd_dot3(cr, cr);
         if (v > best) best = v, memcpy(nd->m, cr, sizeof cr);
     }
     double len = norm3(nd->m);
     if (!(len > 0)) return;
     for (int k = 0; k < 3; k++) nd->m[k] /= len;
     for (uint32_t i = nd->begin; i < nd->end; i++) {
-        double v = dot3(nd->m, w + 3 * (size_t)idx[i]);
+        double v = acd_dot3(nd->m, w + 3 * (size_t)idx[i]);
         if (i == nd->begin || v < nd->mlo) nd->mlo = v;
         if (i == nd->begin || v > nd->mhi) nd->mhi = v;
     }
@@ -574,11 +574,11 @@ static double encl_worst(const encl_tree *T, const double *nrm, double d, double
     stack[top++] = 0;
     while (top > 0) {
         const encl_node *nd = &T->node[stack[--top]];
-        double ub = dot3(nrm, nd->c) + d + fabs(nrm[0]) * nd->h[0] + fabs(nrm[1]) * nd->h[1] + fabs(nrm[2]) * nd->h[2];
+        double ub = acd_dot3(nrm, nd->c) + d + fabs(nrm[0]) * nd->h[0] + fabs(nrm[1]) * nd->h[1] + fabs(nrm[2]) * nd->h[2];
         if (ub <= tol) continue;
         if (!nd->child) { /* n = a m + r: a (m.p) within the slab, r.p within the box */
-            double a = dot3(nrm, nd->m), r[3] = {nrm[0] - a * nd->m[0], nrm[1] - a * nd->m[1], nrm[2] - a * nd->m[2]};
-            ub = (a > 0 ? a * nd->mhi : a * nd->mlo) + dot3(r, nd->c) + d + fabs(r[0]) * nd->h[0] + fabs(r[1]) * nd->h[1] +
+            double a = acd_dot3(nrm, nd->m), r[3] = {nrm[0] - a * nd->m[0], nrm[1] - a * nd->m[1], nrm[2] - a * nd->m[2]};
+            ub = (a > 0 ? a * nd->mhi : a * nd->mlo) + acd_dot3(r, nd->c) + d + fabs(r[0]) * nd->h[0] + fabs(r[1]) * nd->h[1] +
                  fabs(r[2]) * nd->h[2];
             if (ub <= tol) continue;
         }
@@ -588,7 +588,7 @@ static double encl_worst(const encl_tree *T, const double *nrm, double d, double
             continue;
         }
         for (uint32_t i = nd->begin; i < nd->end; i++) { /* a leaf (or a subtree past the stack's depth) */
-            double v = dot3(nrm, T->pts + 3 * (size_t)i) + d;
+            double v = acd_dot3(nrm, T->pts + 3 * (size_t)i) + d;
             if (v > worst) worst = v;
         }
     }
@@ -617,7 +617,7 @@ static int hull_plane_trusted(const double *nrm, const double *a, const double *
     sub3(c, b, e3);
     cross3(e1, e2, cr);
     double area2 = norm3(cr), lmax = fmax(norm3(e1), fmax(norm3(e2), norm3(e3)));
-    if (!(area2 > 0) || dot3(nrm, cr) <= 0) return 0;
+    if (!(area2 > 0) || acd_dot3(nrm, cr) <= 0) return 0;
     double h = area2 / lmax; /* the least altitude */
     for (int k = 0; k < 3; k++) cr[k] /= area2;
     cross3(nrm, cr, x);
@@ -715,7 +715,7 @@ static int tri_plane(const double *a, const double *b, const double *c, double *
     *angle = 8.0 * DBL_EPSILON + 32.0 * DBL_EPSILON * DBL_EPSILON * norm3(uh) * norm3(wh) / area2;
     if (!(*angle <= HULL_TRI_MAX_ANGLE)) return 0;
     for (int k = 0; k < 3; k++) nrm[k] /= area2;
-    *d = -fmax(dot3(nrm, a), fmax(dot3(nrm, b), dot3(nrm, c)));
+    *d = -fmax(acd_dot3(nrm, a), fmax(acd_dot3(nrm, b), acd_dot3(nrm, c)));
     return 1;
 }
 
@@ -741,11 +741,11 @@ static uint32_t encl_tri_violator(const encl_tree *T, const double *nrm, double 
     stack[top++] = 0;
     while (top > 0) {
         const encl_node *nd = &T->node[stack[--top]];
-        double ub = dot3(nrm, nd->c) + d + fabs(nrm[0]) * nd->h[0] + fabs(nrm[1]) * nd->h[1] + fabs(nrm[2]) * nd->h[2];
+        double ub = acd_dot3(nrm, nd->c) + d + fabs(nrm[0]) * nd->h[0] + fabs(nrm[1]) * nd->h[1] + fabs(nrm[2]) * nd->h[2];
         if (ub <= thr) continue;
         if (!nd->child) {
-            double al = dot3(nrm, nd->m), r[3] = {nrm[0] - al * nd->m[0], nrm[1] - al * nd->m[1], nrm[2] - al * nd->m[2]};
-            ub = (al > 0 ? al * nd->mhi : al * nd->mlo) + dot3(r, nd->c) + d + fabs(r[0]) * nd->h[0] +
+            double al = acd_dot3(nrm, nd->m), r[3] = {nrm[0] - al * nd->m[0], nrm[1] - al * nd->m[1], nrm[2] - al * nd->m[2]};
+            ub = (al > 0 ? al * nd->mhi : al * nd->mlo) + acd_dot3(r, nd->c) + d + fabs(r[0]) * nd->h[0] +
                  fabs(r[1]) * nd->h[1] + fabs(r[2]) * nd->h[2];
             if (ub <= thr) continue;
         }
@@ -756,7 +756,7 @@ static uint32_t encl_tri_violator(const encl_tree *T, const double *nrm, double 
         }
         for (uint32_t i = nd->begin; i < nd->end; i++) {
             const double *p = T->pts + 3 * (size_t)i;
-            double v = dot3(nrm, p) + d;
+            double v = acd_dot3(nrm, p) + d;
             if (v > thr && v > bestv && tri_outside(a, b, c, nrm, p, tol)) {
                 bestv = v;
                 best = T->idx[i];
@@ -847,7 +847,7 @@ static void rep_plane(rep_mesh *M, size_t t, const double *points, const double 
             memcpy(nrm, M->pl + 4 * (size_t)M->nb[3 * t], sizeof nrm);
     }
     for (int k = 0; k < 3; k++) {
-        double v = -dot3(nrm, points + 3 * (size_t)tr[k]), vw = -dot3(nrm, w + 3 * (size_t)tr[k]);
+        double v = -acd_dot3(nrm, points + 3 * (size_t)tr[k]), vw = -acd_dot3(nrm, w + 3 * (size_t)tr[k]);
         if (k == 0 || v < d) d = v;
         if (k == 0 || vw < dw) dw = vw;
     }
@@ -946,7 +946,7 @@ static int rep_simplex(rep_mesh *M, const acd_hull *out, const double *w) {
     for (size_t k = 0; k < out->nvertices; k++) {
         double d[3];
         sub3(w + 3 * (size_t)src[k], p0, d);
-        if (dot3(d, d) > best) best = dot3(d, d), v[1] = src[k];
+        if (acd_dot3(d, d) > best) best = acd_dot3(d, d), v[1] = src[k];
     }
     double u[3];
     sub3(w + 3 * (size_t)v[1], p0, u);
@@ -955,7 +955,7 @@ static int rep_simplex(rep_mesh *M, const acd_hull *out, const double *w) {
         double d[3], cr[3];
         sub3(w + 3 * (size_t)src[k], p0, d);
         cross3(u, d, cr);
-        if (dot3(cr, cr) > best) best = dot3(cr, cr), v[2] = src[k];
+        if (acd_dot3(cr, cr) > best) best = acd_dot3(cr, cr), v[2] = src[k];
     }
     best = 0;
     double o3 = 0;
@@ -1103,12 +1103,12 @@ static int hull_extremes_outside(const acd_hull *out, const double *w, size_t n,
     double best[2 * HULL_EXTREME_DIRS];
     for (int k = 0; k < 2 * HULL_EXTREME_DIRS; k++) {
         ext[k] = 0;
-        best[k] = dot3(dir[k / 2], w);
+        best[k] = acd_dot3(dir[k / 2], w);
     }
     for (size_t i = 1; i < n; i++) {
         const double *p = w + 3 * i;
         for (int k = 0; k < HULL_EXTREME_DIRS; k++) {
-            double v = dot3(dir[k], p);
+            double v = acd_dot3(dir[k], p);
             if (v > best[2 * k]) best[2 * k] = v, ext[2 * k] = i;
             if (v < best[2 * k + 1]) best[2 * k + 1] = v, ext[2 * k + 1] = i;
         }
@@ -1118,11 +1118,11 @@ static int hull_extremes_outside(const acd_hull *out, const double *w, size_t n,
         const uint32_t *tri = out->triangles + 3 * t;
         double d = 0; /* in normalised coordinates, as hull_enclose computes it */
         for (int k = 0; k < 3; k++) {
-            double dv = -dot3(pl, w + 3 * (size_t)out->source[tri[k]]);
+            double dv = -acd_dot3(pl, w + 3 * (size_t)out->source[tri[k]]);
             if (k == 0 || dv < d) d = dv;
         }
         for (int k = 0; k < 2 * HULL_EXTREME_DIRS; k++)
-            if (dot3(pl, w + 3 * ext[k]) + d > tol) return 1;
+            if (acd_dot3(pl, w + 3 * ext[k]) + d > tol) return 1;
     }
     return 0;
 }
@@ -1170,7 +1170,7 @@ static acd_status hull_enclose(acd_hull *out, const double *points, const double
         double d = 0, low = 0; /* the plane's offset in normalised coordinates, as hull_from_qhull sets
                                   it (through the highest vertex), and the lowest vertex's height */
         for (int k = 0; k < 3; k++) {
-            double dv = -dot3(pl, w + 3 * (size_t)out->source[tri[k]]);
+            double dv = -acd_dot3(pl, w + 3 * (size_t)out->source[tri[k]]);
             if (k == 0 || dv < d) d = dv;
             if (k == 0 || dv > low) low = dv;
         }
@@ -1181,7 +1181,7 @@ static acd_status hull_enclose(acd_hull *out, const double *points, const double
             encl_tri_violator(&T, nrm, dw, tol - tri_slack(angle, diag), a, b, c, tol) == UINT32_MAX) {
             double dp = 0; /* the triangle's own plane: every point within tol below it */
             for (int k = 0; k < 3; k++) {
-                double v = -dot3(nrm, points + 3 * (size_t)out->source[tri[k]]);
+                double v = -acd_dot3(nrm, points + 3 * (size_t)out->source[tri[k]]);
                 if (k == 0 || v < dp) dp = v;
             }
             double wo = encl_worst(&T, nrm, dw, tol); /* within the rounding of tol */
@@ -1330,7 +1330,7 @@ static acd_status hull_compute(const double *points, size_t n, acd_hull *out, do
         for (size_t i = 0; i < n; i++) {
             double d[3];
             sub3(w + 3 * i, w + 3 * ia, d);
-            double tt = dot3(d, u);
+            double tt = acd_dot3(d, u);
             if (i == 0 || tt < tmin) tmin = tt, imin = i;
             if (i == 0 || tt > tmax) tmax = tt, imax = i;
         }
@@ -1354,7 +1354,7 @@ static acd_status hull_compute(const double *points, size_t n, acd_hull *out, do
     for (size_t i = 0; i < n; i++) {
         double d[3];
         sub3(w + 3 * i, w + 3 * ia, d);
-        double v = fabs(dot3(d, nrm));
+        double v = fabs(acd_dot3(d, nrm));
         if (v > best) best = v;
     }
     if (best <= tol)
@@ -1382,7 +1382,7 @@ static double seg_dist(const double *p, const double *a, const double *b) {
     double ab[3], ap[3];
     sub3(b, a, ab);
     sub3(p, a, ap);
-    double l2 = dot3(ab, ab), t = l2 > 0 ? dot3(ap, ab) / l2 : 0;
+    double l2 = acd_dot3(ab, ab), t = l2 > 0 ? acd_dot3(ap, ab) / l2 : 0;
     if (t < 0) t = 0;
     if (t > 1) t = 1;
     double q[3] = {a[0] + t * ab[0] - p[0], a[1] + t * ab[1] - p[1], a[2] + t * ab[2] - p[2]};
@@ -1419,7 +1419,7 @@ double acd_hull_plane_distance(const acd_hull *h, const double p[3]) {
         sub3(b, a, ab);
         sub3(q, a, aq);
         cross3(ab, aq, cr);
-        if (dot3(cr, pl) < 0) inside = 0;
+        if (acd_dot3(cr, pl) < 0) inside = 0;
         double de = seg_dist(p, a, b);
         if (de < edge) edge = de;
     }

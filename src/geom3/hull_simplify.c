@@ -14,10 +14,10 @@
 
 #include "core/error.h"
 #include "core/tolerance.h"
+#include "geom3/vec3.h"
 
 #define SIMPLIFY_MARGIN_TRIES 4
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* The first kmax (>= 4) vertices of a farthest-point ordering of the hull's vertices, started by a
  * large tetrahedron (farthest from the centroid, farthest from it, farthest from their line,
@@ -38,18 +38,18 @@ static void farthest_order(const acd_hull *h, size_t kmax, uint32_t *order, doub
             if (stage == 0 || stage == 1) {
                 const double *q = stage == 0 ? c : V + 3 * pick[0];
                 double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
-                val = dot3(d, d);
+                val = acd_dot3(d, d);
             } else {
                 const double *a = V + 3 * pick[0], *b = V + 3 * pick[1];
                 double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
                 if (stage == 2) {
                     double x[3] = {ab[1] * ap[2] - ab[2] * ap[1], ab[2] * ap[0] - ab[0] * ap[2], ab[0] * ap[1] - ab[1] * ap[0]};
-                    val = dot3(x, x);
+                    val = acd_dot3(x, x);
                 } else {
                     const double *cc = V + 3 * pick[2];
                     double ac[3] = {cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]};
                     double nrm[3] = {ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]};
-                    val = fabs(dot3(nrm, ap));
+                    val = fabs(acd_dot3(nrm, ap));
                 }
             }
             if (val > best) {
@@ -77,7 +77,7 @@ static void farthest_order(const acd_hull *h, size_t kmax, uint32_t *order, doub
         const double *p = V + 3 * cur;
         for (size_t v = 0; v < nv; v++) {
             double d[3] = {V[3 * v] - p[0], V[3 * v + 1] - p[1], V[3 * v + 2] - p[2]};
-            double dd = dot3(d, d);
+            double dd = acd_dot3(d, d);
             if (dd < mind[v]) mind[v] = dd;
         }
     }
@@ -119,10 +119,10 @@ static acd_status pushed_polytope(const acd_hull *full, const uint32_t *order, s
         if (dup) continue;
         double mx = -INFINITY;
         for (size_t i = 0; i < n; i++) {
-            double v = dot3(pl, points + 3 * i);
+            double v = acd_dot3(pl, points + 3 * i);
             if (v > mx) mx = v;
         }
-        double dc = -mx - margin + dot3(pl, c); /* pushed offset, interior point at the origin */
+        double dc = -mx - margin + acd_dot3(pl, c); /* pushed offset, interior point at the origin */
         for (int j = 0; j < 3; j++) dual[3 * nd + j] = pl[j] / -dc;
         nd++;
     }

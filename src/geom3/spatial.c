@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/predicates.h"
+#include "geom3/vec3.h"
 
 #define GWN_STACK 128
 #define GWN_M 16 /* doubles per node: area vector, centroid, radius, 3x3 moment */
@@ -81,7 +82,6 @@ static acd_status count_boundary(acd_spatial *sp, acd_error *err) {
     return ACD_OK;
 }
 
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* Fills the moments bottom-up: area vector, area-weighted centroid, radius of the ball around
  * the centroid that holds the node's box. Areas are kept in a scratch array. */
@@ -106,7 +106,7 @@ static acd_status build_moments(acd_spatial *sp, acd_error *err) {
                 x[0] = 0.5 * (e1[1] * e2[2] - e1[2] * e2[1]);
                 x[1] = 0.5 * (e1[2] * e2[0] - e1[0] * e2[2]);
                 x[2] = 0.5 * (e1[0] * e2[1] - e1[1] * e2[0]);
-                double a = sqrt(dot3(x, x));
+                double a = sqrt(acd_dot3(x, x));
                 for (int k = 0; k < 3; k++) {
                     nv[k] += x[k];
                     c[k] += a * (p0[k] + p1[k] + p2[k]) / 3.0;
@@ -285,10 +285,10 @@ static double tri_solid_angle(const double *p0, const double *p1, const double *
         b[k] = p1[k] - q[k];
         c[k] = p2[k] - q[k];
     }
-    double la = sqrt(dot3(a, a)), lb = sqrt(dot3(b, b)), lc = sqrt(dot3(c, c));
+    double la = sqrt(acd_dot3(a, a)), lb = sqrt(acd_dot3(b, b)), lc = sqrt(acd_dot3(c, c));
     double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
                  a[2] * (b[0] * c[1] - b[1] * c[0]);
-    double den = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
+    double den = la * lb * lc + acd_dot3(a, b) * lc + acd_dot3(a, c) * lb + acd_dot3(b, c) * la;
     if (det == 0 && den >= 0) return 0; /* in the triangle's plane, outside it (or on it) */
     return 2.0 * atan2(det, den);
 }
@@ -310,7 +310,7 @@ double acd_spatial_gwn_beta(const acd_spatial *sp, const double q[3], double bet
         const acd_bvh_node *n = &b->nodes[i];
         const double *m = sp->moments + GWN_M * (size_t)i;
         double d[3] = {m[3] - q[0], m[4] - q[1], m[5] - q[2]};
-        double dist2 = dot3(d, d);
+        double dist2 = acd_dot3(d, d);
         double far = beta * m[6];
         if (dist2 > far * far && dist2 > 0) {
             /* f(x) = (x - q) / |x - q|^3 expanded at the centroid: f.N + J : T, with
@@ -320,7 +320,7 @@ double acd_spatial_gwn_beta(const acd_spatial *sp, const double q[3], double bet
             double dTd = 0;
             for (int a = 0; a < 3; a++)
                 for (int bb = 0; bb < 3; bb++) dTd += d[a] * T[3 * a + bb] * d[bb];
-            w += dot3(m, d) / r3 + (T[0] + T[4] + T[8]) / r3 - 3.0 * dTd / r5;
+            w += acd_dot3(m, d) / r3 + (T[0] + T[4] + T[8]) / r3 - 3.0 * dTd / r5;
             continue;
         }
         if (n->count) {

@@ -5,6 +5,9 @@
 #include <math.h>
 #include <string.h>
 
+/* The dot product a.b, summed in the order x, y, z. */
+static inline double acd_dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
 /* Euclidean distance between points a and b. */
 static inline double acd_dist3(const double a[3], const double b[3]) {
     double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
