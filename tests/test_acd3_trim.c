@@ -6,7 +6,10 @@
  *   within the budget, the union of hulls scored by acd eval (independent code) covers at least
  *   1 - trim_coverage of the input and has a higher IoU; the same output for 1 and 2 threads;
  * - max_hull_vertices still holds with trimming; bad values and surface mode are refused;
- * - a part that intersects itself is not trimmed (its signed volumes bound nothing), and it is counted. */
+ * - a part that intersects itself is not trimmed (its signed volumes bound nothing), and it is counted;
+ * - acd3/trim_beyond's volumes beyond a plane's levels, in one pass, are bitwise the sums of
+ *   acd_geom3_triangle_volume_beyond per level over the triangles of acd_bvh_query_halfspace in its
+ *   order (what the trimmed hulls were chosen by before it), with levels through vertices. */
 #include "testutil.h"
 
 #include <math.h>
@@ -16,6 +19,9 @@
 #include "acd/acd3d.h"
 #include "acd/eval.h"
 #include "acd/hull.h"
+#include "acd3/trim_beyond.h"
+#include "geom3/bvh.h"
+#include "geom3/plane_cut.h"
 #include "shapes.h"
 
 static void cube(acd_mesh *m) {
@@ -238,11 +244,119 @@ static void test_trim_self_crossing(void **state) {
     acd_mesh_free(&m);
 }
 
+/* the reference: per level, acd_geom3_triangle_volume_beyond over the query's triangles in its order */
+typedef struct beyond_ref {
+    const acd_mesh *m;
+    const double *n;
+    const acd3_trim_levels *L;
+    size_t k_lo;
+    double *v;
+} beyond_ref;
+
+static int beyond_ref_tri(void *user, uint32_t t) {
+    const beyond_ref *q = user;
+    const uint32_t *tr = q->m->triangles + 3 * (size_t)t;
+    const double *V = q->m->vertices;
+    for (size_t k = q->k_lo; k < ACD3_TRIM_NDEPTHS; k++) {
+        const double apex[3] = {q->L->ax[k], q->L->ay[k], q->L->az[k]};
+        q->v[k] += acd_geom3_triangle_volume_beyond(V + 3 * (size_t)tr[0], V + 3 * (size_t)tr[1], V + 3 * (size_t)tr[2],
+                                                    q->n, q->L->off[k], apex);
+    }
+    return 0;
+}
+
+static double lcg(uint64_t *s) {
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*s >> 11) / 9007199254740992.0;
+}
+
+static void test_trim_beyond_bitwise(void **state) {
+    (void)state;
+    acd_mesh m;
+    bumpy(&m);
+    for (size_t i = 0; i < m.nvertices; i++) m.vertices[3 * i] += 3.25; /* off the origin */
+    acd_bvh bvh;
+    acd_error err;
+    assert_int_equal(acd_bvh_build(&bvh, m.vertices, m.nvertices, m.triangles, m.ntriangles, &err), ACD_OK);
+    acd3_trim_tree tree;
+    assert_true(acd3_trim_tree_build(&tree, &bvh));
+    static const double depth[ACD3_TRIM_NDEPTHS] = {0.001, 0.002, 0.005, 0.01, 0.02, 0.04};
+    const double vol = acd_geom3_signed_volume(&m), centre[3] = {3.25, 0, 0};
+    uint64_t seed = 12345;
+    size_t crossing = 0, whole = 0, on_vertex = 0;
+    for (int it = 0; it < 400; it++) {
+        double n[3] = {2 * lcg(&seed) - 1, 2 * lcg(&seed) - 1, 2 * lcg(&seed) - 1}, nn = 0;
+        for (int q = 0; q < 3; q++) nn += n[q] * n[q];
+        if (!(nn > 0.01)) continue;
+        for (int q = 0; q < 3; q++) n[q] /= sqrt(nn);
+        double top = -INFINITY;
+        size_t vtop = 0;
+        for (size_t v = 0; v < m.nvertices; v++) {
+            double d = acd3_trim_dot(n, m.vertices + 3 * v);
+            if (d > top) top = d, vtop = v;
+        }
+        /* levels from just below the top to well into the mesh (scaled up to reach more triangles) */
+        const double unit = 2 + 8 * lcg(&seed);
+        acd3_trim_levels L;
+        for (size_t k = 0; k < ACD3_TRIM_NDEPTHS; k++) L.off[k] = top - depth[k] * unit;
+        if (it % 3 == 0) { /* a level through a vertex (its n.x exactly): s = 0 at that corner */
+            size_t k = 1 + (size_t)it % (ACD3_TRIM_NDEPTHS - 2);
+            double best = INFINITY;
+            for (size_t v = 0; v < m.nvertices; v++) {
+                double d = acd3_trim_dot(n, m.vertices + 3 * v);
+                if (d < L.off[k - 1] && d > L.off[k + 1] && fabs(d - L.off[k]) < best) best = fabs(d - L.off[k]), L.off[k] = d;
+            }
+            on_vertex += best < INFINITY;
+        }
+        if (it % 7 == 0) L.off[0] = acd3_trim_dot(n, m.vertices + 3 * vtop); /* through the top vertex */
+        for (size_t k = 0; k < ACD3_TRIM_NDEPTHS; k++) { /* apexes as acd3/trim places them */
+            double s = acd3_trim_dot(n, centre) - L.off[k];
+            L.ax[k] = centre[0] - s * n[0], L.ay[k] = centre[1] - s * n[1], L.az[k] = centre[2] - s * n[2];
+        }
+        const size_t k_lo = (size_t)it % 4;
+        double got[ACD3_TRIM_NDEPTHS] = {0}, want[ACD3_TRIM_NDEPTHS] = {0}, all[ACD3_TRIM_NDEPTHS] = {0};
+        acd3_trim_tree_beyond(&tree, n, &L, k_lo, got);
+        beyond_ref ref = {&m, n, &L, k_lo, want};
+        acd_bvh_query_halfspace(&bvh, n, L.off[ACD3_TRIM_NDEPTHS - 1], beyond_ref_tri, &ref);
+        assert_memory_equal(got, want, sizeof got);
+        /* the kernel over every triangle in index order against the function likewise */
+        double ref_all[ACD3_TRIM_NDEPTHS] = {0};
+        for (size_t t = 0; t < m.ntriangles; t++) {
+            const uint32_t *tr = m.triangles + 3 * t;
+            const double *const p[3] = {m.vertices + 3 * (size_t)tr[0], m.vertices + 3 * (size_t)tr[1],
+                                        m.vertices + 3 * (size_t)tr[2]};
+            const double d[3] = {acd3_trim_dot(n, p[0]), acd3_trim_dot(n, p[1]), acd3_trim_dot(n, p[2])};
+            acd3_trim_tri_beyond(p, d, &L, 0, all);
+            for (size_t k = 0; k < ACD3_TRIM_NDEPTHS; k++) {
+                const double apex[3] = {L.ax[k], L.ay[k], L.az[k]};
+                ref_all[k] += acd_geom3_triangle_volume_beyond(p[0], p[1], p[2], n, L.off[k], apex);
+                crossing += d[0] > L.off[k] && !(fmin(d[0], fmin(d[1], d[2])) > L.off[k]);
+                whole += fmin(d[0], fmin(d[1], d[2])) > L.off[k];
+            }
+        }
+        assert_memory_equal(all, ref_all, sizeof all);
+        /* and they are the volumes beyond (a cap of the closed mesh), growing with depth */
+        for (size_t k = 0; k < ACD3_TRIM_NDEPTHS; k++) {
+            const double pl[4] = {n[0], n[1], n[2], -L.off[k]};
+            assert_float_equal(all[k], acd_mesh_volume_beyond(&m, pl), 1e-12 * vol);
+            if (k > 0) assert_true(all[k] >= all[k - 1] - 1e-12 * vol);
+        }
+        for (size_t k = 0; k < k_lo; k++) assert_true(got[k] == 0);
+        assert_true(got[ACD3_TRIM_NDEPTHS - 1] > 0);
+    }
+    /* the cases met: crossing and whole triangles, levels through vertices */
+    assert_true(crossing > 1000 && whole > 1000 && on_vertex > 100);
+    acd3_trim_tree_free(&tree);
+    acd_bvh_free(&bvh);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_volume_beyond_cube),   cmocka_unit_test(test_volume_beyond_sphere),
         cmocka_unit_test(test_trim_bumpy),           cmocka_unit_test(test_trim_max_vertices),
         cmocka_unit_test(test_trim_refused),         cmocka_unit_test(test_trim_self_crossing),
+        cmocka_unit_test(test_trim_beyond_bitwise),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

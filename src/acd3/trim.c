@@ -6,15 +6,15 @@
 #include <string.h>
 
 #include "acd/hull.h"
+#include "acd3/trim_beyond.h"
 #include "core/error.h"
 #include "geom3/bvh.h"
-#include "geom3/plane_cut.h"
 #include "geom3/vec3.h"
 
 /* The depths a facet's plane is moved inward by, as fractions of the cube root of the part's
  * initial hull volume (increasing). */
-static const double ACD3_TRIM_DEPTHS[] = {0.001, 0.002, 0.005, 0.01, 0.02, 0.04};
-#define NDEPTHS (sizeof ACD3_TRIM_DEPTHS / sizeof ACD3_TRIM_DEPTHS[0])
+static const double ACD3_TRIM_DEPTHS[ACD3_TRIM_NDEPTHS] = {0.001, 0.002, 0.005, 0.01, 0.02, 0.04};
+#define NDEPTHS ((size_t)ACD3_TRIM_NDEPTHS)
 /* Distinct hulls cut per round (their next cuts searched in parallel); fixed, so the result does not
  * depend on the thread count. */
 #define ACD3_TRIM_BATCH 4
@@ -50,7 +50,8 @@ static void poly_free(trim_poly *P) {
 
 typedef struct trim_hull {
     trim_poly h;      /* the current hull */
-    acd_bvh bvh;      /* over the part's triangles */
+    double *vdot;     /* h.nv once cut: its vertices' n.x in plane_measure (NULL: computed per triangle) */
+    acd3_trim_tree tree; /* the part's triangles (from its BVH) */
     double unit;      /* depth unit: cube root of the initial hull volume */
     double centre[3]; /* of the initial hull's bounding box (apexes of the cones) */
     int active;       /* a solid hull that may still be cut */
@@ -66,58 +67,19 @@ typedef struct trim_hull {
     double plane[3], off, gain, loss, ratio, depth;
 } trim_hull;
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot3(const double *a, const double *b) { return acd3_trim_dot(a, b); }
 
 static void apex_on(const double centre[3], const double n[3], double off, double o[3]) {
     double s = dot3(n, centre) - off; /* n unit */
     for (int k = 0; k < 3; k++) o[k] = centre[k] - s * n[k];
 }
 
-/* the volumes beyond the planes n.x = off[k] of the triangle (a, b, c), added to v[k] (offsets
- * decreasing: once a plane is above the triangle the shallower ones are too) */
-static void add_beyond_from(const double *a, const double *b, const double *c, const double n[3], const double *off,
-                            const double (*apex)[3], size_t k_lo, double *v) {
-    double top = fmax(dot3(n, a), fmax(dot3(n, b), dot3(n, c)));
-    for (size_t k = NDEPTHS; k-- > k_lo;) {
-        if (!(top > off[k])) break;
-        v[k] += acd_geom3_triangle_volume_beyond(a, b, c, n, off[k], apex[k]);
-    }
-}
-
-static void add_beyond(const double *a, const double *b, const double *c, const double n[3], const double *off,
-                       const double (*apex)[3], double *v) {
-    add_beyond_from(a, b, c, n, off, apex, 0, v);
-}
-
-/* The part's triangles that reach beyond the deepest plane (acd_bvh_query_halfspace), their volumes
- * beyond the planes from depth k_lo on added to v. */
-typedef struct beyond_visit {
-    const acd_bvh *bvh;
-    const double *n, *off;
-    const double (*apex)[3];
-    size_t k_lo;
-    double *v;
-} beyond_visit;
-
-static int beyond_tri(void *user, uint32_t t) {
-    const beyond_visit *q = user;
-    const uint32_t *tr = q->bvh->triangles + 3 * (size_t)t;
-    const double *V = q->bvh->vertices;
-    add_beyond_from(V + 3 * (size_t)tr[0], V + 3 * (size_t)tr[1], V + 3 * (size_t)tr[2], q->n, q->off, q->apex, q->k_lo,
-                    q->v);
-    return 0;
-}
-
-static void part_beyond(const acd_bvh *bvh, const double n[3], const double *off, const double (*apex)[3], size_t k_lo,
-                        double *v) {
-    beyond_visit q = {bvh, n, off, apex, k_lo, v};
-    acd_bvh_query_halfspace(bvh, n, off[NDEPTHS - 1], beyond_tri, &q);
-}
-
-static void plane_offsets(const trim_hull *T, const trim_plane *P, double *off, double (*apex)[3]) {
+static void plane_levels(const trim_hull *T, const trim_plane *P, acd3_trim_levels *L) {
     for (size_t k = 0; k < NDEPTHS; k++) {
-        off[k] = P->off0 - ACD3_TRIM_DEPTHS[k] * T->unit;
-        apex_on(T->centre, P->n, off[k], apex[k]);
+        double apex[3];
+        L->off[k] = P->off0 - ACD3_TRIM_DEPTHS[k] * T->unit;
+        apex_on(T->centre, P->n, L->off[k], apex);
+        L->ax[k] = apex[0], L->ay[k] = apex[1], L->az[k] = apex[2];
     }
 }
 
@@ -134,12 +96,12 @@ typedef struct trim_adj {
  * P's plane) through triangles beyond the deepest plane are visited: the hull's surface beyond a
  * plane is one disk, and the triangles meeting it are connected through their edges. */
 static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj *adj, uint32_t seed) {
-    double off[NDEPTHS], apex[NDEPTHS][3];
-    plane_offsets(T, P, off, apex);
+    acd3_trim_levels L;
+    plane_levels(T, P, &L);
     memset(P->gain, 0, sizeof P->gain);
     const trim_poly *h = &T->h;
+    const double deepest = L.off[NDEPTHS - 1];
     if (adj) {
-        const double deepest = off[NDEPTHS - 1];
         uint32_t sp = 0;
         adj->stamp++;
         adj->mark[seed] = adj->stamp;
@@ -147,9 +109,10 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
         while (sp > 0) {
             uint32_t t = adj->stack[--sp];
             const uint32_t *tr = h->t + 3 * (size_t)t;
-            const double *a = h->v + 3 * (size_t)tr[0], *b = h->v + 3 * (size_t)tr[1], *c = h->v + 3 * (size_t)tr[2];
-            if (!(fmax(dot3(P->n, a), fmax(dot3(P->n, b), dot3(P->n, c))) > deepest)) continue;
-            add_beyond(a, b, c, P->n, off, (const double(*)[3])apex, P->gain);
+            const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
+            const double d[3] = {dot3(P->n, p[0]), dot3(P->n, p[1]), dot3(P->n, p[2])};
+            if (!(fmax(d[0], fmax(d[1], d[2])) > deepest)) continue;
+            acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
             for (int e = 0; e < 3; e++) {
                 uint32_t g = adj->nbr[3 * (size_t)t + e];
                 if (g < h->nt && adj->mark[g] != adj->stamp) {
@@ -158,11 +121,21 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
                 }
             }
         }
+    } else if (T->vdot) { /* every triangle (the vertices' dots computed once) */
+        for (size_t v = 0; v < h->nv; v++) T->vdot[v] = dot3(P->n, h->v + 3 * v);
+        for (size_t t = 0; t < h->nt; t++) {
+            const uint32_t *tr = h->t + 3 * t;
+            const double d[3] = {T->vdot[tr[0]], T->vdot[tr[1]], T->vdot[tr[2]]};
+            if (!(fmax(d[0], fmax(d[1], d[2])) > deepest)) continue;
+            const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
+            acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
+        }
     } else {
         for (size_t t = 0; t < h->nt; t++) {
             const uint32_t *tr = h->t + 3 * t;
-            add_beyond(h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2], P->n, off,
-                       (const double(*)[3])apex, P->gain);
+            const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
+            const double d[3] = {dot3(P->n, p[0]), dot3(P->n, p[1]), dot3(P->n, p[2])};
+            if (fmax(d[0], fmax(d[1], d[2])) > deepest) acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
         }
     }
     if (P->have_loss || !(P->gain[NDEPTHS - 1] >= min_gain)) return; /* the deepest cap holds the others */
@@ -170,7 +143,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
     /* only the depths whose cap can be cut: gains only fall, so a cap under min_gain stays under */
     size_t k_lo = 0;
     while (!(P->gain[k_lo] >= min_gain)) k_lo++;
-    part_beyond(&T->bvh, P->n, off, (const double(*)[3])apex, k_lo, P->loss);
+    acd3_trim_tree_beyond(&T->tree, P->n, &L, k_lo, P->loss);
     for (size_t k = 0; k < NDEPTHS; k++) P->loss[k] = fmax(P->loss[k], 0.0);
     P->have_loss = 1;
 }
@@ -402,6 +375,8 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
     if (out.nt < 4 || (max_vertices >= 4 && out.nv > max_vertices)) goto done; /* refused */
     poly_free(&T->h);
     T->h = out;
+    free(T->vdot); /* (NULL on failure: plane_measure then does without) */
+    T->vdot = malloc(T->h.nv * sizeof *T->vdot);
     memset(&out, 0, sizeof out);
     T->cut = 1;
     ret = 1;
@@ -409,6 +384,16 @@ done:
     poly_free(&out);
     free(s), free(map), free(ekey), free(eval), free(sec);
     return ret;
+}
+
+typedef struct part_order {
+    double cost;
+    size_t i;
+} part_order;
+
+static int part_order_cmp(const void *a, const void *b) {
+    const part_order *x = a, *y = b;
+    return x->cost > y->cost ? -1 : x->cost < y->cost ? 1 : (x->i > y->i) - (x->i < y->i);
 }
 
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
@@ -432,12 +417,22 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
     const double loss_floor = ACD3_TRIM_LOSS_FLOOR * min_gain;
     size_t input_crossings = 0;
     acd_status input_st = ACD_OK;
-    /* the parts' planes, and (task -1) the input's self-intersections */
+    /* the parts' planes, and (task -1) the input's self-intersections; the parts largest first (a
+     * part's planes cost about its hull's size times its own: the largest last would run alone) */
+    part_order *order = malloc(nparts * sizeof *order);
+    if (order) {
+        for (size_t i = 0; i < nparts; i++) {
+            order[i].cost = (double)parts[i].hull.nvertices * (double)parts[i].mesh.ntriangles;
+            order[i].i = i;
+        }
+        qsort(order, nparts, sizeof *order, part_order_cmp);
+    }
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
 #endif
-    for (long j = -1; j < (long)nparts; j++) {
+    for (long c = -1; c < (long)nparts; c++) {
         acd_error e;
+        const long j = c < 0 || !order ? c : (long)order[c].i;
         if (j < 0) {
             if (input) input_st = acd_mesh_self_intersections(input, &input_crossings, NULL, 0, &e);
             continue;
@@ -457,11 +452,19 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         H->h.t = h0.triangles, H->h.nt = h0.ntriangles;
         H->h.pl = h0.planes;
         h0.vertices = NULL, h0.triangles = NULL, h0.planes = NULL;
-        pst[j] = acd_bvh_build(&H->bvh, p->mesh.vertices, p->mesh.nvertices, p->mesh.triangles, p->mesh.ntriangles, &e);
+        acd_bvh bvh;
+        pst[j] = acd_bvh_build(&bvh, p->mesh.vertices, p->mesh.nvertices, p->mesh.triangles, p->mesh.ntriangles, &e);
         if (pst[j] != ACD_OK) {
             acd_hull_free(&h0);
             continue;
         }
+        if (!acd3_trim_tree_build(&H->tree, &bvh)) {
+            pst[j] = ACD_ERR_NOMEM;
+            acd_bvh_free(&bvh);
+            acd_hull_free(&h0);
+            continue;
+        }
+        acd_bvh_free(&bvh);
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
         for (size_t v = 0; v < H->h.nv; v++)
             for (int k = 0; k < 3; k++) {
@@ -475,6 +478,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         if (!init_planes(H, min_gain, h0.neighbors)) pst[j] = ACD_ERR_NOMEM;
         acd_hull_free(&h0);
     }
+    free(order);
     /* an input that crosses itself: its parts that cross themselves are left whole */
     if (input_st == ACD_OK && input_crossings > 0) {
 #ifdef _OPENMP
@@ -596,7 +600,8 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         if (pst[i] != ACD_OK) st = acd_fail(err, pst[i], "trim: a trimmed hull could not be computed");
     for (size_t i = 0; i < nparts; i++) {
         poly_free(&T[i].h);
-        acd_bvh_free(&T[i].bvh);
+        free(T[i].vdot);
+        acd3_trim_tree_free(&T[i].tree);
         free(T[i].pl);
         free(T[i].corner);
     }

@@ -1,0 +1,109 @@
+/* acd3/trim_beyond: the volumes beyond a candidate plane that acd3/trim scores its cuts by (trim.h,
+ * docs/acd3d.md "Trimmed hulls"), at all of the plane's depths in one pass over the triangles.
+ *
+ * A candidate is a plane n.x = off moved inward by ACD3_TRIM_NDEPTHS depths: levels off[k]
+ * (decreasing) with cone apexes on each. The volume of a closed, outward mesh beyond level k is the
+ * sum over its triangles of acd_geom3_triangle_volume_beyond (geom3/plane_cut.c); here each
+ * triangle's dots with n are computed once for all levels, and the part's triangles are read from a
+ * copy of its BVH laid out in the order of its half-space query. The sums are bitwise those of
+ * calling acd_geom3_triangle_volume_beyond per level in the query's order (the trimmed hulls depend
+ * on every bit: tests/test_acd3_trim.c checks it). */
+#ifndef ACD_ACD3_TRIM_BEYOND_H
+#define ACD_ACD3_TRIM_BEYOND_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "acd/base.h"
+#include "geom3/bvh.h"
+
+#define ACD3_TRIM_NDEPTHS 6
+
+/* A candidate plane's levels, shallowest first: offsets (decreasing) and the apexes of the cones
+ * (points on each level's plane), by coordinate. */
+typedef struct acd3_trim_levels {
+    double off[ACD3_TRIM_NDEPTHS];
+    double ax[ACD3_TRIM_NDEPTHS], ay[ACD3_TRIM_NDEPTHS], az[ACD3_TRIM_NDEPTHS];
+} acd3_trim_levels;
+
+/* n.x as acd_geom3_triangle_volume_beyond rounds it (before subtracting the offset) */
+static inline double acd3_trim_dot(const double n[3], const double p[3]) {
+    return n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
+}
+
+/* The volumes beyond the levels k >= k_lo of the triangle (p[0], p[1], p[2]), whose corners' dots
+ * with n are d[0..2] (acd3_trim_dot), added to v[k]. Each term is the arithmetic of
+ * acd_geom3_triangle_volume_beyond operation for operation (its n.x - off is d - off); a level
+ * above the triangle (and every shallower one) is skipped, its term 0 (adding 0 to a sum that
+ * starts at +0 changes nothing: such a sum is never -0); at the levels below the triangle (the
+ * deepest ones) it is a whole cone, computed in one loop over them. */
+static inline void acd3_trim_tri_beyond(const double *const p[3], const double d[3], const acd3_trim_levels *L,
+                                        size_t k_lo, double *v) {
+    const double top = fmax(d[0], fmax(d[1], d[2])), bot = fmin(d[0], fmin(d[1], d[2]));
+    size_t k_whole = ACD3_TRIM_NDEPTHS; /* from k_whole on the triangle lies beyond the level */
+    while (k_whole > k_lo && bot > L->off[k_whole - 1]) k_whole--;
+    for (size_t k = k_whole; k < ACD3_TRIM_NDEPTHS; k++) {
+        const double p0[3] = {p[0][0] - L->ax[k], p[0][1] - L->ay[k], p[0][2] - L->az[k]};
+        const double p1[3] = {p[1][0] - L->ax[k], p[1][1] - L->ay[k], p[1][2] - L->az[k]};
+        const double p2[3] = {p[2][0] - L->ax[k], p[2][1] - L->ay[k], p[2][2] - L->az[k]};
+        const double bc0 = p1[1] * p2[2] - p1[2] * p2[1], bc1 = p1[2] * p2[0] - p1[0] * p2[2],
+                     bc2 = p1[0] * p2[1] - p1[1] * p2[0];
+        double w = 0;
+        w += p0[0] * bc0 + p0[1] * bc1 + p0[2] * bc2;
+        v[k] += w / 6.0;
+    }
+    for (size_t k = k_whole; k-- > k_lo;) { /* the level crosses the triangle, or is above it */
+        if (!(top > L->off[k])) break;
+        const double apex[3] = {L->ax[k], L->ay[k], L->az[k]};
+        double s[3], poly[4][3];
+        int np = 0;
+        for (int j = 0; j < 3; j++) s[j] = d[j] - L->off[k];
+        for (int j = 0; j < 3; j++) { /* the triangle clipped to s > 0 (at most 4 corners) */
+            const int i = j == 2 ? 0 : j + 1;
+            if (s[j] > 0)
+                for (int q = 0; q < 3; q++) poly[np][q] = p[j][q] - apex[q];
+            np += s[j] > 0;
+            if ((s[j] > 0) != (s[i] > 0)) {
+                const double t = s[j] / (s[j] - s[i]);
+                for (int q = 0; q < 3; q++) poly[np][q] = p[j][q] + t * (p[i][q] - p[j][q]) - apex[q];
+                np++;
+            }
+        }
+        double w = 0;
+        for (int j = 1; j + 1 < np; j++) {
+            const double *b = poly[j], *c = poly[j + 1];
+            const double bc0 = b[1] * c[2] - b[2] * c[1], bc1 = b[2] * c[0] - b[0] * c[2],
+                         bc2 = b[0] * c[1] - b[1] * c[0];
+            w += poly[0][0] * bc0 + poly[0][1] * bc1 + poly[0][2] * bc2;
+        }
+        v[k] += w / 6.0;
+    }
+}
+
+/* A part's triangles for acd3_trim_tree_beyond: the nodes of its acd_bvh in the order
+ * acd_bvh_query_halfspace visits them (a node, the subtree of its second child, then that of its
+ * first), each with the index past its subtree, and the leaves' triangles' corners in that order. */
+typedef struct acd3_trim_tree_node {
+    double lo[3], hi[3];
+    uint32_t skip;         /* the index past the node's subtree */
+    uint32_t first, count; /* a leaf (count > 0): its triangles, from corner + 9 * first */
+} acd3_trim_tree_node;
+
+typedef struct acd3_trim_tree {
+    acd3_trim_tree_node *node;
+    size_t nnode;
+    double *corner; /* 9 per triangle */
+} acd3_trim_tree;
+
+/* 1 done (an empty tree for an empty BVH), 0 out of memory (R then empty). R does not refer to b. */
+int acd3_trim_tree_build(acd3_trim_tree *R, const acd_bvh *b);
+void acd3_trim_tree_free(acd3_trim_tree *R);
+
+/* The volumes beyond the levels k >= k_lo of the triangles reaching beyond the deepest level, added
+ * to v: the triangles acd_bvh_query_halfspace(b, n, L->off[ACD3_TRIM_NDEPTHS - 1]) visits, in its
+ * order, each through acd3_trim_tri_beyond. */
+void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd3_trim_levels *L, size_t k_lo,
+                           double *v);
+
+#endif
