@@ -111,7 +111,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
             const uint32_t *tr = h->t + 3 * (size_t)t;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
             const double d[3] = {dot3(P->n, p[0]), dot3(P->n, p[1]), dot3(P->n, p[2])};
-            if (!(fmax(d[0], fmax(d[1], d[2])) > deepest)) continue;
+            if (!(acd3_trim_top(d) > deepest)) continue;
             acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
             for (int e = 0; e < 3; e++) {
                 uint32_t g = adj->nbr[3 * (size_t)t + e];
@@ -126,7 +126,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
         for (size_t t = 0; t < h->nt; t++) {
             const uint32_t *tr = h->t + 3 * t;
             const double d[3] = {T->vdot[tr[0]], T->vdot[tr[1]], T->vdot[tr[2]]};
-            if (!(fmax(d[0], fmax(d[1], d[2])) > deepest)) continue;
+            if (!(acd3_trim_top(d) > deepest)) continue;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
             acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
         }
@@ -135,7 +135,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
             const uint32_t *tr = h->t + 3 * t;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
             const double d[3] = {dot3(P->n, p[0]), dot3(P->n, p[1]), dot3(P->n, p[2])};
-            if (fmax(d[0], fmax(d[1], d[2])) > deepest) acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
+            if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
         }
     }
     if (P->have_loss || !(P->gain[NDEPTHS - 1] >= min_gain)) return; /* the deepest cap holds the others */

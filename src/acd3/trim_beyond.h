@@ -32,6 +32,18 @@ static inline double acd3_trim_dot(const double n[3], const double p[3]) {
     return n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
 }
 
+/* The largest and the smallest of a triangle's corners' n.x (as fmax and fmin for the finite values
+ * they are given, but without their calls: only compared) */
+static inline double acd3_trim_top(const double d[3]) {
+    const double m = d[0] > d[1] ? d[0] : d[1];
+    return m > d[2] ? m : d[2];
+}
+
+static inline double acd3_trim_bot(const double d[3]) {
+    const double m = d[0] < d[1] ? d[0] : d[1];
+    return m < d[2] ? m : d[2];
+}
+
 /* The volumes beyond the levels k >= k_lo of the triangle (p[0], p[1], p[2]), whose corners' dots
  * with n are d[0..2] (acd3_trim_dot), added to v[k]. Each term is the arithmetic of
  * acd_geom3_triangle_volume_beyond operation for operation (its n.x - off is d - off); a level
@@ -40,7 +52,7 @@ static inline double acd3_trim_dot(const double n[3], const double p[3]) {
  * deepest ones) it is a whole cone, computed in one loop over them. */
 static inline void acd3_trim_tri_beyond(const double *const p[3], const double d[3], const acd3_trim_levels *L,
                                         size_t k_lo, double *v) {
-    const double top = fmax(d[0], fmax(d[1], d[2])), bot = fmin(d[0], fmin(d[1], d[2]));
+    const double top = acd3_trim_top(d), bot = acd3_trim_bot(d);
     size_t k_whole = ACD3_TRIM_NDEPTHS; /* from k_whole on the triangle lies beyond the level */
     while (k_whole > k_lo && bot > L->off[k_whole - 1]) k_whole--;
     for (size_t k = k_whole; k < ACD3_TRIM_NDEPTHS; k++) {
