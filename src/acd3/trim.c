@@ -98,7 +98,7 @@ typedef struct trim_adj {
 static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj *adj, uint32_t seed) {
     acd3_trim_levels L;
     plane_levels(T, P, &L);
-    memset(P->gain, 0, sizeof P->gain);
+    double gain[NDEPTHS] = {0}; /* (summed here: not through P, which the compiler cannot keep apart) */
     const trim_poly *h = &T->h;
     const double deepest = L.off[NDEPTHS - 1];
     if (adj) {
@@ -112,7 +112,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
             const double d[3] = {dot3(P->n, p[0]), dot3(P->n, p[1]), dot3(P->n, p[2])};
             if (!(acd3_trim_top(d) > deepest)) continue;
-            acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
+            acd3_trim_tri_beyond(p, d, &L, 0, gain);
             for (int e = 0; e < 3; e++) {
                 uint32_t g = adj->nbr[3 * (size_t)t + e];
                 if (g < h->nt && adj->mark[g] != adj->stamp) {
@@ -128,16 +128,17 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
             const double d[3] = {T->vdot[tr[0]], T->vdot[tr[1]], T->vdot[tr[2]]};
             if (!(acd3_trim_top(d) > deepest)) continue;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
-            acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
+            acd3_trim_tri_beyond(p, d, &L, 0, gain);
         }
     } else {
         for (size_t t = 0; t < h->nt; t++) {
             const uint32_t *tr = h->t + 3 * t;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
             const double d[3] = {dot3(P->n, p[0]), dot3(P->n, p[1]), dot3(P->n, p[2])};
-            if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, &L, 0, P->gain);
+            if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, &L, 0, gain);
         }
     }
+    memcpy(P->gain, gain, sizeof gain);
     if (P->have_loss || !(P->gain[NDEPTHS - 1] >= min_gain)) return; /* the deepest cap holds the others */
     memset(P->loss, 0, sizeof P->loss);
     /* only the depths whose cap can be cut: gains only fall, so a cap under min_gain stays under */

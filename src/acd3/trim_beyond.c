@@ -61,6 +61,8 @@ int acd3_trim_tree_build(acd3_trim_tree *R, const acd_bvh *b) {
 void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd3_trim_levels *L, size_t k_lo,
                            double *v) {
     const double deepest = L->off[ACD3_TRIM_NDEPTHS - 1];
+    double acc[ACD3_TRIM_NDEPTHS]; /* (v's sums, kept apart from the tree for the compiler) */
+    memcpy(acc, v, sizeof acc);
     size_t i = 0;
     while (i < R->nnode) {
         const acd3_trim_tree_node *nd = &R->node[i];
@@ -72,8 +74,9 @@ void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd
             const double *c = R->corner + 9 * ((size_t)nd->first + q);
             const double *const p[3] = {c, c + 3, c + 6};
             const double d[3] = {acd3_trim_dot(n, p[0]), acd3_trim_dot(n, p[1]), acd3_trim_dot(n, p[2])};
-            if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, L, k_lo, v);
+            if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, L, k_lo, acc);
         }
         i++;
     }
+    memcpy(v, acc, sizeof acc);
 }
