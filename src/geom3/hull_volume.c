@@ -48,18 +48,26 @@ static double hull_volume_pts(const double *pts, size_t n) {
  * scales by the whole set) and the hull starts at the next query. */
 #define HULL_VOLUME_PREFIX_REL 1e-3
 
-/* The facets of acd_hull_volume_fast's hull (the workspace's array). */
-struct acd_hv_facet { /* what the visible search reads first */
+/* The facets of acd_hull_volume_fast's hull (the workspace's array): what the searches read, 64
+ * bytes (one cache line; the array is aligned to it). */
+struct acd_hv_facet {
     double n[3], d;  /* unit outward normal, n.x = d on the plane */
     int v[3], nb[3]; /* nb[k]: across edge (v[k], v[k+1]) */
     int vis, mark;   /* the visible search's stamps (acd_hull_volume_ws.iter): visible, tested and not */
-    int head, far;   /* outside set (a list through acd_hull_volume_ws.next) and its farthest point */
-    double fard;
 };
 typedef struct acd_hv_facet hv_facet;
+/* A facet's outside set (a list through acd_hull_volume_ws.next), its farthest point and how far
+ * (the workspace's array beside the facets'). */
+struct acd_hv_out {
+    double fard;
+    int head, far;
+};
+typedef struct acd_hv_out hv_out;
+#define HV_FACET_ALIGN 64
+_Static_assert(sizeof(hv_facet) == HV_FACET_ALIGN, "a facet fills one cache line");
 
 void acd_hull_volume_ws_free(acd_hull_volume_ws *w) {
-    free(w->f), free(w->alive), free(w->next), free(w->start), free(w->end), free(w->stack);
+    free(w->f), free(w->o), free(w->alive), free(w->next), free(w->start), free(w->end), free(w->stack);
     free(w->pend), free(w->hor), free(w->horf), free(w->horu), free(w->newf), free(w->visl), free(w->pl), free(w->near);
     memset(w, 0, sizeof *w);
 }
@@ -105,21 +113,31 @@ static int hv_grow_horizon(acd_hull_volume_ws *w, size_t need) {
     return 1;
 }
 
-/* Facet (a, b, c) of the points p; nl (if not NULL): its cross product (b - a) x (c - a) and that
- * vector's squared length, as computed here. Its index, -1 when out of memory. */
-static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, int c, const double *nl) {
-    if (w->nf == w->fcap) {
-        size_t nc = w->fcap ? 2 * w->fcap : 256;
-        hv_facet *f = realloc(w->f, nc * sizeof *f);
-        if (!f) return -1;
-        w->f = f, w->fcap = nc;
-        int *s = realloc(w->stack, nc * sizeof *s);
-        if (!s) return -1;
-        w->stack = s;
-        unsigned char *al = realloc(w->alive, nc);
-        if (!al) return -1;
-        w->alive = al;
-    }
+/* Room for k more facets; 0 when out of memory. */
+static int hv_reserve_facets(acd_hull_volume_ws *w, size_t k) {
+    if (w->nf + k <= w->fcap) return 1;
+    size_t nc = w->fcap ? 2 * w->fcap : 256;
+    while (nc < w->nf + k) nc *= 2;
+    hv_facet *f = aligned_alloc(HV_FACET_ALIGN, nc * sizeof *f);
+    if (!f) return 0;
+    if (w->nf) memcpy(f, w->f, w->nf * sizeof *f);
+    free(w->f);
+    w->f = f;
+    hv_out *o = realloc(w->o, nc * sizeof *o);
+    if (!o) return 0;
+    w->o = o;
+    int *st = realloc(w->stack, nc * sizeof *st);
+    if (!st) return 0;
+    w->stack = st;
+    unsigned char *al = realloc(w->alive, nc);
+    if (!al) return 0;
+    w->alive = al, w->fcap = nc;
+    return 1;
+}
+
+/* Facet (a, b, c) of the points p (room reserved: hv_reserve_facets); nl (if not NULL): its cross
+ * product (b - a) x (c - a) and that vector's squared length, as computed here. Its index. */
+static inline int hv_add_facet(acd_hull_volume_ws *w, const double *p, int a, int b, int c, const double *nl) {
     hv_facet *F = &w->f[w->nf];
     F->v[0] = a, F->v[1] = b, F->v[2] = c;
     const double *A = p + 3 * a;
@@ -135,9 +153,16 @@ static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, in
     if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
     memcpy(F->n, n, sizeof n);
     F->d = n[0] * A[0] + n[1] * A[1] + n[2] * A[2];
-    F->head = -1, F->far = -1, F->fard = 0, F->mark = 0, F->vis = 0;
+    F->mark = 0, F->vis = 0;
+    hv_out *O = &w->o[w->nf];
+    O->head = -1, O->far = -1, O->fard = 0;
     w->alive[w->nf] = 1;
     return (int)w->nf++;
+}
+
+/* hv_add_facet with room made first; -1 when out of memory. */
+static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, int c) {
+    return hv_reserve_facets(w, 1) ? hv_add_facet(w, p, a, b, c, NULL) : -1;
 }
 
 static inline double hv_dist(const hv_facet *F, const double *q) {
@@ -151,12 +176,12 @@ static int hv_assign(acd_hull_volume_ws *w, const double *p, int i, const int *c
     double m = -INFINITY;
     int b = -1;
     for (int k = 0; k < nc; k++) {
-        hv_facet *F = &w->f[cand[k]];
-        double dd = hv_dist(F, p + 3 * i);
+        double dd = hv_dist(&w->f[cand[k]], p + 3 * i);
         if (dd > eps) {
-            w->next[i] = F->head;
-            F->head = i;
-            if (dd > F->fard) F->fard = dd, F->far = i;
+            hv_out *O = &w->o[cand[k]];
+            w->next[i] = O->head;
+            O->head = i;
+            if (dd > O->fard) O->fard = dd, O->far = i;
             return 1;
         }
         if (dd > m) m = dd, b = cand[k];
@@ -248,7 +273,7 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, d
         w->end[hor[2 * k + 1]] = (int)k;
     }
     /* a sweep refuses a sliver (pi nearly on the line of a horizon edge: its plane would be noise);
-     * the new facets' cross products kept in w->pl (hv_new_facet) */
+     * the new facets' cross products kept in w->pl (hv_add_facet) */
     double *nl = w->sweep ? w->pl : NULL, narrow = HULL_VOLUME_NARROW * eps * (HULL_VOLUME_NARROW * eps);
     size_t nn = 0;
     for (size_t k = 0; k < nh && !bad && nl; k++) {
@@ -273,11 +298,8 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, d
         if (!u) return -1;
         *undo = u, *undocap = c;
     }
-    for (size_t k = 0; k < nh; k++) {
-        int nfi = hv_new_facet(w, p, hor[2 * k], hor[2 * k + 1], pi, nl ? nl + 4 * k : NULL);
-        if (nfi < 0) return -1;
-        newf[k] = nfi;
-    }
+    if (!hv_reserve_facets(w, nh)) return -1;
+    for (size_t k = 0; k < nh; k++) newf[k] = hv_add_facet(w, p, hor[2 * k], hor[2 * k + 1], pi, nl ? nl + 4 * k : NULL);
     for (size_t k = 0; k < nh; k++) {
         hv_facet *F = &w->f[newf[k]];
         int a = hor[2 * k], b = hor[2 * k + 1], h = horf[k];
@@ -417,14 +439,14 @@ typedef struct hv_undo {
 static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t top, double *added, hv_undo *u) {
     while (top > 0) {
         int fi = w->pend[--top];
-        if (!w->alive[fi] || w->f[fi].head < 0) continue;
-        int pi = w->f[fi].far;
+        if (!w->alive[fi] || w->o[fi].head < 0) continue;
+        int pi = w->o[fi].far;
         const double *q = p + 3 * pi;
         if (!hv_grow_int(&w->visl, &w->vcap, w->nf)) return -1;
         /* a sweep's step with q barely above fi also searches from the facet q is farthest above
          * (hv_find_visible): fi may be joined to the rest of the visible region only through facets
          * within eps (two cones from q then, the facets between within eps of q) */
-        int fj = added && !(w->f[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps, NULL, NULL) : -1;
+        int fj = added && !(w->o[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps, NULL, NULL) : -1;
         size_t nv;
         long r = hv_visible(w, q, fi, fj, eps, &nv);
         if (r < 0) return -1;
@@ -484,10 +506,9 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
         /* the visible facets' outside points to the new facets; not above a new facet, a point may
          * still be above a horizon facet */
         for (size_t k = 0; k < nv; k++) {
-            hv_facet *G = &w->f[visl[k]];
             w->alive[visl[k]] = 0;
             if (u) u->killed[u->nk++] = visl[k];
-            for (int i = G->head; i >= 0;) {
+            for (int i = w->o[visl[k]].head; i >= 0;) {
                 int nx = w->next[i];
                 if (i != pi) {
                     double dd = 0;
@@ -495,20 +516,20 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
                     if (j == nt && jm < nt && w->sweep && !hv_near_add(w, p, i, jm < nh ? newf[jm] : horu[jm - nh], eps))
                         return -1;
                     if (j < nt) {
-                        hv_facet *F = &w->f[j < nh ? newf[j] : horu[j - nh]];
-                        w->next[i] = F->head;
-                        F->head = i;
-                        if (dd > F->fard) F->fard = dd, F->far = i;
+                        hv_out *O = &w->o[j < nh ? newf[j] : horu[j - nh]];
+                        w->next[i] = O->head;
+                        O->head = i;
+                        if (dd > O->fard) O->fard = dd, O->far = i;
                     }
                 }
                 i = nx;
             }
-            G->head = -1;
+            w->o[visl[k]].head = -1;
         }
         if (top + 2 * nh > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 2 * nh)) return -1;
         for (size_t k = 0; k < nh; k++) {
-            if (w->f[newf[k]].head >= 0) w->pend[top++] = newf[k];
-            if (w->f[horf[k]].head >= 0) w->pend[top++] = horf[k];
+            if (w->o[newf[k]].head >= 0) w->pend[top++] = newf[k];
+            if (w->o[horf[k]].head >= 0) w->pend[top++] = horf[k];
         }
     }
     return 0;
@@ -585,10 +606,10 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, double *
     for (int k = 0; k < 3; k++) cen0[k] = (p[3 * i0 + k] + p[3 * i1 + k] + p[3 * i2 + k] + p[3 * i3 + k]) / 4;
     memcpy(w->cen, cen0, sizeof cen0);
     for (int t = 0; t < 4; t++) {
-        if (hv_new_facet(w, p, tri[t][0], tri[t][1], tri[t][2], NULL) < 0) return -1;
+        if (hv_new_facet(w, p, tri[t][0], tri[t][1], tri[t][2]) < 0) return -1;
         if (hv_dist(&w->f[t], cen0) > 0) { /* inward: reversed */
             w->nf--;
-            if (hv_new_facet(w, p, tri[t][0], tri[t][2], tri[t][1], NULL) < 0) return -1;
+            if (hv_new_facet(w, p, tri[t][0], tri[t][2], tri[t][1]) < 0) return -1;
         }
     }
     double cen[3];
@@ -616,7 +637,7 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, double *
     }
     size_t top = 0;
     for (int t = 0; t < 4; t++)
-        if (w->f[t].head >= 0) w->pend[top++] = t;
+        if (w->o[t].head >= 0) w->pend[top++] = t;
     *top_out = top;
     return 1;
 }
@@ -758,15 +779,15 @@ static size_t hv_corners(const double *x, size_t nx, const double dir[3], double
 /* Point i of P into the outside set of facet f (which it sees), f onto the pending stack (of top
  * entries) if its set was empty, f's farthest point updated. 0 when the stack cannot grow. */
 static int hv_push_outside(acd_hull_volume_ws *w, const double *P, int i, int f, size_t *top) {
-    hv_facet *F = &w->f[f];
-    double dd = hv_dist(F, P + 3 * (size_t)i);
-    if (F->head < 0) {
+    hv_out *O = &w->o[f];
+    double dd = hv_dist(&w->f[f], P + 3 * (size_t)i);
+    if (O->head < 0) {
         if (*top + 1 > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, *top + 1)) return 0;
         w->pend[(*top)++] = f;
     }
-    w->next[i] = F->head;
-    F->head = i;
-    if (dd > F->fard) F->fard = dd, F->far = i;
+    w->next[i] = O->head;
+    O->head = i;
+    if (dd > O->fard) O->fard = dd, O->far = i;
     return 1;
 }
 
@@ -854,11 +875,19 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     }
     if (!(big <= HULL_VOLUME_RANGE)) return 0;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, whole = 0;
+    /* as fmin and fmax (a NaN skipped; lo and hi never NaN), without their calls: a zero's sign cannot
+     * change `whole` (a difference of zeros is only taken when hi > lo) */
     for (size_t i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], pts[3 * i + k]), hi[k] = fmax(hi[k], pts[3 * i + k]);
+        for (int k = 0; k < 3; k++) {
+            double x = pts[3 * i + k];
+            lo[k] = x < lo[k] ? x : lo[k], hi[k] = x > hi[k] ? x : hi[k];
+        }
     for (int q = 0; q < nq; q++)
         for (size_t i = xb[q]; i < xe[q]; i++)
-            for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], xs[3 * i + k]), hi[k] = fmax(hi[k], xs[3 * i + k]);
+            for (int k = 0; k < 3; k++) {
+                double x = xs[3 * i + k];
+                lo[k] = x < lo[k] ? x : lo[k], hi[k] = x > hi[k] ? x : hi[k];
+            }
     for (int k = 0; k < 3; k++) whole = hi[k] > lo[k] ? fmax(whole, hi[k] - lo[k]) : whole;
     double *P = malloc(3 * (n + maxx + 1) * sizeof *P), *uv = malloc(6 * (maxx + 1) * sizeof *uv);
     int *corner = malloc((2 * maxx + 2) * sizeof *corner), *stamp = malloc((n + maxx + 1) * sizeof *stamp);
@@ -995,12 +1024,12 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         }
         if (r == 0) vol[q] = V + Vx;
         for (size_t k = 0; k < U.nk; k++) {
-            hv_facet *F = &w->f[U.killed[k]];
-            w->alive[U.killed[k]] = 1, F->head = -1, F->far = -1, F->fard = 0;
+            hv_out *O = &w->o[U.killed[k]];
+            w->alive[U.killed[k]] = 1, O->head = -1, O->far = -1, O->fard = 0;
         }
         for (size_t k = U.nnb; k >= 3; k -= 3) w->f[U.nb[k - 3]].nb[U.nb[k - 2]] = U.nb[k - 1];
         if (r == -2) /* stopped midway: outside sets left on the facets made before */
-            for (size_t t = 0; t < nf0; t++) w->f[t].head = -1, w->f[t].far = -1, w->f[t].fard = 0;
+            for (size_t t = 0; t < nf0; t++) w->o[t].head = -1, w->o[t].far = -1, w->o[t].fard = 0;
         w->nf = nf0;
         w->nnear = np;
     }

@@ -18,10 +18,12 @@
 #include <stddef.h>
 
 struct acd_hv_facet;
+struct acd_hv_out;
 
 /* Scratch reused between calls (zero-initialise it; free with acd_hull_volume_ws_free). */
 typedef struct acd_hull_volume_ws {
     struct acd_hv_facet *f;
+    struct acd_hv_out *o; /* per facet: its outside set */
     unsigned char *alive; /* per facet: on the hull (the full scans read these, not the facets) */
     size_t nf, fcap;
     int *next, *start, *end, *stack; /* per point: list link, horizon edge from / to it;
