@@ -106,7 +106,7 @@ static int hv_grow_horizon(acd_hull_volume_ws *w, size_t need) {
     if (u) w->horu = u;
     int *nf = u ? realloc(w->newf, c * sizeof *nf) : NULL;
     if (nf) w->newf = nf;
-    double *pl = nf ? realloc(w->pl, 2 * 4 * c * sizeof *pl) : NULL;
+    double *pl = nf ? realloc(w->pl, (2 * 4 * c + 8) * sizeof *pl) : NULL;
     if (pl) w->pl = pl;
     if (!pl) return 0;
     w->hcap = c;
@@ -135,34 +135,30 @@ static int hv_reserve_facets(acd_hull_volume_ws *w, size_t k) {
     return 1;
 }
 
-/* Facet (a, b, c) of the points p (room reserved: hv_reserve_facets); nl (if not NULL): its cross
- * product (b - a) x (c - a) and that vector's squared length, as computed here. Its index. */
-static inline int hv_add_facet(acd_hull_volume_ws *w, const double *p, int a, int b, int c, const double *nl) {
+/* F's plane: its cross product n (not 0 unless degenerate, its squared length l2 as computed here)
+ * made unit, through the point A. */
+static inline void hv_set_plane(hv_facet *F, const double n[3], double l2, const double *A) {
+    double l = sqrt(l2), u[3] = {n[0], n[1], n[2]};
+    if (l > 0) u[0] /= l, u[1] /= l, u[2] /= l;
+    memcpy(F->n, u, sizeof u);
+    F->d = u[0] * A[0] + u[1] * A[1] + u[2] * A[2];
+}
+
+/* Facet (a, b, c) of the points p (its neighbours left to the caller). Its index, -1 when out of
+ * memory. */
+static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, int c) {
+    if (!hv_reserve_facets(w, 1)) return -1;
     hv_facet *F = &w->f[w->nf];
     F->v[0] = a, F->v[1] = b, F->v[2] = c;
-    const double *A = p + 3 * a;
-    double n[3], l;
-    if (nl) {
-        n[0] = nl[0], n[1] = nl[1], n[2] = nl[2], l = sqrt(nl[3]);
-    } else {
-        const double *B = p + 3 * b, *C = p + 3 * c;
-        double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
-        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    }
-    if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
-    memcpy(F->n, n, sizeof n);
-    F->d = n[0] * A[0] + n[1] * A[1] + n[2] * A[2];
+    const double *A = p + 3 * a, *B = p + 3 * b, *C = p + 3 * c;
+    double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    hv_set_plane(F, n, n[0] * n[0] + n[1] * n[1] + n[2] * n[2], A);
     F->mark = 0, F->vis = 0;
     hv_out *O = &w->o[w->nf];
     O->head = -1, O->far = -1, O->fard = 0;
     w->alive[w->nf] = 1;
     return (int)w->nf++;
-}
-
-/* hv_add_facet with room made first; -1 when out of memory. */
-static int hv_new_facet(acd_hull_volume_ws *w, const double *p, int a, int b, int c) {
-    return hv_reserve_facets(w, 1) ? hv_add_facet(w, p, a, b, c, NULL) : -1;
 }
 
 static inline double hv_dist(const hv_facet *F, const double *q) {
@@ -223,115 +219,171 @@ static int hv_near_add(acd_hull_volume_ws *w, const double *p, int i, int f, dou
 /* The facets visible from point q (index pi) connected to facet fi or (if not -1) fj, into
  * w->visl (*nv of them), and the horizon (the edges of visible facets whose neighbour is not visible,
  * in the order of w->visl and their edges: a facet tested is visible or not for good when its
- * neighbour is taken) into w->hor / w->horf: their number, -1 when out of memory. */
-static long hv_visible(acd_hull_volume_ws *w, const double *q, int fi, int fj, double eps, size_t *nv_out) {
-    int iter = ++w->iter;
+ * neighbour is taken) into w->hor / w->horf, each edge's index in w->start (by its first vertex) and
+ * w->end (by its second; hv_cone resets both); *bad: 1 when a vertex starts or ends two edges (the
+ * horizon is not one simple cycle). *added (if not NULL): less the tetrahedra of q and each visible
+ * facet (in the order of w->visl), over 6: the volume the cone from q adds. The horizon's size, -1
+ * when out of memory. */
+static long hv_visible(acd_hull_volume_ws *w, const double *p, const double *q, int fi, int fj, double eps, size_t *nv_out,
+                       int *bad_out, double *added) {
+    int iter = ++w->iter, bad = 0;
     size_t nv = 0, ns = 0, nh = 0;
-    int *visl = w->visl;
-    w->f[fi].vis = iter;
-    w->stack[ns++] = fi;
-    if (fj >= 0 && fj != fi) w->f[fj].vis = iter, w->stack[ns++] = fj;
+    int *visl = w->visl, *stack = w->stack, *start = w->start, *end = w->end;
+    hv_facet *f = w->f;
+    double s = 0;
+    f[fi].vis = iter;
+    stack[ns++] = fi;
+    if (fj >= 0 && fj != fi) f[fj].vis = iter, stack[ns++] = fj;
     while (ns > 0) {
-        int g = w->stack[--ns];
+        int g = stack[--ns];
         visl[nv++] = g;
-        const hv_facet *G = &w->f[g];
+        const hv_facet *G = &f[g];
+        if (added) {
+            const double *A = p + 3 * G->v[0], *B = p + 3 * G->v[1], *C = p + 3 * G->v[2];
+            double a[3] = {A[0] - q[0], A[1] - q[1], A[2] - q[2]}, b[3] = {B[0] - q[0], B[1] - q[1], B[2] - q[2]},
+                   c[3] = {C[0] - q[0], C[1] - q[1], C[2] - q[2]};
+            s -= a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+        }
         for (int k = 0; k < 3; k++) {
             int h = G->nb[k];
-            hv_facet *H = &w->f[h];
+            hv_facet *H = &f[h];
             if (H->vis == iter) continue;
             if (H->mark != iter) {
                 if (hv_dist(H, q) > eps) {
                     H->vis = iter;
-                    w->stack[ns++] = h;
+                    stack[ns++] = h;
                     continue;
                 }
                 H->mark = iter; /* checked, not visible */
             }
-            if (nh + 1 > w->hcap && !hv_grow_horizon(w, nh + 1)) return -1;
-            w->hor[2 * nh] = G->v[k], w->hor[2 * nh + 1] = G->v[(k + 1) % 3], w->horf[nh] = h;
+            if (nh + 1 > w->hcap && !hv_grow_horizon(w, nh + 1)) {
+                for (size_t j = 0; j < nh; j++) start[w->hor[2 * j]] = end[w->hor[2 * j + 1]] = -1;
+                return -1;
+            }
+            int a = G->v[k], b = G->v[k == 2 ? 0 : k + 1];
+            if (start[a] >= 0 || end[b] >= 0) bad = 1;
+            start[a] = end[b] = (int)nh;
+            w->hor[2 * nh] = a, w->hor[2 * nh + 1] = b, w->horf[nh] = h;
             nh++;
         }
     }
-    *nv_out = nv;
+    if (added) *added += s / 6;
+    *nv_out = nv, *bad_out = bad;
     return (long)nh;
 }
 
-/* The cone of new facets from point pi over the nh horizon edges in w->hor / w->horf (hv_visible;
- * into w->newf); undo (if not NULL) records each horizon facet's neighbour changed (facet, edge,
- * old value). In a sweep, the horizon edges pi is within HULL_VOLUME_NARROW x eps of the line of
- * into w->horu (w->nnarrow of them: hv_expand's fold check). Returns nh, -1 when out of memory, -2
- * when the horizon is not one simple cycle or (in a sweep) a new facet is a sliver (nothing changed
- * then). */
-static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, double eps, int **undo, size_t *nundo,
-                    size_t *undocap) {
-    int *hor = w->hor, *horf = w->horf, *newf = w->newf;
-    /* a simple cycle: every vertex starts one horizon edge and ends one */
-    int bad = 0;
-    for (size_t k = 0; k < nh; k++) {
-        if (w->start[hor[2 * k]] >= 0 || w->end[hor[2 * k + 1]] >= 0) bad = 1;
-        w->start[hor[2 * k]] = (int)k;
-        w->end[hor[2 * k + 1]] = (int)k;
-    }
-    /* a sweep refuses a sliver (pi nearly on the line of a horizon edge: its plane would be noise);
-     * the new facets' cross products kept in w->pl (hv_add_facet) */
-    double *nl = w->sweep ? w->pl : NULL, narrow = HULL_VOLUME_NARROW * eps * (HULL_VOLUME_NARROW * eps);
-    size_t nn = 0;
-    for (size_t k = 0; k < nh && !bad && nl; k++) {
-        const double *A = p + 3 * hor[2 * k], *B = p + 3 * hor[2 * k + 1], *C = p + 3 * pi;
-        double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
-        double *n = nl + 4 * k;
-        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        double l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        n[3] = l2;
-        double a2 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2], b2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
-        if (!(l2 > HULL_VOLUME_SLIVER * HULL_VOLUME_SLIVER * a2 * b2)) bad = 1;
-        if (l2 < narrow * a2) w->horu[nn++] = (int)k; /* distance from the line: sqrt(l2 / a2) */
-    }
-    w->nnarrow = nn;
-    if (bad || nh < 3) {
-        for (size_t k = 0; k < nh; k++) w->start[hor[2 * k]] = w->end[hor[2 * k + 1]] = -1;
-        return -2;
-    }
+/* The cone of new facets from point pi over the nh horizon edges in w->hor / w->horf (hv_visible,
+ * which found them a simple cycle unless bad; w->start / w->end reset here); undo (if not NULL)
+ * records each horizon facet's neighbour changed (facet, edge, old value). In a sweep, the horizon
+ * edges pi is within HULL_VOLUME_NARROW x eps of the line of into w->horu (w->nnarrow of them:
+ * hv_expand's fold check). *inward: 1 when the initial simplex's centroid is above a new facet.
+ * Returns nh (the new facets are the last nh, in w->newf too), -1 when out of memory, -2 when the
+ * horizon is not one simple cycle or (in a sweep) a new facet is a sliver (nothing changed then).
+ * The planes first (hv_add_facet's arithmetic, two facets at a time where SSE2 is there: the same
+ * bits), into the facets' room before they are made. */
+static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, int bad, double eps, int **undo,
+                    size_t *nundo, size_t *undocap, int *inward) {
+    int *hor = w->hor, *horf = w->horf, *newf = w->newf, *start = w->start, *end = w->end;
+    if (bad || nh < 3) goto refused;
     if (undo && *nundo + 3 * nh > *undocap) {
         size_t c = 2 * (*nundo + 3 * nh);
         int *u = realloc(*undo, c * sizeof *u);
-        if (!u) return -1;
-        *undo = u, *undocap = c;
+        if (u) *undo = u, *undocap = c;
     }
-    if (!hv_reserve_facets(w, nh)) return -1;
-    for (size_t k = 0; k < nh; k++) newf[k] = hv_add_facet(w, p, hor[2 * k], hor[2 * k + 1], pi, nl ? nl + 4 * k : NULL);
-    for (size_t k = 0; k < nh; k++) {
-        hv_facet *F = &w->f[newf[k]];
-        int a = hor[2 * k], b = hor[2 * k + 1], h = horf[k];
-        F->nb[0] = h;
-        F->nb[1] = newf[w->start[b]];
-        F->nb[2] = newf[w->end[a]];
+    if ((undo && *nundo + 3 * nh > *undocap) || !hv_reserve_facets(w, nh)) {
+        for (size_t k = 0; k < nh; k++) start[hor[2 * k]] = end[hor[2 * k + 1]] = -1;
+        return -1;
+    }
+    /* a sweep refuses a sliver (pi nearly on the line of a horizon edge: its plane would be noise) */
+    int sweep = w->sweep, in = 0, *horu = w->horu;
+    double narrow = HULL_VOLUME_NARROW * eps * (HULL_VOLUME_NARROW * eps);
+    const double *C = p + 3 * pi, *cen = w->cen;
+    hv_facet *F0 = w->f + w->nf;
+    size_t nn = 0, k = 0;
+#ifdef __SSE2__
+    {
+        const __m128d cx = _mm_set1_pd(C[0]), cy = _mm_set1_pd(C[1]), cz = _mm_set1_pd(C[2]), z = _mm_setzero_pd();
+        const __m128d ox = _mm_set1_pd(cen[0]), oy = _mm_set1_pd(cen[1]), oz = _mm_set1_pd(cen[2]);
+        const __m128d ss = _mm_set1_pd(HULL_VOLUME_SLIVER * HULL_VOLUME_SLIVER), nw = _mm_set1_pd(narrow);
+        for (; k + 1 < nh; k += 2) {
+            const double *A0 = p + 3 * hor[2 * k], *B0 = p + 3 * hor[2 * k + 1], *A1 = p + 3 * hor[2 * k + 2],
+                         *B1 = p + 3 * hor[2 * k + 3];
+            __m128d ax = _mm_loadh_pd(_mm_load_sd(A0), A1), ay = _mm_loadh_pd(_mm_load_sd(A0 + 1), A1 + 1),
+                    az = _mm_loadh_pd(_mm_load_sd(A0 + 2), A1 + 2);
+            __m128d bx = _mm_loadh_pd(_mm_load_sd(B0), B1), by = _mm_loadh_pd(_mm_load_sd(B0 + 1), B1 + 1),
+                    bz = _mm_loadh_pd(_mm_load_sd(B0 + 2), B1 + 2);
+            __m128d e1x = _mm_sub_pd(bx, ax), e1y = _mm_sub_pd(by, ay), e1z = _mm_sub_pd(bz, az);
+            __m128d e2x = _mm_sub_pd(cx, ax), e2y = _mm_sub_pd(cy, ay), e2z = _mm_sub_pd(cz, az);
+            __m128d nx = _mm_sub_pd(_mm_mul_pd(e1y, e2z), _mm_mul_pd(e1z, e2y));
+            __m128d ny = _mm_sub_pd(_mm_mul_pd(e1z, e2x), _mm_mul_pd(e1x, e2z));
+            __m128d nz = _mm_sub_pd(_mm_mul_pd(e1x, e2y), _mm_mul_pd(e1y, e2x));
+            __m128d l2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(nx, nx), _mm_mul_pd(ny, ny)), _mm_mul_pd(nz, nz));
+            if (sweep) {
+                __m128d a2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(e1x, e1x), _mm_mul_pd(e1y, e1y)), _mm_mul_pd(e1z, e1z));
+                __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(e2x, e2x), _mm_mul_pd(e2y, e2y)), _mm_mul_pd(e2z, e2z));
+                if (_mm_movemask_pd(_mm_cmpgt_pd(l2, _mm_mul_pd(_mm_mul_pd(ss, a2), b2))) != 3) bad = 1;
+                int na = _mm_movemask_pd(_mm_cmplt_pd(l2, _mm_mul_pd(nw, a2)));
+                if (na & 1) horu[nn++] = (int)k;
+                if (na & 2) horu[nn++] = (int)k + 1;
+            }
+            __m128d l = _mm_sqrt_pd(l2), ok = _mm_cmpgt_pd(l, z);
+            nx = _mm_or_pd(_mm_and_pd(ok, _mm_div_pd(nx, l)), _mm_andnot_pd(ok, nx));
+            ny = _mm_or_pd(_mm_and_pd(ok, _mm_div_pd(ny, l)), _mm_andnot_pd(ok, ny));
+            nz = _mm_or_pd(_mm_and_pd(ok, _mm_div_pd(nz, l)), _mm_andnot_pd(ok, nz));
+            __m128d d = _mm_add_pd(_mm_add_pd(_mm_mul_pd(nx, ax), _mm_mul_pd(ny, ay)), _mm_mul_pd(nz, az));
+            __m128d dc = _mm_sub_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(nx, ox), _mm_mul_pd(ny, oy)), _mm_mul_pd(nz, oz)), d);
+            in |= _mm_movemask_pd(_mm_cmpgt_pd(dc, z));
+            _mm_store_pd(F0[k].n, _mm_unpacklo_pd(nx, ny));
+            _mm_store_pd(F0[k].n + 2, _mm_unpacklo_pd(nz, d));
+            _mm_store_pd(F0[k + 1].n, _mm_unpackhi_pd(nx, ny));
+            _mm_store_pd(F0[k + 1].n + 2, _mm_unpackhi_pd(nz, d));
+        }
+    }
+#endif
+    for (; k < nh; k++) {
+        const double *A = p + 3 * hor[2 * k], *B = p + 3 * hor[2 * k + 1];
+        double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        if (sweep) {
+            double a2 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2], b2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+            if (!(l2 > HULL_VOLUME_SLIVER * HULL_VOLUME_SLIVER * a2 * b2)) bad = 1;
+            if (l2 < narrow * a2) horu[nn++] = (int)k; /* distance from the line: sqrt(l2 / a2) */
+        }
+        hv_set_plane(&F0[k], n, l2, A);
+        in |= hv_dist(&F0[k], cen) > 0;
+    }
+    w->nnarrow = nn;
+    if (bad) goto refused;
+    int nf0 = (int)w->nf;
+    for (k = 0; k < nh; k++) {
+        int a = hor[2 * k], b = hor[2 * k + 1], h = horf[k], nk = nf0 + (int)k;
+        hv_facet *F = &F0[k];
+        F->v[0] = a, F->v[1] = b, F->v[2] = pi;
+        F->nb[0] = h, F->nb[1] = nf0 + start[b], F->nb[2] = nf0 + end[a];
+        F->mark = 0, F->vis = 0;
+        hv_out *O = &w->o[nk];
+        O->head = -1, O->far = -1, O->fard = 0;
+        w->alive[nk] = 1;
+        newf[k] = nk;
         hv_facet *H = &w->f[h];
         for (int e = 0; e < 3; e++)
-            if (H->v[e] == b && H->v[(e + 1) % 3] == a) {
+            if (H->v[e] == b && H->v[e == 2 ? 0 : e + 1] == a) {
                 if (undo) {
                     int *u = *undo + *nundo;
                     u[0] = h, u[1] = e, u[2] = H->nb[e];
                     *nundo += 3;
                 }
-                H->nb[e] = newf[k];
+                H->nb[e] = nk;
             }
     }
-    for (size_t k = 0; k < nh; k++) w->start[hor[2 * k]] = w->end[hor[2 * k + 1]] = -1;
+    w->nf += nh;
+    for (k = 0; k < nh; k++) start[hor[2 * k]] = end[hor[2 * k + 1]] = -1;
+    *inward = in != 0;
     return (long)nh;
-}
-
-/* The volume the cone from q over the nv visible facets adds (each facet's tetrahedron with q). */
-static double hv_cone_volume(const acd_hull_volume_ws *w, const double *p, const double *q, size_t nv) {
-    double s = 0;
-    for (size_t k = 0; k < nv; k++) {
-        const hv_facet *G = &w->f[w->visl[k]];
-        const double *A = p + 3 * G->v[0], *B = p + 3 * G->v[1], *C = p + 3 * G->v[2];
-        double a[3] = {A[0] - q[0], A[1] - q[1], A[2] - q[2]}, b[3] = {B[0] - q[0], B[1] - q[1], B[2] - q[2]},
-               c[3] = {C[0] - q[0], C[1] - q[1], C[2] - q[2]};
-        s -= a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-    }
-    return s / 6;
+refused:
+    for (k = 0; k < nh; k++) start[hor[2 * k]] = end[hor[2 * k + 1]] = -1;
+    return -2;
 }
 
 /* The Quickhull loop from the pending facets w->pend[0..top): each step adds the farthest point of
@@ -383,16 +435,21 @@ static inline void hv_pack(double *pl, size_t j, const double n[3], double d) {
     b[0] = n[0], b[2] = n[1], b[4] = n[2], b[6] = d;
 }
 
+/* The distance of x above plane k packed in pl (hv_pack). */
+static inline double hv_packed_dist(const double *pl, size_t k, const double *x) {
+    const double *b = pl + 8 * (k >> 1) + (k & 1);
+    return b[0] * x[0] + b[2] * x[1] + b[4] * x[2] - b[6];
+}
+
 /* The first of the nt planes packed in pl (hv_pack; an odd nt padded by a plane no point is above) that
- * x is above by more than eps, *dd: by how much; nt when none, *jm then (if want) the first plane x is
- * farthest above, if above 0 (else nt). Each distance is n[0] x[0] + n[1] x[1] + n[2] x[2] - d in that
- * order, two planes at a time where SSE2 is there (the same bits). */
-static inline size_t hv_first_above(const double *pl, size_t nt, const double *x, double eps, double *dd, int want,
-                                    size_t *jm) {
+ * x is above by more than eps, *dd: by how much; nt when none, *pos then set to 1 if x is above one
+ * of them (by more than 0). Each distance is n[0] x[0] + n[1] x[1] + n[2] x[2] - d in that order,
+ * two planes at a time where SSE2 is there (the same bits). */
+static inline size_t hv_first_above(const double *pl, size_t nt, const double *x, double eps, double *dd, int *pos) {
     size_t j = 0;
 #ifdef __SSE2__
     __m128d x0 = _mm_set1_pd(x[0]), x1 = _mm_set1_pd(x[1]), x2 = _mm_set1_pd(x[2]), e = _mm_set1_pd(eps);
-    __m128d m = _mm_setzero_pd();
+    __m128d z = _mm_setzero_pd(), any = z;
     for (; j < nt; j += 2) {
         const double *b = pl + 4 * j;
         __m128d t = _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(b), x0), _mm_mul_pd(_mm_loadu_pd(b + 2), x1));
@@ -404,28 +461,19 @@ static inline size_t hv_first_above(const double *pl, size_t nt, const double *x
             *dd = two[!(a & 1)];
             return j + !(a & 1);
         }
-        m = _mm_max_pd(m, t);
+        any = _mm_or_pd(any, _mm_cmpgt_pd(t, z));
     }
-    if (!want) return nt;
-    double two[2];
-    _mm_storeu_pd(two, m);
-    *jm = nt;
-    if (!(two[0] > 0 || two[1] > 0)) return nt;
-#endif
-    double mx = 0;
-    size_t best = nt;
-    for (size_t k = 0; k < nt; k++) {
-        const double *b = pl + 8 * (k >> 1) + (k & 1);
-        double t = b[0] * x[0] + b[2] * x[1] + b[4] * x[2] - b[6];
-#ifndef __SSE2__
+    if (_mm_movemask_pd(any)) *pos = 1;
+#else
+    for (; j < nt; j++) {
+        double t = hv_packed_dist(pl, j, x);
         if (t > eps) {
             *dd = t;
-            return k;
+            return j;
         }
-#endif
-        if (t > mx) mx = t, best = k;
+        if (t > 0) *pos = 1;
     }
-    if (want) *jm = best;
+#endif
     return nt;
 }
 
@@ -448,10 +496,11 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
          * within eps (two cones from q then, the facets between within eps of q) */
         int fj = added && !(w->o[fi].fard > HULL_VOLUME_CLIMB_SURE * eps) ? hv_find_visible(w, q, fi, eps, NULL, NULL) : -1;
         size_t nv;
-        long r = hv_visible(w, q, fi, fj, eps, &nv);
+        int bad, inward = 0;
+        long r = hv_visible(w, p, q, fi, fj, eps, &nv, &bad, added);
         if (r < 0) return -1;
-        if (added) *added += hv_cone_volume(w, p, q, nv);
-        r = u ? hv_cone(w, p, pi, (size_t)r, eps, &u->nb, &u->nnb, &u->nbcap) : hv_cone(w, p, pi, (size_t)r, eps, NULL, NULL, NULL);
+        r = u ? hv_cone(w, p, pi, (size_t)r, bad, eps, &u->nb, &u->nnb, &u->nbcap, &inward)
+              : hv_cone(w, p, pi, (size_t)r, bad, eps, NULL, NULL, NULL, &inward);
         if (r < 0) return (int)r;
         if (u && u->nk + nv > u->kcap) {
             size_t c = 2 * (u->nk + nv);
@@ -461,11 +510,10 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
         }
         size_t nh = (size_t)r;
         int iter = w->iter, *horf = w->horf, *newf = w->newf, *visl = w->visl;
-        /* a new facet with the initial simplex's centroid above it faces inward: the visible
+        /* a new facet with the initial simplex's centroid above it faces inward (hv_cone): the visible
          * region was inconsistent (fuzz_hull_volume: a sweep's corner then counted 1.74 of volume
          * that lay inside, +15%); numerically ambiguous */
-        for (size_t k = 0; k < nh; k++)
-            if (hv_dist(&w->f[newf[k]], w->cen) > 0) return -2;
+        if (inward) return -2;
         /* a sweep's new facet must not fold over its horizon facet (that facet's third vertex above it
          * by more than HULL_VOLUME_FOLD x eps): q within eps of the horizon facet's plane and nearly on
          * the line of their edge tilts the new plane by up to eps over q's distance from that line, the
@@ -487,36 +535,59 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
                 return -2;
         }
         w->lastf = newf[0];
-        /* the new facets' planes packed, then the horizon facets' (each once, in their first order:
-         * the same first match as testing them all in order) */
-        double *pl = w->pl;
+        /* the visible facets' outside points to the first new facet they are above (the new facets'
+         * planes packed); not above a new facet, a point may still be above a horizon facet: then the
+         * first of those, each once in their first order (their planes packed when first needed) */
+        const double zero[3] = {0, 0, 0};
+        double *pl = w->pl, *ph = pl + 4 * (nh + (nh & 1));
         for (size_t k = 0; k < nh; k++) hv_pack(pl, k, w->f[newf[k]].n, w->f[newf[k]].d);
+        if (nh & 1) hv_pack(pl, nh, zero, INFINITY); /* the pair's second plane: below every point */
         int *horu = w->horu;
         size_t nu = 0;
-        for (size_t k = 0; k < nh; k++) {
-            int h = horf[k];
-            if (w->f[h].vis == -iter) continue;
-            w->f[h].vis = -iter;
-            hv_pack(pl, nh + nu, w->f[h].n, w->f[h].d);
-            horu[nu++] = h;
-        }
-        const double zero[3] = {0, 0, 0};
-        size_t nt = nh + nu;
-        if (nt & 1) hv_pack(pl, nt, zero, INFINITY); /* the pair's second plane: below every point */
-        /* the visible facets' outside points to the new facets; not above a new facet, a point may
-         * still be above a horizon facet */
+        int hpacked = 0;
         for (size_t k = 0; k < nv; k++) {
             w->alive[visl[k]] = 0;
             if (u) u->killed[u->nk++] = visl[k];
             for (int i = w->o[visl[k]].head; i >= 0;) {
                 int nx = w->next[i];
                 if (i != pi) {
+                    const double *x = p + 3 * i;
                     double dd = 0;
-                    size_t jm = nt, j = hv_first_above(pl, nt, p + 3 * i, eps, &dd, w->sweep, &jm);
-                    if (j == nt && jm < nt && w->sweep && !hv_near_add(w, p, i, jm < nh ? newf[jm] : horu[jm - nh], eps))
-                        return -1;
-                    if (j < nt) {
-                        hv_out *O = &w->o[j < nh ? newf[j] : horu[j - nh]];
+                    int pos = 0, to = -1;
+                    size_t j = hv_first_above(pl, nh, x, eps, &dd, &pos);
+                    if (j < nh)
+                        to = newf[j];
+                    else {
+                        if (!hpacked) {
+                            for (size_t t = 0; t < nh; t++) {
+                                int h = horf[t];
+                                if (w->f[h].vis == -iter) continue;
+                                w->f[h].vis = -iter;
+                                hv_pack(ph, nu, w->f[h].n, w->f[h].d);
+                                horu[nu++] = h;
+                            }
+                            if (nu & 1) hv_pack(ph, nu, zero, INFINITY);
+                            hpacked = 1;
+                        }
+                        j = hv_first_above(ph, nu, x, eps, &dd, &pos);
+                        if (j < nu)
+                            to = horu[j];
+                        else if (w->sweep && pos) { /* near the hull: the first facet x is farthest above */
+                            double mx = 0;
+                            int bf = -1;
+                            for (size_t t = 0; t < nh; t++) {
+                                double d = hv_packed_dist(pl, t, x);
+                                if (d > mx) mx = d, bf = newf[t];
+                            }
+                            for (size_t t = 0; t < nu; t++) {
+                                double d = hv_packed_dist(ph, t, x);
+                                if (d > mx) mx = d, bf = horu[t];
+                            }
+                            if (bf >= 0 && !hv_near_add(w, p, i, bf, eps)) return -1;
+                        }
+                    }
+                    if (to >= 0) {
+                        hv_out *O = &w->o[to];
                         w->next[i] = O->head;
                         O->head = i;
                         if (dd > O->fard) O->fard = dd, O->far = i;
