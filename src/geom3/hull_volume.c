@@ -261,7 +261,7 @@ static long hv_visible(acd_hull_volume_ws *w, const double *p, const double *q, 
                 return -1;
             }
             int a = G->v[k], b = G->v[k == 2 ? 0 : k + 1];
-            if (start[a] >= 0 || end[b] >= 0) bad = 1;
+            bad |= (start[a] >= 0) | (end[b] >= 0);
             start[a] = end[b] = (int)nh;
             w->hor[2 * nh] = a, w->hor[2 * nh + 1] = b, w->horf[nh] = h;
             nh++;
@@ -367,15 +367,16 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, i
         w->alive[nk] = 1;
         newf[k] = nk;
         hv_facet *H = &w->f[h];
-        for (int e = 0; e < 3; e++)
-            if (H->v[e] == b && H->v[e == 2 ? 0 : e + 1] == a) {
-                if (undo) {
-                    int *u = *undo + *nundo;
-                    u[0] = h, u[1] = e, u[2] = H->nb[e];
-                    *nundo += 3;
-                }
-                H->nb[e] = nk;
+        /* its edge (b, a): the one from b (a facet's vertices are distinct) if it goes to a */
+        int e = H->v[0] == b ? 0 : H->v[1] == b ? 1 : H->v[2] == b ? 2 : -1;
+        if (e >= 0 && H->v[e == 2 ? 0 : e + 1] == a) {
+            if (undo) {
+                int *u = *undo + *nundo;
+                u[0] = h, u[1] = e, u[2] = H->nb[e];
+                *nundo += 3;
             }
+            H->nb[e] = nk;
+        }
     }
     w->nf += nh;
     for (k = 0; k < nh; k++) start[hor[2 * k]] = end[hor[2 * k + 1]] = -1;
@@ -397,8 +398,8 @@ refused:
 
 /* A facet visible from q (farther than eps above its plane), the one q is farthest above of those
  * met: a climb from facet start (if alive) then, when it ends on a facet q is barely above, the
- * farthest of every facet; -1 when q is inside (*dmax, if not NULL: the most q is above a facet,
- * *fmax: that facet). */
+ * farthest of every facet; -1 when q is inside (*dmax, if not NULL: how far q is above the facet
+ * returned, or when inside the most it is above a facet, *fmax: that facet). */
 static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int start, double eps, double *dmax, int *fmax) {
     int cur = -1;
     double dc = -INFINITY;
@@ -418,7 +419,10 @@ static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int sta
             if (bn < 0) break;
             prev = cur, cur = bn, dc = bd;
         }
-        if (dc > HULL_VOLUME_CLIMB_SURE * eps) return cur;
+        if (dc > HULL_VOLUME_CLIMB_SURE * eps) {
+            if (dmax) *dmax = dc;
+            return cur;
+        }
     }
     for (size_t t = 0; t < w->nf; t++)
         if (w->alive[t]) {
@@ -847,11 +851,11 @@ static size_t hv_corners(const double *x, size_t nx, const double dir[3], double
     return k;
 }
 
-/* Point i of P into the outside set of facet f (which it sees), f onto the pending stack (of top
- * entries) if its set was empty, f's farthest point updated. 0 when the stack cannot grow. */
-static int hv_push_outside(acd_hull_volume_ws *w, const double *P, int i, int f, size_t *top) {
+/* Point i into the outside set of facet f (which it sees, dd above its plane: hv_dist), f onto the
+ * pending stack (of top entries) if its set was empty, f's farthest point updated. 0 when the stack
+ * cannot grow. */
+static int hv_push_outside(acd_hull_volume_ws *w, int i, int f, double dd, size_t *top) {
     hv_out *O = &w->o[f];
-    double dd = hv_dist(&w->f[f], P + 3 * (size_t)i);
     if (O->head < 0) {
         if (*top + 1 > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, *top + 1)) return 0;
         w->pend[(*top)++] = f;
@@ -894,7 +898,7 @@ static long hv_near_retest(acd_hull_volume_ws *w, const double *P, double eps, s
                 double dd = hv_dist(&w->f[t], x);
                 if (dd > bd) bd = dd, bf = (int)t;
             }
-        if (bf >= 0 && !hv_push_outside(w, P, i, bf, top)) return -1;
+        if (bf >= 0 && !hv_push_outside(w, i, bf, bd, top)) return -1;
         pushed += bf >= 0;
         if (bf < 0 || pre) w->near[keep++] = i;
         if (bf >= 0 && pre) stamp[i] = q;
@@ -1010,7 +1014,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
                     }
                     continue;
                 }
-                if (!hv_push_outside(w, P, (int)i, f, &top)) {
+                if (!hv_push_outside(w, (int)i, f, dm, &top)) {
                     st = -1;
                     goto out;
                 }
@@ -1072,7 +1076,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
                 continue;
             }
             start = f; /* the next corner is the polygon's next: near this one */
-            if (!hv_push_outside(w, P, pi, f, &top)) {
+            if (!hv_push_outside(w, pi, f, dm, &top)) {
                 st = -1;
                 goto out;
             }
