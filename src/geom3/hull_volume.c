@@ -272,6 +272,12 @@ static long hv_visible(acd_hull_volume_ws *w, const double *p, const double *q, 
     return (long)nh;
 }
 
+/* Plane j of the planes packed in pairs for hv_first_above (n[0] of both, n[1], n[2], d). */
+static inline void hv_pack(double *pl, size_t j, const double n[3], double d) {
+    double *b = pl + 8 * (j >> 1) + (j & 1);
+    b[0] = n[0], b[2] = n[1], b[4] = n[2], b[6] = d;
+}
+
 /* The cone of new facets from point pi over the nh horizon edges in w->hor / w->horf (hv_visible,
  * which found them a simple cycle unless bad; w->start / w->end reset here); undo (if not NULL)
  * records each horizon facet's neighbour changed (facet, edge, old value). In a sweep, the horizon
@@ -279,8 +285,9 @@ static long hv_visible(acd_hull_volume_ws *w, const double *p, const double *q, 
  * hv_expand's fold check). *inward: 1 when the initial simplex's centroid is above a new facet.
  * Returns nh (the new facets are the last nh, in w->newf too), -1 when out of memory, -2 when the
  * horizon is not one simple cycle or (in a sweep) a new facet is a sliver (nothing changed then).
- * The planes first (hv_add_facet's arithmetic, two facets at a time where SSE2 is there: the same
- * bits), into the facets' room before they are made. */
+ * The planes first (hv_new_facet's arithmetic, two facets at a time where SSE2 is there: the same
+ * bits), into the facets' room before they are made, and packed into w->pl (hv_pack, an odd nh
+ * padded by a plane no point is above) for hv_expand. */
 static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, int bad, double eps, int **undo,
                     size_t *nundo, size_t *undocap, int *inward) {
     int *hor = w->hor, *horf = w->horf, *newf = w->newf, *start = w->start, *end = w->end;
@@ -333,6 +340,8 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, i
             __m128d d = _mm_add_pd(_mm_add_pd(_mm_mul_pd(nx, ax), _mm_mul_pd(ny, ay)), _mm_mul_pd(nz, az));
             __m128d dc = _mm_sub_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(nx, ox), _mm_mul_pd(ny, oy)), _mm_mul_pd(nz, oz)), d);
             in |= _mm_movemask_pd(_mm_cmpgt_pd(dc, z));
+            double *b = w->pl + 4 * k;
+            _mm_storeu_pd(b, nx), _mm_storeu_pd(b + 2, ny), _mm_storeu_pd(b + 4, nz), _mm_storeu_pd(b + 6, d);
             _mm_store_pd(F0[k].n, _mm_unpacklo_pd(nx, ny));
             _mm_store_pd(F0[k].n + 2, _mm_unpacklo_pd(nz, d));
             _mm_store_pd(F0[k + 1].n, _mm_unpackhi_pd(nx, ny));
@@ -352,6 +361,11 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, i
         }
         hv_set_plane(&F0[k], n, l2, A);
         in |= hv_dist(&F0[k], cen) > 0;
+        hv_pack(w->pl, k, F0[k].n, F0[k].d);
+    }
+    if (nh & 1) {
+        const double zero[3] = {0, 0, 0};
+        hv_pack(w->pl, nh, zero, INFINITY); /* the pair's second plane: below every point */
     }
     w->nnarrow = nn;
     if (bad) goto refused;
@@ -431,12 +445,6 @@ static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int sta
         }
     if (dmax) *dmax = dc, *fmax = cur;
     return dc > eps ? cur : -1;
-}
-
-/* Plane j of the planes packed in pairs for hv_first_above (n[0] of both, n[1], n[2], d). */
-static inline void hv_pack(double *pl, size_t j, const double n[3], double d) {
-    double *b = pl + 8 * (j >> 1) + (j & 1);
-    b[0] = n[0], b[2] = n[1], b[4] = n[2], b[6] = d;
 }
 
 /* The distance of x above plane k packed in pl (hv_pack). */
@@ -539,13 +547,11 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
                 return -2;
         }
         w->lastf = newf[0];
-        /* the visible facets' outside points to the first new facet they are above (the new facets'
-         * planes packed); not above a new facet, a point may still be above a horizon facet: then the
-         * first of those, each once in their first order (their planes packed when first needed) */
+        /* the visible facets' outside points to the first new facet they are above (their planes
+         * packed by hv_cone); not above a new facet, a point may still be above a horizon facet: then
+         * the first of those, each once in their first order (their planes packed when first needed) */
         const double zero[3] = {0, 0, 0};
         double *pl = w->pl, *ph = pl + 4 * (nh + (nh & 1));
-        for (size_t k = 0; k < nh; k++) hv_pack(pl, k, w->f[newf[k]].n, w->f[newf[k]].d);
-        if (nh & 1) hv_pack(pl, nh, zero, INFINITY); /* the pair's second plane: below every point */
         int *horu = w->horu;
         size_t nu = 0;
         int hpacked = 0;
