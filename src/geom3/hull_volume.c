@@ -381,9 +381,10 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, i
         w->alive[nk] = 1;
         newf[k] = nk;
         hv_facet *H = &w->f[h];
-        /* its edge (b, a): the one from b (a facet's vertices are distinct) if it goes to a */
-        int e = H->v[0] == b ? 0 : H->v[1] == b ? 1 : H->v[2] == b ? 2 : -1;
-        if (e >= 0 && H->v[e == 2 ? 0 : e + 1] == a) {
+        /* its edge (b, a): the one from b (a facet's vertices are distinct) if it goes to a (without
+         * branches to mispredict) */
+        int e = (H->v[1] == b) | (H->v[2] == b) << 1;
+        if (H->v[e] == b && H->v[e == 2 ? 0 : e + 1] == a) {
             if (undo) {
                 int *u = *undo + *nundo;
                 u[0] = h, u[1] = e, u[2] = H->nb[e];
@@ -420,29 +421,28 @@ static int hv_find_visible(const acd_hull_volume_ws *w, const double *q, int sta
     if (start >= 0 && (size_t)start < w->nf && w->alive[start]) {
         cur = start;
         dc = hv_dist(&w->f[cur], q);
-        int prev = -1; /* the facet the climb came from: q is above it by less, never the next step */
+        /* (the facet the climb came from is never the next step: q is above it by less, so it is not
+         * skipped, which spares a branch) */
         for (size_t steps = 0; steps < w->nf; steps++) {
-            int bn = -1;
-            double bd = dc;
-            for (int k = 0; k < 3; k++) {
-                int h = w->f[cur].nb[k];
-                if (h == prev) continue;
-                double dh = hv_dist(&w->f[h], q);
-                if (dh > bd) bd = dh, bn = h;
-            }
+            const int *nb = w->f[cur].nb;
+            int h0 = nb[0], h1 = nb[1], h2 = nb[2], bn = -1;
+            double d0 = hv_dist(&w->f[h0], q), d1 = hv_dist(&w->f[h1], q), d2 = hv_dist(&w->f[h2], q), bd = dc;
+            bn = d0 > bd ? h0 : bn, bd = d0 > bd ? d0 : bd;
+            bn = d1 > bd ? h1 : bn, bd = d1 > bd ? d1 : bd;
+            bn = d2 > bd ? h2 : bn, bd = d2 > bd ? d2 : bd;
             if (bn < 0) break;
-            prev = cur, cur = bn, dc = bd;
+            cur = bn, dc = bd;
         }
         if (dc > HULL_VOLUME_CLIMB_SURE * eps) {
             if (dmax) *dmax = dc;
             return cur;
         }
     }
-    for (size_t t = 0; t < w->nf; t++)
-        if (w->alive[t]) {
-            double dd = hv_dist(&w->f[t], q);
-            if (dd > dc) dc = dd, cur = (int)t;
-        }
+    for (size_t t = 0; t < w->nf; t++) { /* (a removed facet's plane is still there: no branch on alive) */
+        double dd = hv_dist(&w->f[t], q);
+        int b = w->alive[t] && dd > dc;
+        dc = b ? dd : dc, cur = b ? (int)t : cur;
+    }
     if (dmax) *dmax = dc, *fmax = cur;
     return dc > eps ? cur : -1;
 }
@@ -608,9 +608,9 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
             w->o[visl[k]].head = -1;
         }
         if (top + 2 * nh > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 2 * nh)) return -1;
-        for (size_t k = 0; k < nh; k++) {
-            if (w->o[newf[k]].head >= 0) w->pend[top++] = newf[k];
-            if (w->o[horf[k]].head >= 0) w->pend[top++] = horf[k];
+        for (size_t k = 0; k < nh; k++) { /* (without branches to mispredict) */
+            w->pend[top] = newf[k], top += w->o[newf[k]].head >= 0;
+            w->pend[top] = horf[k], top += w->o[horf[k]].head >= 0;
         }
     }
     return 0;
