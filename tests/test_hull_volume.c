@@ -3,7 +3,8 @@
  * box-surface and grid sets, by itself (the qhull fallback hardly used), is 0 for a flat set and
  * for fewer than 4 points; a workspace reused across sets of different sizes gives the same
  * volumes as a fresh one; the sweep (acd_hull_volume_sweep) gives each query the volume of its set
- * computed alone, also on the degenerate sets fuzz_hull_volume found. */
+ * computed alone, also on the degenerate sets fuzz_hull_volume found; the volumes' bits are those of
+ * the code before its speed work (test_volume_bits). */
 #include "testutil.h"
 
 #include <math.h>
@@ -467,6 +468,79 @@ static void test_sweep_tiny_prefix(void **state) {
     assert_true(vol[4] != -3); /* was 4.0e-6, half of qhull's */
 }
 
+/* The bits of the volumes, for speed work that must keep them (docs/results/3d-speed.md "The
+ * sweep's Quickhull, same bits"): sweeps along 24 directions over a box's points, a box's faces', a
+ * thin slab's and a grid's (the planes' points from the same generator, no libm but floor and sqrt:
+ * the inputs are the same everywhere), and acd_hull_volume_fast on each query's set, folded into
+ * one FNV-1a hash of every volume's bits. The constant was taken from the code before that work
+ * (main at b451eb7); another order of a sum in the cone volume moves it. A change meant to move the
+ * volumes updates it. The arithmetic as written (no contraction into FMA), so checked on x86-64
+ * without FMA only; elsewhere the hash is printed. */
+static unsigned long long fnv_double(unsigned long long h, double v) {
+    unsigned char b[sizeof v];
+    memcpy(b, &v, sizeof v);
+    for (size_t i = 0; i < sizeof v; i++) h = (h ^ b[i]) * 1099511628211ULL;
+    return h;
+}
+
+static void test_volume_bits(void **state) {
+    (void)state;
+    enum { N = 600, NX = 40, NQ = 9 };
+    double *pts = malloc(3 * N * sizeof *pts), *xs = malloc(3 * NQ * NX * sizeof *xs), *set = malloc(3 * (N + NX) * sizeof *set);
+    assert_true(pts && xs && set);
+    unsigned long long seed = 777, h = 1469598103934665603ULL;
+    acd_hull_volume_ws w;
+    memset(&w, 0, sizeof w);
+    int computed = 0;
+    for (int round = 0; round < 24; round++) {
+        int kind = round % 4;
+        double dir[3] = {0.3 * (round % 4) - 0.4, 0.15 * (round % 5) - 0.3, 1};
+        double l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        for (int k = 0; k < 3; k++) dir[k] /= l;
+        for (size_t i = 0; i < N; i++) {
+            double *q = pts + 3 * i;
+            for (int k = 0; k < 3; k++) q[k] = 2 * lcg01(&seed) - 1;
+            if (kind == 1) q[i % 3] = q[i % 3] < 0 ? -1 : 1;
+            if (kind == 2) q[0] *= 1e-3;
+            if (kind == 3) /* a grid: many coplanar points, ties, points on edges */
+                for (int k = 0; k < 3; k++) q[k] = floor(4 * q[k]) / 4;
+        }
+        sort_along(pts, N, dir);
+        double lo = dir[0] * pts[0] + dir[1] * pts[1] + dir[2] * pts[2];
+        double hi = dir[0] * pts[3 * (N - 1)] + dir[1] * pts[3 * (N - 1) + 1] + dir[2] * pts[3 * (N - 1) + 2];
+        size_t cnt[NQ], xb[NQ], xe[NQ];
+        for (int q = 0; q < NQ; q++) {
+            double c = lo + (hi - lo) * (q + 1) / (NQ + 1);
+            size_t k = 0;
+            while (k < N && dir[0] * pts[3 * k] + dir[1] * pts[3 * k + 1] + dir[2] * pts[3 * k + 2] - c < 0) k++;
+            cnt[q] = k;
+            xb[q] = (size_t)q * NX, xe[q] = xb[q] + NX;
+            for (int j = 0; j < NX; j++) { /* a point of the box moved onto the plane along dir */
+                double *x = xs + 3 * (xb[q] + (size_t)j), y[3];
+                for (int d = 0; d < 3; d++) y[d] = 1.6 * lcg01(&seed) - 0.8;
+                double s = dir[0] * y[0] + dir[1] * y[1] + dir[2] * y[2] - c;
+                for (int d = 0; d < 3; d++) x[d] = y[d] - s * dir[d];
+            }
+        }
+        double vol[NQ];
+        assert_int_equal(acd_hull_volume_sweep(pts, N, dir, cnt, xs, xb, xe, NQ, vol, &w), 0);
+        for (int q = 0; q < NQ; q++) {
+            memcpy(set, pts, 3 * cnt[q] * sizeof *set);
+            memcpy(set + 3 * cnt[q], xs + 3 * xb[q], 3 * NX * sizeof *set);
+            double ref = acd_hull_volume_fast(set, cnt[q] + NX, &w, NULL);
+            h = fnv_double(fnv_double(h, vol[q]), ref);
+            computed += vol[q] != -3;
+        }
+    }
+    acd_hull_volume_ws_free(&w);
+    free(pts), free(xs), free(set);
+    print_message("volume bits: %d of 216 queries swept, hash %016llx\n", computed, h);
+    assert_true(computed >= 120);
+#if defined(__x86_64__) && !defined(__FMA__)
+    assert_true(h == 0x9a29039e5f8060c4ULL);
+#endif
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hull_volume),
@@ -476,6 +550,7 @@ int main(void) {
         cmocka_unit_test(test_sweep_thin_prefix),
         cmocka_unit_test(test_sweep_fold),
         cmocka_unit_test(test_sweep_tiny_prefix),
+        cmocka_unit_test(test_volume_bits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
