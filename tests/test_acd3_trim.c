@@ -292,7 +292,7 @@ static void test_trim_beyond_bitwise(void **state) {
         double top = -INFINITY;
         size_t vtop = 0;
         for (size_t v = 0; v < m.nvertices; v++) {
-            double d = acd3_trim_dot(n, m.vertices + 3 * v);
+            double d = acd_dot3(n, m.vertices + 3 * v);
             if (d > top) top = d, vtop = v;
         }
         /* levels from just below the top to well into the mesh (scaled up to reach more triangles) */
@@ -303,14 +303,14 @@ static void test_trim_beyond_bitwise(void **state) {
             size_t k = 1 + (size_t)it % (ACD3_TRIM_NDEPTHS - 2);
             double best = INFINITY;
             for (size_t v = 0; v < m.nvertices; v++) {
-                double d = acd3_trim_dot(n, m.vertices + 3 * v);
+                double d = acd_dot3(n, m.vertices + 3 * v);
                 if (d < L.off[k - 1] && d > L.off[k + 1] && fabs(d - L.off[k]) < best) best = fabs(d - L.off[k]), L.off[k] = d;
             }
             on_vertex += best < INFINITY;
         }
-        if (it % 7 == 0) L.off[0] = acd3_trim_dot(n, m.vertices + 3 * vtop); /* through the top vertex */
+        if (it % 7 == 0) L.off[0] = acd_dot3(n, m.vertices + 3 * vtop); /* through the top vertex */
         for (size_t k = 0; k < ACD3_TRIM_NDEPTHS; k++) { /* apexes as acd3/trim places them */
-            double s = acd3_trim_dot(n, centre) - L.off[k];
+            double s = acd_dot3(n, centre) - L.off[k];
             L.ax[k] = centre[0] - s * n[0], L.ay[k] = centre[1] - s * n[1], L.az[k] = centre[2] - s * n[2];
         }
         const size_t k_lo = (size_t)it % 4;
@@ -325,7 +325,7 @@ static void test_trim_beyond_bitwise(void **state) {
             const uint32_t *tr = m.triangles + 3 * t;
             const double *const p[3] = {m.vertices + 3 * (size_t)tr[0], m.vertices + 3 * (size_t)tr[1],
                                         m.vertices + 3 * (size_t)tr[2]};
-            const double d[3] = {acd3_trim_dot(n, p[0]), acd3_trim_dot(n, p[1]), acd3_trim_dot(n, p[2])};
+            const double d[3] = {acd_dot3(n, p[0]), acd_dot3(n, p[1]), acd_dot3(n, p[2])};
             acd3_trim_tri_beyond(p, d, &L, 0, all);
             for (size_t k = 0; k < ACD3_TRIM_NDEPTHS; k++) {
                 const double apex[3] = {L.ax[k], L.ay[k], L.az[k]};

@@ -67,10 +67,8 @@ typedef struct trim_hull {
     double plane[3], off, gain, loss, ratio, depth;
 } trim_hull;
 
-static double dot3(const double *a, const double *b) { return acd3_trim_dot(a, b); }
-
 static void apex_on(const double centre[3], const double n[3], double off, double o[3]) {
-    double s = dot3(n, centre) - off; /* n unit */
+    double s = acd_dot3(n, centre) - off; /* n unit */
     for (int k = 0; k < 3; k++) o[k] = centre[k] - s * n[k];
 }
 
@@ -110,7 +108,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
             uint32_t t = adj->stack[--sp];
             const uint32_t *tr = h->t + 3 * (size_t)t;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
-            const double d[3] = {dot3(P->n, p[0]), dot3(P->n, p[1]), dot3(P->n, p[2])};
+            const double d[3] = {acd_dot3(P->n, p[0]), acd_dot3(P->n, p[1]), acd_dot3(P->n, p[2])};
             if (!(acd3_trim_top(d) > deepest)) continue;
             acd3_trim_tri_beyond(p, d, &L, 0, gain);
             for (int e = 0; e < 3; e++) {
@@ -122,7 +120,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
             }
         }
     } else if (T->vdot) { /* every triangle (the vertices' dots computed once) */
-        for (size_t v = 0; v < h->nv; v++) T->vdot[v] = dot3(P->n, h->v + 3 * v);
+        for (size_t v = 0; v < h->nv; v++) T->vdot[v] = acd_dot3(P->n, h->v + 3 * v);
         for (size_t t = 0; t < h->nt; t++) {
             const uint32_t *tr = h->t + 3 * t;
             const double d[3] = {T->vdot[tr[0]], T->vdot[tr[1]], T->vdot[tr[2]]};
@@ -134,7 +132,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
         for (size_t t = 0; t < h->nt; t++) {
             const uint32_t *tr = h->t + 3 * t;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
-            const double d[3] = {dot3(P->n, p[0]), dot3(P->n, p[1]), dot3(P->n, p[2])};
+            const double d[3] = {acd_dot3(P->n, p[0]), acd_dot3(P->n, p[1]), acd_dot3(P->n, p[2])};
             if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, &L, 0, gain);
         }
     }
@@ -210,7 +208,7 @@ static int after_cut(trim_hull *T, double min_gain) {
         double deepest = P->off0 - ACD3_TRIM_DEPTHS[NDEPTHS - 1] * T->unit;
         if (!(acd_box_max_dot(P->n, lo, hi) > deepest)) continue; /* the cap's box is below: so is the cap */
         int meets = 0;
-        for (size_t v = 0; v < T->ncorner && !meets; v++) meets = dot3(P->n, T->corner + 3 * v) > deepest;
+        for (size_t v = 0; v < T->ncorner && !meets; v++) meets = acd_dot3(P->n, T->corner + 3 * v) > deepest;
         if (meets) P->dirty = 1; /* its caps lost what they held of the removed cap: measured when needed */
     }
     if (!add_plane(T, T->plane, T->off)) return 0;
@@ -299,7 +297,7 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
     size_t nbeyond = 0;
     T->ncorner = 0;
     for (size_t v = 0; v < nv; v++) {
-        s[v] = dot3(n, h->v + 3 * v) - T->off;
+        s[v] = acd_dot3(n, h->v + 3 * v) - T->off;
         map[v] = UINT32_MAX;
         nbeyond += s[v] > 0;
         if (s[v] >= 0) memcpy(T->corner + 3 * T->ncorner++, h->v + 3 * v, 3 * sizeof(double));
@@ -356,13 +354,13 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
         e[ax] = 1;
         double un = 0;
         u[0] = n[1] * e[2] - n[2] * e[1], u[1] = n[2] * e[0] - n[0] * e[2], u[2] = n[0] * e[1] - n[1] * e[0];
-        un = sqrt(dot3(u, u));
+        un = sqrt(acd_dot3(u, u));
         for (int q = 0; q < 3; q++) u[q] /= un;
         w[0] = n[1] * u[2] - n[2] * u[1], w[1] = n[2] * u[0] - n[0] * u[2], w[2] = n[0] * u[1] - n[1] * u[0];
         for (size_t i = 0; i < nsec; i++) {
             const double *p = out.v + 3 * (size_t)sec[i].v;
             double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-            sec[i].ang = atan2(dot3(d, w), dot3(d, u));
+            sec[i].ang = atan2(acd_dot3(d, w), acd_dot3(d, u));
         }
         qsort(sec, nsec, sizeof *sec, sect_cmp);
         const double pl[4] = {n[0], n[1], n[2], -T->off};

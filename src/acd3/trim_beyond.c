@@ -73,7 +73,7 @@ void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd
         for (uint32_t q = 0; q < nd->count; q++) {
             const double *c = R->corner + 9 * ((size_t)nd->first + q);
             const double *const p[3] = {c, c + 3, c + 6};
-            const double d[3] = {acd3_trim_dot(n, p[0]), acd3_trim_dot(n, p[1]), acd3_trim_dot(n, p[2])};
+            const double d[3] = {acd_dot3(n, p[0]), acd_dot3(n, p[1]), acd_dot3(n, p[2])};
             if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, L, k_lo, acc);
         }
         i++;

@@ -17,6 +17,7 @@
 
 #include "acd/base.h"
 #include "geom3/bvh.h"
+#include "geom3/vec3.h"
 
 #define ACD3_TRIM_NDEPTHS 6
 
@@ -26,11 +27,6 @@ typedef struct acd3_trim_levels {
     double off[ACD3_TRIM_NDEPTHS];
     double ax[ACD3_TRIM_NDEPTHS], ay[ACD3_TRIM_NDEPTHS], az[ACD3_TRIM_NDEPTHS];
 } acd3_trim_levels;
-
-/* n.x as acd_geom3_triangle_volume_beyond rounds it (before subtracting the offset) */
-static inline double acd3_trim_dot(const double n[3], const double p[3]) {
-    return n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
-}
 
 /* The largest and the smallest of a triangle's corners' n.x (as fmax and fmin for the finite values
  * they are given, but without their calls: only compared) */
@@ -45,7 +41,8 @@ static inline double acd3_trim_bot(const double d[3]) {
 }
 
 /* The volumes beyond the levels k >= k_lo of the triangle (p[0], p[1], p[2]), whose corners' dots
- * with n are d[0..2] (acd3_trim_dot), added to v[k]. Each term is the arithmetic of
+ * with n are d[0..2] (acd_dot3(n, p), as acd_geom3_triangle_volume_beyond rounds n.x before
+ * subtracting the offset), added to v[k]. Each term is the arithmetic of
  * acd_geom3_triangle_volume_beyond operation for operation (its n.x - off is d - off); a level
  * above the triangle (and every shallower one) is skipped, its term 0 (adding 0 to a sum that
  * starts at +0 changes nothing: such a sum is never -0); at the levels below the triangle (the
