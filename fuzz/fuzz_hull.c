@@ -21,6 +21,7 @@
 #include "geom3/bvh.h"
 #include "geom3/edge_map.h"
 #include "geom3/plane_cut.h"
+#include "geom3/volume.h"
 #include "hull_winding.h" /* tests/support */
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

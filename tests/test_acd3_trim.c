@@ -22,6 +22,7 @@
 #include "acd3/trim_beyond.h"
 #include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
+#include "geom3/volume.h"
 #include "shapes.h"
 
 static void cube(acd_mesh *m) {

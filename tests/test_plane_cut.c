@@ -12,6 +12,7 @@
 #include "core/rng.h"
 #include "geom3/edge_map.h"
 #include "geom3/plane_cut.h"
+#include "geom3/volume.h"
 
 static double norm3s(const double *v) {
     double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));

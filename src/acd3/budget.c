@@ -13,6 +13,7 @@
 #include "geom3/hull_volume.h"
 #include "geom3/pca.h"
 #include "geom3/plane_cut.h"
+#include "geom3/volume.h"
 
 /* A cut leaving a piece below this fraction of the part's volume is refused (a sliver), as in the
  * decomposition's own splits. */

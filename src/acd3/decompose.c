@@ -38,6 +38,7 @@
 #include "geom3/edge_map.h"
 #include "geom3/hull_simplify.h"
 #include "geom3/plane_cut.h"
+#include "geom3/volume.h"
 #include "geom3/sphere.h"
 
 /* A piece whose volume is below this fraction of its parent's is a sliver: the cut that made it

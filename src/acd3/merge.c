@@ -14,6 +14,7 @@
 #include "acd3/volume_plane.h"
 #include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
+#include "geom3/volume.h"
 #include "geom3/vec3.h"
 
 /* Closest-point queries allowed when scoring one pair; a pair needing more is refused. */

@@ -3,7 +3,7 @@
  *
  * A candidate is a plane n.x = off moved inward by ACD3_TRIM_NDEPTHS depths: levels off[k]
  * (decreasing) with cone apexes on each. The volume of a closed, outward mesh beyond level k is the
- * sum over its triangles of acd_geom3_triangle_volume_beyond (geom3/plane_cut.c); here each
+ * sum over its triangles of acd_geom3_triangle_volume_beyond (geom3/volume.c); here each
  * triangle's dots with n are computed once for all levels, and the part's triangles are read from a
  * copy of its BVH laid out in the order of its half-space query. The sums are bitwise those of
  * calling acd_geom3_triangle_volume_beyond per level in the query's order (the trimmed hulls depend

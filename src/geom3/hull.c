@@ -51,11 +51,6 @@ static void sub3(const double *a, const double *b, double *r) {
     r[1] = a[1] - b[1];
     r[2] = a[2] - b[2];
 }
-static void cross3(const double *a, const double *b, double *r) {
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
-}
 static double norm3(const double *a) { return sqrt(acd_dot3(a, a)); }
 
 void acd_hull_free(acd_hull *h) {
@@ -209,7 +204,7 @@ static acd_status hull_planar(const double *points, const double *w, size_t n, c
         double e1[3], e2[3], cr[3];
         sub3(b, a, e1);
         sub3(c, a, e2);
-        cross3(e1, e2, cr);
+        acd_cross3(e1, e2, cr);
         area += 0.5 * norm3(cr);
     }
     out->area = area * s * s;
@@ -296,7 +291,7 @@ static int outward_flip(qhT *qh, const double *w) {
         double e1[3], e2[3], cr[3];
         sub3(pv[1], pv[0], e1);
         sub3(pv[2], pv[0], e2);
-        cross3(e1, e2, cr);
+        acd_cross3(e1, e2, cr);
         double dt = acd_dot3(cr, facet->normal);
         if (fabs(dt) > bestdot) {
             bestdot = fabs(dt);
@@ -409,7 +404,7 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
         double e1[3], e2[3], cr[3];
         sub3(b, a, e1);
         sub3(c, a, e2);
-        cross3(e1, e2, cr);
+        acd_cross3(e1, e2, cr);
         area += 0.5 * norm3(cr);
         t++;
     }
@@ -505,7 +500,7 @@ static void encl_slab(const double *w, const uint32_t *idx, encl_node *nd) {
         const double *q = w + 3 * (size_t)idx[i];
         double d[3], cr[3];
         sub3(q, p0, d);
-        cross3(u, d, cr);
+        acd_cross3(u, d, cr);
         double v = acd_dot3(cr, cr);
         if (v > best) best = v, memcpy(nd->m, cr, sizeof cr);
     }
@@ -615,12 +610,12 @@ static int hull_plane_trusted(const double *nrm, const double *a, const double *
     sub3(b, a, e1);
     sub3(c, a, e2);
     sub3(c, b, e3);
-    cross3(e1, e2, cr);
+    acd_cross3(e1, e2, cr);
     double area2 = norm3(cr), lmax = fmax(norm3(e1), fmax(norm3(e2), norm3(e3)));
     if (!(area2 > 0) || acd_dot3(nrm, cr) <= 0) return 0;
     double h = area2 / lmax; /* the least altitude */
     for (int k = 0; k < 3; k++) cr[k] /= area2;
-    cross3(nrm, cr, x);
+    acd_cross3(nrm, cr, x);
     double angle = norm3(x) + HULL_ENCLOSE_ROUNDOFF * DBL_EPSILON * lmax / h;
     return diag * angle <= HULL_ENCLOSE_TRUST_SHARE * tol;
 }
@@ -839,7 +834,7 @@ static void rep_plane(rep_mesh *M, size_t t, const double *points, const double 
     if (!tri_plane(a, b, c, nrm, &dw, &angle)) { /* too thin for tri_plane: the plain cross product */
         sub3(b, a, e1);
         sub3(c, a, e2);
-        cross3(e1, e2, nrm);
+        acd_cross3(e1, e2, nrm);
         double len = norm3(nrm);
         if (len > 0) /* (exactly it is not 0: p strictly above a triangle with a, b) */
             for (int k = 0; k < 3; k++) nrm[k] /= len;
@@ -954,7 +949,7 @@ static int rep_simplex(rep_mesh *M, const acd_hull *out, const double *w) {
     for (size_t k = 0; k < out->nvertices; k++) {
         double d[3], cr[3];
         sub3(w + 3 * (size_t)src[k], p0, d);
-        cross3(u, d, cr);
+        acd_cross3(u, d, cr);
         if (acd_dot3(cr, cr) > best) best = acd_dot3(cr, cr), v[2] = src[k];
     }
     best = 0;
@@ -1069,7 +1064,7 @@ static acd_status hull_repair(acd_hull *out, const double *points, const double 
             double e1[3], e2[3], cr[3];
             sub3(b, a, e1);
             sub3(c, a, e2);
-            cross3(e1, e2, cr);
+            acd_cross3(e1, e2, cr);
             area += 0.5 * norm3(cr);
         }
         h.volume = vol > 0 ? vol * s * s * s : 0.0;
@@ -1316,7 +1311,7 @@ static acd_status hull_compute(const double *points, size_t n, acd_hull *out, do
     for (size_t i = 0; i < n; i++) {
         double d[3], cr[3];
         sub3(w + 3 * i, w + 3 * ia, d);
-        cross3(u, d, cr);
+        acd_cross3(u, d, cr);
         double v = norm3(cr);
         if (v > best) best = v, ic = i;
     }
@@ -1347,7 +1342,7 @@ static acd_status hull_compute(const double *points, size_t n, acd_hull *out, do
     double e1[3], e2[3], nrm[3];
     sub3(w + 3 * ib, w + 3 * ia, e1);
     sub3(w + 3 * ic, w + 3 * ia, e2);
-    cross3(e1, e2, nrm);
+    acd_cross3(e1, e2, nrm);
     double nlen = norm3(nrm);
     for (int k = 0; k < 3; k++) nrm[k] /= nlen;
     best = -1;
@@ -1418,7 +1413,7 @@ double acd_hull_plane_distance(const acd_hull *h, const double p[3]) {
         double ab[3], aq[3], cr[3];
         sub3(b, a, ab);
         sub3(q, a, aq);
-        cross3(ab, aq, cr);
+        acd_cross3(ab, aq, cr);
         if (acd_dot3(cr, pl) < 0) inside = 0;
         double de = seg_dist(p, a, b);
         if (de < edge) edge = de;

@@ -29,14 +29,11 @@
 #include "geom2/triangulate.h"
 #include "geom3/edge_map.h"
 #include "geom3/spatial.h"
+#include "geom3/vec3.h"
+#include "geom3/volume.h"
 
 #define NONE UINT32_MAX
 
-static void cross3(const double *a, const double *b, double *r) {
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* Euclidean norm without overflow or underflow of the squares (tiny and huge models). */
 static double norm3_safe(const double *v) {
@@ -97,10 +94,10 @@ acd_status acd_cut_plane_from_normal(const double point[3], const double normal[
         if (fabs(n[k]) < fabs(n[small])) small = k;
     double e[3] = {0, 0, 0}, u[3], w[3];
     e[small] = 1;
-    cross3(n, e, u);
+    acd_cross3(n, e, u);
     double ul = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     for (int k = 0; k < 3; k++) u[k] /= ul;
-    cross3(n, u, w); /* u x w = n |u|^2: the points' orientation gives the normal's side as + */
+    acd_cross3(n, u, w); /* u x w = n |u|^2: the points' orientation gives the normal's side as + */
     double a[3], b[3], c[3];
     for (int k = 0; k < 3; k++) {
         a[k] = point[k];
@@ -130,111 +127,6 @@ int acd_cut_plane_side(const acd_cut_plane *pl, const double v[3]) {
     }
     /* orient3d > 0 when v is below the plane of a, b, c (counterclockwise seen from above) */
     return -acd_orient3d_sign(a, b, c, w);
-}
-
-/* the centre of m's bounding box (m has vertices) */
-static void box_centre(const acd_mesh *m, double o[3]) {
-    double lo[3], hi[3];
-    for (size_t v = 0; v < m->nvertices; v++)
-        for (int k = 0; k < 3; k++) {
-            double x = m->vertices[3 * v + k];
-            if (v == 0 || x < lo[k]) lo[k] = x;
-            if (v == 0 || x > hi[k]) hi[k] = x;
-        }
-    for (int k = 0; k < 3; k++) o[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
-}
-
-double acd_geom3_signed_volume(const acd_mesh *m) {
-    if (m->nvertices == 0) return 0;
-    double o[3];
-    box_centre(m, o);
-    double vol = 0;
-    for (size_t t = 0; t < m->ntriangles; t++) {
-        const double *p[3];
-        for (int i = 0; i < 3; i++) p[i] = m->vertices + 3 * (size_t)m->triangles[3 * t + i];
-        double a[3], b[3], c[3], bc[3];
-        for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], c[k] = p[2][k] - o[k];
-        cross3(b, c, bc);
-        vol += a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
-    }
-    return vol / 6.0;
-}
-
-double acd_geom3_triangle_volume_beyond(const double a[3], const double b[3], const double c[3], const double n[3],
-                                        double off, const double apex[3]) {
-    const double *p[3] = {a, b, c};
-    double s[3], poly[4][3];
-    int nbeyond = 0, np = 0;
-    for (int k = 0; k < 3; k++) {
-        s[k] = n[0] * p[k][0] + n[1] * p[k][1] + n[2] * p[k][2] - off;
-        nbeyond += s[k] > 0;
-    }
-    if (nbeyond == 0) return 0;
-    /* the triangle clipped to s > 0 (Sutherland-Hodgman: at most 4 corners) */
-    for (int k = 0; k < 3; k++) {
-        int j = k == 2 ? 0 : k + 1;
-        if (s[k] > 0)
-            for (int q = 0; q < 3; q++) poly[np][q] = p[k][q] - apex[q];
-        np += s[k] > 0;
-        if ((s[k] > 0) != (s[j] > 0)) {
-            double t = s[k] / (s[k] - s[j]);
-            for (int q = 0; q < 3; q++) poly[np][q] = p[k][q] + t * (p[j][q] - p[k][q]) - apex[q];
-            np++;
-        }
-    }
-    double v = 0;
-    for (int k = 1; k + 1 < np; k++) {
-        double bc[3];
-        cross3(poly[k], poly[k + 1], bc);
-        v += poly[0][0] * bc[0] + poly[0][1] * bc[1] + poly[0][2] * bc[2];
-    }
-    return v / 6.0;
-}
-
-double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
-    if (!m || m->nvertices == 0 || m->ntriangles == 0) return 0;
-    double nn = plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2];
-    if (!(nn > 0) || !isfinite(nn) || !isfinite(plane[3])) return NAN;
-    /* the apex: the bounding-box centre projected onto the plane (near the mesh, for rounding) */
-    double o[3];
-    box_centre(m, o);
-    double s = (plane[0] * o[0] + plane[1] * o[1] + plane[2] * o[2] + plane[3]) / nn;
-    for (int k = 0; k < 3; k++) o[k] -= s * plane[k];
-    double vol = 0;
-    for (size_t t = 0; t < m->ntriangles; t++) {
-        const uint32_t *tr = m->triangles + 3 * t;
-        vol += acd_geom3_triangle_volume_beyond(m->vertices + 3 * (size_t)tr[0], m->vertices + 3 * (size_t)tr[1],
-                                                m->vertices + 3 * (size_t)tr[2], plane, -plane[3], o);
-    }
-    return vol;
-}
-
-double acd_hull_volume_outside_bound(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale) {
-    if (h->dim != 3 || m->nvertices == 0) return 0;
-    double *seen = NULL, sum = 0;
-    size_t nseen = 0;
-    for (size_t f = 0; f < h->ntriangles; f++) {
-        const double *q = h->planes + 4 * f;
-        double w = -INFINITY;
-        for (size_t k = 0; k < m->nvertices; k++) {
-            const double *v = m->vertices + 3 * k;
-            w = fmax(w, q[0] * v[0] + q[1] * v[1] + q[2] * v[2] + q[3]);
-        }
-        if (!(w > tol)) continue;
-        int dup = 0;
-        for (size_t j = 0; j < nseen && !dup; j++)
-            dup = fabs(seen[4 * j] - q[0]) <= 1e-9 && fabs(seen[4 * j + 1] - q[1]) <= 1e-9 &&
-                  fabs(seen[4 * j + 2] - q[2]) <= 1e-9 && fabs(seen[4 * j + 3] - q[3]) <= 1e-9 * tol_scale;
-        if (dup) continue;
-        if (!seen) {
-            seen = malloc(4 * h->ntriangles * sizeof *seen);
-            if (!seen) return NAN;
-        }
-        memcpy(seen + 4 * nseen++, q, 4 * sizeof *seen);
-        sum += fmax(0.0, acd_mesh_volume_beyond(m, q));
-    }
-    free(seen);
-    return sum;
 }
 
 acd_status acd_cut_result_check_closed(const acd_cut_result *r) {
@@ -585,7 +477,7 @@ static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
             const double *pa = c->V + 3 * (size_t)a, *pb = c->V + 3 * (size_t)b, *pd = c->V + 3 * (size_t)d;
             double e1[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]}, e2[3] = {pd[0] - pa[0], pd[1] - pa[1], pd[2] - pa[2]};
             double cr[3];
-            cross3(e1, e2, cr);
+            acd_cross3(e1, e2, cr);
             res->section_area += 0.5 * norm3_safe(cr);
             st = push_tri(c, a, b, d, -1, 1); /* - side: outward along +normal */
             if (st == ACD_OK) st = push_tri(c, a, d, b, +1, 1);
@@ -655,13 +547,13 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         for (int i = 0; i < 3; i++) p[i] = c->V + 3 * (size_t)c->T[3 * t + i];
         double a[3], b[3], d[3], bd[3];
         for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], d[k] = p[2][k] - o[k];
-        cross3(b, d, bd);
+        acd_cross3(b, d, bd);
         double tv = (a[0] * bd[0] + a[1] * bd[1] + a[2] * bd[2]) / 6.0;
         uint32_t r = acd_uf_find(parent, (uint32_t)t);
         vol[r] += tv;
         double e1[3], e2[3], nn[3];
         for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
-        cross3(e1, e2, nn);
+        acd_cross3(e1, e2, nn);
         double big = fmax(fabs(nn[0]), fmax(fabs(nn[1]), fabs(nn[2]))); /* no overflow in the squares */
         if (big > 0) area[r] += 0.5 * big * sqrt((nn[0] / big) * (nn[0] / big) + (nn[1] / big) * (nn[1] / big) +
                                                  (nn[2] / big) * (nn[2] / big));

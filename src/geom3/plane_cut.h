@@ -78,14 +78,4 @@ void acd_cut_result_free(acd_cut_result *r);
  * a triangle repeating a vertex, or on a pinched part an edge used twice in one direction. */
 acd_status acd_cut_result_check_closed(const acd_cut_result *r);
 
-/* Signed volume of a closed mesh (divergence theorem about the bounding-box centre). */
-double acd_geom3_signed_volume(const acd_mesh *m);
-
-/* The part of triangle (a, b, c) where n.x > off, coned to apex (a point on the plane n.x = off):
- * the signed volume of that cone. Summed over the triangles of a closed, outward mesh, it is the
- * volume of the solid beyond the plane (the section, in the plane, adds nothing). n need not be
- * unit. Triangles entirely at or below the plane give 0. */
-double acd_geom3_triangle_volume_beyond(const double a[3], const double b[3], const double c[3], const double n[3],
-                                        double off, const double apex[3]);
-
 #endif

@@ -8,6 +8,13 @@
 /* The dot product a.b, summed in the order x, y, z. */
 static inline double acd_dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+/* The cross product a x b into r (r must not alias a or b). */
+static inline void acd_cross3(const double a[3], const double b[3], double r[3]) {
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 /* Euclidean distance between points a and b. */
 static inline double acd_dist3(const double a[3], const double b[3]) {
     double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];

@@ -1,0 +1,115 @@
+/* geom3/volume: volumes of closed triangle meshes; see volume.h. */
+#include "geom3/volume.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "acd/hull.h"
+#include "acd/mesh.h"
+#include "geom3/vec3.h"
+
+/* the centre of m's bounding box (m has vertices) */
+static void box_centre(const acd_mesh *m, double o[3]) {
+    double lo[3], hi[3];
+    for (size_t v = 0; v < m->nvertices; v++)
+        for (int k = 0; k < 3; k++) {
+            double x = m->vertices[3 * v + k];
+            if (v == 0 || x < lo[k]) lo[k] = x;
+            if (v == 0 || x > hi[k]) hi[k] = x;
+        }
+    for (int k = 0; k < 3; k++) o[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
+}
+
+double acd_geom3_signed_volume(const acd_mesh *m) {
+    if (m->nvertices == 0) return 0;
+    double o[3];
+    box_centre(m, o);
+    double vol = 0;
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        const double *p[3];
+        for (int i = 0; i < 3; i++) p[i] = m->vertices + 3 * (size_t)m->triangles[3 * t + i];
+        double a[3], b[3], c[3], bc[3];
+        for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], c[k] = p[2][k] - o[k];
+        acd_cross3(b, c, bc);
+        vol += a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
+    }
+    return vol / 6.0;
+}
+
+double acd_geom3_triangle_volume_beyond(const double a[3], const double b[3], const double c[3], const double n[3],
+                                        double off, const double apex[3]) {
+    const double *p[3] = {a, b, c};
+    double s[3], poly[4][3];
+    int nbeyond = 0, np = 0;
+    for (int k = 0; k < 3; k++) {
+        s[k] = n[0] * p[k][0] + n[1] * p[k][1] + n[2] * p[k][2] - off;
+        nbeyond += s[k] > 0;
+    }
+    if (nbeyond == 0) return 0;
+    /* the triangle clipped to s > 0 (Sutherland-Hodgman: at most 4 corners) */
+    for (int k = 0; k < 3; k++) {
+        int j = k == 2 ? 0 : k + 1;
+        if (s[k] > 0)
+            for (int q = 0; q < 3; q++) poly[np][q] = p[k][q] - apex[q];
+        np += s[k] > 0;
+        if ((s[k] > 0) != (s[j] > 0)) {
+            double t = s[k] / (s[k] - s[j]);
+            for (int q = 0; q < 3; q++) poly[np][q] = p[k][q] + t * (p[j][q] - p[k][q]) - apex[q];
+            np++;
+        }
+    }
+    double v = 0;
+    for (int k = 1; k + 1 < np; k++) {
+        double bc[3];
+        acd_cross3(poly[k], poly[k + 1], bc);
+        v += poly[0][0] * bc[0] + poly[0][1] * bc[1] + poly[0][2] * bc[2];
+    }
+    return v / 6.0;
+}
+
+double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
+    if (!m || m->nvertices == 0 || m->ntriangles == 0) return 0;
+    double nn = plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2];
+    if (!(nn > 0) || !isfinite(nn) || !isfinite(plane[3])) return NAN;
+    /* the apex: the bounding-box centre projected onto the plane (near the mesh, for rounding) */
+    double o[3];
+    box_centre(m, o);
+    double s = (plane[0] * o[0] + plane[1] * o[1] + plane[2] * o[2] + plane[3]) / nn;
+    for (int k = 0; k < 3; k++) o[k] -= s * plane[k];
+    double vol = 0;
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        const uint32_t *tr = m->triangles + 3 * t;
+        vol += acd_geom3_triangle_volume_beyond(m->vertices + 3 * (size_t)tr[0], m->vertices + 3 * (size_t)tr[1],
+                                                m->vertices + 3 * (size_t)tr[2], plane, -plane[3], o);
+    }
+    return vol;
+}
+
+double acd_hull_volume_outside_bound(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale) {
+    if (h->dim != 3 || m->nvertices == 0) return 0;
+    double *seen = NULL, sum = 0;
+    size_t nseen = 0;
+    for (size_t f = 0; f < h->ntriangles; f++) {
+        const double *q = h->planes + 4 * f;
+        double w = -INFINITY;
+        for (size_t k = 0; k < m->nvertices; k++) {
+            const double *v = m->vertices + 3 * k;
+            w = fmax(w, q[0] * v[0] + q[1] * v[1] + q[2] * v[2] + q[3]);
+        }
+        if (!(w > tol)) continue;
+        int dup = 0;
+        for (size_t j = 0; j < nseen && !dup; j++)
+            dup = fabs(seen[4 * j] - q[0]) <= 1e-9 && fabs(seen[4 * j + 1] - q[1]) <= 1e-9 &&
+                  fabs(seen[4 * j + 2] - q[2]) <= 1e-9 && fabs(seen[4 * j + 3] - q[3]) <= 1e-9 * tol_scale;
+        if (dup) continue;
+        if (!seen) {
+            seen = malloc(4 * h->ntriangles * sizeof *seen);
+            if (!seen) return NAN;
+        }
+        memcpy(seen + 4 * nseen++, q, 4 * sizeof *seen);
+        sum += fmax(0.0, acd_mesh_volume_beyond(m, q));
+    }
+    free(seen);
+    return sum;
+}
