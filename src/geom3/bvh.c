@@ -523,7 +523,6 @@ void acd_bvh_free(acd_bvh *bvh) {
 
 /* ---- closest point ---- */
 
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static void sub3(double r[3], const double a[3], const double b[3]) {
     r[0] = a[0] - b[0];
     r[1] = a[1] - b[1];
@@ -532,16 +531,16 @@ static void sub3(double r[3], const double a[3], const double b[3]) {
 static double dist2(const double a[3], const double b[3]) {
     double d[3];
     sub3(d, a, b);
-    return dot3(d, d);
+    return acd_dot3(d, d);
 }
 
 static double closest_segment(const double p[3], const double a[3], const double b[3], double q[3]) {
     double ab[3], ap[3];
     sub3(ab, b, a);
     sub3(ap, p, a);
-    double l2 = dot3(ab, ab), t = 0;
+    double l2 = acd_dot3(ab, ab), t = 0;
     if (l2 > 0) {
-        t = dot3(ap, ab) / l2;
+        t = acd_dot3(ap, ab) / l2;
         if (t < 0) t = 0;
         if (t > 1) t = 1;
     }
@@ -555,13 +554,13 @@ double acd_closest_point_triangle(const double p[3], const double a[3], const do
     sub3(ab, b, a);
     sub3(ac, c, a);
     sub3(ap, p, a);
-    double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+    double d1 = acd_dot3(ab, ap), d2 = acd_dot3(ac, ap);
     if (d1 <= 0 && d2 <= 0) {
         memcpy(q, a, 3 * sizeof(double));
         return dist2(p, q);
     }
     sub3(bp, p, b);
-    double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    double d3 = acd_dot3(ab, bp), d4 = acd_dot3(ac, bp);
     if (d3 >= 0 && d4 <= d3) {
         memcpy(q, b, 3 * sizeof(double));
         return dist2(p, q);
@@ -573,7 +572,7 @@ double acd_closest_point_triangle(const double p[3], const double a[3], const do
         return dist2(p, q);
     }
     sub3(cp, p, c);
-    double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    double d5 = acd_dot3(ab, cp), d6 = acd_dot3(ac, cp);
     if (d6 >= 0 && d5 <= d6) {
         memcpy(q, c, 3 * sizeof(double));
         return dist2(p, q);
@@ -734,18 +733,18 @@ int acd_bvh_raycast(const acd_bvh *bvh, const double o[3], const double d[3], do
                 pv[0] = d[1] * e2[2] - d[2] * e2[1];
                 pv[1] = d[2] * e2[0] - d[0] * e2[2];
                 pv[2] = d[0] * e2[1] - d[1] * e2[0];
-                double det = dot3(e1, pv);
+                double det = acd_dot3(e1, pv);
                 if (det == 0) continue;
                 double id = 1.0 / det;
                 sub3(s, o, a);
-                double u = dot3(s, pv) * id;
+                double u = acd_dot3(s, pv) * id;
                 if (u < 0 || u > 1) continue;
                 qv[0] = s[1] * e1[2] - s[2] * e1[1];
                 qv[1] = s[2] * e1[0] - s[0] * e1[2];
                 qv[2] = s[0] * e1[1] - s[1] * e1[0];
-                double v = dot3(d, qv) * id;
+                double v = acd_dot3(d, qv) * id;
                 if (v < 0 || u + v > 1) continue;
-                double tt = dot3(e2, qv) * id;
+                double tt = acd_dot3(e2, qv) * id;
                 if (tt < 0 || tt > best) continue;
                 if (!hit || tt < best || (tt == best && t < *triangle)) {
                     best = tt;
