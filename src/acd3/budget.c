@@ -151,6 +151,8 @@ typedef struct plan {
     size_t ne;
     double lo[BUDGET_MAX_DIRS], st[BUDGET_MAX_DIRS], bs[BUDGET_MAX_DIRS], bc[BUDGET_MAX_DIRS];
     int ord[BUDGET_MAX_DIRS];
+    uint32_t *sord; /* per direction, the sample's order along it (nsv; score_dir's, for the
+                     * refinement; owned), or NULL */
 } plan;
 
 size_t acd3_budget_hull_candidates(const acd_mesh *m, unsigned char *flag) {
@@ -200,8 +202,10 @@ size_t acd3_budget_hull_candidates(const acd_mesh *m, unsigned char *flag) {
 static void plan_free(plan *P) {
     free(P->sv);
     free(P->edges);
+    free(P->sord);
     P->sv = NULL;
     P->edges = NULL;
+    P->sord = NULL;
 }
 
 /* The sampled vertices: every k-th of the hull candidates, at most BUDGET_MAX_SCORED (every k-th
@@ -241,6 +245,7 @@ static void plan_init(const acd_mesh *m, int ndir, plan *P) {
     P->nd = 0;
     P->sv = NULL;
     P->edges = NULL;
+    P->sord = NULL;
     if (m->nvertices < 4) return;
     acd_pca pca;
     if (acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return;
@@ -280,6 +285,7 @@ static void plan_init(const acd_mesh *m, int ndir, plan *P) {
         P->nomem = 1;
         return;
     }
+    if (P->nsv <= UINT32_MAX) P->sord = malloc(((size_t)nd * P->nsv + 1) * sizeof *P->sord); /* NULL: sorted again */
     P->ne = 0;
     for (size_t t = 0; t < m->ntriangles; t++)
         for (int e = 0; e < 3; e++) {
@@ -511,65 +517,103 @@ static double side_volume(const acd_mesh *m, const plan *P, const double *dv, do
     return acd_hull_volume_fast(buf, n + nx, w, NULL);
 }
 
-/* Direction d's sampled side hull volumes at the nq increasing offsets cs (which: 1 the side below,
- * 2 above, 3 both) by one sweep per side (acd_hull_volume_sweep: the sampled vertices sorted along
- * d, the hull grown offset by offset, each plane's section hull added and undone); an offset a sweep
- * leaves computed on its own (side_volume). Touches only vb, va; 0 when out of memory. */
-static int sweep_dir(const acd_mesh *m, const plan *P, int d, const double *cs, int nq, int which, double *vb, double *va) {
+/* A direction's offsets prepared for its sweeps (dir_prep): the sample's projections, the
+ * sections' hull points and the sample sorted along the direction. Read only by the sweeps (the two
+ * sides of a refined direction are parallel tasks over one of these). */
+typedef struct dir_data {
+    int d, nq;
+    const double *cs;  /* the nq increasing offsets */
+    double *dv;        /* the sampled vertices' projections (P->nsv) */
+    double *xs;        /* the sections' points (section_crossings) */
+    size_t xb[BUDGET_MAX_QUERIES], xe[BUDGET_MAX_QUERIES], mx; /* mx: the most points of a section */
+    double *srt;       /* the sample sorted along d (3 each) */
+    size_t cntb[BUDGET_MAX_QUERIES]; /* the sampled vertices below offset i: a prefix of srt */
+} dir_data;
+
+static void dir_free(dir_data *D) {
+    free(D->dv), free(D->xs), free(D->srt);
+    D->dv = D->xs = D->srt = NULL;
+}
+
+/* Direction d at the nq increasing offsets cs prepared (touches only D, and P->sord's row d when
+ * sorted is 0: the sample's order along d kept for the refinement, which reads it when sorted is 1);
+ * 0 when out of memory (D freed). */
+static int dir_prep(const acd_mesh *m, const plan *P, int d, const double *cs, int nq, int sorted, dir_data *D) {
     size_t nsv = P->nsv;
-    double *dall = malloc((m->nvertices + nsv + 1) * sizeof *dall), *xs = NULL;
-    size_t xb[BUDGET_MAX_QUERIES], xe[BUDGET_MAX_QUERIES];
-    if (!dall) return 0;
-    double *dv = dall + m->nvertices;
+    D->d = d, D->nq = nq, D->cs = cs;
+    D->xs = D->srt = NULL;
+    D->dv = malloc((nsv + 1) * sizeof *D->dv);
+    double *dall = malloc((m->nvertices + 1) * sizeof *dall);
+    keyed *ord = malloc(2 * (nsv + 1) * sizeof *ord);
+    D->srt = malloc(3 * (nsv + 1) * sizeof *D->srt);
+    if (!D->dv || !dall || !ord || !D->srt) {
+        free(dall), free(ord), dir_free(D);
+        return 0;
+    }
+    double *dv = D->dv;
     vertex_dots(m, P->dirs[d], dall);
     for (size_t k = 0; k < nsv; k++) dv[k] = dall[P->sv[k]];
-    if (!section_crossings(m, P->edges, P->ne, P->dirs[d], dall, cs, nq, &xs, xb, xe)) {
-        free(dall);
+    if (!section_crossings(m, P->edges, P->ne, P->dirs[d], dall, cs, nq, &D->xs, D->xb, D->xe)) {
+        free(dall), free(ord), dir_free(D);
         return 0;
     }
-    size_t mx = 0;
-    for (int i = 0; i < nq; i++) mx = xe[i] - xb[i] > mx ? xe[i] - xb[i] : mx;
-    keyed *ord = malloc(2 * (nsv + 1) * sizeof *ord);
-    double *srt = malloc(3 * (nsv + 1) * sizeof *srt), *buf = malloc(3 * (nsv + mx + 1) * sizeof *buf);
-    if (!buf || !ord || !srt) {
-        free(buf), free(ord), free(srt), free(xs), free(dall);
-        return 0;
+    free(dall);
+    D->mx = 0;
+    for (int i = 0; i < nq; i++) D->mx = D->xe[i] - D->xb[i] > D->mx ? D->xe[i] - D->xb[i] : D->mx;
+    /* the sample sorted along d (by projection, then index): side below (n.p - c < 0) a prefix,
+     * side above a suffix */
+    uint32_t *so = P->sord ? P->sord + (size_t)d * nsv : NULL;
+    if (so && sorted)
+        for (size_t k = 0; k < nsv; k++) ord[k].key = dv[so[k]], ord[k].i = so[k];
+    else {
+        for (size_t k = 0; k < nsv; k++) ord[k].key = dv[k], ord[k].i = k;
+        keyed_sort(ord, nsv, ord + nsv);
+        if (so)
+            for (size_t k = 0; k < nsv; k++) so[k] = (uint32_t)ord[k].i;
     }
+    for (size_t k = 0; k < nsv; k++) memcpy(D->srt + 3 * k, m->vertices + 3 * P->sv[ord[k].i], sizeof(double[3]));
+    size_t c = 0;
+    for (int i = 0; i < nq; i++) {
+        while (c < nsv && ord[c].key < cs[i]) c++;
+        D->cntb[i] = c;
+    }
+    free(ord);
+    return 1;
+}
+
+/* A prepared direction's sampled side hull volumes at its offsets (which: 1 the side below, 2
+ * above, 3 both) by one sweep per side (acd_hull_volume_sweep: the sampled vertices sorted along
+ * d, the hull grown offset by offset, each plane's section hull added and undone); an offset a sweep
+ * leaves computed on its own (side_volume). Touches only vb, va; 0 when out of memory. */
+static int dir_sweep(const acd_mesh *m, const plan *P, const dir_data *D, int which, double *vb, double *va) {
+    size_t nsv = P->nsv;
+    int nq = D->nq, d = D->d;
+    const double *cs = D->cs, *xs = D->xs;
+    const size_t *xb = D->xb, *xe = D->xe;
+    double *buf = malloc(3 * (nsv + D->mx + 1) * sizeof *buf), *rev = NULL;
+    if (!buf) return 0;
     acd_hull_volume_ws hw;
     memset(&hw, 0, sizeof hw);
-    /* the sample sorted along d: side below (n.p - c < 0) a prefix, side above a suffix */
-    for (size_t k = 0; k < nsv; k++) ord[k].key = dv[k], ord[k].i = k;
-    keyed_sort(ord, nsv, ord + nsv);
-    for (size_t k = 0; k < nsv; k++) memcpy(srt + 3 * k, m->vertices + 3 * P->sv[ord[k].i], sizeof(double[3]));
-    size_t cntb[BUDGET_MAX_QUERIES], cnta[BUDGET_MAX_QUERIES], xba[BUDGET_MAX_QUERIES], xea[BUDGET_MAX_QUERIES];
-    size_t c = 0;
-    for (int i = 0; i < nq; i++) { /* the sampled vertices below offset i: a prefix of the sorted sample */
-        while (c < nsv && ord[c].key < cs[i]) c++;
-        cntb[i] = c;
-        cnta[nq - 1 - i] = nsv - c;
-        xba[nq - 1 - i] = xb[i], xea[nq - 1 - i] = xe[i];
-    }
+    size_t cnta[BUDGET_MAX_QUERIES], xba[BUDGET_MAX_QUERIES], xea[BUDGET_MAX_QUERIES];
+    for (int i = 0; i < nq; i++) cnta[nq - 1 - i] = nsv - D->cntb[i], xba[nq - 1 - i] = xb[i], xea[nq - 1 - i] = xe[i];
     double vr[BUDGET_MAX_QUERIES];
     int ok = 1;
-    if (which & 1) ok = acd_hull_volume_sweep(srt, nsv, P->dirs[d], cntb, xs, xb, xe, nq, vb, &hw) == 0;
+    if (which & 1) ok = acd_hull_volume_sweep(D->srt, nsv, P->dirs[d], D->cntb, xs, xb, xe, nq, vb, &hw) == 0;
     if (ok && (which & 2)) {
-        for (size_t k = 0; k < nsv / 2; k++) { /* reversed: the side above as a prefix */
-            double t[3];
-            memcpy(t, srt + 3 * k, sizeof t);
-            memcpy(srt + 3 * k, srt + 3 * (nsv - 1 - k), sizeof t);
-            memcpy(srt + 3 * (nsv - 1 - k), t, sizeof t);
-        }
-        ok = acd_hull_volume_sweep(srt, nsv, P->dirs[d], cnta, xs, xba, xea, nq, vr, &hw) == 0;
-        for (int i = 0; i < nq; i++) va[i] = vr[nq - 1 - i];
+        rev = malloc(3 * (nsv + 1) * sizeof *rev); /* reversed: the side above as a prefix */
+        if (!rev) ok = 0;
+        for (size_t k = 0; rev && k < nsv; k++) memcpy(rev + 3 * k, D->srt + 3 * (nsv - 1 - k), sizeof(double[3]));
+        if (ok) ok = acd_hull_volume_sweep(rev, nsv, P->dirs[d], cnta, xs, xba, xea, nq, vr, &hw) == 0;
+        for (int i = 0; ok && i < nq; i++) va[i] = vr[nq - 1 - i];
     }
     for (int i = 0; ok && i < nq; i++) { /* the offsets a sweep left */
         const double *x = xs + 3 * xb[i];
         size_t nx = xe[i] - xb[i];
-        if ((which & 1) && vb[i] == -3) vb[i] = side_volume(m, P, dv, cs[i], 0, x, nx, buf, &hw);
-        if ((which & 2) && va[i] == -3) va[i] = side_volume(m, P, dv, cs[i], 1, x, nx, buf, &hw);
+        if ((which & 1) && vb[i] == -3) vb[i] = side_volume(m, P, D->dv, cs[i], 0, x, nx, buf, &hw);
+        if ((which & 2) && va[i] == -3) va[i] = side_volume(m, P, D->dv, cs[i], 1, x, nx, buf, &hw);
         if (((which & 1) && vb[i] == -1) || ((which & 2) && va[i] == -1)) ok = 0;
     }
-    free(buf), free(ord), free(srt), free(xs), free(dall);
+    free(buf), free(rev);
     acd_hull_volume_ws_free(&hw);
     return ok;
 }
@@ -579,7 +623,11 @@ static int score_dir(const acd_mesh *m, plan *P, int d) {
     if (!(P->lo[d] == P->lo[d])) return 1; /* flat along d */
     double cs[BUDGET_OFFSETS], va[BUDGET_OFFSETS], vb[BUDGET_OFFSETS];
     for (int i = 1; i <= BUDGET_OFFSETS; i++) cs[i - 1] = P->lo[d] + P->st[d] * i;
-    if (!sweep_dir(m, P, d, cs, BUDGET_OFFSETS, 3, vb, va)) return 0;
+    dir_data D;
+    if (!dir_prep(m, P, d, cs, BUDGET_OFFSETS, 0, &D)) return 0;
+    int ok = dir_sweep(m, P, &D, 3, vb, va);
+    dir_free(&D);
+    if (!ok) return 0;
     for (int i = 0; i < BUDGET_OFFSETS; i++) {
         double sc = va[i] < 0 || vb[i] < 0 ? -1 : va[i] + vb[i];
         if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = cs[i];
@@ -807,7 +855,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
         atom *A = &S->a[idx[j]];
         A->evaluated = 1;
         A->progress = 0;
-        P[j].ok = 0, P[j].nd = 0, P[j].nomem = 0, P[j].sv = NULL, P[j].edges = NULL;
+        P[j].ok = 0, P[j].nd = 0, P[j].nomem = 0, P[j].sv = NULL, P[j].edges = NULL, P[j].sord = NULL;
         if (A->st == ACD_OK) live = 1;
     }
     if (!live) {
@@ -849,18 +897,36 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
     int nro[BUDGET_BATCH * BUDGET_REFINE_DIRS];
     for (int k = 0; k < nref; k++)
         nro[k] = P[rj[k]].bs[rd[k]] < INFINITY ? refine_offsets(P[rj[k]].bc[rd[k]], P[rj[k]].st[rd[k]], roff[k]) : 0;
+    /* each refined direction prepared once (its sections and sorted sample: dir_prep), then its two
+     * sides swept */
+    dir_data RD[BUDGET_BATCH * BUDGET_REFINE_DIRS];
+    int rok[BUDGET_BATCH * BUDGET_REFINE_DIRS];
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nref > 0)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nref > 1)
 #endif
-    for (int t = 0; t < 2 * nref; t++) {
-        int k = t / 2;
-        if (nro[k] > 0 && !sweep_dir(&S->a[idx[rj[k]]].mesh, &P[rj[k]], rd[k], roff[k], nro[k], t % 2 ? 2 : 1, rvb[k], rva[k])) {
+    for (int k = 0; k < nref; k++) {
+        RD[k].dv = RD[k].xs = RD[k].srt = NULL;
+        rok[k] = nro[k] > 0 && dir_prep(&S->a[idx[rj[k]]].mesh, &P[rj[k]], rd[k], roff[k], nro[k], 1, &RD[k]);
+        if (nro[k] > 0 && !rok[k]) {
 #ifdef _OPENMP
 #pragma omp atomic write
 #endif
             fail[rj[k]] = 1;
         }
     }
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nref > 0)
+#endif
+    for (int t = 0; t < 2 * nref; t++) {
+        int k = t / 2;
+        if (rok[k] && !dir_sweep(&S->a[idx[rj[k]]].mesh, &P[rj[k]], &RD[k], t % 2 ? 2 : 1, rvb[k], rva[k])) {
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+            fail[rj[k]] = 1;
+        }
+    }
+    for (int k = 0; k < nref; k++) dir_free(&RD[k]);
     for (int k = 0; k < nref; k++) {
         plan *Q = &P[rj[k]];
         int d = rd[k];
