@@ -159,7 +159,7 @@ size_t acd3_budget_hull_candidates(const acd_mesh *m, unsigned char *flag) {
     size_t nv = m->nvertices, nt = m->ntriangles;
     /* per vertex: its normal (the sum of its triangles' area vectors) and its neighbours' sum less
      * its own position times their count (-(count) times its offset from their mean) */
-    double *acc = calloc(6 * (nv ? nv : 1), sizeof *acc);
+    double *acc = calloc(8 * (nv ? nv : 1), sizeof *acc); /* then the two lengths (8 per vertex) */
     if (!acc) return SIZE_MAX;
     for (size_t v = 0; v < nv; v++) flag[v] = 0;
     for (size_t t = 0; t < nt; t++) {
@@ -169,20 +169,24 @@ size_t acd3_budget_hull_candidates(const acd_mesh *m, unsigned char *flag) {
         for (int k = 0; k < 3; k++) u[k] = b[k] - a[k], w[k] = c[k] - a[k];
         double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
         for (int i = 0; i < 3; i++) {
-            double *A = acc + 6 * (size_t)T[i];
+            double *A = acc + 8 * (size_t)T[i];
             const double *p = m->vertices + 3 * (size_t)T[i], *q = m->vertices + 3 * (size_t)T[(i + 1) % 3],
                          *r = m->vertices + 3 * (size_t)T[(i + 2) % 3];
             for (int k = 0; k < 3; k++) A[k] += n[k], A[3 + k] += (q[k] - p[k]) + (r[k] - p[k]);
             flag[T[i]] = 3; /* bit 0: the normal separates so far, bit 1: the offset from the mean */
         }
     }
+    for (size_t v = 0; v < nv; v++) { /* the two vectors' lengths, once per vertex */
+        double *A = acc + 8 * v;
+        A[6] = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]), A[7] = sqrt(A[3] * A[3] + A[4] * A[4] + A[5] * A[5]);
+    }
     for (size_t t = 0; t < nt; t++) {
         const uint32_t *T = m->triangles + 3 * t;
         for (int i = 0; i < 3; i++) {
             size_t v = T[i];
             if (!flag[v]) continue;
-            const double *A = acc + 6 * v, *p = m->vertices + 3 * v;
-            double ln = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]), lm = sqrt(A[3] * A[3] + A[4] * A[4] + A[5] * A[5]);
+            const double *A = acc + 8 * v, *p = m->vertices + 3 * v;
+            double ln = A[6], lm = A[7];
             for (int j = 1; j < 3; j++) {
                 const double *q = m->vertices + 3 * (size_t)T[(i + j) % 3];
                 double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
