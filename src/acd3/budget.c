@@ -371,6 +371,52 @@ static int xpt_less(const xpt *a, const xpt *b) { /* by u, then v, then i (the s
 /* (qsort's callbacks were 4.5% of a bunny00 budget run) */
 BUDGET_MERGE_SORT(xpt_sort, xpt, xpt_less)
 
+/* A bucket pass before those merge sorts: NAME(a, n, tmp, cnt) sorts a[0..n) (its elements in input
+ * order, as above) through tmp (room for n) and cnt (room for n + 1) into the order SORT gives. The
+ * elements go, in order, to n buckets by (KEY - min) * n / (max - min), truncated (a non-decreasing
+ * function of KEY: equal keys share a bucket, a larger key never goes to an earlier one); each
+ * bucket is then sorted by SORT. Both steps are stable, so the result is the stable sort by LESS,
+ * SORT's own, whenever LESS orders by KEY first and is a strict weak order (no NaN: VALID); else,
+ * and for few elements or a range that does not divide, SORT alone. About 3x cheaper than the merge
+ * sort on the sample (1000 projections) and the sections' points. */
+#define BUDGET_BUCKET_SORT(NAME, TYPE, KEY, VALID, SORT)                                                        \
+    static void NAME(TYPE *a, size_t n, TYPE *tmp, size_t *cnt) {                                             \
+        double lo = INFINITY, hi = -INFINITY;                                                                 \
+        int ok = n >= 32;                                                                                     \
+        for (size_t k = 0; ok && k < n; k++) {                                                                \
+            double x = KEY(&a[k]);                                                                            \
+            if (!VALID(&a[k])) ok = 0;                                                                        \
+            if (x < lo) lo = x;                                                                               \
+            if (x > hi) hi = x;                                                                               \
+        }                                                                                                     \
+        double nb = (double)n, sc = ok && hi > lo ? nb / (hi - lo) : 0;                                       \
+        if (!(sc > 0 && sc < INFINITY)) {                                                                     \
+            SORT(a, n, tmp);                                                                                  \
+            return;                                                                                           \
+        }                                                                                                     \
+        memset(cnt, 0, (n + 1) * sizeof *cnt);                                                                \
+        for (size_t k = 0; k < n; k++) {                                                                      \
+            double t = (KEY(&a[k]) - lo) * sc;                                                                \
+            cnt[(t < nb ? (size_t)t : n - 1) + 1]++;                                                          \
+        }                                                                                                     \
+        for (size_t b = 1; b <= n; b++) cnt[b] += cnt[b - 1]; /* cnt[b]: where bucket b starts */            \
+        for (size_t k = 0; k < n; k++) {                                                                      \
+            double t = (KEY(&a[k]) - lo) * sc;                                                                \
+            tmp[cnt[t < nb ? (size_t)t : n - 1]++] = a[k];                                                    \
+        }                                                                                                     \
+        /* now cnt[b]: where bucket b ends */                                                                 \
+        for (size_t b = 0, s = 0; b < n; s = cnt[b++])                                                        \
+            if (cnt[b] - s > 1) SORT(tmp + s, cnt[b] - s, a + s);                                             \
+        memcpy(a, tmp, n * sizeof *a);                                                                        \
+    }
+
+static double keyed_key(const keyed *x) { return x->key; }
+static int keyed_valid(const keyed *x) { return x->key == x->key; }
+BUDGET_BUCKET_SORT(keyed_bucket_sort, keyed, keyed_key, keyed_valid, keyed_sort)
+static double xpt_key(const xpt *x) { return x->u; }
+static int xpt_valid(const xpt *x) { return x->u == x->u && x->v == x->v; }
+BUDGET_BUCKET_SORT(xpt_bucket_sort, xpt, xpt_key, xpt_valid, xpt_sort)
+
 /* The cosines and sines of the BUDGET_SECTION_DIRS directions of a section's plane (section_hull),
  * into cssn (2 each). */
 static void section_dirs(double *cssn) {
@@ -388,7 +434,7 @@ static void section_dirs(double *cssn) {
  * chains: 2 * n + 1); how many. Only the hull's vertices
  * can be vertices of a 3D hull holding the section, so a side's hull is the same from them as from
  * every crossing (less what the directions leave). */
-static size_t section_hull(double *pts, size_t n, const double nrm[3], const double *cssn, xpt *tmp) {
+static size_t section_hull(double *pts, size_t n, const double nrm[3], const double *cssn, xpt *tmp, size_t *cnt) {
     if (n < 4) return n;
     int k0 = fabs(nrm[0]) <= fabs(nrm[1]) && fabs(nrm[0]) <= fabs(nrm[2]) ? 0 : fabs(nrm[1]) <= fabs(nrm[2]) ? 1 : 2;
     double a[3] = {0, 0, 0}, e1[3], e2[3];
@@ -402,7 +448,7 @@ static size_t section_hull(double *pts, size_t n, const double nrm[3], const dou
         p[k].v = e2[0] * x[0] + e2[1] * x[1] + e2[2] * x[2];
         p[k].i = k;
     }
-    xpt_sort(p, n, h); /* h: free until the chains */
+    xpt_bucket_sort(p, n, h, cnt); /* h: free until the chains */
     size_t m = 0;
     for (int pass = 0; pass < 2; pass++) { /* lower chain, then upper */
         size_t base = m;
@@ -490,8 +536,9 @@ static int section_crossings(const acd_mesh *m, const uint32_t *edges, size_t ne
     for (int i = 0; i < nq; i++) xb[i] = xe[i] = tot, tot += cnt[i], mx = cnt[i] > mx ? cnt[i] : mx;
     *xs = malloc((3 * tot + 3) * sizeof **xs);
     xpt *tmp = malloc((3 * mx + 1) * sizeof *tmp);
-    if (!*xs || !tmp) {
-        free(hit), free(*xs), free(tmp);
+    size_t *bcnt = malloc((mx + 1) * sizeof *bcnt);
+    if (!*xs || !tmp || !bcnt) {
+        free(hit), free(*xs), free(tmp), free(bcnt);
         *xs = NULL;
         return 0;
     }
@@ -505,8 +552,8 @@ static int section_crossings(const acd_mesh *m, const uint32_t *edges, size_t ne
     free(hit);
     double cssn[2 * BUDGET_SECTION_DIRS];
     section_dirs(cssn);
-    for (int i = 0; i < nq; i++) xe[i] = xb[i] + section_hull(*xs + 3 * xb[i], xe[i] - xb[i], nrm, cssn, tmp);
-    free(tmp);
+    for (int i = 0; i < nq; i++) xe[i] = xb[i] + section_hull(*xs + 3 * xb[i], xe[i] - xb[i], nrm, cssn, tmp, bcnt);
+    free(tmp), free(bcnt);
     return 1;
 }
 
@@ -548,7 +595,7 @@ static int dir_prep(const acd_mesh *m, const plan *P, int d, const double *cs, i
     D->xs = D->srt = NULL;
     D->dv = malloc((nsv + 1) * sizeof *D->dv);
     double *dall = malloc((m->nvertices + 1) * sizeof *dall);
-    keyed *ord = malloc(2 * (nsv + 1) * sizeof *ord);
+    keyed *ord = malloc(2 * (nsv + 1) * sizeof *ord + (nsv + 1) * sizeof(size_t)); /* then keyed_bucket_sort's counts */
     D->srt = malloc(3 * (nsv + 1) * sizeof *D->srt);
     if (!D->dv || !dall || !ord || !D->srt) {
         free(dall), free(ord), dir_free(D);
@@ -571,7 +618,7 @@ static int dir_prep(const acd_mesh *m, const plan *P, int d, const double *cs, i
         for (size_t k = 0; k < nsv; k++) ord[k].key = dv[so[k]], ord[k].i = so[k];
     else {
         for (size_t k = 0; k < nsv; k++) ord[k].key = dv[k], ord[k].i = k;
-        keyed_sort(ord, nsv, ord + nsv);
+        keyed_bucket_sort(ord, nsv, ord + nsv, (size_t *)(ord + 2 * (nsv + 1)));
         if (so)
             for (size_t k = 0; k < nsv; k++) so[k] = (uint32_t)ord[k].i;
     }
