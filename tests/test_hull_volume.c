@@ -468,6 +468,35 @@ static void test_sweep_tiny_prefix(void **state) {
     assert_true(vol[4] != -3); /* was 4.0e-6, half of qhull's */
 }
 
+/* fuzz_hull_volume's sweep underestimate from a thin start (CI, 2026-11-26; corpus
+ * hull_volume/sweep_thin_start): ten points near 1e-42 sorted along (68, -56, 105), the first five
+ * within 8e-8 of their scale of the plane x = 1.041e-42 (about 800 of the sweep's tolerances). The
+ * sweep started its hull from them; the prefixes of 7 and 8 points came out 4e-6 and 8e-5 below
+ * qhull's volume, and a query with two section points over the 8, 2.3 times the target's tolerance.
+ * A sweep now starts only from a prefix at least HULL_VOLUME_THICK_START tolerances thick (the thinner
+ * ones are left to acd_hull_volume_fast): every query it computes is within 1e-9 of the whole set's
+ * volume of qhull's, and the last is computed. */
+static void test_sweep_thin_start(void **state) {
+    (void)state;
+    static const double pts[10][3] = {
+        {1.0410273767909543e-42, 1.0410273767909543e-42, 1.6951332360629891e-43},
+        {1.0410273767909543e-42, 1.0522377645055528e-42, 2.6025684419773857e-43},
+        {1.0410273767909543e-42, 1.0410273767961745e-42, 2.6025684419773857e-43},
+        {1.0410273767909543e-42, 2.2142021372824507e-52, 2.21420213728226e-52},
+        {1.0410272912657049e-42, 1.3980222016974409e-76, 1.5884817149624453e-47},
+        {1.0410273767909543e-42, 1.0410273767909543e-42, 1.0410273767909543e-42},
+        {1.0410273767909543e-42, 1.0410273767909543e-42, 1.0413777014070355e-42},
+        {1.0410273767909543e-42, 1.0410273767909543e-42, 1.0478587068045377e-42},
+        {1.0410276106494882e-42, 1.5707759177945867e-76, 1.0410273767909531e-42},
+        {1.0410869042724818e-42, 6.014732326702936e-67, 1.0410273767906677e-42}};
+    const double l = sqrt(68.0 * 68 + 56 * 56 + 105 * 105), dir[3] = {68 / l, -56 / l, 105 / l};
+    static const size_t cnt[5] = {5, 6, 7, 8, 10}, xb[5] = {0}, xe[5] = {0};
+    double vol[5], ref;
+    assert_int_equal(acd_hull_volume(&pts[0][0], 10, &ref, NULL), ACD_OK);
+    assert_true(sweep_matches_qhull(&pts[0][0], 10, dir, cnt, NULL, xb, xe, 5, 1e-9 * ref, vol));
+    assert_true(vol[4] != -3);
+}
+
 /* The bits of the volumes, for speed work that must keep them (docs/results/3d-speed.md "The
  * sweep's Quickhull, same bits"): sweeps along 24 directions over a box's points, a box's faces', a
  * thin slab's and a grid's (the planes' points from the same generator, no libm but floor and sqrt:
@@ -550,6 +579,7 @@ int main(void) {
         cmocka_unit_test(test_sweep_thin_prefix),
         cmocka_unit_test(test_sweep_fold),
         cmocka_unit_test(test_sweep_tiny_prefix),
+        cmocka_unit_test(test_sweep_thin_start),
         cmocka_unit_test(test_volume_bits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

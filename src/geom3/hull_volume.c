@@ -47,6 +47,13 @@ static double hull_volume_pts(const double *pts, size_t n) {
  * qhull's 8.0e-6). A prefix this small is skipped (its queries left to acd_hull_volume_fast, which
  * scales by the whole set) and the hull starts at the next query. */
 #define HULL_VOLUME_PREFIX_REL 1e-3
+/* ... and only from a prefix whose hull is at least this many tolerances thick (its volume at least
+ * HULL_VOLUME_THICK_START x eps x the square of its extent): points added to a slab of a few hundred
+ * tolerances meet facets tilted by their rounding. fuzz_hull_volume (CI, 2026-11-26): ten points near
+ * 1e-42, the first five within 8e-8 of their scale of a plane (800 tolerances); the hulls of the next
+ * prefixes came out 4e-6 and 8e-5 below qhull's, a query over them 2.3 times the harness's slack. A
+ * thinner prefix is skipped as a small one is. */
+#define HULL_VOLUME_THICK_START 1e4
 
 /* The facets of acd_hull_volume_fast's hull (the workspace's array): what the searches read, 64
  * bytes (one cache line; the array is aligned to it). */
@@ -915,8 +922,9 @@ static long hv_near_retest(acd_hull_volume_ws *w, const double *P, double eps, s
 
 /* The sweep's hull of the first n points of P from scratch (Quickhull, then its points near the hull
  * tested again: hv_near_retest), its volume in *V and tolerance in *eps: 1; 0 when flat, numerically
- * ambiguous or too small for the sweep (its scale under HULL_VOLUME_PREFIX_REL of `whole`, the
- * extent of every point the sweep may add); -1 when out of memory. */
+ * ambiguous, too small for the sweep (its scale under HULL_VOLUME_PREFIX_REL of `whole`, the
+ * extent of every point the sweep may add) or too thin (HULL_VOLUME_THICK_START); -1 when out of
+ * memory. */
 static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, double whole, double *eps, double *V) {
     size_t top = 0;
     w->nnear = 0;
@@ -934,6 +942,14 @@ static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, doub
         if (k == 0) break;
     }
     *V = hv_hull_volume(w, P);
+    double lo[3] = {P[0], P[1], P[2]}, hi[3] = {P[0], P[1], P[2]}, ext = 0;
+    for (size_t i = 1; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            double x = P[3 * i + k];
+            lo[k] = x < lo[k] ? x : lo[k], hi[k] = x > hi[k] ? x : hi[k];
+        }
+    for (int k = 0; k < 3; k++) ext = hi[k] - lo[k] > ext ? hi[k] - lo[k] : ext;
+    if (!(*V >= HULL_VOLUME_THICK_START * *eps * ext * ext)) return 0; /* too thin to grow from */
     return 1;
 }
 
