@@ -625,9 +625,11 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
 
 /* The initial simplex of the first n points of p (built in w, the other points assigned to its
  * facets' outside sets, the facets with points pushed on w->pend: *top of them) and the tolerance
- * in *eps. 1; 0 for a flat set or fewer than 4 points; -1 when out of memory; -2 for qhull
- * (HULL_VOLUME_RANGE) or on trouble; -4 when the set is to be centred first (HULL_VOLUME_OFFSET). */
-static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, double *eps_out, size_t *top_out) {
+ * in *eps_out, the set's extent (its largest side) in *ext_out unless NULL. 1; 0 for a flat set or
+ * fewer than 4 points; -1 when out of memory; -2 for qhull (HULL_VOLUME_RANGE) or on trouble; -4 when
+ * the set is to be centred first (HULL_VOLUME_OFFSET). */
+static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, double *eps_out, double *ext_out,
+                      size_t *top_out) {
     if (n < 4) return 0;
     if (!hv_reserve_points(w, n) || !hv_grow_int(&w->pend, &w->pendcap, 64) || (w->hcap < 64 && !hv_grow_horizon(w, 64)))
         return -1;
@@ -650,6 +652,7 @@ static int hv_simplex(const double *p, size_t n, acd_hull_volume_ws *w, double *
     if (scale > HULL_VOLUME_OFFSET * ext) return -4;                                       /* centre it */
     double eps = HULL_VOLUME_EPS * fmax(scale, ext);
     *eps_out = eps;
+    if (ext_out) *ext_out = ext;
     int i0 = ex[0], i1 = ex[1];
     double best = -1;
     for (int a = 0; a < 6; a++)
@@ -765,12 +768,12 @@ static double hv_finish(acd_hull_volume_ws *w, const double *p, double eps, size
 static double hull_volume_qh(const double *p, size_t n, acd_hull_volume_ws *w) {
     double eps;
     size_t top;
-    int r = hv_simplex(p, n, w, &eps, &top);
+    int r = hv_simplex(p, n, w, &eps, NULL, &top);
     if (r == -4) { /* far from the origin: the same set about its centre */
         double *q = malloc(3 * n * sizeof *q), c[3];
         if (!q) return -1;
         hv_centred(p, n, q, c);
-        r = hv_simplex(q, n, w, &eps, &top);
+        r = hv_simplex(q, n, w, &eps, NULL, &top);
         double v = r == 1 ? hv_finish(w, q, eps, top) : r == -4 ? -2 : r;
         free(q);
         return v;
@@ -928,7 +931,8 @@ static long hv_near_retest(acd_hull_volume_ws *w, const double *P, double eps, s
 static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, double whole, double *eps, double *V) {
     size_t top = 0;
     w->nnear = 0;
-    int r = hv_simplex(P, n, w, eps, &top);
+    double ext; /* the prefix's extent */
+    int r = hv_simplex(P, n, w, eps, &ext, &top);
     if (r != 1) return r == -1 || r == -4 ? r : 0;
     /* (hv_simplex's tolerance is HULL_VOLUME_EPS times the prefix's scale) */
     if (!(*eps >= HULL_VOLUME_EPS * HULL_VOLUME_PREFIX_REL * whole)) return 0;
@@ -942,13 +946,6 @@ static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, doub
         if (k == 0) break;
     }
     *V = hv_hull_volume(w, P);
-    double lo[3] = {P[0], P[1], P[2]}, hi[3] = {P[0], P[1], P[2]}, ext = 0;
-    for (size_t i = 1; i < n; i++)
-        for (int k = 0; k < 3; k++) {
-            double x = P[3 * i + k];
-            lo[k] = x < lo[k] ? x : lo[k], hi[k] = x > hi[k] ? x : hi[k];
-        }
-    for (int k = 0; k < 3; k++) ext = hi[k] - lo[k] > ext ? hi[k] - lo[k] : ext;
     if (!(*V >= HULL_VOLUME_THICK_START * *eps * ext * ext)) return 0; /* too thin to grow from */
     return 1;
 }
