@@ -18,6 +18,7 @@
 #include "acd/base.h"
 #include "geom3/bvh.h"
 #include "geom3/vec3.h"
+#include "geom3/volume.h"
 
 #define ACD3_TRIM_NDEPTHS 6
 
@@ -43,10 +44,11 @@ static inline double acd3_trim_bot(const double d[3]) {
 /* The volumes beyond the levels k >= k_lo of the triangle (p[0], p[1], p[2]), whose corners' dots
  * with n are d[0..2] (acd_dot3(n, p), as acd_geom3_triangle_volume_beyond rounds n.x before
  * subtracting the offset), added to v[k]. Each term is the arithmetic of
- * acd_geom3_triangle_volume_beyond operation for operation (its n.x - off is d - off); a level
- * above the triangle (and every shallower one) is skipped, its term 0 (adding 0 to a sum that
- * starts at +0 changes nothing: such a sum is never -0); at the levels below the triangle (the
- * deepest ones) it is a whole cone, computed in one loop over them. */
+ * acd_geom3_triangle_volume_beyond operation for operation (its n.x - off is d - off): a level
+ * crossing the triangle goes through its clip, acd_geom3_clipped_cone_volume; a level above the
+ * triangle (and every shallower one) is skipped, its term 0 (adding 0 to a sum that starts at +0
+ * changes nothing: such a sum is never -0); at the levels below the triangle (the deepest ones) it is
+ * a whole cone, computed in one loop over them. */
 static inline void acd3_trim_tri_beyond(const double *const p[3], const double d[3], const acd3_trim_levels *L,
                                         size_t k_lo, double *v) {
     const double top = acd3_trim_top(d), bot = acd3_trim_bot(d);
@@ -65,28 +67,8 @@ static inline void acd3_trim_tri_beyond(const double *const p[3], const double d
     for (size_t k = k_whole; k-- > k_lo;) { /* the level crosses the triangle, or is above it */
         if (!(top > L->off[k])) break;
         const double apex[3] = {L->ax[k], L->ay[k], L->az[k]};
-        double s[3], poly[4][3];
-        int np = 0;
-        for (int j = 0; j < 3; j++) s[j] = d[j] - L->off[k];
-        for (int j = 0; j < 3; j++) { /* the triangle clipped to s > 0 (at most 4 corners) */
-            const int i = j == 2 ? 0 : j + 1;
-            if (s[j] > 0)
-                for (int q = 0; q < 3; q++) poly[np][q] = p[j][q] - apex[q];
-            np += s[j] > 0;
-            if ((s[j] > 0) != (s[i] > 0)) {
-                const double t = s[j] / (s[j] - s[i]);
-                for (int q = 0; q < 3; q++) poly[np][q] = p[j][q] + t * (p[i][q] - p[j][q]) - apex[q];
-                np++;
-            }
-        }
-        double w = 0;
-        for (int j = 1; j + 1 < np; j++) {
-            const double *b = poly[j], *c = poly[j + 1];
-            const double bc0 = b[1] * c[2] - b[2] * c[1], bc1 = b[2] * c[0] - b[0] * c[2],
-                         bc2 = b[0] * c[1] - b[1] * c[0];
-            w += poly[0][0] * bc0 + poly[0][1] * bc1 + poly[0][2] * bc2;
-        }
-        v[k] += w / 6.0;
+        const double s[3] = {d[0] - L->off[k], d[1] - L->off[k], d[2] - L->off[k]};
+        v[k] += acd_geom3_clipped_cone_volume(p, s, apex);
     }
 }
 

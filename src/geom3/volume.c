@@ -39,33 +39,14 @@ double acd_geom3_signed_volume(const acd_mesh *m) {
 
 double acd_geom3_triangle_volume_beyond(const double a[3], const double b[3], const double c[3], const double n[3],
                                         double off, const double apex[3]) {
-    const double *p[3] = {a, b, c};
-    double s[3], poly[4][3];
-    int nbeyond = 0, np = 0;
+    const double *const p[3] = {a, b, c};
+    double s[3];
+    int nbeyond = 0;
     for (int k = 0; k < 3; k++) {
         s[k] = n[0] * p[k][0] + n[1] * p[k][1] + n[2] * p[k][2] - off;
         nbeyond += s[k] > 0;
     }
-    if (nbeyond == 0) return 0;
-    /* the triangle clipped to s > 0 (Sutherland-Hodgman: at most 4 corners) */
-    for (int k = 0; k < 3; k++) {
-        int j = k == 2 ? 0 : k + 1;
-        if (s[k] > 0)
-            for (int q = 0; q < 3; q++) poly[np][q] = p[k][q] - apex[q];
-        np += s[k] > 0;
-        if ((s[k] > 0) != (s[j] > 0)) {
-            double t = s[k] / (s[k] - s[j]);
-            for (int q = 0; q < 3; q++) poly[np][q] = p[k][q] + t * (p[j][q] - p[k][q]) - apex[q];
-            np++;
-        }
-    }
-    double v = 0;
-    for (int k = 1; k + 1 < np; k++) {
-        double bc[3];
-        acd_cross3(poly[k], poly[k + 1], bc);
-        v += poly[0][0] * bc[0] + poly[0][1] * bc[1] + poly[0][2] * bc[2];
-    }
-    return v / 6.0;
+    return nbeyond == 0 ? 0 : acd_geom3_clipped_cone_volume(p, s, apex);
 }
 
 double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
