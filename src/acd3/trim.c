@@ -119,20 +119,15 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
                 }
             }
         }
-    } else if (T->vdot) { /* every triangle (the vertices' dots computed once) */
-        for (size_t v = 0; v < h->nv; v++) T->vdot[v] = acd_dot3(P->n, h->v + 3 * v);
-        for (size_t t = 0; t < h->nt; t++) {
-            const uint32_t *tr = h->t + 3 * t;
-            const double d[3] = {T->vdot[tr[0]], T->vdot[tr[1]], T->vdot[tr[2]]};
-            if (!(acd3_trim_top(d) > deepest)) continue;
-            const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
-            acd3_trim_tri_beyond(p, d, &L, 0, gain);
-        }
-    } else {
+    } else { /* every triangle (a cut hull's vertex dots computed once, in T->vdot) */
+        const double *vd = T->vdot;
+        if (vd)
+            for (size_t v = 0; v < h->nv; v++) T->vdot[v] = acd_dot3(P->n, h->v + 3 * v);
         for (size_t t = 0; t < h->nt; t++) {
             const uint32_t *tr = h->t + 3 * t;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
-            const double d[3] = {acd_dot3(P->n, p[0]), acd_dot3(P->n, p[1]), acd_dot3(P->n, p[2])};
+            const double d[3] = {vd ? vd[tr[0]] : acd_dot3(P->n, p[0]), vd ? vd[tr[1]] : acd_dot3(P->n, p[1]),
+                                 vd ? vd[tr[2]] : acd_dot3(P->n, p[2])};
             if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, &L, 0, gain);
         }
     }
