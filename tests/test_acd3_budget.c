@@ -460,6 +460,58 @@ static void test_screen_fallback(void **state) {
     acd_mesh_free(&m[1]);
 }
 
+/* The directions' bound (budget.c, BUDGET_BOUND_REL): a direction is scored on the whole sample
+ * only when the same sweeps over the sample's hull vertices, less the margin, do not put it out of
+ * the directions the refinement takes. With the bound and without it (margin -1: every direction
+ * scored) the results are the same bit for bit, on a bumpy sphere (budget 8, and a limit that forces
+ * phase-1 cuts), the voxel U and, when data/meshes has it, knot1.off (budget 12) and the npm bunny
+ * (budget 16); the bound leaves directions unscored where it applies, and at 1 and 4 threads (which
+ * finish the directions in different orders, so different ones are left) the result is the same. */
+static void test_direction_bound(void **state) {
+    (void)state;
+    acd_mesh m[4];
+    size_t nm = 2, budget[4] = {8, 8, 0, 0};
+    const size_t data_budget[2] = {12, 16};
+    double limit[4][2] = {{10.0, 0.05}, {10.0, 0.2}, {1e30, 1e30}, {1e30, 1e30}};
+    assert_true(mg_radial(&m[0], 24, 16, bumpy_r, NULL));
+    voxel_u(&m[1]);
+    char path[4096];
+    acd_error err;
+    const char *names[2] = {"knot1.off", "bunny.obj"};
+    for (int k = 0; k < 2; k++)
+        if (tu_mesh_data(path, sizeof path, names[k])) {
+            assert_int_equal(acd_mesh_read(path, &m[nm], &err), ACD_OK);
+            budget[nm++] = data_budget[k];
+        } else
+            print_message("data/meshes/%s missing (scripts/fetch-data.sh): not run on it\n", names[k]);
+    size_t pruned = 0;
+    for (size_t i = 0; i < nm; i++)
+        for (int l = 0; l < (i < 2 ? 2 : 1); l++) {
+            acd3_budget_result def, none, def4;
+            assert_int_equal(acd3_budget_split(&m[i], 1, budget[i], limit[i][l], 0, 4.0, 1, &def, &err), ACD_OK);
+            assert_int_equal(acd3_budget_split(&m[i], 1, budget[i], limit[i][l], 0, 4.0, 4, &def4, &err), ACD_OK);
+            assert_int_equal(acd3_budget_split_tuned(&m[i], 1, budget[i], limit[i][l], 0, 4.0, 2, 1e-3, -1.0, &none,
+                                                     &err),
+                             ACD_OK);
+            print_message("mesh %zu limit %g: %zu cuts; directions bounded %zu, scored %zu (1 thread), %zu (4 "
+                          "threads), %zu without the bound\n",
+                          i, limit[i][l], def.cuts, def.directions_bounded, def.directions_scored,
+                          def4.directions_scored, none.directions_scored);
+            assert_true(def.cuts >= 1);
+            assert_int_equal(none.directions_bounded, 0);
+            assert_true(def.directions_scored <= none.directions_scored);
+            assert_true(def.directions_scored + def.directions_bounded >= none.directions_scored);
+            pruned += none.directions_scored - def.directions_scored;
+            assert_same_result(&def, &none);
+            assert_same_result(&def4, &none);
+            acd3_budget_result_free(&def);
+            acd3_budget_result_free(&def4);
+            acd3_budget_result_free(&none);
+        }
+    assert_true(pruned > 0);
+    for (size_t i = 0; i < nm; i++) acd_mesh_free(&m[i]);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_module_on_voxels),
@@ -468,6 +520,7 @@ int main(void) {
         cmocka_unit_test(test_budget_subdivided),
         cmocka_unit_test(test_phase1_terminates),
         cmocka_unit_test(test_screen_fallback),
+        cmocka_unit_test(test_direction_bound),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -51,6 +51,8 @@ typedef struct acd3_budget_result {
     double hull_volume;     /* the sum of the parts' hull volumes */
     size_t screen_fallbacks; /* evaluations in which no candidate the screen left was good, so the
                              * others got their qhull hulls too (budget.c, BUDGET_SCREEN_REL) */
+    size_t directions_bounded; /* directions of the evaluations given a bound (budget.c, BUDGET_BOUND_REL) */
+    size_t directions_scored;  /* of all directions (bounded or not), those scored on the whole sample */
 } acd3_budget_result;
 
 /* parts: the closed parts tiling a closed input (every one tested against limit too); limit in
@@ -74,6 +76,14 @@ acd_status acd3_budget_split_hulls(const acd_mesh *parts, const acd_hull *const 
 acd_status acd3_budget_split_screen(const acd_mesh *parts, size_t nparts, size_t budget, double limit, double min_gain,
                                     double extent, int threads, double screen_rel, acd3_budget_result *out,
                                     acd_error *err);
+/* As acd3_budget_split_screen, with the directions' bound's margin bound_rel instead of
+ * BUDGET_BOUND_REL (budget.c: a direction is scored only when its bound less bound_rel of it is not
+ * above the scores that would make it one of the directions refined; a negative bound_rel: every
+ * direction is scored). The result is the same for any margin unless an estimate is off by more than
+ * it; for the tests of the bound. */
+acd_status acd3_budget_split_tuned(const acd_mesh *parts, size_t nparts, size_t budget, double limit, double min_gain,
+                                   double extent, int threads, double screen_rel, double bound_rel,
+                                   acd3_budget_result *out, acd_error *err);
 void acd3_budget_result_free(acd3_budget_result *r);
 /* The vertices the plane search samples from (flag[v] = 1, else 0; flag: room for m->nvertices):
  * those some plane through them has strictly above the other corners of their triangles (tried:
