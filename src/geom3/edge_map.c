@@ -13,7 +13,19 @@
  * input order). The pair is packed as a * (maxid + 1) + b, which orders the same, and sorted by
  * an LSD radix sort on 11-bit digits of that (all digit counts taken in one read; a pass whose
  * digits are all equal is skipped). tk, tv: scratch of n entries. Returns 0 when out of memory. */
+#define INSERTION_MAX 48 /* up to this many keys: an insertion sort (stable, as the radix sort) */
+
 static int radix_sort(uint64_t *keys, uint32_t *vals, uint64_t *tk, uint32_t *tv, size_t n, uint32_t maxid) {
+    if (n <= INSERTION_MAX) { /* the same order: both are stable sorts by key */
+        for (size_t i = 1; i < n; i++) {
+            uint64_t k = keys[i];
+            uint32_t v = vals[i];
+            size_t j = i;
+            for (; j > 0 && keys[j - 1] > k; j--) keys[j] = keys[j - 1], vals[j] = vals[j - 1];
+            keys[j] = k, vals[j] = v;
+        }
+        return 1;
+    }
     uint64_t n1 = (uint64_t)maxid + 1;
     int bits = 64;
     if (n1 <= (1ull << 31)) {
@@ -103,8 +115,44 @@ acd_status acd_edge_map_build(const uint32_t *triangles, size_t ntriangles, cons
     return ACD_OK;
 }
 
+acd_status acd_edge_map_sort(acd_edge_map *m, acd_error *err) {
+    size_t n = m->n;
+    uint32_t maxid = 0;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
+        if (a > maxid) maxid = a;
+        if (b > maxid) maxid = b;
+    }
+    uint64_t *tk = NULL;
+    uint32_t *tv = NULL;
+    if (n > INSERTION_MAX) {
+        tk = malloc(n * sizeof *tk);
+        tv = malloc(n * sizeof *tv);
+    }
+    int ok = (n <= INSERTION_MAX || (tk && tv)) && radix_sort(m->key, m->half, tk, tv, n, maxid);
+    free(tk);
+    free(tv);
+    return ok ? ACD_OK : acd_fail(err, ACD_ERR_NOMEM, "out of memory sorting %zu half-edges", n);
+}
+
+static size_t lower_bound(const acd_edge_map *m, uint64_t k);
+
+/* Up to this many entries, the twins by a binary search each (no sort's fixed cost). */
+#define TWINS_SEARCH_MAX 1024
+
 acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error *err) {
     size_t n = m->n;
+    if (n <= TWINS_SEARCH_MAX) { /* the first entry of the key b -> a, as the merge walk finds it */
+        uint32_t *tw = malloc((n ? n : 1) * sizeof *tw);
+        if (!tw) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the twins of %zu half-edges", n);
+        for (size_t i = 0; i < n; i++) {
+            uint64_t r = (m->key[i] << 32) | (m->key[i] >> 32);
+            size_t p = lower_bound(m, r);
+            tw[i] = p < n && m->key[p] == r ? m->half[p] : ACD_EDGE_NONE;
+        }
+        *twin = tw;
+        return ACD_OK;
+    }
     uint64_t *rk = malloc((n ? n : 1) * sizeof *rk), *tk = malloc((n ? n : 1) * sizeof *tk);
     uint32_t *ri = malloc((n ? n : 1) * sizeof *ri), *tv = malloc((n ? n : 1) * sizeof *tv);
     uint32_t *tw = malloc((n ? n : 1) * sizeof *tw);
@@ -143,6 +191,7 @@ void acd_edge_map_free(acd_edge_map *m) {
     if (!m) return;
     free(m->key);
     free(m->half);
+    free(m->twin);
     memset(m, 0, sizeof *m);
 }
 
@@ -172,8 +221,9 @@ size_t acd_edge_map_count(const acd_edge_map *m, uint32_t a, uint32_t b) {
     return c;
 }
 
-acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *triangles, size_t ntriangles,
-                                     acd_error *err) {
+/* acd_edge_map_check_closed; when closed and tw_out is not NULL, *tw_out: the twins by entry. */
+static acd_status check_closed(const acd_edge_map *m, const uint32_t *triangles, size_t ntriangles, uint32_t **tw_out,
+                               acd_error *err) {
     for (size_t t = 0; t < ntriangles; t++) {
         const uint32_t *q = triangles + 3 * t;
         if (!acd_edge_map_triangle_proper(q))
@@ -196,18 +246,37 @@ acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *tria
                           a, b, t);
         break;
     }
-    free(tw);
+    if (st == ACD_OK && tw_out)
+        *tw_out = tw;
+    else
+        free(tw);
     return st;
+}
+
+acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *triangles, size_t ntriangles,
+                                     acd_error *err) {
+    return check_closed(m, triangles, ntriangles, NULL, err);
 }
 
 acd_status acd_edge_map_closed(const uint32_t *triangles, size_t ntriangles, acd_edge_map *map, acd_error *err) {
     acd_edge_map m;
     acd_status st = acd_edge_map_build(triangles, ntriangles, NULL, &m, err);
     if (st != ACD_OK) return st;
-    st = acd_edge_map_check_closed(&m, triangles, ntriangles, err);
-    if (st == ACD_OK && map)
+    uint32_t *tw = NULL;
+    st = check_closed(&m, triangles, ntriangles, map ? &tw : NULL, err);
+    if (st == ACD_OK && map) {
+        /* closed: every half-edge is in the map once, its twin by entry turned into one by half-edge */
+        m.twin = malloc((m.n ? m.n : 1) * sizeof *m.twin);
+        if (!m.twin) {
+            free(tw);
+            acd_edge_map_free(&m);
+            return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the twins of %zu half-edges", m.n);
+        }
+        for (size_t i = 0; i < m.n; i++) m.twin[m.half[i]] = tw[i];
+        free(tw);
         *map = m;
-    else
+    } else {
         acd_edge_map_free(&m);
+    }
     return st;
 }

@@ -12,14 +12,19 @@ typedef struct acd_edge_map {
     uint64_t *key;   /* (a << 32) | b, sorted */
     uint32_t *half;  /* 3t + i */
     size_t n;
+    uint32_t *twin;  /* by half-edge: twin[3t + i] is the half-edge opposite 3t + i (kept by
+                      * acd_edge_map_closed, for every triangle), or NULL when not computed */
 } acd_edge_map;
 
 #define ACD_EDGE_NONE UINT32_MAX
 
 /* Builds the map of the triangles for which keep[t] is non-zero (keep NULL: all). Repeated
- * half-edges are kept (acd_edge_map_count tells how many). */
+ * half-edges are kept (acd_edge_map_count tells how many). No twins (m->twin NULL). */
 acd_status acd_edge_map_build(const uint32_t *triangles, size_t ntriangles, const uint8_t *keep, acd_edge_map *m,
                               acd_error *err);
+/* Sorts a map the caller filled (m->key[0..n), m->half[0..n) in increasing half order, twin NULL)
+ * into the order acd_edge_map_build gives: by key, equal keys by half. */
+acd_status acd_edge_map_sort(acd_edge_map *m, acd_error *err);
 void acd_edge_map_free(acd_edge_map *m);
 /* The half-edge a -> b (the first of them if repeated), or ACD_EDGE_NONE. */
 uint32_t acd_edge_map_find(const acd_edge_map *m, uint32_t a, uint32_t b);
@@ -37,9 +42,10 @@ acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error 
 acd_status acd_edge_map_check_closed(const acd_edge_map *m, const uint32_t *triangles, size_t ntriangles,
                                      acd_error *err);
 /* Whether the triangles form such a surface: builds their map and checks it
- * (acd_edge_map_check_closed). ACD_OK: closed, and *map (when not NULL) holds the map, freed by
- * the caller. Otherwise the failure, nothing left to free: ACD_ERR_NON_MANIFOLD (not closed, err
- * names the triangle and the edge), ACD_ERR_NOMEM, ACD_ERR_INVALID_ARGUMENT (too many triangles). */
+ * (acd_edge_map_check_closed). ACD_OK: closed, and *map (when not NULL) holds the map with its
+ * twins by half-edge (map->twin, from the check), freed by the caller. Otherwise the failure,
+ * nothing left to free: ACD_ERR_NON_MANIFOLD (not closed, err names the triangle and the edge),
+ * ACD_ERR_NOMEM, ACD_ERR_INVALID_ARGUMENT (too many triangles). */
 acd_status acd_edge_map_closed(const uint32_t *triangles, size_t ntriangles, acd_edge_map *map, acd_error *err);
 /* Its conditions one at a time (for a caller that walks the map anyway, as geom3/plane_cut): entry
  * i of m (twin: acd_edge_map_twins of m) is the only half-edge of its key (not repeated) and has an

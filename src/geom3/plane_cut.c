@@ -166,13 +166,13 @@ typedef struct cut_ctx {
     const double *orig;     /* the input vertices */
     unsigned flags;         /* ACD_PLANE_CUT_* */
     acd_error *err;
-    /* the + side's edge map before the caps and its twins (cap_sections'), kept for make_pieces:
-     * with the caps' half-edges merged in it is that side's map (have_pm: kept; pm_nt: the
-     * triangles it covers) */
-    acd_edge_map pm;
-    uint32_t *ptw;
-    int have_pm;
-    size_t pm_nt;
+    /* the input's half-edges paired (side_map): itw[h], the input half-edge opposite h; per input
+     * triangle t, wside[t] its side when it went whole to one (its one triangle tout[t]), 0 when
+     * split (its triangles tout[t] .. tout[t + 1]); ncut: the triangles before the caps */
+    const uint32_t *itw;
+    int8_t *wside;
+    uint32_t *tout;
+    size_t nin, ncut;
 } cut_ctx;
 
 static acd_status push_tri(cut_ctx *c, uint32_t a, uint32_t b, uint32_t d, int side, int cap) {
@@ -262,32 +262,98 @@ static int region_direction(const size_t *tris, size_t ntris, const size_t *rs, 
     return fwd ? 1 : (rev ? -1 : 0);
 }
 
+/* The half-edges of one side's triangles (tside == side, caps included when there are) in two sets.
+ * Regular: a half-edge a -> b of an input triangle t that went whole to the side, whose opposite
+ * input half-edge (itw) is of a triangle u that went whole to it too, and (capv not NULL: the caps
+ * are there) a or b no cap vertex. Its key occurs once among the side's half-edges and so does
+ * the reverse (u's): no other whole triangle has them (the input's map is closed: keys unique),
+ * a split triangle's pieces have its own input edges (in their direction) or a point made on an
+ * edge, and a cap's edges join two cap vertices. Such a pair is each other's twin, and joins t's
+ * and u's triangles (parent not NULL: acd_uf_union). The others (special): collected into *sm in
+ * the order acd_edge_map_build gives over the side's triangles, with their twins *stw (as
+ * acd_edge_map_twins). Every half-edge with the key or the reverse key of a special one is
+ * special (a regular one's pair is all of its two keys), so *sm and *stw agree with the side's
+ * whole map and twins on them: the same twins, repeats and boundary. */
+static acd_status side_map(cut_ctx *c, int side, const uint8_t *capv, uint32_t *parent, acd_edge_map *sm,
+                           uint32_t **stw) {
+    memset(sm, 0, sizeof *sm);
+    *stw = NULL;
+    size_t cap = 256, n = 0;
+    uint64_t *key = malloc(cap * sizeof *key);
+    uint32_t *half = malloc(cap * sizeof *half);
+    int ok = key && half;
+#define SIDE_PUSH(k_, h_)                                                                                            \
+    do {                                                                                                               \
+        if (n == cap) {                                                                                                \
+            cap *= 2;                                                                                                  \
+            uint64_t *k2 = realloc(key, cap * sizeof *key);                                                            \
+            if (k2) key = k2;                                                                                          \
+            uint32_t *h2 = k2 ? realloc(half, cap * sizeof *half) : NULL;                                              \
+            if (h2) half = h2;                                                                                         \
+            if (!k2 || !h2) ok = 0;                                                                                    \
+        }                                                                                                              \
+        if (ok) key[n] = (k_), half[n] = (h_), n++;                                                                    \
+    } while (0)
+    const uint32_t *T = c->T;
+    for (size_t t = 0; t < c->nin && ok; t++) {
+        int ws = c->wside[t];
+        if (ws == side) {
+            uint32_t o = c->tout[t];
+            const uint32_t *q = T + 3 * (size_t)o;
+            for (int i = 0; i < 3; i++) {
+                uint32_t a = q[i], b = q[i == 2 ? 0 : i + 1];
+                uint32_t u = c->itw[3 * t + (size_t)i] / 3;
+                if (c->wside[u] == side && !(capv && capv[a] && capv[b])) {
+                    if (parent && o < c->tout[u]) acd_uf_union(parent, o, c->tout[u]);
+                } else {
+                    SIDE_PUSH(((uint64_t)a << 32) | b, 3 * o + (uint32_t)i);
+                }
+            }
+        } else if (ws == 0) {
+            for (uint32_t o = c->tout[t]; o < c->tout[t + 1]; o++) {
+                if (c->tside[o] != side) continue;
+                const uint32_t *q = T + 3 * (size_t)o;
+                for (int i = 0; i < 3; i++) SIDE_PUSH(((uint64_t)q[i] << 32) | q[i == 2 ? 0 : i + 1], 3 * o + (uint32_t)i);
+            }
+        }
+    }
+    for (size_t o = c->ncut; o < c->nt && ok; o++) {
+        if (c->tside[o] != side) continue;
+        const uint32_t *q = T + 3 * o;
+        for (int i = 0; i < 3; i++) SIDE_PUSH(((uint64_t)q[i] << 32) | q[i == 2 ? 0 : i + 1], (uint32_t)(3 * o) + (uint32_t)i);
+    }
+#undef SIDE_PUSH
+    if (!ok) {
+        free(key);
+        free(half);
+        return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for the cut's half-edges");
+    }
+    sm->key = key;
+    sm->half = half;
+    sm->n = n;
+    acd_status st = acd_edge_map_sort(sm, c->err);
+    if (st == ACD_OK) st = acd_edge_map_twins(sm, stw, c->err);
+    if (st != ACD_OK) acd_edge_map_free(sm);
+    return st;
+}
+
 /* Traces the + side boundary into loops, caps both sides. */
 static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
     acd_error *err = c->err;
-    uint8_t *keep = malloc(c->nt ? c->nt : 1);
-    if (!keep) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the cut sides");
-    for (size_t t = 0; t < c->nt; t++) keep[t] = c->tside[t] > 0;
+    /* boundary half-edges of the + side (those without a twin: all among side_map's special
+     * ones), sorted by (from, to) since its map is */
     acd_edge_map pm;
-    acd_status st = acd_edge_map_build(c->T, c->nt, keep, &pm, err);
-    free(keep);
+    uint32_t *ptw = NULL;
+    acd_status st = side_map(c, +1, NULL, NULL, &pm, &ptw);
     if (st != ACD_OK) return st;
-    /* boundary half-edges of the + side, sorted by (from, to) since pm is */
     size_t nb = 0;
     uint32_t *bfrom = malloc((pm.n ? pm.n : 1) * sizeof *bfrom), *bto = malloc((pm.n ? pm.n : 1) * sizeof *bto);
     if (!bfrom || !bto) {
         free(bfrom);
         free(bto);
+        free(ptw);
         acd_edge_map_free(&pm);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the section boundary");
-    }
-    uint32_t *ptw = NULL;
-    st = acd_edge_map_twins(&pm, &ptw, err);
-    if (st != ACD_OK) {
-        free(bfrom);
-        free(bto);
-        acd_edge_map_free(&pm);
-        return st;
     }
     for (size_t i = 0; i < pm.n; i++) {
         uint32_t a = (uint32_t)(pm.key[i] >> 32), b = (uint32_t)pm.key[i];
@@ -297,10 +363,8 @@ static acd_status cap_sections(cut_ctx *c, acd_cut_result *res) {
             nb++;
         }
     }
-    c->pm = pm;
-    c->ptw = ptw;
-    c->have_pm = 1;
-    c->pm_nt = c->nt;
+    free(ptw);
+    acd_edge_map_free(&pm);
     if (nb == 0) {
         free(bfrom);
         free(bto);
@@ -675,62 +739,12 @@ out:
     return st;
 }
 
-/* The + side's map after the caps: cap_sections' map of the triangles before them merged with the
- * caps' half-edges (all of higher index: among equal keys they come last, as in the map built
- * over all of them), and its twins: a half-edge that had one keeps it (the first of its key), the
- * others (the sections' boundary, the caps) are looked up. keep: the + side's triangles. The same
- * map and twins as acd_edge_map_build and acd_edge_map_twins give. */
-static acd_status plus_side_map(cut_ctx *c, const uint8_t *keep, acd_edge_map *m, uint32_t **twin) {
-    memset(m, 0, sizeof *m);
-    *twin = NULL;
-    const acd_edge_map *pm = &c->pm;
-    acd_edge_map cm;
-    /* the caps' half-edges (triangles from pm_nt on) */
-    acd_status st = acd_edge_map_build(c->T + 3 * c->pm_nt, c->nt - c->pm_nt, keep + c->pm_nt, &cm, c->err);
-    if (st != ACD_OK) return st;
-    size_t n = pm->n + cm.n;
-    m->key = malloc((n ? n : 1) * sizeof *m->key);
-    m->half = malloc((n ? n : 1) * sizeof *m->half);
-    uint32_t *from = malloc((n ? n : 1) * sizeof *from); /* pm's index, or UINT32_MAX for a cap's */
-    uint32_t *tw = malloc((n ? n : 1) * sizeof *tw);
-    if (!m->key || !m->half || !from || !tw) {
-        acd_edge_map_free(&cm);
-        acd_edge_map_free(m);
-        free(from), free(tw);
-        return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for the cut's half-edges");
-    }
-    const uint32_t off = (uint32_t)(3 * c->pm_nt);
-    size_t i = 0, j = 0, k = 0;
-    while (i < pm->n || j < cm.n) {
-        if (j == cm.n || (i < pm->n && pm->key[i] <= cm.key[j])) {
-            m->key[k] = pm->key[i], m->half[k] = pm->half[i], from[k++] = (uint32_t)i++;
-        } else {
-            m->key[k] = cm.key[j], m->half[k] = cm.half[j] + off, from[k++] = UINT32_MAX, j++;
-        }
-    }
-    m->n = n;
-    acd_edge_map_free(&cm);
-    for (k = 0; k < n; k++) {
-        uint32_t p = from[k];
-        if (p != UINT32_MAX && c->ptw[p] != ACD_EDGE_NONE) {
-            tw[k] = c->ptw[p];
-        } else {
-            uint32_t a = (uint32_t)(m->key[k] >> 32), b = (uint32_t)m->key[k];
-            tw[k] = acd_edge_map_find(m, b, a);
-        }
-    }
-    free(from);
-    *twin = tw;
-    return ACD_OK;
-}
-
 static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     acd_error *err = c->err;
     uint32_t *parent = malloc((c->nt ? c->nt : 1) * sizeof *parent);
-    uint8_t *keep = malloc(c->nt ? c->nt : 1), *flat = calloc(c->nt ? c->nt : 1, 1);
-    if (!parent || !keep || !flat) {
+    uint8_t *flat = calloc(c->nt ? c->nt : 1, 1);
+    if (!parent || !flat) {
         free(parent);
-        free(keep);
         free(flat);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the cut pieces");
     }
@@ -741,20 +755,19 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
      * a vertex): then so is every piece of that side (a piece is a union of components joined across
      * twins, its vertices renumbered one to one) */
     int closed[2] = {0, 0};
+    /* the caps' vertices (side_map: a half-edge between two of them may meet a cap's) */
+    uint8_t *capv = calloc(c->nv ? c->nv : 1, 1);
+    if (!capv) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory for the cut pieces");
+    for (size_t t = c->ncut; t < c->nt && st == ACD_OK; t++)
+        for (int i = 0; i < 3; i++) capv[c->T[3 * t + i]] = 1;
     for (int side = 1; side >= -1 && st == ACD_OK; side -= 2) {
-        for (size_t t = 0; t < c->nt; t++) keep[t] = c->tside[t] == side;
+        /* the regular half-edges joined and closed (side_map), the special ones here */
         acd_edge_map m;
         uint32_t *tw = NULL;
-        if (side > 0 && c->have_pm) {
-            st = plus_side_map(c, keep, &m, &tw);
-        } else {
-            st = acd_edge_map_build(c->T, c->nt, keep, &m, err);
-            if (st != ACD_OK) break;
-            st = acd_edge_map_twins(&m, &tw, err);
-        }
-        if (st != ACD_OK && !m.key) break;
-        int cl = st == ACD_OK;
-        for (size_t i = 0; st == ACD_OK && i < m.n; i++) {
+        st = side_map(c, side, capv, parent, &m, &tw);
+        if (st != ACD_OK) break;
+        int cl = 1;
+        for (size_t i = 0; i < m.n; i++) {
             /* a -> b with a > b, the only one of its key: the first b -> a (its twin) joins the
              * same two triangles (the sets do not depend on the unions' order) */
             int dup = i > 0 && m.key[i - 1] == m.key[i];
@@ -763,12 +776,12 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
             cl &= acd_edge_map_entry_closed(&m, tw, i);
         }
         for (size_t t = 0; cl && t < c->nt; t++)
-            if (keep[t]) cl = acd_edge_map_triangle_proper(c->T + 3 * t);
+            if (c->tside[t] == side) cl = acd_edge_map_triangle_proper(c->T + 3 * t);
         closed[side > 0 ? 0 : 1] = cl;
         free(tw);
         acd_edge_map_free(&m);
     }
-    free(keep);
+    free(capv);
     if (st == ACD_OK) st = group_cavities(c, parent, flat);
     if (st != ACD_OK) {
         free(parent);
@@ -896,18 +909,30 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
         if (m->triangles[t] >= m->nvertices)
             return acd_fail(err, ACD_ERR_INVALID_INPUT, "plane cut: triangle %zu uses vertex %u of %zu", t / 3,
                             m->triangles[t], m->nvertices);
+    /* the input's twins by half-edge: the map's (acd_edge_map_closed keeps them), else from its
+     * twins by entry; without a map, acd_edge_map_closed builds and checks one */
     acd_edge_map own = {0};
-    const acd_edge_map *emp = map;
+    uint32_t *own_tw = NULL;
+    const uint32_t *itw = NULL;
     acd_status st = ACD_OK;
-    if (!emp) {
-        st = acd_edge_map_build(m->triangles, m->ntriangles, NULL, &own, err);
+    if (!map) {
+        st = acd_edge_map_closed(m->triangles, m->ntriangles, &own, err);
         if (st != ACD_OK) return st;
-        st = acd_edge_map_check_closed(&own, m->triangles, m->ntriangles, err);
-        if (st != ACD_OK) {
-            acd_edge_map_free(&own);
-            return st;
+        itw = own.twin;
+    } else if (map->twin) {
+        itw = map->twin;
+    } else {
+        uint32_t *tw = NULL;
+        st = acd_edge_map_twins(map, &tw, err);
+        if (st != ACD_OK) return st;
+        own_tw = malloc((map->n ? map->n : 1) * sizeof *own_tw);
+        if (!own_tw) {
+            free(tw);
+            return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the twins of %zu half-edges", map->n);
         }
-        emp = &own;
+        for (size_t i = 0; i < map->n; i++) own_tw[map->half[i]] = tw[i];
+        free(tw);
+        itw = own_tw;
     }
     /* huge or tiny models: work on the input scaled by a power of two (exact, unless it flushes
      * coordinates below 2^-1074 of the largest one) so that the largest coordinate is about 1: the
@@ -933,6 +958,7 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
             double plmax = 0;
             for (int k = 0; k < 3; k++) plmax = fmax(plmax, fmax(fabs(pl->a[k]), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
             acd_edge_map_free(&own);
+            free(own_tw);
             return acd_fail(err, ACD_ERR_DEGENERATE,
                             "plane cut: the plane's points (up to %g) vanish next to the mesh's coordinates (up to %g)",
                             plmax, maxabs);
@@ -957,7 +983,11 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
     int8_t *s = malloc((nv ? nv : 1) * sizeof *s);
     double *f = malloc((nv ? nv : 1) * sizeof *f);
     uint32_t *xv = malloc((nt ? nt : 1) * 3 * sizeof *xv); /* crossing vertex of each half-edge */
-    if (!c.V || !c.src || !s || !f || !xv) {
+    c.itw = itw;
+    c.nin = nt;
+    c.wside = malloc((nt ? nt : 1) * sizeof *c.wside);
+    c.tout = malloc((nt + 1) * sizeof *c.tout);
+    if (!c.V || !c.src || !s || !f || !xv || !c.wside || !c.tout) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory cutting a mesh of %zu triangles", nt);
         goto fail;
     }
@@ -973,11 +1003,14 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
         const uint32_t *q = m->triangles + 3 * t;
         int hasp = 0, hasn = 0;
         for (int i = 0; i < 3; i++) hasp |= s[q[i]] > 0, hasn |= s[q[i]] < 0;
+        c.tout[t] = (uint32_t)c.nt;
         if (hasp && !hasn) {
+            c.wside[t] = +1;
             st = push_tri(&c, q[0], q[1], q[2], +1, 0);
             continue;
         }
         if (hasn && !hasp) {
+            c.wside[t] = -1;
             st = push_tri(&c, q[0], q[1], q[2], -1, 0);
             continue;
         }
@@ -987,9 +1020,11 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
             proj2(&c, q[1], p1);
             proj2(&c, q[2], p2);
             int o = acd_orient2d_sign(p0, p1, p2);
+            c.wside[t] = (int8_t)(o > 0 ? -1 : +1);
             st = push_tri(&c, q[0], q[1], q[2], o > 0 ? -1 : +1, 0);
             continue;
         }
+        c.wside[t] = 0;
         /* split: walk the edges, building the + and - polygons */
         uint32_t Pp[4], Pn[4];
         int np_ = 0, nn_ = 0;
@@ -1009,8 +1044,7 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
                     for (int k = 0; k < 3; k++) c.V[3 * (size_t)nvx + k] = pa[k] + tt * (pb[k] - pa[k]);
                     c.src[nvx] = ACD_CUT_NEW_VERTEX;
                     xv[h] = nvx;
-                    uint32_t tw = acd_edge_map_find(emp, b, a);
-                    if (tw != ACD_EDGE_NONE) xv[tw] = nvx;
+                    xv[itw[h]] = nvx;
                 }
                 Pp[np_++] = xv[h];
                 Pn[nn_++] = xv[h];
@@ -1019,13 +1053,16 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
         for (int k = 1; k + 1 < np_ && st == ACD_OK; k++) st = push_tri(&c, Pp[0], Pp[k], Pp[k + 1], +1, 0);
         for (int k = 1; k + 1 < nn_ && st == ACD_OK; k++) st = push_tri(&c, Pn[0], Pn[k], Pn[k + 1], -1, 0);
     }
+    c.tout[nt] = (uint32_t)c.nt;
+    c.ncut = c.nt;
     if (st == ACD_OK) st = cap_sections(&c, out);
     if (st == ACD_OK) st = make_pieces(&c, out);
     out->section_area = ldexp(out->section_area, 2 * e2);
 fail:
     acd_edge_map_free(&own);
-    if (c.have_pm) acd_edge_map_free(&c.pm);
-    free(c.ptw);
+    free(own_tw);
+    free(c.wside);
+    free(c.tout);
     free(c.V);
     free(c.src);
     free(c.T);

@@ -68,7 +68,9 @@ acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_res
 acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsigned flags, acd_cut_result *out,
                                acd_error *err);
 /* The same with the mesh's edge map (acd_edge_map_build of all its triangles) already built and
- * checked by acd_edge_map_check_closed (NULL: built and checked here): for several cuts of one mesh. */
+ * checked by acd_edge_map_check_closed (NULL: built and checked here): for several cuts of one mesh.
+ * A map from acd_edge_map_closed carries its twins (map->twin), which the cut uses; without them
+ * each cut computes them again. */
 acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const acd_cut_plane *pl, unsigned flags,
                              acd_cut_result *out, acd_error *err);
 void acd_cut_result_free(acd_cut_result *r);
