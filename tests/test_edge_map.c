@@ -3,7 +3,9 @@
  * packed key a * (maxid + 1) + b takes 2 to 5 digit passes), a vertex of high degree, a keep
  * mask, no half-edge at all; acd_edge_map_check_closed and its one-at-a-time conditions on a
  * tetrahedron, one with a triangle missing, one flipped, one repeating a vertex, and
- * acd_edge_map_closed (build and check in one) agreeing with them. */
+ * acd_edge_map_closed (build and check in one) agreeing with them, and the twins by half-edge it
+ * keeps; acd_edge_map_sort of the same entries agreeing with the build, at sizes on both sides of
+ * the insertion sort's and the binary-searched twins' limits. */
 #include "testutil.h"
 
 #include <stdlib.h>
@@ -55,6 +57,22 @@ static void check(uint64_t seed, size_t nt, uint32_t nid, uint32_t stride, int h
         assert_true(m.key[i] == ref[i].key);
         assert_int_equal(m.half[i], ref[i].half);
     }
+    /* the same entries in triangle order, sorted by acd_edge_map_sort: the same map */
+    acd_edge_map s;
+    s.n = n, s.twin = NULL;
+    s.key = malloc((n ? n : 1) * sizeof *s.key);
+    s.half = malloc((n ? n : 1) * sizeof *s.half);
+    assert_non_null(s.key);
+    assert_non_null(s.half);
+    for (size_t t = 0, k = 0; t < nt; t++)
+        for (int i = 0; keep[t] && i < 3; i++, k++) {
+            s.key[k] = ((uint64_t)tri[3 * t + i] << 32) | tri[3 * t + (i + 1) % 3];
+            s.half[k] = (uint32_t)(3 * t + (size_t)i);
+        }
+    assert_int_equal(acd_edge_map_sort(&s, &err), ACD_OK);
+    assert_memory_equal(s.key, m.key, n * sizeof *m.key);
+    assert_memory_equal(s.half, m.half, n * sizeof *m.half);
+    acd_edge_map_free(&s);
     uint32_t *tw;
     assert_int_equal(acd_edge_map_twins(&m, &tw, &err), ACD_OK);
     for (size_t i = 0; i < n; i++) {
@@ -87,6 +105,16 @@ static void test_sparse_ids(void **state) {
 static void test_high_degree(void **state) {
     (void)state;
     for (uint64_t s = 1; s <= 4; s++) check(s, 500, 200, 1, 1, (int)(s & 1)); /* vertex 0 in every triangle */
+}
+
+/* sizes around the limits: 48 keys (insertion sort), 1024 entries (twins by binary search) */
+static void test_size_limits(void **state) {
+    (void)state;
+    size_t nts[] = {1, 5, 16, 17, 40, 341, 342, 700};
+    for (size_t i = 0; i < sizeof nts / sizeof *nts; i++) {
+        check(10 + i, nts[i], (uint32_t)(nts[i] / 2 + 3), 1, 0, 0);
+        check(20 + i, nts[i], (uint32_t)(nts[i] / 3 + 3), 7, 0, 1);
+    }
 }
 
 static void test_empty(void **state) {
@@ -123,6 +151,16 @@ static acd_status closed_status(const uint32_t *tri, size_t nt, acd_error *err) 
         assert_int_equal(k.n, m.n);
         assert_memory_equal(k.key, m.key, m.n * sizeof *m.key);
         assert_memory_equal(k.half, m.half, m.n * sizeof *m.half);
+        /* its twins by half-edge: the opposite half-edge, an involution */
+        assert_non_null(k.twin);
+        assert_int_equal(k.n, 3 * nt);
+        for (size_t h = 0; h < 3 * nt; h++) {
+            uint32_t o = k.twin[h];
+            assert_true(o < 3 * nt && o / 3 != h / 3);
+            assert_int_equal(k.twin[o], h);
+            assert_int_equal(tri[o], tri[3 * (h / 3) + (h % 3 + 1) % 3]);
+            assert_int_equal(tri[3 * (o / 3) + (o % 3 + 1) % 3], tri[h]);
+        }
         acd_edge_map_free(&k);
     } else {
         assert_string_equal(e2.message, err->message);
@@ -155,6 +193,7 @@ int main(void) {
         cmocka_unit_test(test_dense_ids),
         cmocka_unit_test(test_sparse_ids),
         cmocka_unit_test(test_high_degree),
+        cmocka_unit_test(test_size_limits),
         cmocka_unit_test(test_empty),
         cmocka_unit_test(test_check_closed),
     };

@@ -1,7 +1,8 @@
 /* Tests of geom3/plane_cut: random closed meshes (convex hulls of random points, tori, voxel solids
  * with coplanar faces, cubes with cavities) cut by random planes and by planes through vertices;
  * every piece closed and consistently oriented, volumes adding up to 1e-9 relative, caps of equal
- * area on both sides, known section areas. */
+ * area on both sides, known section areas; the same results (to the bit) whether the mesh's edge
+ * map comes with its twins (acd_edge_map_closed), without them, or not at all. */
 #include "testutil.h"
 
 #include <math.h>
@@ -457,6 +458,109 @@ static void test_near_degenerate_planes(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Two cut results equal to the bit. */
+static void assert_same_result(const acd_cut_result *a, const acd_cut_result *b) {
+    assert_int_equal(a->npieces, b->npieces);
+    assert_int_equal(a->nloops, b->nloops);
+    assert_int_equal(a->nregions, b->nregions);
+    assert_int_equal(a->nforced, b->nforced);
+    assert_int_equal(a->ndropped, b->ndropped);
+    assert_memory_equal(&a->section_area, &b->section_area, sizeof a->section_area);
+    for (size_t p = 0; p < a->npieces; p++) {
+        const acd_cut_piece *x = &a->pieces[p], *y = &b->pieces[p];
+        assert_int_equal(x->side, y->side);
+        assert_int_equal(x->closed, y->closed);
+        assert_int_equal(x->mesh.nvertices, y->mesh.nvertices);
+        assert_int_equal(x->mesh.ntriangles, y->mesh.ntriangles);
+        assert_memory_equal(x->mesh.vertices, y->mesh.vertices, 3 * x->mesh.nvertices * sizeof(double));
+        assert_memory_equal(x->mesh.triangles, y->mesh.triangles, 3 * x->mesh.ntriangles * sizeof(uint32_t));
+        assert_memory_equal(x->is_cap, y->is_cap, x->mesh.ntriangles);
+        assert_memory_equal(x->source, y->source, x->mesh.nvertices * sizeof(uint32_t));
+    }
+}
+
+/* m cut by pl with its map and twins (acd_edge_map_closed), its map alone (built and checked) and
+ * none, with and without DROP_SPECKS: the same results; a piece said closed is. Returns the pieces. */
+static size_t cut_three_ways(const acd_mesh *m, const acd_cut_plane *pl) {
+    acd_edge_map tw, plain;
+    acd_error err;
+    assert_int_equal(acd_edge_map_closed(m->triangles, m->ntriangles, &tw, &err), ACD_OK);
+    assert_non_null(tw.twin);
+    assert_int_equal(acd_edge_map_build(m->triangles, m->ntriangles, NULL, &plain, &err), ACD_OK);
+    assert_int_equal(acd_edge_map_check_closed(&plain, m->triangles, m->ntriangles, &err), ACD_OK);
+    assert_null(plain.twin);
+    size_t np = 0;
+    for (unsigned flags = 0; flags <= ACD_PLANE_CUT_DROP_SPECKS; flags += ACD_PLANE_CUT_DROP_SPECKS) {
+        acd_cut_result r0, r1, r2;
+        assert_int_equal(acd_plane_cut_map(m, NULL, pl, flags, &r0, &err), ACD_OK);
+        assert_int_equal(acd_plane_cut_map(m, &tw, pl, flags, &r1, &err), ACD_OK);
+        assert_int_equal(acd_plane_cut_map(m, &plain, pl, flags, &r2, &err), ACD_OK);
+        assert_same_result(&r0, &r1);
+        assert_same_result(&r0, &r2);
+        for (size_t p = 0; p < r0.npieces; p++) {
+            const acd_mesh *pm = &r0.pieces[p].mesh;
+            if (r0.pieces[p].closed) assert_int_equal(acd_edge_map_closed(pm->triangles, pm->ntriangles, NULL, NULL), ACD_OK);
+        }
+        np += r0.npieces;
+        acd_cut_result_free(&r0);
+        acd_cut_result_free(&r1);
+        acd_cut_result_free(&r2);
+    }
+    acd_edge_map_free(&tw);
+    acd_edge_map_free(&plain);
+    return np;
+}
+
+static void test_map_paths(void **state) {
+    (void)state;
+    acd_rng r;
+    acd_rng_seed(&r, 57);
+    size_t cuts = 0, pieces = 0;
+    int N = 5;
+    for (int solid = 0; solid < 12; solid++) { /* voxel solids: coplanar faces, planes through vertices */
+        uint8_t vox[125];
+        for (int i = 0; i < N * N * N; i++) vox[i] = acd_rng_uniform(&r) < 0.55;
+        fix_edge_contacts(vox, N);
+        acd_mesh m;
+        if (!voxel_mesh(vox, N, &m) || m.ntriangles == 0) {
+            acd_mesh_free(&m);
+            continue;
+        }
+        for (int k = 0; k < 8; k++) {
+            acd_cut_plane pl;
+            if (k < 3) {
+                double o[3] = {0, 0, 0}, n[3] = {0, 0, 0};
+                o[k] = (double)acd_rng_below(&r, (uint64_t)N + 1);
+                n[k] = acd_rng_uniform(&r) < 0.5 ? 1 : -1;
+                assert_int_equal(acd_cut_plane_from_normal(o, n, N, &pl, NULL), ACD_OK);
+            } else if (k < 6) {
+                plane_through_vertices(&r, &m, &pl);
+            } else {
+                random_plane(&r, &pl, 2.5);
+                for (int q = 0; q < 3; q++) pl.a[q] += 2.5, pl.b[q] += 2.5, pl.c[q] += 2.5;
+            }
+            pieces += cut_three_ways(&m, &pl);
+            cuts++;
+        }
+        acd_mesh_free(&m);
+    }
+    acd_mesh m;
+    torus_mesh(40, 24, 2, 0.7, &m);
+    for (int trial = 0; trial < 20; trial++) {
+        acd_cut_plane pl;
+        if (trial % 2)
+            plane_through_vertices(&r, &m, &pl);
+        else
+            random_plane(&r, &pl, 1.5);
+        pieces += cut_three_ways(&m, &pl);
+        cuts++;
+    }
+    acd_mesh_free(&m);
+    print_message("map paths: cuts %zu, pieces %zu\n", cuts, pieces);
+    assert_true(cuts >= 60);
+    assert_true(pieces > 2 * cuts); /* most cuts split (counted twice: with and without DROP_SPECKS) */
+}
+
 static void test_scales(void **state) {
     (void)state;
     /* the same torus cut at scales 1e-100 and 1e100: same piece counts, volumes scale exactly-ish */
@@ -495,6 +599,7 @@ int main(void) {
         cmocka_unit_test(test_no_crossing),
         cmocka_unit_test(test_near_degenerate_planes),
         cmocka_unit_test(test_scales),
+        cmocka_unit_test(test_map_paths),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
