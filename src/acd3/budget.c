@@ -861,8 +861,10 @@ typedef struct exact_cut {
 static void exact_cut_free(exact_cut *X) { cut_with_hulls_free(&X->cr, &X->hulls); }
 
 /* The cut itself and its pieces' largest box diagonal over the atom's (the pieces' volumes and
- * hulls are tasks of their own, in evaluate_batch). */
-static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_candidate *cand, exact_cut *X) {
+ * hulls are tasks of their own, in evaluate_batch). em: the atom's edge map with its twins
+ * (acd_edge_map_closed), shared by its candidates' cuts, or NULL (the cut builds and checks one). */
+static void exact_cut_do(const budget_state *S, const atom *A, const acd_edge_map *em, const acd3_plane_candidate *cand,
+                         exact_cut *X) {
     memset(X, 0, sizeof *X);
     X->cs = acd_cut_plane_from_normal(cand->point, cand->normal, S->extent, &X->cp, NULL);
     if (X->cs != ACD_OK) {
@@ -870,7 +872,7 @@ static void exact_cut_do(const budget_state *S, const atom *A, const acd3_plane_
         return;
     }
     acd_error ce;
-    X->cs = acd_plane_cut_flags(&A->mesh, &X->cp, ACD_PLANE_CUT_DROP_SPECKS, &X->cr, &ce);
+    X->cs = acd_plane_cut_map(&A->mesh, em, &X->cp, ACD_PLANE_CUT_DROP_SPECKS, &X->cr, &ce);
     /* every piece must be closed and consistently oriented, as decompose.c and merge.c ask of their
      * cuts: rounding can leave a piece with a triangle repeating a vertex (fuzz_acd3d_tight, budget 2
      * on a pinched sphere: a budget part not closed); such a cut is skipped */
@@ -1095,10 +1097,23 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
     for (int j = 0; j < nb; j++) plan_free(&P[j]);
     free(P);
     exact_cut X[BUDGET_BATCH][BUDGET_EXACT + BUDGET_P1_MIDPLANES];
+    /* each atom's edge map and twins, built and checked once for its candidates' cuts (an atom
+     * whose map fails passes none: each cut builds its own and fails as before) */
+    acd_edge_map em[BUDGET_BATCH];
+    int hem[BUDGET_BATCH] = {0};
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nb > 1)
+#endif
+    for (int j = 0; j < nb; j++)
+        if (nc[j] > 0)
+            hem[j] = acd_edge_map_closed(S->a[idx[j]].mesh.triangles, S->a[idx[j]].mesh.ntriangles, &em[j], NULL) == ACD_OK;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
 #endif
-    for (int t = 0; t < ntask; t++) exact_cut_do(S, &S->a[idx[tj[t]]], &cand[tj[t]][td[t]], &X[tj[t]][td[t]]);
+    for (int t = 0; t < ntask; t++)
+        exact_cut_do(S, &S->a[idx[tj[t]]], hem[tj[t]] ? &em[tj[t]] : NULL, &cand[tj[t]][td[t]], &X[tj[t]][td[t]]);
+    for (int j = 0; j < nb; j++)
+        if (hem[j]) acd_edge_map_free(&em[j]);
     /* then every piece's volume and its hull's volume estimate (geom3/hull_volume) as a task: the
      * cuts' pieces spread over the threads; the qhull hulls (kept for the cut chosen: its pieces'
      * hulls are computed once) only for the candidates the estimates leave (BUDGET_SCREEN_REL) */
