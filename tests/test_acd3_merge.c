@@ -238,6 +238,69 @@ static void test_kept_trees_tables_same_result(void **state) {
     acd_mesh_free(&in);
 }
 
+/* Two trees are the same, bit for bit (over the same arrays). */
+static void assert_same_tree(const acd_bvh *a, const acd_bvh *b) {
+    assert_ptr_equal(a->vertices, b->vertices);
+    assert_ptr_equal(a->triangles, b->triangles);
+    assert_int_equal(a->nvertices, b->nvertices);
+    assert_int_equal(a->ntriangles, b->ntriangles);
+    assert_int_equal(a->nnodes, b->nnodes);
+    assert_true(a->nnodes > 0);
+    assert_memory_equal(a->nodes, b->nodes, a->nnodes * sizeof *a->nodes);
+    assert_memory_equal(a->order, b->order, a->ntriangles * sizeof *a->order);
+    assert_memory_equal(a->boxes, b->boxes, 6 * a->ntriangles * sizeof *a->boxes);
+}
+
+/* acd3_merge_opts.keep_trees (for acd3/trim): the same result, and the trees handed over are those
+ * acd_bvh_build makes: the input's, and those of the parts left alone (the L's two parts: the step
+ * is joined), none for the joined parts nor where the caller's tree was used; at 1 and 2 threads. */
+static void test_keep_trees_handed_over(void **state) {
+    (void)state;
+    acd_mesh parts[4], in;
+    l_and_step(parts, &in);
+    acd_error err;
+    const double tau = 0.9, tol = 1e-9;
+    acd_bvh B[4], BI;
+    for (int k = 0; k < 4; k++)
+        assert_int_equal(acd_bvh_build(&B[k], parts[k].vertices, parts[k].nvertices, parts[k].triangles,
+                                       parts[k].ntriangles, &err), ACD_OK);
+    assert_int_equal(acd_bvh_build(&BI, in.vertices, in.nvertices, in.triangles, in.ntriangles, &err), ACD_OK);
+    acd3_merge_opts mo = {.by_volume = 1, .stop_at = 3};
+    acd3_merge_result ref;
+    assert_int_equal(acd3_merge_adjacent(&in, parts, 4, tau, tol, &mo, 1, &ref, &err), ACD_OK);
+    assert_int_equal(ref.npart_bvh, 0); /* not asked for: none */
+    assert_int_equal(ref.input_bvh.nnodes, 0);
+    assert_null(ref.part_bvh);
+    mo.keep_trees = 1;
+    for (int th = 1; th <= 2; th++) {
+        acd3_merge_result r;
+        assert_int_equal(acd3_merge_adjacent(&in, parts, 4, tau, tol, &mo, th, &r, &err), ACD_OK);
+        assert_same_result(&ref, &r, 4);
+        assert_same_tree(&r.input_bvh, &BI);
+        assert_int_equal(r.npart_bvh, 4);
+        for (int k = 0; k < 2; k++) assert_same_tree(&r.part_bvh[k], &B[k]);
+        for (int k = 2; k < 4; k++) assert_int_equal(r.part_bvh[k].nnodes, 0); /* joined */
+        acd3_merge_result_free(&r);
+        /* part 0's tree given: used, not handed back */
+        acd3_merge_kept kept[4];
+        memset(kept, 0, sizeof kept);
+        kept[0].bvh = &B[0];
+        assert_int_equal(acd3_merge_adjacent_kept(&in, parts, kept, 4, tau, tol, &mo, th, &r, &err), ACD_OK);
+        assert_same_result(&ref, &r, 4);
+        assert_int_equal(r.part_bvh[0].nnodes, 0);
+        assert_same_tree(&r.part_bvh[1], &B[1]);
+        acd3_merge_result_free(&r);
+        assert_true(B[0].nnodes > 0); /* (read, not taken) */
+    }
+    acd3_merge_result_free(&ref);
+    for (int k = 0; k < 4; k++) {
+        acd_bvh_free(&B[k]);
+        acd_mesh_free(&parts[k]);
+    }
+    acd_bvh_free(&BI);
+    acd_mesh_free(&in);
+}
+
 /* Distance from p to the nearest of the triangles (brute force). */
 static double dist_tris(const double *v, const uint32_t *t, size_t nt, const double p[3]) {
     double best = INFINITY, q[3];
@@ -305,6 +368,7 @@ int main(void) {
         cmocka_unit_test(test_hull_reach_near_tau),
         cmocka_unit_test(test_kept_hulls_same_result),
         cmocka_unit_test(test_kept_trees_tables_same_result),
+        cmocka_unit_test(test_keep_trees_handed_over),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

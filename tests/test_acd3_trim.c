@@ -19,10 +19,12 @@
 #include "acd/acd3d.h"
 #include "acd/eval.h"
 #include "acd/hull.h"
+#include "acd3/trim.h"
 #include "acd3/trim_beyond.h"
 #include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
 #include "geom3/volume.h"
+#include "mesh/selfintersect.h"
 #include "shapes.h"
 
 static void cube(acd_mesh *m) {
@@ -205,8 +207,7 @@ static void test_trim_refused(void **state) {
 }
 
 /* two bumpy spheres overlapping: one closed, outward mesh that crosses itself */
-static void test_trim_self_crossing(void **state) {
-    (void)state;
+static void two_bumpy(acd_mesh *out) {
     acd_mesh a, b, m;
     bumpy(&a);
     bumpy(&b);
@@ -222,6 +223,15 @@ static void test_trim_self_crossing(void **state) {
     }
     memcpy(m.triangles, a.triangles, 3 * a.ntriangles * sizeof *m.triangles);
     for (size_t t = 0; t < 3 * b.ntriangles; t++) m.triangles[3 * a.ntriangles + t] = b.triangles[t] + (uint32_t)a.nvertices;
+    acd_mesh_free(&a);
+    acd_mesh_free(&b);
+    *out = m;
+}
+
+static void test_trim_self_crossing(void **state) {
+    (void)state;
+    acd_mesh m;
+    two_bumpy(&m);
     acd_error err;
     acd3d_params p = acd3d_budget_params(4);
     p.trim_coverage = 0.005;
@@ -240,9 +250,112 @@ static void test_trim_self_crossing(void **state) {
     }
     assert_int_equal(whole, r.trim_skipped);
     acd3d_result_free(&r);
-    acd_mesh_free(&a);
-    acd_mesh_free(&b);
     acd_mesh_free(&m);
+}
+
+/* The parts of r with copies of their hulls (trimmed in place) and their own meshes (the same arrays:
+ * the trees are over them). */
+static acd3d_part *hull_copies(const acd3d_result *r) {
+    acd3d_part *c = calloc(r->nparts, sizeof *c);
+    acd_error err;
+    assert_non_null(c);
+    for (size_t i = 0; i < r->nparts; i++) {
+        c[i] = r->parts[i];
+        assert_int_equal(acd_mesh_copy(&c[i].hull, &r->parts[i].hull, &err), ACD_OK);
+    }
+    return c;
+}
+
+static void hull_copies_free(acd3d_part *c, size_t n) {
+    for (size_t i = 0; i < n; i++) acd_mesh_free(&c[i].hull);
+    free(c);
+}
+
+static void assert_same_hulls(const acd3d_part *a, const acd3d_part *b, size_t n) {
+    for (size_t i = 0; i < n; i++) {
+        assert_int_equal(a[i].hull.nvertices, b[i].hull.nvertices);
+        assert_int_equal(a[i].hull.ntriangles, b[i].hull.ntriangles);
+        assert_memory_equal(a[i].hull.vertices, b[i].hull.vertices, 3 * a[i].hull.nvertices * sizeof(double));
+        assert_memory_equal(a[i].hull.triangles, b[i].hull.triangles, 3 * a[i].hull.ntriangles * sizeof(uint32_t));
+        assert_memory_equal(&a[i].hull_volume, &b[i].hull_volume, sizeof(double));
+        assert_memory_equal(&a[i].trimmed_volume, &b[i].trimmed_volume, sizeof(double));
+    }
+}
+
+/* acd3_trim_hulls with the trees given (acd3_trim_trees: all, some, the input's only, and trees of
+ * other parts, which are not over the part's arrays: not used) trims as with none, bit for bit, at 1
+ * and 2 threads; and acd3d_decompose, which hands it the merge's and the budget pass's trees, gives
+ * those hulls too. On the bumpy sphere and on an input that crosses itself (whose parts are then
+ * tested with their trees: acd_mesh_self_intersections_bvh, the same count as without). */
+static void test_trim_given_trees(void **state) {
+    (void)state;
+    for (int shape = 0; shape < 2; shape++) {
+        acd_mesh m;
+        if (shape == 0) bumpy(&m);
+        else two_bumpy(&m);
+        acd_error err;
+        acd3d_params p = acd3d_budget_params(shape == 0 ? 6 : 4);
+        p.threads = 1;
+        acd3d_result plain, trimmed;
+        assert_int_equal(acd3d_decompose(&m, &p, &plain, &err), ACD_OK);
+        const double F = shape == 0 ? 0.002 : 0.005, vol = plain.input_volume;
+        p.trim_coverage = F;
+        assert_int_equal(acd3d_decompose(&m, &p, &trimmed, &err), ACD_OK);
+        const size_t n = plain.nparts;
+        assert_int_equal(trimmed.nparts, n);
+        /* the trees, built here */
+        acd_bvh BI, *B = calloc(n, sizeof *B);
+        const acd_bvh **all = calloc(n, sizeof *all), **some = calloc(n, sizeof *some), **other = calloc(n, sizeof *other);
+        assert_true(B && all && some && other);
+        assert_int_equal(acd_bvh_build(&BI, m.vertices, m.nvertices, m.triangles, m.ntriangles, &err), ACD_OK);
+        for (size_t i = 0; i < n; i++) {
+            const acd_mesh *pm = &plain.parts[i].mesh;
+            assert_int_equal(acd_bvh_build(&B[i], pm->vertices, pm->nvertices, pm->triangles, pm->ntriangles, &err),
+                             ACD_OK);
+            all[i] = &B[i];
+            some[i] = i % 2 ? &B[i] : NULL;
+        }
+        for (size_t i = 0; i < n; i++) other[i] = &B[(i + 1) % n];
+        if (shape == 1) { /* the input's test on its tree */
+            size_t c0 = 0, c1 = 0;
+            uint32_t p0[4] = {0}, p1[4] = {0};
+            assert_int_equal(acd_mesh_self_intersections(&m, &c0, p0, 2, &err), ACD_OK);
+            assert_int_equal(acd_mesh_self_intersections_bvh(&m, &BI, &c1, p1, 2, &err), ACD_OK);
+            assert_true(c0 > 0);
+            assert_int_equal(c0, c1);
+            assert_memory_equal(p0, p1, sizeof p0);
+        }
+        const acd3_trim_trees sets[4] = {{&BI, all}, {NULL, some}, {&BI, NULL}, {NULL, other}};
+        acd3d_part *ref = hull_copies(&plain);
+        acd3_trim_stats sref;
+        assert_int_equal(acd3_trim_hulls(ref, n, vol, F * vol, ACD3_TRIM_MIN_GAIN_REL * vol, p.max_hull_vertices, &m,
+                                         NULL, 1, NULL, NULL, &sref, &err),
+                         ACD_OK);
+        assert_true(sref.cuts > 0);
+        assert_true(shape == 0 ? sref.skipped == 0 : sref.skipped > 0);
+        for (int s = 0; s < 4; s++)
+            for (int th = 1; th <= 2; th++) {
+                acd3d_part *c = hull_copies(&plain);
+                acd3_trim_stats st;
+                assert_int_equal(acd3_trim_hulls(c, n, vol, F * vol, ACD3_TRIM_MIN_GAIN_REL * vol, p.max_hull_vertices,
+                                                 &m, &sets[s], th, NULL, NULL, &st, &err),
+                                 ACD_OK);
+                assert_memory_equal(&st, &sref, sizeof st);
+                assert_same_hulls(c, ref, n);
+                hull_copies_free(c, n);
+            }
+        /* the decomposition's own trim (with the trees of its merge and budget pass) */
+        assert_same_hulls(trimmed.parts, ref, n);
+        assert_int_equal(trimmed.trim_cuts, sref.cuts);
+        assert_int_equal(trimmed.trim_skipped, sref.skipped);
+        hull_copies_free(ref, n);
+        for (size_t i = 0; i < n; i++) acd_bvh_free(&B[i]);
+        acd_bvh_free(&BI);
+        free(B), free(all), free(some), free(other);
+        acd3d_result_free(&plain);
+        acd3d_result_free(&trimmed);
+        acd_mesh_free(&m);
+    }
 }
 
 /* the reference: per level, acd_geom3_triangle_volume_beyond over the query's triangles in its order */
@@ -357,7 +470,7 @@ int main(void) {
         cmocka_unit_test(test_volume_beyond_cube),   cmocka_unit_test(test_volume_beyond_sphere),
         cmocka_unit_test(test_trim_bumpy),           cmocka_unit_test(test_trim_max_vertices),
         cmocka_unit_test(test_trim_refused),         cmocka_unit_test(test_trim_self_crossing),
-        cmocka_unit_test(test_trim_beyond_bitwise),
+        cmocka_unit_test(test_trim_beyond_bitwise),  cmocka_unit_test(test_trim_given_trees),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

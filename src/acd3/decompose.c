@@ -132,7 +132,10 @@ typedef struct work_node {
     int have_hull;
     const double *hull_of; /* the vertices (mesh.vertices then) the hull was computed from */
     /* a budget piece that is a part: its tree and its hull's facet table from the budget pass's leaf
-     * test (acd3/budget new_bvh, new_table), for the merge; dropped with its mesh (kept_drop) */
+     * test (acd3/budget new_bvh, new_table), for the merge; dropped with its mesh (kept_drop), or
+     * after the merge, except a part's tree that the trim pass uses (acd3/trim: with trim_coverage,
+     * the tree of a part the merge left alone, the budget's or the merge's, over the arrays of the
+     * part's mesh, which moves to the result's part) */
     acd_bvh bvh;
     acd3_facet_table table;
 } work_node;
@@ -146,6 +149,7 @@ static void kept_drop(work_node *w) {
 typedef struct tree {
     work_node *a;
     size_t n, cap;
+    acd_bvh input_bvh; /* the input's tree from the merge (acd3_merge_result.input_bvh), for acd3/trim */
 } tree;
 
 static int tree_push(tree *t, int parent, acd_mesh *mesh, size_t depth, int solid) {
@@ -1116,7 +1120,26 @@ static acd_status join_adjacent(tree *t, const acd_mesh *input, double tau, doub
     free(kept);
     free(hulls);
     free(meshes);
-    for (size_t i = 0; i < np; i++) kept_drop(&t->a[idx[i]]); /* (their meshes may go below) */
+    /* the trees trim uses (mo->keep_trees: those of the parts left alone, and the input's) kept, the
+     * rest dropped (their meshes may go below) */
+    for (size_t i = 0; i < np; i++) {
+        work_node *w = &t->a[idx[i]];
+        if (st != ACD_OK || !mo->keep_trees || mr.group_of[i] == UINT32_MAX || mr.group_size[mr.group_of[i]] != 1) {
+            kept_drop(w);
+            continue;
+        }
+        acd3_facet_table_free(&w->table);
+        if (i < mr.npart_bvh && mr.part_bvh[i].nnodes) { /* the merge's (it did not use w's) */
+            acd_bvh_free(&w->bvh);
+            w->bvh = mr.part_bvh[i];
+            memset(&mr.part_bvh[i], 0, sizeof mr.part_bvh[i]);
+        }
+    }
+    if (st == ACD_OK && mo->keep_trees) {
+        acd_bvh_free(&t->input_bvh);
+        t->input_bvh = mr.input_bvh;
+        memset(&mr.input_bvh, 0, sizeof mr.input_bvh);
+    }
     /* the refinement's pieces (acd3/merge): children of the parts they were cut from */
     size_t na = np + mr.nnew, *idx2 = st == ACD_OK ? realloc(idx, (na ? na : 1) * sizeof *idx) : NULL;
     if (st == ACD_OK && !idx2) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
@@ -1626,7 +1649,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
          * could not be their children) */
         const acd3_merge_opts mo = {params->merge_order == ACD3D_MERGE_VOLUME, params->merge_parts,
                                     params->max_hulls ? 0 : params->merge_refine, params->progress,
-                                    params->progress_user};
+                                    params->progress_user, params->trim_coverage > 0};
         st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, &mo, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     } else if (params->merge) {
@@ -1694,9 +1717,18 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
     if (solid && params->trim_coverage > 0) { /* the hulls trimmed within the coverage budget (acd3/trim) */
         /* (on an input that crosses itself, its parts are tested for crossings: acd3/trim) */
         acd3_trim_stats ts;
+        /* the trees built already (the merge's and the budget pass's: acd3_trim_trees) */
+        const acd_bvh **ptrees = malloc((out->nparts ? out->nparts : 1) * sizeof *ptrees);
+        if (ptrees)
+            for (size_t j = 0; j < out->nparts; j++) {
+                const acd_bvh *b = &t.a[out->parts[j].node].bvh;
+                ptrees[j] = b->nnodes ? b : NULL;
+            }
+        const acd3_trim_trees trees = {t.input_bvh.nnodes ? &t.input_bvh : NULL, ptrees};
         st = acd3_trim_hulls(out->parts, out->nparts, vol, params->trim_coverage * vol, ACD3_TRIM_MIN_GAIN_REL * vol,
-                             params->max_hull_vertices, mesh, nthreads, params->progress, params->progress_user, &ts,
-                             err);
+                             params->max_hull_vertices, mesh, &trees, nthreads, params->progress,
+                             params->progress_user, &ts, err);
+        free(ptrees);
         if (st != ACD_OK) goto fail;
         out->trimmed_volume = ts.removed_part;
         out->trim_cuts = ts.cuts;
@@ -1708,6 +1740,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         kept_drop(&t.a[i]);
     }
     free(t.a);
+    acd_bvh_free(&t.input_bvh);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     out->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     return ACD_OK;
@@ -1719,6 +1752,7 @@ fail:
         kept_drop(&t.a[i]);
     }
     free(t.a);
+    acd_bvh_free(&t.input_bvh);
     acd3d_result_free(out);
     return st;
 }

@@ -121,6 +121,9 @@ void acd3_merge_result_free(acd3_merge_result *r) {
     free(r->new_parent);
     free(r->new_plane);
     free(r->new_volume);
+    acd_bvh_free(&r->input_bvh);
+    for (size_t i = 0; i < r->npart_bvh; i++) acd_bvh_free(&r->part_bvh[i]);
+    free(r->part_bvh);
     memset(r, 0, sizeof *r);
 }
 
@@ -1769,6 +1772,19 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
             }
         }
         free(num);
+    }
+    if (st == ACD_OK && opts && opts->keep_trees) { /* the trees handed over (acd3/trim uses them) */
+        out->part_bvh = calloc(nparts, sizeof *out->part_bvh);
+        if (out->part_bvh) { /* (none: the caller builds them again) */
+            out->npart_bvh = nparts;
+            for (size_t i = 0; i < nparts; i++)
+                if (!at.bvh_kept[i] && at.owner[i] != UINT32_MAX && out->group_size[out->group_of[i]] == 1) {
+                    out->part_bvh[i] = at.bvh[i];
+                    memset(&at.bvh[i], 0, sizeof at.bvh[i]);
+                }
+        }
+        out->input_bvh = in_bvh.bvh;
+        memset(&in_bvh.bvh, 0, sizeof in_bvh.bvh);
     }
     for (size_t g = 0; g < ng; g++) group_free(&G[g]);
     atoms_free(&at, nparts);

@@ -54,6 +54,13 @@ typedef struct acd3_merge_result {
     double (*new_plane)[4]; /* per piece: its parent's cut plane n.x + d = 0 */
     double *new_volume;   /* per piece: its volume */
     size_t trades;        /* refinement steps made (one cut, one join each) */
+    /* with acd3_merge_opts.keep_trees (else empty), the trees the merge built, handed over (owned):
+     * the input's (empty when it built none), and per input part (npart_bvh entries, or none) the
+     * part's tree when the part is alone in its group at the end (empty otherwise, and where the
+     * caller's tree, acd3_merge_kept.bvh, was used) */
+    acd_bvh input_bvh;
+    acd_bvh *part_bvh;
+    size_t npart_bvh;
 } acd3_merge_result;
 
 typedef struct acd3_merge_opts {
@@ -68,6 +75,8 @@ typedef struct acd3_merge_opts {
     acd_progress_fn progress; /* optional (NULL: none): called between steps, from the calling
                                  thread only; non-zero cancels (ACD_ERR_CANCELLED) */
     void *progress_user;
+    int keep_trees; /* non-zero: the trees built are handed over (acd3_merge_result.input_bvh,
+                       part_bvh), for acd3/trim */
 } acd3_merge_opts;
 
 /* Joins the adjacent parts of the closed input mesh `input` (all parts closed, together tiling

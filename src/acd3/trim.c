@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "geom3/bvh.h"
 #include "geom3/vec3.h"
+#include "mesh/selfintersect.h"
 
 /* The depths a facet's plane is moved inward by, as fractions of the cube root of the part's
  * initial hull volume (increasing). */
@@ -52,6 +53,9 @@ typedef struct trim_hull {
     trim_poly h;      /* the current hull */
     double *vdot;     /* h.nv once cut: its vertices' n.x in plane_measure (NULL: computed per triangle) */
     acd3_trim_tree tree; /* the part's triangles (from its BVH) */
+    const acd_bvh *bvh;  /* the part's BVH: the caller's (acd3_trim_trees) or own_bvh, until the
+                            self-crossing test */
+    acd_bvh own_bvh;
     double unit;      /* depth unit: cube root of the initial hull volume */
     double centre[3]; /* of the initial hull's bounding box (apexes of the cones) */
     int active;       /* a solid hull that may still be cut */
@@ -391,8 +395,8 @@ static int part_order_cmp(const void *a, const void *b) {
 }
 
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
-                           size_t max_vertices, const acd_mesh *input, int threads, acd_progress_fn progress,
-                           void *progress_user, acd3_trim_stats *stats, acd_error *err) {
+                           size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
+                           acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats, acd_error *err) {
     memset(stats, 0, sizeof *stats);
     for (size_t i = 0; i < nparts; i++) parts[i].trimmed_volume = 0;
     if (!(budget > 0) || nparts == 0 || !(input_volume > 0)) return ACD_OK;
@@ -428,7 +432,9 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         acd_error e;
         const long j = c < 0 || !order ? c : (long)order[c].i;
         if (j < 0) {
-            if (input) input_st = acd_mesh_self_intersections(input, &input_crossings, NULL, 0, &e);
+            if (input)
+                input_st = acd_mesh_self_intersections_bvh(input, trees ? trees->input : NULL, &input_crossings, NULL,
+                                                           0, &e);
             continue;
         }
         trim_hull *H = &T[j];
@@ -446,19 +452,24 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         H->h.t = h0.triangles, H->h.nt = h0.ntriangles;
         H->h.pl = h0.planes;
         h0.vertices = NULL, h0.triangles = NULL, h0.planes = NULL;
-        acd_bvh bvh;
-        pst[j] = acd_bvh_build(&bvh, p->mesh.vertices, p->mesh.nvertices, p->mesh.triangles, p->mesh.ntriangles, &e);
-        if (pst[j] != ACD_OK) {
-            acd_hull_free(&h0);
-            continue;
+        /* the part's tree: the caller's, else built (kept for the self-crossing test) */
+        const acd_bvh *given = trees && trees->parts ? trees->parts[j] : NULL;
+        if (acd_bvh_is_over(given, p->mesh.vertices, p->mesh.nvertices, p->mesh.triangles, p->mesh.ntriangles)) {
+            H->bvh = given;
+        } else {
+            pst[j] = acd_bvh_build(&H->own_bvh, p->mesh.vertices, p->mesh.nvertices, p->mesh.triangles,
+                                   p->mesh.ntriangles, &e);
+            if (pst[j] != ACD_OK) {
+                acd_hull_free(&h0);
+                continue;
+            }
+            H->bvh = &H->own_bvh;
         }
-        if (!acd3_trim_tree_build(&H->tree, &bvh)) {
+        if (!acd3_trim_tree_build(&H->tree, H->bvh)) {
             pst[j] = ACD_ERR_NOMEM;
-            acd_bvh_free(&bvh);
             acd_hull_free(&h0);
             continue;
         }
-        acd_bvh_free(&bvh);
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
         for (size_t v = 0; v < H->h.nv; v++)
             for (int k = 0; k < 3; k++) {
@@ -482,10 +493,14 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             if (!T[j].active) continue;
             size_t crossings = 0;
             acd_error e;
-            pst[j] = acd_mesh_self_intersections(&parts[j].mesh, &crossings, NULL, 0, &e);
+            pst[j] = acd_mesh_self_intersections_bvh(&parts[j].mesh, T[j].bvh, &crossings, NULL, 0, &e);
             if (pst[j] != ACD_OK || crossings > 0) T[j].active = 0;
             T[j].crossing = pst[j] == ACD_OK && crossings > 0;
         }
+    }
+    for (size_t j = 0; j < nparts; j++) { /* (the trees are not needed after the test) */
+        acd_bvh_free(&T[j].own_bvh);
+        T[j].bvh = NULL;
     }
     acd_status st = input_st == ACD_OK ? ACD_OK : acd_fail(err, input_st, "trim: out of memory");
     for (size_t i = 0; i < nparts && st == ACD_OK; i++) {

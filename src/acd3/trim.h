@@ -31,6 +31,7 @@
 
 #include "acd/acd3d.h"
 #include "acd/base.h"
+#include "geom3/bvh.h"
 
 /* min_gain as acd3d_decompose passes it: a cut removes at least this fraction of the input's volume
  * of hull volume */
@@ -45,12 +46,22 @@ typedef struct acd3_trim_stats {
     size_t skipped;       /* solid parts left whole because they intersect themselves */
 } acd3_trim_stats;
 
+/* Trees the caller built already (acd3d_decompose: the merge's and the budget pass's), used instead
+ * of building them again; each NULL, or a tree that acd_bvh_is_over the mesh's own arrays (the tree
+ * acd_bvh_build makes of them; one over other arrays is not used: built here). The result is the
+ * same, bit for bit (the losses are summed in the tree's order: the same tree, the same sums). */
+typedef struct acd3_trim_trees {
+    const acd_bvh *input;        /* the input's tree (its self-crossing test) */
+    const acd_bvh *const *parts; /* NULL, or per part its tree (the losses, its self-crossing test) */
+} acd3_trim_trees;
+
 /* Trims parts[i].hull (and hull_volume) of solid parts in place, setting parts[i].trimmed_volume.
  * budget, min_gain: model volume units; budget <= 0 does nothing. progress: NULL or called from the
  * calling thread between rounds (fraction of the budget spent); non-zero cancels
- * (ACD_ERR_CANCELLED, the parts' hulls then partly trimmed: the caller discards the result). */
+ * (ACD_ERR_CANCELLED, the parts' hulls then partly trimmed: the caller discards the result). trees:
+ * NULL or the trees the caller has (acd3_trim_trees), read only. */
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
-                           size_t max_vertices, const acd_mesh *input, int threads, acd_progress_fn progress,
-                           void *progress_user, acd3_trim_stats *stats, acd_error *err);
+                           size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
+                           acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats, acd_error *err);
 
 #endif

@@ -513,6 +513,12 @@ acd_status acd_bvh_build_threads(acd_bvh *bvh, const double *vertices, size_t nv
     return ACD_OK;
 }
 
+int acd_bvh_is_over(const acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
+                    size_t ntriangles) {
+    return bvh && bvh->vertices == vertices && bvh->nvertices == nvertices && bvh->triangles == triangles &&
+           bvh->ntriangles == ntriangles && (bvh->nnodes > 0) == (ntriangles > 0);
+}
+
 void acd_bvh_free(acd_bvh *bvh) {
     if (!bvh) return;
     free(bvh->nodes);

@@ -52,6 +52,11 @@ acd_status acd_bvh_build(acd_bvh *bvh, const double *vertices, size_t nvertices,
 acd_status acd_bvh_build_threads(acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
                                  size_t ntriangles, int threads, acd_error *err);
 void acd_bvh_free(acd_bvh *bvh);
+/* Whether bvh (may be NULL) is a tree over exactly these arrays (the same pointers and counts): what a
+ * caller handed a tree built elsewhere checks before using it in place of building one (it promises the
+ * rest: built by acd_bvh_build or acd_bvh_build_threads, the arrays unchanged since). */
+int acd_bvh_is_over(const acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
+                    size_t ntriangles);
 
 /* Closest point of triangle (a, b, c) to p (also for degenerate triangles); returns the
  * squared distance and writes the point to q. */

@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "core/predicates.h"
 #include "geom3/bvh.h"
+#include "mesh/selfintersect.h"
 
 typedef const double *pt;
 
@@ -212,6 +213,11 @@ static acd_status sweep_pairs(const acd_mesh *m, si_ctx *c, acd_error *err) {
 
 acd_status acd_mesh_self_intersections(const acd_mesh *m, size_t *count, uint32_t *pairs, size_t max_pairs,
                                        acd_error *err) {
+    return acd_mesh_self_intersections_bvh(m, NULL, count, pairs, max_pairs, err);
+}
+
+acd_status acd_mesh_self_intersections_bvh(const acd_mesh *m, const acd_bvh *given, size_t *count, uint32_t *pairs,
+                                           size_t max_pairs, acd_error *err) {
     if (!m || !count) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_self_intersections: NULL argument");
     *count = 0;
     if (m->ntriangles == 0) return ACD_OK;
@@ -230,6 +236,9 @@ acd_status acd_mesh_self_intersections(const acd_mesh *m, size_t *count, uint32_
     acd_status s;
     if (extreme_coordinates(m)) {
         s = sweep_pairs(m, &c, err);
+    } else if (acd_bvh_is_over(given, m->vertices, m->nvertices, m->triangles, m->ntriangles)) {
+        acd_bvh_overlap_pairs(given, 0.0, visit_pair, &c);
+        s = ACD_OK;
     } else {
         acd_bvh bvh;
         s = acd_bvh_build(&bvh, m->vertices, m->nvertices, m->triangles, m->ntriangles, err);
