@@ -253,15 +253,21 @@ static void test_trim_self_crossing(void **state) {
     acd_mesh_free(&m);
 }
 
-/* The parts of r with copies of their hulls (trimmed in place) and their own meshes (the same arrays:
- * the trees are over them). */
+/* The parts of r with their untrimmed hulls (trimmed in place: the hull of the part's vertices, as
+ * acd3d_decompose computes it without max_hull_vertices) and their own meshes (the same arrays: the
+ * trees are over them). */
 static acd3d_part *hull_copies(const acd3d_result *r) {
     acd3d_part *c = calloc(r->nparts, sizeof *c);
     acd_error err;
     assert_non_null(c);
     for (size_t i = 0; i < r->nparts; i++) {
         c[i] = r->parts[i];
-        assert_int_equal(acd_mesh_copy(&c[i].hull, &r->parts[i].hull, &err), ACD_OK);
+        acd_hull h;
+        assert_int_equal(acd_hull_compute(c[i].mesh.vertices, c[i].mesh.nvertices, &h, &err), ACD_OK);
+        c[i].hull = (acd_mesh){h.vertices, h.nvertices, h.triangles, h.ntriangles};
+        c[i].hull_volume = h.volume;
+        h.vertices = NULL, h.triangles = NULL;
+        acd_hull_free(&h);
     }
     return c;
 }
@@ -296,20 +302,20 @@ static void test_trim_given_trees(void **state) {
         acd_error err;
         acd3d_params p = acd3d_budget_params(shape == 0 ? 6 : 4);
         p.threads = 1;
-        acd3d_result plain, trimmed;
-        assert_int_equal(acd3d_decompose(&m, &p, &plain, &err), ACD_OK);
-        const double F = shape == 0 ? 0.002 : 0.005, vol = plain.input_volume;
+        acd3d_result trimmed;
+        const double F = shape == 0 ? 0.002 : 0.005;
         p.trim_coverage = F;
         assert_int_equal(acd3d_decompose(&m, &p, &trimmed, &err), ACD_OK);
-        const size_t n = plain.nparts;
-        assert_int_equal(trimmed.nparts, n);
+        const acd3d_result *plain = &trimmed; /* its parts, their hulls untrimmed again (hull_copies) */
+        const size_t n = trimmed.nparts;
+        const double vol = trimmed.input_volume;
         /* the trees, built here */
         acd_bvh BI, *B = calloc(n, sizeof *B);
         const acd_bvh **all = calloc(n, sizeof *all), **some = calloc(n, sizeof *some), **other = calloc(n, sizeof *other);
         assert_true(B && all && some && other);
         assert_int_equal(acd_bvh_build(&BI, m.vertices, m.nvertices, m.triangles, m.ntriangles, &err), ACD_OK);
         for (size_t i = 0; i < n; i++) {
-            const acd_mesh *pm = &plain.parts[i].mesh;
+            const acd_mesh *pm = &plain->parts[i].mesh;
             assert_int_equal(acd_bvh_build(&B[i], pm->vertices, pm->nvertices, pm->triangles, pm->ntriangles, &err),
                              ACD_OK);
             all[i] = &B[i];
@@ -326,7 +332,7 @@ static void test_trim_given_trees(void **state) {
             assert_memory_equal(p0, p1, sizeof p0);
         }
         const acd3_trim_trees sets[4] = {{&BI, all}, {NULL, some}, {&BI, NULL}, {NULL, other}};
-        acd3d_part *ref = hull_copies(&plain);
+        acd3d_part *ref = hull_copies(plain);
         acd3_trim_stats sref;
         assert_int_equal(acd3_trim_hulls(ref, n, vol, F * vol, ACD3_TRIM_MIN_GAIN_REL * vol, p.max_hull_vertices, &m,
                                          NULL, 1, NULL, NULL, &sref, &err),
@@ -335,7 +341,7 @@ static void test_trim_given_trees(void **state) {
         assert_true(shape == 0 ? sref.skipped == 0 : sref.skipped > 0);
         for (int s = 0; s < 4; s++)
             for (int th = 1; th <= 2; th++) {
-                acd3d_part *c = hull_copies(&plain);
+                acd3d_part *c = hull_copies(plain);
                 acd3_trim_stats st;
                 assert_int_equal(acd3_trim_hulls(c, n, vol, F * vol, ACD3_TRIM_MIN_GAIN_REL * vol, p.max_hull_vertices,
                                                  &m, &sets[s], th, NULL, NULL, &st, &err),
@@ -352,7 +358,6 @@ static void test_trim_given_trees(void **state) {
         for (size_t i = 0; i < n; i++) acd_bvh_free(&B[i]);
         acd_bvh_free(&BI);
         free(B), free(all), free(some), free(other);
-        acd3d_result_free(&plain);
         acd3d_result_free(&trimmed);
         acd_mesh_free(&m);
     }
