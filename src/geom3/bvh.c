@@ -864,6 +864,8 @@ typedef struct pair_item {
     uint32_t a, b;
 } pair_item;
 
+/* (the triangles' boxes from bvh->boxes, which holds tri_box's values: the same pairs, in the same
+ * order) */
 int acd_bvh_overlap_pairs(const acd_bvh *bvh, double margin, acd_bvh_pair_fn fn, void *user) {
     if (bvh->nnodes == 0) return 0;
     if (!(margin >= 0)) margin = 0;
@@ -878,14 +880,14 @@ int acd_bvh_overlap_pairs(const acd_bvh *bvh, double margin, acd_bvh_pair_fn fn,
             if (na->count) {
                 for (uint32_t i = 0; i < na->count; i++) {
                     uint32_t t = bvh->order[na->first + i];
+                    const double *b1 = bvh->boxes + 6 * ((size_t)na->first + i);
                     double l1[3], h1[3];
-                    tri_box(bvh, t, l1, h1);
-                    grow_box(l1, h1, margin, l1, h1);
+                    grow_box(b1, b1 + 3, margin, l1, h1);
                     for (uint32_t j = i + 1; j < na->count; j++) {
                         uint32_t u = bvh->order[na->first + j];
+                        const double *b2 = bvh->boxes + 6 * ((size_t)na->first + j);
                         double l2[3], h2[3];
-                        tri_box(bvh, u, l2, h2);
-                        grow_box(l2, h2, margin, l2, h2);
+                        grow_box(b2, b2 + 3, margin, l2, h2);
                         if (box_meets(l1, h1, l2, h2) && fn(user, t < u ? t : u, t < u ? u : t)) return 1;
                     }
                 }
@@ -904,14 +906,14 @@ int acd_bvh_overlap_pairs(const acd_bvh *bvh, double margin, acd_bvh_pair_fn fn,
         if (na->count && nb->count) {
             for (uint32_t i = 0; i < na->count; i++) {
                 uint32_t t = bvh->order[na->first + i];
+                const double *b1 = bvh->boxes + 6 * ((size_t)na->first + i);
                 double l1[3], h1[3];
-                tri_box(bvh, t, l1, h1);
-                grow_box(l1, h1, margin, l1, h1);
+                grow_box(b1, b1 + 3, margin, l1, h1);
                 for (uint32_t j = 0; j < nb->count; j++) {
                     uint32_t u = bvh->order[nb->first + j];
+                    const double *b2 = bvh->boxes + 6 * ((size_t)nb->first + j);
                     double l2[3], h2[3];
-                    tri_box(bvh, u, l2, h2);
-                    grow_box(l2, h2, margin, l2, h2);
+                    grow_box(b2, b2 + 3, margin, l2, h2);
                     if (box_meets(l1, h1, l2, h2) && fn(user, t < u ? t : u, t < u ? u : t)) return 1;
                 }
             }

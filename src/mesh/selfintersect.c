@@ -52,9 +52,9 @@ static int point_in_tri2(const double p[2], const double a[2], const double b[2]
     return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
 }
 
-/* Closed segment pq meets closed non-degenerate triangle abc. */
-static int seg_tri(pt p, pt q, pt a, pt b, pt c) {
-    int sp = acd_orient3d_sign(a, b, c, p), sq = acd_orient3d_sign(a, b, c, q);
+/* Closed segment pq meets closed non-degenerate triangle abc, given sp = acd_orient3d_sign(a, b, c, p)
+ * and sq = acd_orient3d_sign(a, b, c, q). */
+static int seg_tri_s(pt p, pt q, pt a, pt b, pt c, int sp, int sq) {
     if (sp * sq > 0) return 0;
     if (sp == 0 && sq == 0) {
         int d = drop_axis(a, b, c);
@@ -72,6 +72,11 @@ static int seg_tri(pt p, pt q, pt a, pt b, pt c) {
     }
     int s1 = acd_orient3d_sign(p, q, a, b), s2 = acd_orient3d_sign(p, q, b, c), s3 = acd_orient3d_sign(p, q, c, a);
     return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+/* Closed segment pq meets closed non-degenerate triangle abc. */
+static int seg_tri(pt p, pt q, pt a, pt b, pt c) {
+    return seg_tri_s(p, q, a, b, c, acd_orient3d_sign(a, b, c, p), acd_orient3d_sign(a, b, c, q));
 }
 
 /* x (coplanar with triangle v a b, x != v) lies in the closed angle of the triangle at v. */
@@ -111,12 +116,16 @@ static int tri_tri(pt t1[3], pt t2[3]) {
     if (shared == 1) {
         int i = m1[0] >= 0 ? 0 : m1[1] >= 0 ? 1 : 2, j = m1[i];
         pt v = t1[i], a1 = t1[(i + 1) % 3], b1 = t1[(i + 2) % 3], a2 = t2[(j + 1) % 3], b2 = t2[(j + 2) % 3];
-        if (seg_tri(a1, b1, v, a2, b2) || seg_tri(a2, b2, v, a1, b1)) return 1;
-        pt x1[2] = {a1, b1}, x2[2] = {a2, b2};
-        for (int k = 0; k < 2; k++) {
-            if (acd_orient3d_sign(v, a2, b2, x1[k]) == 0 && in_angle(v, a2, b2, x1[k])) return 1;
-            if (acd_orient3d_sign(v, a1, b1, x2[k]) == 0 && in_angle(v, a1, b1, x2[k])) return 1;
-        }
+        /* the sides of the far corners of each triangle to the other's plane, each computed once (the
+         * edge tests and the in-plane tests below both need them) */
+        const int s1a = acd_orient3d_sign(v, a2, b2, a1), s1b = acd_orient3d_sign(v, a2, b2, b1);
+        if (seg_tri_s(a1, b1, v, a2, b2, s1a, s1b)) return 1;
+        const int s2a = acd_orient3d_sign(v, a1, b1, a2), s2b = acd_orient3d_sign(v, a1, b1, b2);
+        if (seg_tri_s(a2, b2, v, a1, b1, s2a, s2b)) return 1;
+        if (s1a == 0 && in_angle(v, a2, b2, a1)) return 1;
+        if (s2a == 0 && in_angle(v, a1, b1, a2)) return 1;
+        if (s1b == 0 && in_angle(v, a2, b2, b1)) return 1;
+        if (s2b == 0 && in_angle(v, a1, b1, b2)) return 1;
         return 0;
     }
     if (shared == 2) {
