@@ -100,13 +100,17 @@ static double l21_error(const facet_info *fi, size_t f, const double N[3]) {
  * then proxy. */
 /* An item that does not precede the best one already queued for its facet can never label it
  * (the facet takes its first pop): it is not queued, which leaves the partition unchanged (and
- * the queued items distinct, so they pop in one order whatever the heap's layout). */
-static int flood_push(acd_minheap *hp, acd_minheap_item *best, acd_minheap_item it) {
-    if (best[it.id].id != UINT32_MAX && !acd_minheap_less(it, best[it.id])) return 1;
+ * the queued items distinct, so they pop in one order whatever the queue's layout). */
+static int flood_better(acd_minheap_item *best, acd_minheap_item it) {
+    if (best[it.id].id != UINT32_MAX && !acd_minheap_less(it, best[it.id])) return 0;
     best[it.id] = it;
-    return acd_minheap_push_item(hp, it);
+    return 1;
 }
 
+/* The least item a labelled facet adds waits outside the heap (have_next, the others are pushed):
+ * the next item taken is it or the heap's top, whichever precedes (acd_minheap_pushpop, which
+ * hands it back untouched when it precedes the top, as it often does inside a flat patch). The
+ * queue thus gives up its least item every time, the same sequence as a plain heap's. */
 static int flood(const acd_hull *h, const facet_info *fi, const double *N, const uint32_t *seeds, size_t k,
                  uint32_t *label, acd_minheap *hp, acd_minheap_item *best) {
     size_t nf = h->ntriangles;
@@ -115,23 +119,53 @@ static int flood(const acd_hull *h, const facet_info *fi, const double *N, const
         best[f].id = UINT32_MAX;
     }
     hp->n = 0;
-    for (size_t i = 0; i < k; i++) label[seeds[i]] = (uint32_t)i;
+    size_t unlabelled = nf;
+    for (size_t i = 0; i < k; i++) {
+        unlabelled -= label[seeds[i]] == UINT32_MAX;
+        label[seeds[i]] = (uint32_t)i;
+    }
     for (size_t i = 0; i < k; i++) {
         uint32_t s = seeds[i];
         for (int e = 0; e < 3; e++) {
             uint32_t g = h->neighbors[3 * s + e];
-            if (g < nf && label[g] == UINT32_MAX)
-                if (!flood_push(hp, best, (acd_minheap_item){l21_error(fi, g, N + 3 * i), g, (uint32_t)i})) return 0;
+            if (g < nf && label[g] == UINT32_MAX) {
+                acd_minheap_item it = {l21_error(fi, g, N + 3 * i), g, (uint32_t)i};
+                if (flood_better(best, it) && !acd_minheap_push_item(hp, it)) return 0;
+            }
         }
     }
-    while (hp->n) {
-        acd_minheap_item it = acd_minheap_pop(hp);
+    acd_minheap_item next = {0, 0, 0};
+    int have_next = 0;
+    /* once every facet has its label, what is left queued is stale: not popped */
+    while (unlabelled) {
+        acd_minheap_item it;
+        if (have_next) {
+            it = acd_minheap_pushpop(hp, next);
+            have_next = 0;
+        } else if (hp->n) {
+            it = acd_minheap_pop(hp);
+        } else {
+            break;
+        }
         if (label[it.id] != UINT32_MAX) continue;
         label[it.id] = it.tie;
+        unlabelled--;
         for (int e = 0; e < 3; e++) {
             uint32_t g = h->neighbors[3 * it.id + e];
-            if (g < nf && label[g] == UINT32_MAX)
-                if (!flood_push(hp, best, (acd_minheap_item){l21_error(fi, g, N + 3 * it.tie), g, it.tie})) return 0;
+            if (g >= nf || label[g] != UINT32_MAX) continue;
+            acd_minheap_item x = {l21_error(fi, g, N + 3 * it.tie), g, it.tie};
+            if (!flood_better(best, x)) continue;
+            if (!have_next) {
+                next = x;
+                have_next = 1;
+                continue;
+            }
+            if (acd_minheap_less(x, next)) {
+                acd_minheap_item y = next;
+                next = x;
+                x = y;
+            }
+            if (!acd_minheap_push_item(hp, x)) return 0;
         }
     }
     return 1;

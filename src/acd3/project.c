@@ -47,8 +47,22 @@ int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
     pf->closed[s] = 0;
     if (!acd_minheap_push(&pf->heap, acd_dist3(pf->coords + 3 * (size_t)s, tp), s)) return -1;
     int found = 0;
-    while (pf->heap.n) {
-        uint32_t v = acd_minheap_pop(&pf->heap).id;
+    /* the least item the last expansion added waits outside the heap (have_next): the next
+     * vertex taken is it or the heap's top, whichever precedes (acd_minheap_pushpop), so along
+     * the way to t, where the estimate barely grows, most steps skip the heap; the heap gives
+     * up the same items in the same order as with every item pushed */
+    acd_minheap_item next = {0, 0, 0};
+    int have_next = 0;
+    for (;;) {
+        uint32_t v;
+        if (have_next) {
+            v = acd_minheap_pushpop(&pf->heap, next).id;
+            have_next = 0;
+        } else if (pf->heap.n) {
+            v = acd_minheap_pop(&pf->heap).id;
+        } else {
+            break;
+        }
         if (pf->closed[v]) continue;
         pf->closed[v] = 1;
         if (v == t) {
@@ -67,7 +81,18 @@ int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
             if (d < pf->dist[u] || (d == pf->dist[u] && v < pf->pred[u])) {
                 pf->dist[u] = d;
                 pf->pred[u] = v;
-                if (!acd_minheap_push(&pf->heap, d + acd_dist3(pf->coords + 3 * (size_t)u, tp), u)) return -1;
+                acd_minheap_item x = {d + acd_dist3(pf->coords + 3 * (size_t)u, tp), u, 0};
+                if (!have_next) {
+                    next = x;
+                    have_next = 1;
+                    continue;
+                }
+                if (acd_minheap_less(x, next)) {
+                    acd_minheap_item y = next;
+                    next = x;
+                    x = y;
+                }
+                if (!acd_minheap_push_item(&pf->heap, x)) return -1;
             }
         }
     }

@@ -19,11 +19,12 @@ typedef struct acd_minheap {
     size_t n, cap;
 } acd_minheap;
 
-/* Whether a precedes b: by key, then id, then tie (evaluated without branches: the heap's
- * comparisons are unpredictable). */
+/* Whether a precedes b: by key, then id, then tie. The keys' order is evaluated without a branch
+ * (it is unpredictable in a heap); equal keys, which are rare, take a branch to the rest. */
 static inline int acd_minheap_less(acd_minheap_item a, acd_minheap_item b) {
-    uint64_t ia = (uint64_t)a.id << 32 | a.tie, ib = (uint64_t)b.id << 32 | b.tie;
-    return (a.key < b.key) | ((a.key == b.key) & (ia < ib));
+    int r = a.key < b.key;
+    if (a.key == b.key) r = (a.id < b.id) | ((a.id == b.id) & (a.tie < b.tie));
+    return r;
 }
 
 /* Adds x; returns 0 when out of memory (the heap is unchanged). */
@@ -32,6 +33,9 @@ int acd_minheap_push_item(acd_minheap *h, acd_minheap_item x);
 int acd_minheap_push(acd_minheap *h, double key, uint32_t id);
 /* Removes and returns the smallest item; h->n must be > 0. */
 acd_minheap_item acd_minheap_pop(acd_minheap *h);
+/* Adds x and removes the smallest item (x itself when it precedes every queued one), returning
+ * it: push then pop in one pass, without allocating. */
+acd_minheap_item acd_minheap_pushpop(acd_minheap *h, acd_minheap_item x);
 /* Frees the storage and zeroes h. */
 void acd_minheap_free(acd_minheap *h);
 
