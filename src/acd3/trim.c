@@ -28,6 +28,7 @@ static const double ACD3_TRIM_DEPTHS[ACD3_TRIM_NDEPTHS] = {0.001, 0.002, 0.005, 
 typedef struct trim_plane {
     double n[3], off0;               /* n.x = off0: the facet's plane (n unit, outward) */
     double gain[NDEPTHS], loss[NDEPTHS];
+    double den[NDEPTHS];             /* with the losses: fmax(loss, the loss floor), choose's denominators */
     int have_loss;
     int dirty;                       /* gains measured before the last cuts: upper bounds */
 } trim_plane;
@@ -57,6 +58,7 @@ typedef struct trim_hull {
                             self-crossing test */
     acd_bvh own_bvh;
     double unit;      /* depth unit: cube root of the initial hull volume */
+    double loss_floor; /* a cut's loss is scored as at least this (ACD3_TRIM_LOSS_FLOOR x min_gain) */
     double centre[3]; /* of the initial hull's bounding box (apexes of the cones) */
     int active;       /* a solid hull that may still be cut */
     trim_plane *pl;   /* candidate planes */
@@ -142,7 +144,10 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
     size_t k_lo = 0;
     while (!(P->gain[k_lo] >= min_gain)) k_lo++;
     acd3_trim_tree_beyond(&T->tree, P->n, &L, k_lo, P->loss);
-    for (size_t k = 0; k < NDEPTHS; k++) P->loss[k] = fmax(P->loss[k], 0.0);
+    for (size_t k = 0; k < NDEPTHS; k++) {
+        P->loss[k] = fmax(P->loss[k], 0.0);
+        P->den[k] = fmax(P->loss[k], T->loss_floor); /* (once: the losses never change) */
+    }
     P->have_loss = 1;
 }
 
@@ -163,7 +168,7 @@ static int add_plane(trim_hull *T, const double n[3], double off0) {
 
 /* The best cut of hull T among its planes' caps (largest gain / loss) removing at most `room` of
  * part volume. */
-static void choose(trim_hull *T, double room, double min_gain, double ratio_floor, double loss_floor) {
+static void choose(trim_hull *T, double room, double min_gain, double ratio_floor) {
     T->have = 0;
     if (!T->active) return;
     /* lazily: a plane whose caps met a removed cap keeps its old gains, upper bounds (gains only
@@ -177,7 +182,7 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
             if (!P->have_loss) continue;
             for (size_t k = 0; k < NDEPTHS; k++) {
                 if (!(P->gain[k] >= min_gain) || !(P->loss[k] <= room)) continue;
-                double r = P->gain[k] / fmax(P->loss[k], loss_floor);
+                double r = P->gain[k] / P->den[k];
                 if (!(r > ratio_floor) || (T->have && !(r > T->ratio))) continue;
                 T->have = 1;
                 bj = j;
@@ -448,6 +453,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             continue;
         }
         H->unit = cbrt(h0.volume);
+        H->loss_floor = loss_floor;
         H->h.v = h0.vertices, H->h.nv = h0.nvertices;
         H->h.t = h0.triangles, H->h.nt = h0.ntriangles;
         H->h.pl = h0.planes;
@@ -525,7 +531,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nch > 1)
 #endif
         for (long c = 0; c < (long)nch; c++) { /* each touches its own hull */
-            choose(&T[pick[c]], room, min_gain, ratio_floor, loss_floor);
+            choose(&T[pick[c]], room, min_gain, ratio_floor);
             T[pick[c]].stale = 0;
         }
         /* the round: up to ACD3_TRIM_BATCH hulls of best ratio (ties: lower index), in that order,
