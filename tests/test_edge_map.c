@@ -5,7 +5,7 @@
  * tetrahedron, one with a triangle missing, one flipped, one repeating a vertex, and
  * acd_edge_map_closed (build and check in one) agreeing with them, and the twins by half-edge it
  * keeps; acd_edge_map_sort of the same entries agreeing with the build, at sizes on both sides of
- * the insertion sort's and the binary-searched twins' limits. */
+ * the insertion sort's and the binary-searched twins' limits, with dense and sparse ids. */
 #include "testutil.h"
 
 #include <stdlib.h>
@@ -107,7 +107,8 @@ static void test_high_degree(void **state) {
     for (uint64_t s = 1; s <= 4; s++) check(s, 500, 200, 1, 1, (int)(s & 1)); /* vertex 0 in every triangle */
 }
 
-/* sizes around the limits: 48 keys (insertion sort), 1024 entries (twins by binary search) */
+/* sizes around the limits: 48 keys (insertion sort), 1024 entries (twins by binary search); ids
+ * dense (below twice the entries: the sort's and the twins' vertex buckets) and sparse (radix) */
 static void test_size_limits(void **state) {
     (void)state;
     size_t nts[] = {1, 5, 16, 17, 40, 341, 342, 700};
@@ -115,6 +116,9 @@ static void test_size_limits(void **state) {
         check(10 + i, nts[i], (uint32_t)(nts[i] / 2 + 3), 1, 0, 0);
         check(20 + i, nts[i], (uint32_t)(nts[i] / 3 + 3), 7, 0, 1);
     }
+    /* over 1024 entries with sparse ids: the twins by the radix sort (dense: by the transpose) */
+    check(31, 700, 300, 100003, 0, 0);
+    check(32, 700, 300, 100003, 0, 1);
 }
 
 static void test_empty(void **state) {

@@ -9,11 +9,15 @@
 #define RADIX_BITS 11
 #define RADIX_BUCKETS (1u << RADIX_BITS)
 
+#define INSERTION_MAX 48 /* up to this many keys: an insertion sort */
+
 /* Sorts keys[0..n) = (a << 32) | b (a, b <= maxid) carrying vals, stably (equal keys keep their
- * input order). The pair is packed as a * (maxid + 1) + b, which orders the same, and sorted by
- * an LSD radix sort on 11-bit digits of that (all digit counts taken in one read; a pass whose
- * digits are all equal is skipped). tk, tv: scratch of n entries. Returns 0 when out of memory. */
-#define INSERTION_MAX 48 /* up to this many keys: an insertion sort (stable, as the radix sort) */
+ * input order: every path gives the same order). Up to INSERTION_MAX keys by insertion; with
+ * dense ids (maxid < 2n, as a mesh's half-edges) by two counting passes, on b then on a (a
+ * bucket per vertex, all counts taken in one read); else the pair is packed as a * (maxid + 1) + b,
+ * which orders the same, and sorted by an LSD radix sort on 11-bit digits of that (all digit
+ * counts taken in one read; a pass whose digits are all equal is skipped). tk, tv: scratch of n
+ * entries (unused up to INSERTION_MAX). Returns 0 when out of memory. */
 
 static int radix_sort(uint64_t *keys, uint32_t *vals, uint64_t *tk, uint32_t *tv, size_t n, uint32_t maxid) {
     if (n <= INSERTION_MAX) { /* the same order: both are stable sorts by key */
@@ -24,6 +28,28 @@ static int radix_sort(uint64_t *keys, uint32_t *vals, uint64_t *tk, uint32_t *tv
             for (; j > 0 && keys[j - 1] > k; j--) keys[j] = keys[j - 1], vals[j] = vals[j - 1];
             keys[j] = k, vals[j] = v;
         }
+        return 1;
+    }
+    if ((uint64_t)maxid < 2 * (uint64_t)n) { /* dense ids: two counting passes, a digit per vertex */
+        size_t nb = (size_t)maxid + 1;
+        size_t *cb = calloc(2 * (nb + 1), sizeof *cb), *ca = cb ? cb + nb + 1 : NULL;
+        if (!cb) return 0;
+        for (size_t i = 0; i < n; i++) {
+            ca[(keys[i] >> 32) + 1]++;
+            cb[(uint32_t)keys[i] + 1]++;
+        }
+        for (size_t v = 0; v < nb; v++) ca[v + 1] += ca[v], cb[v + 1] += cb[v];
+        for (size_t i = 0; i < n; i++) { /* by b, stable */
+            size_t j = cb[(uint32_t)keys[i]]++;
+            tk[j] = keys[i];
+            tv[j] = vals[i];
+        }
+        for (size_t i = 0; i < n; i++) { /* then by a, stable */
+            size_t j = ca[tk[i] >> 32]++;
+            keys[j] = tk[i];
+            vals[j] = tv[i];
+        }
+        free(cb);
         return 1;
     }
     uint64_t n1 = (uint64_t)maxid + 1;
@@ -153,17 +179,34 @@ acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error 
         *twin = tw;
         return ACD_OK;
     }
-    uint64_t *rk = malloc((n ? n : 1) * sizeof *rk), *tk = malloc((n ? n : 1) * sizeof *tk);
-    uint32_t *ri = malloc((n ? n : 1) * sizeof *ri), *tv = malloc((n ? n : 1) * sizeof *tv);
+    uint32_t maxid = 0;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
+        if (a > maxid) maxid = a;
+        if (b > maxid) maxid = b;
+    }
+    /* the reversed keys (b, a) in order, with their entries ri: the map is sorted by (a, b), so a
+     * stable counting sort by b (one pass, a bucket per vertex: a transpose) sorts them, in the
+     * order a stable sort of the reversed keys in entry order gives; with ids much sparser than
+     * the entries, the radix sort does it */
+    int transpose = (uint64_t)maxid < 2 * (uint64_t)n;
+    uint64_t *rk = malloc((n ? n : 1) * sizeof *rk), *tk = transpose ? NULL : malloc((n ? n : 1) * sizeof *tk);
+    uint32_t *ri = malloc((n ? n : 1) * sizeof *ri), *tv = transpose ? NULL : malloc((n ? n : 1) * sizeof *tv);
     uint32_t *tw = malloc((n ? n : 1) * sizeof *tw);
-    int ok = rk && tk && ri && tv && tw;
-    if (ok) {
-        uint32_t maxid = 0;
+    size_t *pos = transpose ? calloc((size_t)maxid + 2, sizeof *pos) : NULL;
+    int ok = rk && ri && tw && (transpose ? pos != NULL : tk && tv);
+    if (ok && transpose) {
+        for (size_t i = 0; i < n; i++) pos[(uint32_t)m->key[i] + 1]++;
+        for (size_t v = 0; v <= maxid; v++) pos[v + 1] += pos[v];
         for (size_t i = 0; i < n; i++) {
-            uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
-            if (a > maxid) maxid = a;
-            if (b > maxid) maxid = b;
-            rk[i] = ((uint64_t)b << 32) | a;
+            uint64_t k = m->key[i];
+            size_t j = pos[(uint32_t)k]++;
+            rk[j] = (k << 32) | (k >> 32);
+            ri[j] = (uint32_t)i;
+        }
+    } else if (ok) {
+        for (size_t i = 0; i < n; i++) {
+            rk[i] = (m->key[i] << 32) | (m->key[i] >> 32);
             ri[i] = (uint32_t)i;
         }
         ok = radix_sort(rk, ri, tk, tv, n, maxid);
@@ -179,6 +222,7 @@ acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error 
     free(tk);
     free(ri);
     free(tv);
+    free(pos);
     if (!ok) {
         free(tw);
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the twins of %zu half-edges", n);

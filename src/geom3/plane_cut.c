@@ -35,6 +35,13 @@
 #define NONE UINT32_MAX
 
 
+/* fmax's value for x, y >= 0 or NaN (no -0, so no tie between different bits), without the call. */
+static inline double fmax_abs(double x, double y) {
+    if (x != x) return y;
+    if (y != y) return x;
+    return x > y ? x : y;
+}
+
 /* Euclidean norm without overflow or underflow of the squares (tiny and huge models). */
 static double norm3_safe(const double *v) {
     double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
@@ -175,19 +182,26 @@ typedef struct cut_ctx {
     size_t nin, ncut;
 } cut_ctx;
 
-static acd_status push_tri(cut_ctx *c, uint32_t a, uint32_t b, uint32_t d, int side, int cap) {
+/* The triangles' room doubled (push_tri, when full). */
+static acd_status grow_tris(cut_ctx *c) {
+    size_t nc = c->capt ? 2 * c->capt : 64;
+    uint32_t *T = realloc(c->T, nc * 3 * sizeof *T);
+    if (!T) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
+    c->T = T;
+    int8_t *s = realloc(c->tside, nc * sizeof *s);
+    if (!s) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
+    c->tside = s;
+    uint8_t *cp = realloc(c->tcap, nc * sizeof *cp);
+    if (!cp) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
+    c->tcap = cp;
+    c->capt = nc;
+    return ACD_OK;
+}
+
+static inline acd_status push_tri(cut_ctx *c, uint32_t a, uint32_t b, uint32_t d, int side, int cap) {
     if (c->nt == c->capt) {
-        size_t nc = c->capt ? 2 * c->capt : 64;
-        uint32_t *T = realloc(c->T, nc * 3 * sizeof *T);
-        if (!T) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
-        c->T = T;
-        int8_t *s = realloc(c->tside, nc * sizeof *s);
-        if (!s) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
-        c->tside = s;
-        uint8_t *cp = realloc(c->tcap, nc * sizeof *cp);
-        if (!cp) return acd_fail(c->err, ACD_ERR_NOMEM, "out of memory for %zu cut triangles", nc);
-        c->tcap = cp;
-        c->capt = nc;
+        acd_status st = grow_tris(c);
+        if (st != ACD_OK) return st;
     }
     c->T[3 * c->nt] = a;
     c->T[3 * c->nt + 1] = b;
@@ -618,7 +632,7 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         double e1[3], e2[3], nn[3];
         for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
         acd_cross3(e1, e2, nn);
-        double big = fmax(fabs(nn[0]), fmax(fabs(nn[1]), fabs(nn[2]))); /* no overflow in the squares */
+        double big = fmax_abs(fabs(nn[0]), fmax_abs(fabs(nn[1]), fabs(nn[2]))); /* no overflow in the squares */
         if (big > 0) area[r] += 0.5 * big * sqrt((nn[0] / big) * (nn[0] / big) + (nn[1] / big) * (nn[1] / big) +
                                                  (nn[2] / big) * (nn[2] / big));
     }
@@ -938,7 +952,10 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
      * coordinates below 2^-1074 of the largest one) so that the largest coordinate is about 1: the
      * predicates' products then neither overflow nor underflow */
     double maxabs = 0;
-    for (size_t i = 0; i < 3 * m->nvertices; i++) maxabs = fmax(maxabs, fabs(m->vertices[i]));
+    for (size_t i = 0; i < 3 * m->nvertices; i++) { /* finite (checked above): fmax's value */
+        double x = fabs(m->vertices[i]);
+        if (x > maxabs) maxabs = x;
+    }
     for (int k = 0; k < 3; k++) maxabs = fmax(maxabs, fmax(fabs(pl->a[k]), fmax(fabs(pl->b[k]), fabs(pl->c[k]))));
     int e2 = 0; /* only outside [1e-90, 1e90]: scaling down could flush subnormal coordinates */
     if (maxabs > 0 && (maxabs > 1e90 || maxabs < 1e-90)) frexp(maxabs, &e2);
@@ -987,11 +1004,18 @@ acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const a
     c.nin = nt;
     c.wside = malloc((nt ? nt : 1) * sizeof *c.wside);
     c.tout = malloc((nt + 1) * sizeof *c.tout);
-    if (!c.V || !c.src || !s || !f || !xv || !c.wside || !c.tout) {
+    c.capt = nt + nt / 4 + 64; /* the triangles' room (push_tri grows it): the input's and the splits' */
+    c.T = malloc(c.capt * 3 * sizeof *c.T);
+    c.tside = malloc(c.capt * sizeof *c.tside);
+    c.tcap = malloc(c.capt * sizeof *c.tcap);
+    if (!c.V || !c.src || !s || !f || !xv || !c.wside || !c.tout || !c.T || !c.tside || !c.tcap) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory cutting a mesh of %zu triangles", nt);
         goto fail;
     }
-    for (size_t i = 0; i < 3 * nv; i++) c.V[i] = flush_tiny(ldexp(m->vertices[i], -e2), flush);
+    if (e2 == 0) /* ldexp by 0 is the identity */
+        for (size_t i = 0; i < 3 * nv; i++) c.V[i] = flush_tiny(m->vertices[i], flush);
+    else
+        for (size_t i = 0; i < 3 * nv; i++) c.V[i] = flush_tiny(ldexp(m->vertices[i], -e2), flush);
     for (size_t v = 0; v < nv; v++) {
         c.src[v] = (uint32_t)v;
         f[v] = -acd_orient3d(pl->a, pl->b, pl->c, c.V + 3 * v); /* > 0 on the + side */
