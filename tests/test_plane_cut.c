@@ -458,6 +458,66 @@ static void test_near_degenerate_planes(void **state) {
     acd_mesh_free(&m);
 }
 
+/* A tetrahedron over the triangle (x0, 0, z), (x0 + 1, 0, z), (x0, 1, z) with apex height h, outward,
+ * appended to the vertex and triangle arrays (nv, nt updated). */
+static void add_tetra(double *V, uint32_t *T, size_t *nv, size_t *nt, double x0, double z, double h) {
+    double p[12] = {x0, 0, z, x0 + 1, 0, z, x0, 1, z, x0 + 0.25, 0.25, z + h};
+    memcpy(V + 3 * *nv, p, sizeof p);
+    uint32_t a = (uint32_t)*nv, b = a + 1, c = a + 2, d = a + 3;
+    uint32_t t[12] = {a, c, b, a, b, d, b, c, d, c, a, d};
+    memcpy(T + 3 * *nt, t, sizeof t);
+    *nv += 4;
+    *nt += 4;
+}
+
+/* Flat shells (mean thickness at most 1e-12 of the box diagonal) are dropped, a shell a little
+ * thicker is a piece: a unit cube cut in two, and away from the plane a sheet (two coincident
+ * triangles, volume 0), a tetrahedron half as thick as the bound and one 1.5 times as thick. */
+static void test_flat_shells(void **state) {
+    (void)state;
+    double V[3 * 20];
+    uint32_t T[3 * 30];
+    size_t nv = 8, nt = 0;
+    for (int i = 0; i < 8; i++) V[3 * i] = i & 1, V[3 * i + 1] = (i >> 1) & 1, V[3 * i + 2] = (i >> 2) & 1;
+    acd_hull h;
+    assert_int_equal(acd_hull_compute(V, 8, &h, NULL), ACD_OK);
+    assert_int_equal(h.ntriangles, 12);
+    assert_int_equal(h.nvertices, 8);
+    memcpy(V, h.vertices, 24 * sizeof *V);
+    memcpy(T, h.triangles, 36 * sizeof *T);
+    nt = 12;
+    acd_hull_free(&h);
+    double sheet[9] = {0, 0, 3, 1, 0, 3, 0, 1, 3};
+    memcpy(V + 3 * nv, sheet, sizeof sheet);
+    uint32_t st[6] = {(uint32_t)nv, (uint32_t)nv + 1, (uint32_t)nv + 2, (uint32_t)nv, (uint32_t)nv + 2, (uint32_t)nv + 1};
+    memcpy(T + 3 * nt, st, sizeof st);
+    nv += 3, nt += 2;
+    /* the box: [0, 5] x [0, 1] x [0, 3 + a little]; a tetrahedron's area (base and three sides,
+     * nearly flat: twice the base's 0.5) */
+    double diag = sqrt(25.0 + 1.0 + 9.0), area = 1.0, bound = 1e-12 * diag * 0.5 * area; /* on |volume| */
+    add_tetra(V, T, &nv, &nt, 2, 3, 6 * 0.5 * bound); /* volume h / 6 */
+    add_tetra(V, T, &nv, &nt, 4, 3, 6 * 1.5 * bound);
+    acd_mesh m = {V, nv, T, nt};
+    assert_true(acd_geom3_signed_volume(&m) > 0.99);
+    double o[3] = {0.5, 0.5, 0.5}, n[3] = {0, 0, 1};
+    acd_cut_plane pl;
+    assert_int_equal(acd_cut_plane_from_normal(o, n, 1, &pl, NULL), ACD_OK);
+    acd_cut_result r;
+    acd_error err;
+    assert_int_equal(acd_plane_cut(&m, &pl, &r, &err), ACD_OK);
+    assert_int_equal(r.ndropped, 6); /* the sheet's 2 triangles, the thin tetrahedron's 4 */
+    assert_int_equal(r.npieces, 3); /* the cube's halves, the thicker tetrahedron */
+    size_t tetra = 0;
+    for (size_t p = 0; p < r.npieces; p++)
+        if (r.pieces[p].mesh.ntriangles == 4) {
+            tetra++;
+            double v = acd_geom3_signed_volume(&r.pieces[p].mesh);
+            assert_true(v > 0 && v < 1e-11);
+        }
+    assert_int_equal(tetra, 1);
+    acd_cut_result_free(&r);
+}
+
 /* Two cut results equal to the bit. */
 static void assert_same_result(const acd_cut_result *a, const acd_cut_result *b) {
     assert_int_equal(a->npieces, b->npieces);
@@ -600,6 +660,7 @@ int main(void) {
         cmocka_unit_test(test_near_degenerate_planes),
         cmocka_unit_test(test_scales),
         cmocka_unit_test(test_map_paths),
+        cmocka_unit_test(test_flat_shells),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

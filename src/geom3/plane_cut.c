@@ -632,13 +632,47 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         double e1[3], e2[3], nn[3];
         for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
         acd_cross3(e1, e2, nn);
-        double big = fmax_abs(fabs(nn[0]), fmax_abs(fabs(nn[1]), fabs(nn[2]))); /* no overflow in the squares */
-        if (big > 0) area[r] += 0.5 * big * sqrt((nn[0] / big) * (nn[0] / big) + (nn[1] / big) * (nn[1] / big) +
-                                                 (nn[2] / big) * (nn[2] / big));
+        area[r] += 0.5 * (fabs(nn[0]) + fabs(nn[1]) + fabs(nn[2])); /* for now a bound (below) */
     }
     double diag = 0;
     for (int k = 0; k < 3; k++) diag += c->nv ? (hi[k] - lo[k]) * (hi[k] - lo[k]) : 0;
     diag = sqrt(diag);
+    /* the shells' areas, needed only to tell a flat shell (|volume| at most FLAT_REL x diag x half
+     * the area): area[r] holds a sum of the triangles' half L1 norms of the cross products, at
+     * least the Euclidean norms' sum; a shell whose |volume| is above the threshold for twice that
+     * (beyond any rounding of the two sums) is not flat, and its area stays 0 (so the threshold,
+     * 0, says not flat again below). The others' areas are summed exactly as before, in a second
+     * pass in the same triangle order (the same sums). */
+    int need_area = 0;
+    for (size_t t = 0; t < nt; t++) {
+        if (parent[t] != t) continue;
+        double thr = ACD_PLANE_CUT_FLAT_REL * diag * 0.5 * (2.0 * area[t]);
+        if (fabs(vol[t]) > thr) {
+            area[t] = 0;
+        } else {
+            area[t] = -1; /* marks a shell measured again */
+            need_area = 1;
+        }
+    }
+    if (need_area) {
+        for (size_t t = 0; t < nt; t++)
+            if (parent[t] == t && area[t] < 0) area[t] = 0;
+            else if (parent[t] == t) area[t] = -2; /* decided: not flat */
+        for (size_t t = 0; t < nt; t++) {
+            uint32_t r = acd_uf_find(parent, (uint32_t)t);
+            if (area[r] < -1) continue;
+            const double *p[3];
+            for (int i = 0; i < 3; i++) p[i] = c->V + 3 * (size_t)c->T[3 * t + i];
+            double e1[3], e2[3], nn[3];
+            for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
+            acd_cross3(e1, e2, nn);
+            double big = fmax_abs(fabs(nn[0]), fmax_abs(fabs(nn[1]), fabs(nn[2]))); /* no overflow in the squares */
+            if (big > 0) area[r] += 0.5 * big * sqrt((nn[0] / big) * (nn[0] / big) + (nn[1] / big) * (nn[1] / big) +
+                                                     (nn[2] / big) * (nn[2] / big));
+        }
+        for (size_t t = 0; t < nt; t++)
+            if (parent[t] == t && area[t] < -1) area[t] = 0;
+    }
     /* the rounding scales, needed only for the specks dropped (DROP_SPECKS) and the cavities (a shell
      * of negative volume that is not flat): a second pass in the same order (the same sums) */
     int need_avol = (c->flags & ACD_PLANE_CUT_DROP_SPECKS) != 0;
