@@ -1,5 +1,6 @@
 /* Tests of geom3/dijkstra: distances against Bellman-Ford on random graphs, exact grid distances,
- * deterministic tie-breaks, barriers, regions, several sources, early stop. */
+ * deterministic tie-breaks, barriers, regions, several sources, early stop; the mesh graph's
+ * arrays equal, bit for bit, those of the triangles' sides given as explicit edges. */
 #include "testutil.h"
 
 #include <math.h>
@@ -264,11 +265,76 @@ static void test_bad_input(void **state) {
     acd_edge_graph_free(&g);
 }
 
+/* acd_edge_graph_from_mesh buckets the sides itself; acd_edge_graph_from_edges sorts and merges
+ * the same sides (each with its length, computed as from_mesh does from the lower vertex): the
+ * two graphs must be identical (edge numbers, lengths' bits, rows, incidences), on meshes with
+ * repeated triangles, repeated sides in both directions, sides of length 0 (a == b), vertices of
+ * high degree and vertices on no triangle. */
+static void check_mesh_graph(uint64_t seed, size_t nv, size_t nt, uint32_t hub_every) {
+    acd_rng r;
+    acd_rng_seed(&r, seed);
+    double *verts = malloc(3 * nv * sizeof *verts);
+    uint32_t *tris = malloc(3 * nt * sizeof *tris), *sides = malloc(6 * nt * sizeof *sides);
+    double *w = malloc(3 * nt * sizeof *w);
+    assert_true(verts && tris && sides && w);
+    for (size_t i = 0; i < 3 * nv; i++) verts[i] = acd_rng_uniform(&r) * 10 - 5;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            uint64_t x = acd_rng_below(&r, 100);
+            /* a hub (high degree), a repeat of the previous triangle's corner (a == b sides and
+             * repeated sides), or any vertex but the last (on no triangle) */
+            tris[3 * t + k] = hub_every && x < hub_every ? 0
+                              : x < 10 && t > 0     ? tris[3 * (t - 1) + k]
+                              : x < 14 && k > 0     ? tris[3 * t + k - 1]
+                                                    : (uint32_t)acd_rng_below(&r, nv - 1);
+        }
+    size_t ns = 0;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t a = tris[3 * t + k], b = tris[3 * t + (k + 1) % 3];
+            if (a > b) {
+                uint32_t x = a;
+                a = b;
+                b = x;
+            }
+            const double *p = verts + 3 * (size_t)a, *q = verts + 3 * (size_t)b;
+            double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+            sides[2 * ns] = tris[3 * t + k]; /* in the triangle's direction */
+            sides[2 * ns + 1] = tris[3 * t + (k + 1) % 3];
+            w[ns++] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        }
+    acd_edge_graph gm, ge;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(verts, nv, tris, nt, &gm, &err), ACD_OK);
+    assert_int_equal(acd_edge_graph_from_edges(nv, sides, w, ns, &ge, &err), ACD_OK);
+    assert_int_equal(gm.nvertices, ge.nvertices);
+    assert_int_equal(gm.nedges, ge.nedges);
+    assert_true(gm.nedges > 0 && gm.nedges < ns); /* repeats were merged */
+    assert_memory_equal(gm.edge_v, ge.edge_v, 2 * gm.nedges * sizeof *gm.edge_v);
+    assert_memory_equal(gm.length, ge.length, gm.nedges * sizeof *gm.length);
+    assert_memory_equal(gm.row, ge.row, (nv + 1) * sizeof *gm.row);
+    assert_memory_equal(gm.adj, ge.adj, 2 * gm.nedges * sizeof *gm.adj);
+    assert_memory_equal(gm.adj_edge, ge.adj_edge, 2 * gm.nedges * sizeof *gm.adj_edge);
+    assert_int_equal(gm.row[nv] - gm.row[nv - 1], 0); /* the last vertex is on no triangle */
+    acd_edge_graph_free(&gm);
+    acd_edge_graph_free(&ge);
+    free(verts), free(tris), free(sides), free(w);
+}
+
+static void test_mesh_graph_as_edges(void **state) {
+    (void)state;
+    check_mesh_graph(1, 50, 200, 0);
+    check_mesh_graph(2, 2000, 4000, 0);
+    check_mesh_graph(3, 300, 900, 20); /* vertex 0 on a fifth of the corners: degree in the hundreds */
+    check_mesh_graph(4, 4, 30, 0);     /* few vertices: nearly every side repeated */
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_random_vs_bellman_ford),
         cmocka_unit_test(test_grid_distances_and_ties),
         cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_mesh_graph_as_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

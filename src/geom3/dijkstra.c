@@ -46,17 +46,8 @@ static int sort_edges(size_t nv, edge_rec *rec, size_t nrec) {
     return 1;
 }
 
-/* Builds the graph from edge records (sorted and merged here, a repeated edge keeping its
- * smallest length; rec is consumed). */
-static acd_status build_graph(size_t nv, edge_rec *rec, size_t nrec, acd_edge_graph *g, acd_error *err) {
-    if (!sort_edges(nv, rec, nrec))
-        return acd_fail(err, ACD_ERR_NOMEM, "out of memory sorting %zu edges", nrec);
-    size_t ne = 0;
-    for (size_t i = 0; i < nrec; i++)
-        if (ne == 0 || rec[i].a != rec[ne - 1].a || rec[i].b != rec[ne - 1].b)
-            rec[ne++] = rec[i];
-        else if (rec[i].w < rec[ne - 1].w)
-            rec[ne - 1].w = rec[i].w;
+/* Builds the graph from distinct edge records in increasing (a, b) order. */
+static acd_status build_sorted(size_t nv, const edge_rec *rec, size_t ne, acd_edge_graph *g, acd_error *err) {
     g->nvertices = nv;
     g->nedges = ne;
     g->edge_v = malloc((ne ? ne : 1) * 2 * sizeof *g->edge_v);
@@ -96,37 +87,84 @@ static acd_status build_graph(size_t nv, edge_rec *rec, size_t nrec, acd_edge_gr
     return ACD_OK;
 }
 
+/* Builds the graph from edge records (sorted and merged here, a repeated edge keeping its
+ * smallest length; rec is consumed). */
+static acd_status build_graph(size_t nv, edge_rec *rec, size_t nrec, acd_edge_graph *g, acd_error *err) {
+    if (!sort_edges(nv, rec, nrec))
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory sorting %zu edges", nrec);
+    size_t ne = 0;
+    for (size_t i = 0; i < nrec; i++)
+        if (ne == 0 || rec[i].a != rec[ne - 1].a || rec[i].b != rec[ne - 1].b)
+            rec[ne++] = rec[i];
+        else if (rec[i].w < rec[ne - 1].w)
+            rec[ne - 1].w = rec[i].w;
+    return build_sorted(nv, rec, ne, g, err);
+}
+
 acd_status acd_edge_graph_from_mesh(const double *vertices, size_t nvertices, const uint32_t *triangles,
                                     size_t ntriangles, acd_edge_graph *g, acd_error *err) {
     memset(g, 0, sizeof *g);
     if (nvertices >= UINT32_MAX || ntriangles > SIZE_MAX / 3)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "edge graph: %zu vertices / %zu triangles too many", nvertices,
                         ntriangles);
-    edge_rec *rec = malloc((ntriangles ? ntriangles : 1) * 3 * sizeof *rec);
-    if (!rec) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the edges of %zu triangles", ntriangles);
-    size_t nrec = 0;
     for (size_t t = 0; t < ntriangles; t++)
-        for (int k = 0; k < 3; k++) {
-            uint32_t a = triangles[3 * t + k], b = triangles[3 * t + (k + 1) % 3];
-            if (a >= nvertices || b >= nvertices) {
-                free(rec);
+        for (int k = 0; k < 3; k++)
+            if (triangles[3 * t + k] >= nvertices)
                 return acd_fail(err, ACD_ERR_INVALID_INPUT, "edge graph: triangle %zu has vertex index %u >= %zu", t,
-                                a >= nvertices ? a : b, nvertices);
+                                triangles[3 * t + k], nvertices);
+    /* The triangles' sides (a, b), a < b, bucketed by a (a counting pass, then the upper ends
+     * scattered), each bucket sorted by b and its repeats dropped: the edges in increasing (a, b)
+     * order, as build_graph's sort and merge give them. A repeated side has the same length (the
+     * same expression of the same two points), so the length is computed once per edge. */
+    size_t nh = 3 * ntriangles;
+    size_t *start = calloc(nvertices + 2, sizeof *start);
+    uint32_t *up = malloc((nh ? nh : 1) * sizeof *up);
+    edge_rec *rec = malloc((nh ? nh : 1) * sizeof *rec);
+    if (!start || !up || !rec) {
+        free(start), free(up), free(rec);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory for the edges of %zu triangles", ntriangles);
+    }
+    for (size_t t = 0; t < ntriangles; t++) {
+        const uint32_t *c = triangles + 3 * t;
+        uint32_t x = c[0], y = c[1], z = c[2];
+        start[(x < y ? x : y) + 2] += x != y;
+        start[(y < z ? y : z) + 2] += y != z;
+        start[(z < x ? z : x) + 2] += z != x;
+    }
+    for (size_t v = 0; v < nvertices; v++) start[v + 2] += start[v + 1];
+    for (size_t i = 0; i < nh; i++) { /* start[a + 1]: the next free slot of bucket a */
+        uint32_t a = triangles[i], b = triangles[i % 3 == 2 ? i - 2 : i + 1];
+        if (a == b) continue;
+        uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
+        up[start[lo + 1]++] = hi;
+    }
+    size_t ne = 0;
+    for (size_t a = 0; a < nvertices; a++) {
+        uint32_t *u = up + start[a];
+        size_t n = start[a + 1] - start[a];
+        for (size_t i = 1; i < n; i++) { /* insertion sort: a bucket holds a few sides */
+            uint32_t x = u[i];
+            size_t j = i;
+            while (j > 0 && u[j - 1] > x) {
+                u[j] = u[j - 1];
+                j--;
             }
-            if (a == b) continue;
-            if (a > b) {
-                uint32_t x = a;
-                a = b;
-                b = x;
-            }
-            const double *p = vertices + 3 * (size_t)a, *q = vertices + 3 * (size_t)b;
-            double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
-            rec[nrec].a = a;
-            rec[nrec].b = b;
-            rec[nrec].w = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            nrec++;
+            u[j] = x;
         }
-    acd_status st = build_graph(nvertices, rec, nrec, g, err);
+        for (size_t i = 0; i < n; i++) {
+            if (i > 0 && u[i] == u[i - 1]) continue;
+            uint32_t b = u[i];
+            const double *p = vertices + 3 * a, *q = vertices + 3 * (size_t)b;
+            double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+            rec[ne].a = (uint32_t)a;
+            rec[ne].b = b;
+            rec[ne].w = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            ne++;
+        }
+    }
+    free(start);
+    free(up);
+    acd_status st = build_sorted(nvertices, rec, ne, g, err);
     free(rec);
     return st;
 }
@@ -156,13 +194,6 @@ acd_status acd_edge_graph_from_edges(size_t nvertices, const uint32_t *edges, co
     acd_status st = build_graph(nvertices, rec, nrec, g, err);
     free(rec);
     return st;
-}
-
-uint32_t acd_edge_graph_find(const acd_edge_graph *g, uint32_t a, uint32_t b) {
-    if (a >= g->nvertices || b >= g->nvertices) return ACD_NO_VERTEX;
-    for (size_t k = g->row[a]; k < g->row[a + 1]; k++)
-        if (g->adj[k] == b) return g->adj_edge[k];
-    return ACD_NO_VERTEX;
 }
 
 void acd_sp_tree_free(acd_sp_tree *t) {
