@@ -120,9 +120,8 @@ static int hv_grow_horizon(acd_hull_volume_ws *w, size_t need) {
     return 1;
 }
 
-/* Room for k more facets; 0 when out of memory. */
-static int hv_reserve_facets(acd_hull_volume_ws *w, size_t k) {
-    if (w->nf + k <= w->fcap) return 1;
+/* Room for k more facets (hv_reserve_facets' slow path); 0 when out of memory. */
+static int hv_grow_facets(acd_hull_volume_ws *w, size_t k) {
     size_t nc = w->fcap ? 2 * w->fcap : 256;
     while (nc < w->nf + k) nc *= 2;
     hv_facet *f = aligned_alloc(HV_FACET_ALIGN, nc * sizeof *f);
@@ -140,6 +139,11 @@ static int hv_reserve_facets(acd_hull_volume_ws *w, size_t k) {
     if (!al) return 0;
     w->alive = al, w->fcap = nc;
     return 1;
+}
+
+/* Room for k more facets; 0 when out of memory. */
+static inline int hv_reserve_facets(acd_hull_volume_ws *w, size_t k) {
+    return w->nf + k <= w->fcap || hv_grow_facets(w, k);
 }
 
 /* F's plane: its cross product n (not 0 unless degenerate, its squared length l2 as computed here)
@@ -381,7 +385,9 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, i
         int a = hor[2 * k], b = hor[2 * k + 1], h = horf[k], nk = nf0 + (int)k;
         hv_facet *F = &F0[k];
         F->v[0] = a, F->v[1] = b, F->v[2] = pi;
+        /* (on a simple cycle start[b] and end[a] are read once each, by this edge: reset here) */
         F->nb[0] = h, F->nb[1] = nf0 + start[b], F->nb[2] = nf0 + end[a];
+        start[b] = end[a] = -1;
         F->mark = 0, F->vis = 0;
         hv_out *O = &w->o[nk];
         O->head = -1, O->far = -1, O->fard = 0;
@@ -401,7 +407,6 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, i
         }
     }
     w->nf += nh;
-    for (k = 0; k < nh; k++) start[hor[2 * k]] = end[hor[2 * k + 1]] = -1;
     *inward = in != 0;
     return (long)nh;
 refused:
@@ -988,7 +993,9 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     hv_undo U;
     memset(&U, 0, sizeof U);
     int st = 0;
+    w->nf = 0; /* (room for the facets of a hull of all the points at once: fewer copies as it grows) */
     if (!P || !uv || !corner || !stamp || !hv_reserve_points(w, n + maxx + 1) || !hv_grow_int(&w->pend, &w->pendcap, 64) ||
+        !hv_reserve_facets(w, 4 * (n + maxx) + 256) ||
         (w->hcap < 64 && !hv_grow_horizon(w, 64))) {
         st = -1;
         goto out;
