@@ -242,6 +242,9 @@ static long hv_visible(acd_hull_volume_ws *w, const double *p, const double *q, 
     int *visl = w->visl, *stack = w->stack, *start = w->start, *end = w->end;
     hv_facet *f = w->f;
     double s = 0;
+#ifdef __SSE2__
+    const __m128d q01 = _mm_loadu_pd(q), q12 = _mm_loadu_pd(q + 1);
+#endif
     f[fi].vis = iter;
     stack[ns++] = fi;
     if (fj >= 0 && fj != fi) f[fj].vis = iter, stack[ns++] = fj;
@@ -251,9 +254,21 @@ static long hv_visible(acd_hull_volume_ws *w, const double *p, const double *q, 
         const hv_facet *G = &f[g];
         if (added) {
             const double *A = p + 3 * G->v[0], *B = p + 3 * G->v[1], *C = p + 3 * G->v[2];
+#ifdef __SSE2__
+            /* the same operations two at a time: (b1 c2 - b2 c1, b2 c0 - b0 c2), b0 c1 - b1 c0, then
+             * (a0 X + a1 Y) + a2 Z */
+            __m128d b01 = _mm_sub_pd(_mm_loadu_pd(B), q01), b12 = _mm_sub_pd(_mm_loadu_pd(B + 1), q12);
+            __m128d c01 = _mm_sub_pd(_mm_loadu_pd(C), q01), c12 = _mm_sub_pd(_mm_loadu_pd(C + 1), q12);
+            __m128d xy = _mm_sub_pd(_mm_mul_pd(b12, _mm_shuffle_pd(c12, c01, 1)), _mm_mul_pd(_mm_shuffle_pd(b12, b01, 1), c12));
+            __m128d zz = _mm_mul_pd(b01, _mm_shuffle_pd(c01, c01, 1)); /* (b0 c1, b1 c0) */
+            __m128d m = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(A), q01), xy);
+            double z = _mm_cvtsd_f64(zz) - _mm_cvtsd_f64(_mm_unpackhi_pd(zz, zz));
+            s -= (_mm_cvtsd_f64(m) + _mm_cvtsd_f64(_mm_unpackhi_pd(m, m))) + (A[2] - q[2]) * z;
+#else
             double a[3] = {A[0] - q[0], A[1] - q[1], A[2] - q[2]}, b[3] = {B[0] - q[0], B[1] - q[1], B[2] - q[2]},
                    c[3] = {C[0] - q[0], C[1] - q[1], C[2] - q[2]};
             s -= a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+#endif
         }
         for (int k = 0; k < 3; k++) {
             int h = G->nb[k];
