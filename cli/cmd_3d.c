@@ -6,6 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "acd/acd3d.h"
 #include "acd/export.h"
@@ -333,8 +336,40 @@ static int verify_surface(const acd_mesh *in, const acd3d_result *r, acd_error *
     return ACD_OK;
 }
 
-/* --verify: checks computed here from the result, independently of the driver's bookkeeping. */
-static int verify(const acd3d_result *r, int budget, double trim, double *outside_bound, acd_error *err) {
+/* --verify's per-part checks that do not depend on the other parts: its volume, its hull rebuilt,
+ * how far its vertices stick out of it, and (trimmed hulls) its volume outside. */
+typedef struct verify_part {
+    double v, worst, outside;
+    acd_status hst; /* the hull's rebuild (herr its message) */
+    acd_error herr;
+} verify_part;
+
+static void verify_one(const acd3d_result *r, size_t i, double trim, verify_part *q) {
+    const acd3d_part *p = &r->parts[i];
+    const acd_mesh *m = &p->mesh;
+    double v = 0;
+    for (size_t t = 0; t < m->ntriangles; t++) v += tet6(m, t);
+    q->v = v / 6.0;
+    q->worst = -INFINITY;
+    q->outside = 0;
+    /* inside its hull: every part vertex on the inner side of every hull facet plane */
+    acd_hull h;
+    q->hst = acd_hull_compute(p->hull.vertices, p->hull.nvertices, &h, &q->herr);
+    if (q->hst != ACD_OK) return;
+    for (size_t k = 0; k < m->nvertices; k++) {
+        double d = acd_hull_plane_distance(&h, m->vertices + 3 * k);
+        if (d > q->worst) q->worst = d;
+    }
+    /* trimmed hulls: an upper bound of the part's volume outside its hull (the part beyond the
+     * distinct planes of the facets it sticks out of; NaN: out of memory) */
+    if (trim > 0 && q->worst > 1e-9 * r->scale) q->outside = acd_hull_volume_outside_bound(&h, m, 1e-9 * r->scale, r->scale);
+    acd_hull_free(&h);
+}
+
+/* --verify: checks computed here from the result, independently of the driver's bookkeeping. The
+ * parts' own checks (verify_one) run in parallel (threads; 0: OpenMP's default), the verdict is
+ * then read in part order: the same report as one serial pass for any thread count. */
+static int verify(const acd3d_result *r, int budget, double trim, int threads, double *outside_bound, acd_error *err) {
     /* Rounding in the volume sums grows with the sum of the tetrahedra's absolute volumes (not
      * with the net volume: a thin or tiny solid far from the origin cancels a lot), so the
      * tolerances are relative to that sum. */
@@ -344,59 +379,54 @@ static int verify(const acd3d_result *r, int budget, double trim, double *outsid
         for (size_t t = 0; t < m->ntriangles; t++) abs_sum += fabs(tet6(m, t)) / 6.0;
     }
     const double vtol = 1e-9 * fabs(r->input_volume) + 1e-12 * abs_sum;
+    verify_part *vp = malloc((r->nparts ? r->nparts : 1) * sizeof *vp);
+    if (!vp) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads > 0 ? threads : omp_get_max_threads()) \
+    if (r->nparts > 1 && threads != 1)
+#endif
+    for (long i = 0; i < (long)r->nparts; i++) verify_one(r, (size_t)i, trim, &vp[i]);
     double outside = 0; /* with trim: an upper bound of the parts' volume outside their hulls */
-    for (size_t i = 0; i < r->nparts; i++) {
+    int ret = ACD_OK;
+    for (size_t i = 0; i < r->nparts && ret == ACD_OK; i++) {
         const acd3d_part *p = &r->parts[i];
         const acd3d_node *n = &r->nodes[p->node];
-        double v = 0;
-        const acd_mesh *m = &p->mesh;
-        for (size_t t = 0; t < m->ntriangles; t++) v += tet6(m, t);
-        v /= 6.0;
+        const verify_part *q = &vp[i];
+        double v = q->v;
         /* a flat part (its hull has no volume) may round to a tiny negative volume */
-        if (n->leaf_reason == ACD3D_LEAF_FLAT ? !(v >= -vtol) : !(v > 0))
-            return acd_fail(err, ACD_ERR_VERIFY, "part %zu has no positive volume (%g)", i, v);
+        if (n->leaf_reason == ACD3D_LEAF_FLAT ? !(v >= -vtol) : !(v > 0)) {
+            ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu has no positive volume (%g)", i, v);
+            break;
+        }
         sum += v;
         if (n->leaf_reason == ACD3D_LEAF_TAU && p->concavity > r->tau * (1 + 1e-12) + 1e-12 * r->scale)
-            return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g", i, p->concavity, r->tau);
-        if (n->leaf_reason == ACD3D_LEAF_JOINED && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
-            return acd_fail(err, ACD_ERR_VERIFY, "joined part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
-                            p->concavity, r->merge_tau);
-        if (n->leaf_reason == ACD3D_LEAF_BUDGET && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
-            return acd_fail(err, ACD_ERR_VERIFY, "budget part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
-                            p->concavity, r->merge_tau);
+            ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g", i, p->concavity, r->tau);
+        else if (n->leaf_reason == ACD3D_LEAF_JOINED && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
+            ret = acd_fail(err, ACD_ERR_VERIFY, "joined part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
+                           p->concavity, r->merge_tau);
+        else if (n->leaf_reason == ACD3D_LEAF_BUDGET && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
+            ret = acd_fail(err, ACD_ERR_VERIFY, "budget part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
+                           p->concavity, r->merge_tau);
         /* a part left above the tolerance (no_cut, depth): in a budget run the merge tolerance, which
          * the budget pass brings every part within (no_cut there: a part it could not) */
-        if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT && n->leaf_reason != ACD3D_LEAF_BUDGET &&
-            n->leaf_reason != ACD3D_LEAF_MERGED && n->leaf_reason != ACD3D_LEAF_JOINED &&
-            (p->concavity > r->tau || (budget && p->concavity > r->merge_tau) ||
-             (budget && (n->leaf_reason == ACD3D_LEAF_NO_CUT || n->leaf_reason == ACD3D_LEAF_DEPTH))))
-            return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds %s %.17g (%s)", i, p->concavity,
-                            budget ? "the merge tolerance" : "tau", budget ? fmin(r->tau, r->merge_tau) : r->tau,
-                            leaf_reason_name(n->leaf_reason));
-        /* inside its hull: every part vertex on the inner side of every hull facet plane */
-        acd_hull h;
-        acd_error herr;
-        if (acd_hull_compute(p->hull.vertices, p->hull.nvertices, &h, &herr) != ACD_OK)
-            return acd_fail(err, ACD_ERR_VERIFY, "part %zu: its hull cannot be rebuilt: %s", i, herr.message);
-        double worst = -INFINITY;
-        for (size_t k = 0; k < m->nvertices; k++) {
-            double d = acd_hull_plane_distance(&h, m->vertices + 3 * k);
-            if (d > worst) worst = d;
-        }
-        /* trimmed hulls: an upper bound of the part's volume outside its hull (the part beyond the
-         * distinct planes of the facets it sticks out of) */
-        if (trim > 0 && worst > 1e-9 * r->scale) {
-            double b = acd_hull_volume_outside_bound(&h, m, 1e-9 * r->scale, r->scale);
-            if (isnan(b)) {
-                acd_hull_free(&h);
-                return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-            }
-            outside += b;
-        }
-        acd_hull_free(&h);
-        if (!(trim > 0) && worst > 1e-9 * r->scale)
-            return acd_fail(err, ACD_ERR_VERIFY, "part %zu sticks out of its hull by %g", i, worst);
+        else if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT && n->leaf_reason != ACD3D_LEAF_BUDGET &&
+                 n->leaf_reason != ACD3D_LEAF_MERGED && n->leaf_reason != ACD3D_LEAF_JOINED &&
+                 (p->concavity > r->tau || (budget && p->concavity > r->merge_tau) ||
+                  (budget && (n->leaf_reason == ACD3D_LEAF_NO_CUT || n->leaf_reason == ACD3D_LEAF_DEPTH))))
+            ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds %s %.17g (%s)", i, p->concavity,
+                           budget ? "the merge tolerance" : "tau", budget ? fmin(r->tau, r->merge_tau) : r->tau,
+                           leaf_reason_name(n->leaf_reason));
+        else if (q->hst != ACD_OK)
+            ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu: its hull cannot be rebuilt: %s", i, q->herr.message);
+        else if (trim > 0 && q->worst > 1e-9 * r->scale && isnan(q->outside))
+            ret = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+        else if (trim > 0 && q->worst > 1e-9 * r->scale)
+            outside += q->outside;
+        else if (!(trim > 0) && q->worst > 1e-9 * r->scale)
+            ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu sticks out of its hull by %g", i, q->worst);
     }
+    free(vp);
+    if (ret != ACD_OK) return ret;
     *outside_bound = outside;
     if (trim > 0 && outside > trim * r->input_volume * (1 + 1e-6) + vtol)
         return acd_fail(err, ACD_ERR_VERIFY,
@@ -795,7 +825,7 @@ int acd_cmd_3d(int argc, char **argv) {
     if (!code && selfx.status != ACD_OK) code = acd_cli_report("3d", &selfx);
     if (!code && do_verify) {
         double outside = 0;
-        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, p.trim_coverage, &outside, &err) : verify_surface(&mesh, &r, &err);
+        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, p.trim_coverage, p.threads, &outside, &err) : verify_surface(&mesh, &r, &err);
         /* a solid-mode result that fails on a mesh crossing itself: the input's fault (exit 2), the
          * verification's message kept */
         if (st != ACD_OK && p.mode == ACD3D_SOLID && self_crossing(&mesh, &npairs, pair) && npairs > 0) {

@@ -42,6 +42,15 @@ PY
 grep -q "^trimmed hulls: [1-9][0-9]* caps cut off, at most [0-9.e-]* of the input's volume outside the hulls (limit 0.002)" "$T/t.txt" ||
   fail "trim line: $(cat "$T/t.txt")"
 grep -q "^trimmed" "$T/p.txt" && fail "untrimmed run prints a trim line"
+# --verify checks the parts in parallel (--threads) and reports in part order: the same verdict,
+# outside-volume figure and exit code with one thread as with two
+for n in 1 2; do
+  "$ACD" 3d "$M" --budget 6 --trim-coverage 0.002 --verify -v --threads $n > /dev/null 2> "$T/v$n.err" ||
+    fail "--verify --threads $n: exit $? $(cat "$T/v$n.err")"
+  grep "verified" "$T/v$n.err" > "$T/v$n.line" || fail "--verify -v --threads $n: no verdict: $(cat "$T/v$n.err")"
+done
+cmp -s "$T/v1.line" "$T/v2.line" || fail "--verify: threads 1 and 2 differ: $(cat "$T/v1.line" "$T/v2.line")"
+grep -q "at most [0-9.e-]* of the input's volume outside the trimmed hulls" "$T/v1.line" || fail "verdict: $(cat "$T/v1.line")"
 python3 - "$T/p.json" "$T/t.json" <<'PY' || fail "json"
 import json, sys
 p, t = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
