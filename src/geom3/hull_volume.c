@@ -237,7 +237,7 @@ static int hv_near_add(acd_hull_volume_ws *w, const double *p, int i, int f, dou
  * when out of memory. */
 static long hv_visible(acd_hull_volume_ws *w, const double *p, const double *q, int fi, int fj, double eps, size_t *nv_out,
                        int *bad_out, double *added) {
-    int iter = ++w->iter, bad = 0;
+    int iter = ++w->iter, both = -1; /* the and of every start[a] and end[b] met: negative while all are -1 */
     size_t nv = 0, ns = 0, nh = 0;
     int *visl = w->visl, *stack = w->stack, *start = w->start, *end = w->end;
     hv_facet *f = w->f;
@@ -287,14 +287,14 @@ static long hv_visible(acd_hull_volume_ws *w, const double *p, const double *q, 
                 return -1;
             }
             int a = G->v[k], b = G->v[k == 2 ? 0 : k + 1];
-            bad |= (start[a] >= 0) | (end[b] >= 0);
+            both &= start[a] & end[b];
             start[a] = end[b] = (int)nh;
             w->hor[2 * nh] = a, w->hor[2 * nh + 1] = b, w->horf[nh] = h;
             nh++;
         }
     }
     if (added) *added += s / 6;
-    *nv_out = nv, *bad_out = bad;
+    *nv_out = nv, *bad_out = both >= 0;
     return (long)nh;
 }
 
@@ -635,8 +635,9 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
             w->o[visl[k]].head = -1;
         }
         if (top + 2 * nh > w->pendcap && !hv_grow_int(&w->pend, &w->pendcap, top + 2 * nh)) return -1;
+        const hv_out *on = w->o + newf[0]; /* (the new facets are newf[0] + k) */
         for (size_t k = 0; k < nh; k++) { /* (without branches to mispredict) */
-            w->pend[top] = newf[k], top += w->o[newf[k]].head >= 0;
+            w->pend[top] = newf[k], top += on[k].head >= 0;
             w->pend[top] = horf[k], top += w->o[horf[k]].head >= 0;
         }
     }
