@@ -4,6 +4,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "acd/hull.h"
 #include "acd3/budget_sort.h"
@@ -83,7 +86,19 @@ typedef struct budget_state {
     size_t *fallbacks;      /* the result's screen_fallbacks */
     double bound_rel;       /* BUDGET_BOUND_REL, or the caller's (acd3_budget_split_tuned; < 0: no bound) */
     size_t *dirs_bounded, *dirs_scored; /* the result's */
+    acd_hull_volume_ws *ws; /* per thread of the parallel loops (nws): the sweeps' workspaces, kept
+                             * between sweeps (the facets' room is not allocated and touched again) */
+    int nws;
 } budget_state;
+
+/* The calling thread's sweep workspace. */
+static acd_hull_volume_ws *thread_ws(const budget_state *S) {
+    int t = 0;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+#endif
+    return &S->ws[t < S->nws ? t : 0];
+}
 
 /* A hull's volume as acd_hull_volume gives it for the same points (0 unless dim 3: the same bits,
  * geom3/hull's hull_from_qhull). */
@@ -599,36 +614,34 @@ static int dir_prep(const acd_mesh *m, const plan *P, int d, const double *cs, i
  * above, 3 both) by one sweep per side (acd_hull_volume_sweep: the sampled vertices sorted along
  * d, the hull grown offset by offset, each plane's section hull added and undone); an offset a sweep
  * leaves computed on its own (side_volume). Touches only vb, va; 0 when out of memory. */
-static int dir_sweep(const acd_mesh *m, const plan *P, const dir_data *D, int which, double *vb, double *va) {
+static int dir_sweep(const acd_mesh *m, const plan *P, const dir_data *D, int which, double *vb, double *va,
+                     acd_hull_volume_ws *hw) {
     size_t nsv = D->nsv;
     int nq = D->nq, d = D->d;
     const double *cs = D->cs, *xs = D->xs;
     const size_t *xb = D->xb, *xe = D->xe;
     double *buf = malloc(3 * (nsv + D->mx + 1) * sizeof *buf), *rev = NULL;
     if (!buf) return 0;
-    acd_hull_volume_ws hw;
-    memset(&hw, 0, sizeof hw);
     size_t cnta[BUDGET_MAX_QUERIES], xba[BUDGET_MAX_QUERIES], xea[BUDGET_MAX_QUERIES];
     for (int i = 0; i < nq; i++) cnta[nq - 1 - i] = nsv - D->cntb[i], xba[nq - 1 - i] = xb[i], xea[nq - 1 - i] = xe[i];
     double vr[BUDGET_MAX_QUERIES];
     int ok = 1;
-    if (which & 1) ok = acd_hull_volume_sweep(D->srt, nsv, P->dirs[d], D->cntb, xs, xb, xe, nq, vb, &hw) == 0;
+    if (which & 1) ok = acd_hull_volume_sweep(D->srt, nsv, P->dirs[d], D->cntb, xs, xb, xe, nq, vb, hw) == 0;
     if (ok && (which & 2)) {
         rev = malloc(3 * (nsv + 1) * sizeof *rev); /* reversed: the side above as a prefix */
         if (!rev) ok = 0;
         for (size_t k = 0; rev && k < nsv; k++) memcpy(rev + 3 * k, D->srt + 3 * (nsv - 1 - k), sizeof(double[3]));
-        if (ok) ok = acd_hull_volume_sweep(rev, nsv, P->dirs[d], cnta, xs, xba, xea, nq, vr, &hw) == 0;
+        if (ok) ok = acd_hull_volume_sweep(rev, nsv, P->dirs[d], cnta, xs, xba, xea, nq, vr, hw) == 0;
         for (int i = 0; ok && i < nq; i++) va[i] = vr[nq - 1 - i];
     }
     for (int i = 0; ok && i < nq; i++) { /* the offsets a sweep left */
         const double *x = xs + 3 * xb[i];
         size_t nx = xe[i] - xb[i];
-        if ((which & 1) && vb[i] == -3) vb[i] = side_volume(m, D->sv, nsv, D->dv, cs[i], 0, x, nx, buf, &hw);
-        if ((which & 2) && va[i] == -3) va[i] = side_volume(m, D->sv, nsv, D->dv, cs[i], 1, x, nx, buf, &hw);
+        if ((which & 1) && vb[i] == -3) vb[i] = side_volume(m, D->sv, nsv, D->dv, cs[i], 0, x, nx, buf, hw);
+        if ((which & 2) && va[i] == -3) va[i] = side_volume(m, D->sv, nsv, D->dv, cs[i], 1, x, nx, buf, hw);
         if (((which & 1) && vb[i] == -1) || ((which & 2) && va[i] == -1)) ok = 0;
     }
     free(buf), free(rev);
-    acd_hull_volume_ws_free(&hw);
     return ok;
 }
 
@@ -639,7 +652,8 @@ static int dir_sweep(const acd_mesh *m, const plan *P, const dir_data *D, int wh
  * sample's (as estimated: within about 1e-9 relative of qhull's volumes on knot1's sets, 2e-5 on
  * fandisk's); P->lb[d] is that best sum less BUDGET_BOUND_REL of it, a lower bound of the bs[d]
  * that score_dir computes. 0 when out of memory (D freed). */
-static int direction_bound(const acd_mesh *m, plan *P, int d, double *cs, dir_data *D, double bound_rel) {
+static int direction_bound(const acd_mesh *m, plan *P, int d, double *cs, dir_data *D, double bound_rel,
+                           acd_hull_volume_ws *hw) {
     P->lb[d] = -INFINITY;
     for (int i = 1; i <= BUDGET_OFFSETS; i++) cs[i - 1] = P->lo[d] + P->st[d] * i;
     if (!dir_prep(m, P, d, cs, BUDGET_OFFSETS, 0, D)) return 0;
@@ -662,7 +676,7 @@ static int direction_bound(const acd_mesh *m, plan *P, int d, double *cs, dir_da
     while (q < BUDGET_OFFSETS) C.cntb[q++] = nc;
     C.sv = svc, C.nsv = nc;
     double va[BUDGET_OFFSETS], vb[BUDGET_OFFSETS];
-    if (ok) ok = dir_sweep(m, P, &C, 3, vb, va);
+    if (ok) ok = dir_sweep(m, P, &C, 3, vb, va, hw);
     free(svc), free(C.dv), free(C.srt);
     if (!ok) {
         dir_free(D);
@@ -679,9 +693,9 @@ static int direction_bound(const acd_mesh *m, plan *P, int d, double *cs, dir_da
 
 /* Direction d's best of the fixed offsets (D: direction_bound's; touches only P->bs[d], P->bc[d]);
  * 0 when out of memory. */
-static int score_dir(const acd_mesh *m, plan *P, int d, const dir_data *D) {
+static int score_dir(const acd_mesh *m, plan *P, int d, const dir_data *D, acd_hull_volume_ws *hw) {
     double va[BUDGET_OFFSETS], vb[BUDGET_OFFSETS];
-    if (!dir_sweep(m, P, D, 3, vb, va)) return 0;
+    if (!dir_sweep(m, P, D, 3, vb, va, hw)) return 0;
     for (int i = 0; i < BUDGET_OFFSETS; i++) {
         double sc = va[i] < 0 || vb[i] < 0 ? -1 : va[i] + vb[i];
         if (sc >= 0 && sc < P->bs[d]) P->bs[d] = sc, P->bc[d] = D->cs[i];
@@ -952,7 +966,8 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
 #endif
     for (int t = 0; t < ntask; t++) {
-        dok[t] = (unsigned char)direction_bound(&S->a[idx[tj[t]]].mesh, &P[tj[t]], td[t], DC[t], &DD[t], S->bound_rel);
+        dok[t] = (unsigned char)direction_bound(&S->a[idx[tj[t]]].mesh, &P[tj[t]], td[t], DC[t], &DD[t], S->bound_rel,
+                                                    thread_ws(S));
         if (!dok[t]) {
 #ifdef _OPENMP
 #pragma omp atomic write
@@ -996,7 +1011,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
 #endif
         skip = Q->lb[d] > Q->top[BUDGET_REFINE_DIRS - 1];
         if (skip) continue;
-        if (!score_dir(&S->a[idx[j]].mesh, Q, d, &DD[t])) {
+        if (!score_dir(&S->a[idx[j]].mesh, Q, d, &DD[t], thread_ws(S))) {
 #ifdef _OPENMP
 #pragma omp atomic write
 #endif
@@ -1053,7 +1068,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
 #endif
     for (int t = 0; t < 2 * nref; t++) {
         int k = t / 2;
-        if (rok[k] && !dir_sweep(&S->a[idx[rj[k]]].mesh, &P[rj[k]], &RD[k], t % 2 ? 2 : 1, rvb[k], rva[k])) {
+        if (rok[k] && !dir_sweep(&S->a[idx[rj[k]]].mesh, &P[rj[k]], &RD[k], t % 2 ? 2 : 1, rvb[k], rva[k], thread_ws(S))) {
 #ifdef _OPENMP
 #pragma omp atomic write
 #endif
@@ -1330,8 +1345,13 @@ static acd_status budget_split(const acd_mesh *parts, const acd_hull *const *hul
     S.ndir = BUDGET_DIRS;
     S.nexact = BUDGET_EXACT;
     S.cap = 2 * nparts + 16;
+    S.nws = threads > 1 ? threads : 1;
     S.a = calloc(S.cap, sizeof *S.a);
-    if (!S.a) return acd_fail(err, ACD_ERR_NOMEM, "budget: out of memory");
+    S.ws = calloc((size_t)S.nws, sizeof *S.ws);
+    if (!S.a || !S.ws) {
+        free(S.a), free(S.ws);
+        return acd_fail(err, ACD_ERR_NOMEM, "budget: out of memory");
+    }
     acd_status st = ACD_OK;
     for (size_t i = 0; i < nparts; i++) {
         S.a[i].mesh = parts[i];
@@ -1509,6 +1529,8 @@ static acd_status budget_split(const acd_mesh *parts, const acd_hull *const *hul
         if (i >= nparts) acd_mesh_free(&S.a[i].mesh);
     }
     free(S.a);
+    for (int t = 0; t < S.nws; t++) acd_hull_volume_ws_free(&S.ws[t]);
+    free(S.ws);
     if (st != ACD_OK) acd3_budget_result_free(out);
     return st;
 }
