@@ -155,17 +155,7 @@ static int flood(const acd_hull *h, const facet_info *fi, const double *N, const
             if (g >= nf || label[g] != UINT32_MAX) continue;
             acd_minheap_item x = {l21_error(fi, g, N + 3 * it.tie), g, it.tie};
             if (!flood_better(best, x)) continue;
-            if (!have_next) {
-                next = x;
-                have_next = 1;
-                continue;
-            }
-            if (acd_minheap_less(x, next)) {
-                acd_minheap_item y = next;
-                next = x;
-                x = y;
-            }
-            if (!acd_minheap_push_item(hp, x)) return 0;
+            if (!acd_minheap_offer(hp, &next, &have_next, x)) return 0;
         }
     }
     return 1;

@@ -82,17 +82,7 @@ int acd3_shortest_path(acd3_pathfinder *pf, uint32_t s, uint32_t t) {
                 pf->dist[u] = d;
                 pf->pred[u] = v;
                 acd_minheap_item x = {d + acd_dist3(pf->coords + 3 * (size_t)u, tp), u, 0};
-                if (!have_next) {
-                    next = x;
-                    have_next = 1;
-                    continue;
-                }
-                if (acd_minheap_less(x, next)) {
-                    acd_minheap_item y = next;
-                    next = x;
-                    x = y;
-                }
-                if (!acd_minheap_push_item(&pf->heap, x)) return -1;
+                if (!acd_minheap_offer(&pf->heap, &next, &have_next, x)) return -1;
             }
         }
     }

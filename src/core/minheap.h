@@ -36,6 +36,22 @@ acd_minheap_item acd_minheap_pop(acd_minheap *h);
 /* Adds x and removes the smallest item (x itself when it precedes every queued one), returning
  * it: push then pop in one pass, without allocating. */
 acd_minheap_item acd_minheap_pushpop(acd_minheap *h, acd_minheap_item x);
+/* A search's item held outside the heap: *held, when *have, is the smallest item offered since the
+ * search last took one (the next to take is the smaller of it and the top: acd_minheap_pushpop). x
+ * offered: held if none is, else the larger of x and the held one pushed. 0 when out of memory. */
+static inline int acd_minheap_offer(acd_minheap *h, acd_minheap_item *held, int *have, acd_minheap_item x) {
+    if (!*have) {
+        *held = x;
+        *have = 1;
+        return 1;
+    }
+    if (acd_minheap_less(x, *held)) {
+        acd_minheap_item y = *held;
+        *held = x;
+        x = y;
+    }
+    return acd_minheap_push_item(h, x);
+}
 /* Frees the storage and zeroes h. */
 void acd_minheap_free(acd_minheap *h);
 
