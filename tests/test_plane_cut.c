@@ -231,6 +231,21 @@ static void fix_edge_contacts(uint8_t *vox, int N) {
 #undef AT
 }
 
+/* A random solid of the VOXEL_SOLID_N^3 voxel grid (each voxel with probability fill, then edge
+ * contacts filled: fix_edge_contacts) into m; 0 (nothing to free) when it has no faces. */
+#define VOXEL_SOLID_N 5
+static int random_voxel_solid(acd_rng *r, double fill, acd_mesh *m) {
+    const int N = VOXEL_SOLID_N;
+    uint8_t vox[VOXEL_SOLID_N * VOXEL_SOLID_N * VOXEL_SOLID_N];
+    for (int i = 0; i < N * N * N; i++) vox[i] = acd_rng_uniform(r) < fill;
+    fix_edge_contacts(vox, N);
+    if (!voxel_mesh(vox, N, m) || m->ntriangles == 0) {
+        acd_mesh_free(m);
+        return 0;
+    }
+    return 1;
+}
+
 static void random_plane(acd_rng *r, acd_cut_plane *pl, double spread) {
     double p[3], n[3];
     for (int k = 0; k < 3; k++) {
@@ -326,16 +341,11 @@ static void test_voxel_solids(void **state) {
     acd_rng r;
     acd_rng_seed(&r, 53);
     stats S = {0};
-    int N = 5, made = 0;
+    const int N = VOXEL_SOLID_N;
+    int made = 0;
     for (int trial = 0; trial < 400 && made < 40; trial++) {
-        uint8_t vox[125];
-        for (int i = 0; i < N * N * N; i++) vox[i] = acd_rng_uniform(&r) < 0.5;
-        fix_edge_contacts(vox, N);
         acd_mesh m;
-        if (!voxel_mesh(vox, N, &m) || m.ntriangles == 0) {
-            acd_mesh_free(&m);
-            continue;
-        }
+        if (!random_voxel_solid(&r, 0.5, &m)) continue;
         made++;
         for (int k = 0; k < 6; k++) {
             acd_cut_plane pl;
@@ -576,16 +586,10 @@ static void test_map_paths(void **state) {
     acd_rng r;
     acd_rng_seed(&r, 57);
     size_t cuts = 0, pieces = 0;
-    int N = 5;
+    const int N = VOXEL_SOLID_N;
     for (int solid = 0; solid < 12; solid++) { /* voxel solids: coplanar faces, planes through vertices */
-        uint8_t vox[125];
-        for (int i = 0; i < N * N * N; i++) vox[i] = acd_rng_uniform(&r) < 0.55;
-        fix_edge_contacts(vox, N);
         acd_mesh m;
-        if (!voxel_mesh(vox, N, &m) || m.ntriangles == 0) {
-            acd_mesh_free(&m);
-            continue;
-        }
+        if (!random_voxel_solid(&r, 0.55, &m)) continue;
         for (int k = 0; k < 8; k++) {
             acd_cut_plane pl;
             if (k < 3) {
