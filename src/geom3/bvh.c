@@ -452,12 +452,7 @@ acd_status acd_bvh_build_threads(acd_bvh *bvh, const double *vertices, size_t nv
     bvh_item *items = malloc(ntriangles * sizeof *items);
     const int par = threads > 1 && ntriangles >= BVH_PAR_MIN;
     build_item *stack = par ? NULL : malloc(maxnodes * sizeof *stack);
-    if (!bvh->nodes || !bvh->order || !bvh->boxes || !items || (!par && !stack)) {
-        free(items);
-        free(stack);
-        acd_bvh_free(bvh);
-        return acd_fail(err, ACD_ERR_NOMEM, "bvh: out of memory for %zu triangles", ntriangles);
-    }
+    if (!bvh->nodes || !bvh->order || !bvh->boxes || !items || (!par && !stack)) goto nomem;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(threads) if (par)
 #endif
@@ -493,11 +488,7 @@ acd_status acd_bvh_build_threads(acd_bvh *bvh, const double *vertices, size_t nv
             bvh->nnodes = next;
         }
         sub_free(&top);
-        if (fail) {
-            free(items);
-            acd_bvh_free(bvh);
-            return acd_fail(err, ACD_ERR_NOMEM, "bvh: out of memory for %zu triangles", ntriangles);
-        }
+        if (fail) goto nomem;
     }
     /* triangles and their boxes in leaf order, for the queries */
 #ifdef _OPENMP
@@ -511,6 +502,11 @@ acd_status acd_bvh_build_threads(acd_bvh *bvh, const double *vertices, size_t nv
     }
     free(items);
     return ACD_OK;
+nomem: /* stack: NULL, or not freed yet (the sequential build frees it and cannot fail) */
+    free(items);
+    free(stack);
+    acd_bvh_free(bvh);
+    return acd_fail(err, ACD_ERR_NOMEM, "bvh: out of memory for %zu triangles", ntriangles);
 }
 
 int acd_bvh_is_over(const acd_bvh *bvh, const double *vertices, size_t nvertices, const uint32_t *triangles,
