@@ -956,9 +956,9 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
     int fail[BUDGET_BATCH] = {0};
     dir_data *DD = malloc(((size_t)ntask + 1) * sizeof *DD);
     double(*DC)[BUDGET_OFFSETS] = malloc(((size_t)ntask + 1) * sizeof *DC);
-    int *dk = malloc(((size_t)ntask + 1) * sizeof *dk);
+    int dk[BUDGET_BATCH * BUDGET_MAX_DIRS];
     unsigned char *dok = calloc((size_t)ntask + 1, 1);
-    if (!DD || !DC || !dk || !dok) {
+    if (!DD || !DC || !dok) {
         for (int j = 0; j < nb; j++) fail[j] = 1;
         ntask = 0;
     }
@@ -979,25 +979,15 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
      * turn: ties by direction), each only when its bound is not above the BUDGET_REFINE_DIRS-th
      * lowest score so far (P->top): the directions the refinement takes, and their scores, are those
      * of scoring every direction, for any thread count and any order the tasks end in */
-    for (int t = 0; t < ntask; t++) dk[t] = t;
-    for (int i = 1; i < ntask; i++) /* stable: by atom, then bound (then direction) */
-        for (int k = i; k > 0; k--) {
-            int a = dk[k - 1], b = dk[k];
-            if (tj[a] < tj[b] || (tj[a] == tj[b] && !(P[tj[b]].lb[td[b]] < P[tj[a]].lb[td[a]]))) break;
-            dk[k - 1] = b, dk[k] = a;
-        }
-    {
-        int *rank = malloc(((size_t)ntask + 1) * sizeof *rank), *ord2 = malloc(((size_t)ntask + 1) * sizeof *ord2);
-        if (rank && ord2) { /* by rank within the atom, then atom */
-            for (int k = 0; k < ntask; k++) rank[dk[k]] = k == 0 || tj[dk[k - 1]] != tj[dk[k]] ? 0 : rank[dk[k - 1]] + 1;
-            int n2 = 0;
-            for (int r = 0; r < BUDGET_MAX_DIRS; r++)
-                for (int k = 0; k < ntask; k++)
-                    if (rank[dk[k]] == r) ord2[n2++] = dk[k];
-            memcpy(dk, ord2, (size_t)ntask * sizeof *dk);
-        }
-        free(rank), free(ord2);
+    int byb[BUDGET_BATCH][BUDGET_MAX_DIRS], nbyb[BUDGET_BATCH] = {0}, ndk = 0;
+    for (int t = 0; t < ntask; t++) { /* each atom's tasks by bound (stable: then direction) */
+        int j = tj[t], k = nbyb[j]++;
+        for (; k > 0 && P[j].lb[td[t]] < P[j].lb[td[byb[j][k - 1]]]; k--) byb[j][k] = byb[j][k - 1];
+        byb[j][k] = t;
     }
+    for (int r = 0; r < BUDGET_MAX_DIRS; r++)
+        for (int j = 0; j < nb; j++)
+            if (r < nbyb[j]) dk[ndk++] = byb[j][r];
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
 #endif
@@ -1030,7 +1020,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
         *S->dirs_bounded += P[tj[t]].hv != NULL;
         *S->dirs_scored += P[tj[t]].scored[td[t]];
     }
-    free(DD), free(DC), free(dk), free(dok);
+    free(DD), free(DC), free(dok);
     /* the best directions refined around their best offsets: BUDGET_REFINE rounds of half the
      * step, the lower offset first, each taken when it lowers the score (as the sequential search);
      * the scores looked up among the offsets the rounds can reach (refine_offsets), whose sides are
