@@ -141,14 +141,20 @@ acd_status acd_edge_map_build(const uint32_t *triangles, size_t ntriangles, cons
     return ACD_OK;
 }
 
-acd_status acd_edge_map_sort(acd_edge_map *m, acd_error *err) {
-    size_t n = m->n;
+/* The largest vertex id in m's keys (0 when empty). */
+static uint32_t keys_max_id(const acd_edge_map *m) {
     uint32_t maxid = 0;
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i = 0; i < m->n; i++) {
         uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
         if (a > maxid) maxid = a;
         if (b > maxid) maxid = b;
     }
+    return maxid;
+}
+
+acd_status acd_edge_map_sort(acd_edge_map *m, acd_error *err) {
+    size_t n = m->n;
+    uint32_t maxid = keys_max_id(m);
     uint64_t *tk = NULL;
     uint32_t *tv = NULL;
     if (n > INSERTION_MAX) {
@@ -179,12 +185,7 @@ acd_status acd_edge_map_twins(const acd_edge_map *m, uint32_t **twin, acd_error 
         *twin = tw;
         return ACD_OK;
     }
-    uint32_t maxid = 0;
-    for (size_t i = 0; i < n; i++) {
-        uint32_t a = (uint32_t)(m->key[i] >> 32), b = (uint32_t)m->key[i];
-        if (a > maxid) maxid = a;
-        if (b > maxid) maxid = b;
-    }
+    uint32_t maxid = keys_max_id(m);
     /* the reversed keys (b, a) in order, with their entries ri: the map is sorted by (a, b), so a
      * stable counting sort by b (one pass, a bucket per vertex: a transpose) sorts them, in the
      * order a stable sort of the reversed keys in entry order gives; with ids much sparser than
