@@ -37,6 +37,7 @@
 #include "geom3/dijkstra.h"
 #include "geom3/edge_map.h"
 #include "geom3/hull_simplify.h"
+#include "geom3/hull_volume.h"
 #include "geom3/plane_cut.h"
 #include "geom3/volume.h"
 #include "geom3/sphere.h"
@@ -246,6 +247,13 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
  * and the armadillo kept their output with 3-10% less CPU (their candidates lost after measuring
  * the largest piece: 29 of 252 and 42 of 495). 0: split_better's rule throughout. */
 #define ACD3_VOLUME_SCREEN_HULL 1
+/* ... and before its pieces' qhull hulls are computed, once the best it is compared with is final,
+ * the sum of their hull volume estimates (geom3/hull_volume: the hull of the same points by a
+ * Quickhull of floating-point tests, which can only miss a point, i.e. underestimate, apart from
+ * rounding) above the best's hull volume by this much (relative) drops it as the qhull hulls' sum
+ * would (split_screened_out); a candidate within the margin gets its qhull hulls. On bunny00's
+ * tight run the dropped candidates' sums were above the best's by 3.2e-4 or more (175 of 252). */
+#define ACD3_VOLUME_SCREEN_REL 1e-4
 
 typedef struct split_choice {
     acd_cut_result cut;
@@ -345,6 +353,7 @@ typedef struct split_state {
     double band;   /* its band of concavity */
     unsigned cut_flags; /* acd_plane_cut_flags */
     const acd_edge_map *em; /* solid mode: the part's edge map, checked closed (NULL: each cut builds it) */
+    uint8_t *onhull; /* by volume: 1 for m's vertices on its hull (ms->hull.source), for split_screened_out; NULL: none */
     /* The candidates are slots (cand[id], ev[id]); ord[i] is the slot of the i-th candidate in the
      * sequential loop's order (pos[id]: its index there, -1 when not a candidate), set once
      * `ordered` (try_split may start evaluating slots while it still computes the global cut's
@@ -575,6 +584,74 @@ static void split_screen(split_state *S, cand_eval *e) {
     e->hullvol = vol;
 }
 
+/* By volume (ACD3_VOLUME_SCREEN_HULL, not by band), before the pieces' qhull hulls: whether the trial
+ * of slot id (cut, its pieces acceptable) is lost on its hull volume alone. Only once the candidates
+ * before it are all replayed and the best makes progress: the best is then the one its replay
+ * compares it with (nothing changes the best before that replay), and split_lost_at returns 1 there
+ * for any trial whose hull volume is not below the best's, whatever its concavity bound. The pieces'
+ * estimated hull volumes (acd_hull_volume_fast) above the best's by ACD3_VOLUME_SCREEN_REL: their
+ * qhull hulls' sum is not below it either, so the candidate is lost as before, without its hulls;
+ * e->hullvol is then the estimate (the replay's test gives the same). Else (or not yet decidable)
+ * 0: the screen's qhull hulls decide, as before. Also 1 when the replay no longer needs the candidate
+ * (split_abandoned's gone: its hulls would not be used). */
+static int split_screened_out(split_state *S, int id, cand_eval *e) {
+    if (!ACD3_VOLUME_SCREEN_HULL || S->early || !S->by_volume) return 0;
+    int ready = 0, gone = 0;
+    double best = 0;
+#ifdef _OPENMP
+#pragma omp critical(acd3_split)
+#endif
+    if (S->ordered) {
+        int i = S->pos[id];
+        gone = i < 0 || S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i));
+        ready = !gone && S->cursor == i && S->found && S->best_progress;
+        best = S->best.hullvol;
+    }
+    if (gone) return 1; /* (split_abandoned: the replay no longer needs it) */
+    if (!ready) return 0;
+    const split_choice *trial = &e->trial;
+    const double above = best * (1 + ACD3_VOLUME_SCREEN_REL);
+    acd_hull_volume_ws w;
+    memset(&w, 0, sizeof w);
+    double sum = 0;
+    int all = 1;
+    /* first the hulls of the pieces' points on the part's hull and on the plane (a fifth of the
+     * points on bunny00's run, and enough for 156 of its 175 drops), then of all their points */
+    double *buf = NULL;
+    size_t nmax = 0;
+    for (size_t k = 0; k < trial->cut.npieces; k++)
+        if (trial->cut.pieces[k].mesh.nvertices > nmax) nmax = trial->cut.pieces[k].mesh.nvertices;
+    if (S->onhull) buf = malloc(3 * (nmax ? nmax : 1) * sizeof *buf);
+    const int first = buf != NULL;
+    for (size_t k = 0; buf && k < trial->cut.npieces && all; k++) {
+        const acd_cut_piece *pc = &trial->cut.pieces[e->ord[k]];
+        size_t n = 0;
+        for (size_t v = 0; v < pc->mesh.nvertices; v++) {
+            uint32_t src = pc->source ? pc->source[v] : ACD_CUT_NEW_VERTEX;
+            if (src == ACD_CUT_NEW_VERTEX || (src < S->m->nvertices && S->onhull[src]))
+                memcpy(buf + 3 * n++, pc->mesh.vertices + 3 * (size_t)v, sizeof(double[3]));
+        }
+        double vk = acd_hull_volume_fast(buf, n, &w, NULL);
+        if (vk < 0) all = 0;
+        sum += vk;
+    }
+    free(buf);
+    if (!first || !all || !(sum > above)) {
+        sum = 0, all = 1;
+        for (size_t k = 0; k < trial->cut.npieces && all; k++) {
+            const acd_mesh *pm = &trial->cut.pieces[e->ord[k]].mesh;
+            double vk = acd_hull_volume_fast(pm->vertices, pm->nvertices, &w, NULL);
+            if (vk < 0) all = 0;
+            sum += vk;
+        }
+    }
+    acd_hull_volume_ws_free(&w);
+    if (!all || !(sum > above)) return 0;
+    e->hullvol = sum;
+    e->have_hullvol = 1;
+    return 1;
+}
+
 /* m's edge map, checked closed (acd_edge_map_closed); returns 1 when built and m is closed, else 0
  * (nothing to free). em NULL: only whether m is closed. A part's, built once for all the cuts of
  * its splits (process_node; without it, each cut builds and checks the map and reports that). */
@@ -640,6 +717,7 @@ static void split_evaluate(split_state *S, int i) {
         e->ord[j] = k;
     }
     e->ok = 1;
+    if (split_screened_out(S, i, e)) return;
     if (S->by_volume) split_screen(S, e); /* (by_volume: solid mode only) */
     double conc = 0;
     for (size_t i2 = 0; i2 < trial->cut.npieces; i2++) {
@@ -786,6 +864,11 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     S.cut_flags = cut_flags;
     S.em = solid ? em : NULL;
     S.cand = slot, S.ev = ev;
+    if (by_volume && ACD3_VOLUME_SCREEN_HULL && !S.early && ms->hull.dim == 3 && ms->hull.source) {
+        S.onhull = calloc(m->nvertices ? m->nvertices : 1, 1);
+        for (size_t v = 0; S.onhull && v < ms->hull.nvertices; v++)
+            if (ms->hull.source[v] < m->nvertices) S.onhull[ms->hull.source[v]] = 1;
+    }
     /* solid mode with the global cut and a thread to spare: the candidates that do not depend on the
      * global cut's plane (the volume planes, the witness planes acd3_cut_candidates lists after
      * it) are evaluated by the helpers while this thread computes that plane (the part's serial
@@ -879,6 +962,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     }
 #endif
     for (int i = 0; i < npre + nc; i++) cand_eval_free(&ev[i]);
+    free(S.onhull);
     if (S.fail) {
         if (S.found) choice_free(&S.best);
         if (err) *err = S.err;
