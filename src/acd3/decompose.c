@@ -251,7 +251,7 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
  * the sum of their hull volume estimates (geom3/hull_volume: the hull of the same points by a
  * Quickhull of floating-point tests, which can only miss a point, i.e. underestimate, apart from
  * rounding) above the best's hull volume by this much (relative) drops it as the qhull hulls' sum
- * would (split_screened_out); a candidate within the margin gets its qhull hulls. On bunny00's
+ * would (split_screen); a candidate within the margin gets its qhull hulls. On bunny00's
  * tight run the dropped candidates' sums were above the best's by 3.2e-4 or more (175 of 252). */
 #define ACD3_VOLUME_SCREEN_REL 1e-4
 
@@ -340,6 +340,10 @@ typedef struct cand_eval {
     double cbound;   /* a lower bound on the trial's concavity (0: none) */
     int have_hullvol; /* by volume: hullvol is the sum of the pieces' hull volumes (as the replay sums them) */
     double hullvol;
+    /* the hull volume screen still to be decided (screen_decide): the sum of the pieces' hull volume
+     * estimates, of all their points with est_full, else of a subset; -1: none, or decided */
+    double est;
+    int est_full;
 } cand_eval;
 
 typedef struct split_state {
@@ -557,18 +561,126 @@ static double piece_concavity_bound(const split_state *S, const acd_cut_piece *p
     return lb;
 }
 
+/* Where the replay stands for the candidate of slot id, for the hull volume screen (split_screen):
+ * SCREEN_GONE, the replay no longer needs it (split_abandoned's gone: its hulls would not be used);
+ * SCREEN_READY, the candidates before it are all replayed and the best makes progress: the best is
+ * the one its replay compares it with (nothing but those replays changes the best), *best its hull
+ * volume; SCREEN_NONE, replayed up to it but no such best (it cannot be dropped on its hull volume);
+ * SCREEN_LATER, candidates before it are still to be replayed (or the order is not known yet). */
+enum { SCREEN_GONE, SCREEN_READY, SCREEN_NONE, SCREEN_LATER };
+
+static int screen_state(split_state *S, int id, double *best) {
+    int r = SCREEN_LATER;
+#ifdef _OPENMP
+#pragma omp critical(acd3_split)
+#endif
+    if (S->ordered) {
+        int i = S->pos[id];
+        if (i < 0 || S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i))) r = SCREEN_GONE;
+        else if (S->cursor < i) r = SCREEN_LATER;
+        else r = S->found && S->best_progress ? SCREEN_READY : SCREEN_NONE;
+        *best = S->best.hullvol;
+    }
+    return r;
+}
+
+/* The sum of the hull volume estimates (acd_hull_volume_fast) of e's pieces; with sub, of their
+ * points on the part's hull (S->onhull) or new on the cutting plane only. -1 when out of memory. */
+static double pieces_hull_estimate(const split_state *S, const cand_eval *e, int sub, acd_hull_volume_ws *w) {
+    const split_choice *trial = &e->trial;
+    double *buf = NULL;
+    if (sub) {
+        size_t nmax = 1;
+        for (size_t k = 0; k < trial->cut.npieces; k++)
+            if (trial->cut.pieces[k].mesh.nvertices > nmax) nmax = trial->cut.pieces[k].mesh.nvertices;
+        buf = malloc(3 * nmax * sizeof *buf);
+        if (!buf) return -1;
+    }
+    double sum = 0;
+    for (size_t k = 0; k < trial->cut.npieces; k++) {
+        const acd_cut_piece *pc = &trial->cut.pieces[e->ord[k]];
+        const double *pts = pc->mesh.vertices;
+        size_t n = pc->mesh.nvertices;
+        if (sub) {
+            n = 0;
+            for (size_t v = 0; v < pc->mesh.nvertices; v++) {
+                uint32_t src = pc->source ? pc->source[v] : ACD_CUT_NEW_VERTEX;
+                if (src == ACD_CUT_NEW_VERTEX || (src < S->m->nvertices && S->onhull[src]))
+                    memcpy(buf + 3 * n++, pc->mesh.vertices + 3 * (size_t)v, sizeof(double[3]));
+            }
+            pts = buf;
+        }
+        double vk = acd_hull_volume_fast(pts, n, w, NULL);
+        if (vk < 0) {
+            sum = -1;
+            break;
+        }
+        sum += vk;
+    }
+    free(buf);
+    return sum;
+}
+
+/* By volume (ACD3_VOLUME_SCREEN_HULL, not by band; the part's hull vertices known): whether its
+ * candidates may be dropped on estimates of their hull volumes before their qhull hulls
+ * (screen_decide). */
+static int screen_on(const split_state *S) {
+    return ACD3_VOLUME_SCREEN_HULL && !S->early && S->by_volume && S->onhull;
+}
+
+/* The hull volume screen on estimates, for the candidate of slot id whose e->est is set: returns 1
+ * when the candidate is dropped (or the replay no longer needs it: SCREEN_GONE), else 0, with
+ * *later when the test cannot be made yet (SCREEN_LATER: e->est kept), e->est = -1 when it was made.
+ * The candidate's replay's first test, split_lost_at(e, 0, 0), returns 1 for any trial whose hull
+ * volume is not below the best's once the best makes progress (that test comes last; the others can
+ * only return 1 too), whatever the trial's concavity bound. The pieces' estimated hull volumes
+ * (geom3/hull_volume: hulls of subsets of the pieces' points, by floating-point tests that can miss
+ * a point but not add volume, so not above the qhull hulls' volumes up to rounding) above the best's
+ * by ACD3_VOLUME_SCREEN_REL: their qhull hulls' sum is not below it either, and the candidate is
+ * dropped as it would be after its hulls; e->hullvol is then the estimate (the replay's test gives
+ * the same). The estimate of a subset first (split_evaluate), then, once the best is known, of all
+ * the points. */
+static int screen_decide(split_state *S, int id, cand_eval *e, int *later) {
+    double best = 0;
+    int state = screen_state(S, id, &best);
+    *later = state == SCREEN_LATER;
+    if (state == SCREEN_GONE) return 1;
+    if (state == SCREEN_LATER) return 0;
+    if (state == SCREEN_READY) {
+        const double above = best * (1 + ACD3_VOLUME_SCREEN_REL);
+        if (!(e->est > above) && !e->est_full) {
+            acd_hull_volume_ws w;
+            memset(&w, 0, sizeof w);
+            e->est = pieces_hull_estimate(S, e, 0, &w);
+            e->est_full = 1;
+            acd_hull_volume_ws_free(&w);
+        }
+        if (e->est >= 0 && e->est > above) {
+            e->hullvol = e->est;
+            e->have_hullvol = 1;
+            return 1;
+        }
+    }
+    e->est = -1;
+    return 0;
+}
+
 /* Solid mode: the pieces' hulls (kept for their measures), their volumes' sum (by volume) and the
  * lower bound on the trial's concavity. A hull that cannot be computed is left to the measure (which
- * reports the failure when it is reached). */
-static void split_screen(split_state *S, cand_eval *e) {
+ * reports the failure when it is reached). A candidate whose screen is still to be decided
+ * (e->est >= 0: evaluated ahead of the replay, SCREEN_LATER) is tested again before each piece's
+ * hull: the replay may have caught up (returns 1 when it is dropped so, else 0). */
+static int split_screen(split_state *S, int id, cand_eval *e) {
     split_choice *trial = &e->trial;
     size_t np = trial->cut.npieces;
     e->hulls = calloc(np, sizeof *e->hulls);
-    if (!e->hulls) return;
+    if (!e->hulls) return 0;
     e->nhulls = np;
     int all = 1;
     double vol = 0, cb = 0;
     for (size_t k = 0; k < np; k++) {
+        int later = 0;
+        if (e->est >= 0 && screen_decide(S, id, e, &later)) return 1;
         const acd_mesh *pm = &trial->cut.pieces[k].mesh;
         if (acd_hull_compute(pm->vertices, pm->nvertices, &e->hulls[k], NULL) != ACD_OK) {
             acd_hull_free(&e->hulls[k]);
@@ -582,74 +694,7 @@ static void split_screen(split_state *S, cand_eval *e) {
     e->cbound = cb;
     e->have_hullvol = S->by_volume && all;
     e->hullvol = vol;
-}
-
-/* By volume (ACD3_VOLUME_SCREEN_HULL, not by band), before the pieces' qhull hulls: whether the trial
- * of slot id (cut, its pieces acceptable) is lost on its hull volume alone. Only once the candidates
- * before it are all replayed and the best makes progress: the best is then the one its replay
- * compares it with (nothing changes the best before that replay), and split_lost_at returns 1 there
- * for any trial whose hull volume is not below the best's, whatever its concavity bound. The pieces'
- * estimated hull volumes (acd_hull_volume_fast) above the best's by ACD3_VOLUME_SCREEN_REL: their
- * qhull hulls' sum is not below it either, so the candidate is lost as before, without its hulls;
- * e->hullvol is then the estimate (the replay's test gives the same). Else (or not yet decidable)
- * 0: the screen's qhull hulls decide, as before. Also 1 when the replay no longer needs the candidate
- * (split_abandoned's gone: its hulls would not be used). */
-static int split_screened_out(split_state *S, int id, cand_eval *e) {
-    if (!ACD3_VOLUME_SCREEN_HULL || S->early || !S->by_volume) return 0;
-    int ready = 0, gone = 0;
-    double best = 0;
-#ifdef _OPENMP
-#pragma omp critical(acd3_split)
-#endif
-    if (S->ordered) {
-        int i = S->pos[id];
-        gone = i < 0 || S->stopped || S->cursor > i || (S->cursor == i && split_skips(S, i));
-        ready = !gone && S->cursor == i && S->found && S->best_progress;
-        best = S->best.hullvol;
-    }
-    if (gone) return 1; /* (split_abandoned: the replay no longer needs it) */
-    if (!ready) return 0;
-    const split_choice *trial = &e->trial;
-    const double above = best * (1 + ACD3_VOLUME_SCREEN_REL);
-    acd_hull_volume_ws w;
-    memset(&w, 0, sizeof w);
-    double sum = 0;
-    int all = 1;
-    /* first the hulls of the pieces' points on the part's hull and on the plane (a fifth of the
-     * points on bunny00's run, and enough for 156 of its 175 drops), then of all their points */
-    double *buf = NULL;
-    size_t nmax = 0;
-    for (size_t k = 0; k < trial->cut.npieces; k++)
-        if (trial->cut.pieces[k].mesh.nvertices > nmax) nmax = trial->cut.pieces[k].mesh.nvertices;
-    if (S->onhull) buf = malloc(3 * (nmax ? nmax : 1) * sizeof *buf);
-    const int first = buf != NULL;
-    for (size_t k = 0; buf && k < trial->cut.npieces && all; k++) {
-        const acd_cut_piece *pc = &trial->cut.pieces[e->ord[k]];
-        size_t n = 0;
-        for (size_t v = 0; v < pc->mesh.nvertices; v++) {
-            uint32_t src = pc->source ? pc->source[v] : ACD_CUT_NEW_VERTEX;
-            if (src == ACD_CUT_NEW_VERTEX || (src < S->m->nvertices && S->onhull[src]))
-                memcpy(buf + 3 * n++, pc->mesh.vertices + 3 * (size_t)v, sizeof(double[3]));
-        }
-        double vk = acd_hull_volume_fast(buf, n, &w, NULL);
-        if (vk < 0) all = 0;
-        sum += vk;
-    }
-    free(buf);
-    if (!first || !all || !(sum > above)) {
-        sum = 0, all = 1;
-        for (size_t k = 0; k < trial->cut.npieces && all; k++) {
-            const acd_mesh *pm = &trial->cut.pieces[e->ord[k]].mesh;
-            double vk = acd_hull_volume_fast(pm->vertices, pm->nvertices, &w, NULL);
-            if (vk < 0) all = 0;
-            sum += vk;
-        }
-    }
-    acd_hull_volume_ws_free(&w);
-    if (!all || !(sum > above)) return 0;
-    e->hullvol = sum;
-    e->have_hullvol = 1;
-    return 1;
+    return 0;
 }
 
 /* m's edge map, checked closed (acd_edge_map_closed); returns 1 when built and m is closed, else 0
@@ -659,8 +704,13 @@ static int part_edge_map(const acd_mesh *m, acd_edge_map *em) {
     return acd_edge_map_closed(m->triangles, m->ntriangles, em, NULL) == ACD_OK;
 }
 
+static void split_finish(split_state *S, int i);
+
 /* Cuts the part by the candidate of slot i and measures the pieces (largest first, stopping when the
- * trial has lost, or when the replay no longer needs it). */
+ * trial has lost, or when the replay no longer needs it). By volume, the hull volume screen on
+ * estimates first (screen_decide): at once when the candidates before it are all replayed; for a
+ * candidate evaluated ahead of the replay (SCREEN_LATER) the first estimate is made and the test is
+ * made again before each of its pieces' qhull hulls (split_screen): the replay may catch up. */
 static void split_evaluate(split_state *S, int i) {
     cand_eval *e = &S->ev[i];
     e->failed_at = SIZE_MAX;
@@ -717,8 +767,31 @@ static void split_evaluate(split_state *S, int i) {
         e->ord[j] = k;
     }
     e->ok = 1;
-    if (split_screened_out(S, i, e)) return;
-    if (S->by_volume) split_screen(S, e); /* (by_volume: solid mode only) */
+    e->est = -1;
+    if (screen_on(S)) { /* (by volume: solid mode only) */
+        double best;
+        int state = screen_state(S, i, &best);
+        if (state == SCREEN_GONE) return;
+        if (state != SCREEN_NONE) {
+            acd_hull_volume_ws w;
+            memset(&w, 0, sizeof w);
+            e->est = pieces_hull_estimate(S, e, 1, &w);
+            acd_hull_volume_ws_free(&w);
+        }
+    }
+    split_finish(S, i);
+}
+
+/* The rest of split_evaluate for the candidate of slot i (its cut made and acceptable): the hull
+ * volume screen, the pieces' hulls and their measures. */
+static void split_finish(split_state *S, int i) {
+    cand_eval *e = &S->ev[i];
+    split_choice *trial = &e->trial;
+    if (S->by_volume) {
+        int later = 0;
+        if (e->est >= 0 && screen_decide(S, i, e, &later)) return;
+        if (split_screen(S, i, e)) return;
+    }
     double conc = 0;
     for (size_t i2 = 0; i2 < trial->cut.npieces; i2++) {
         int lost = 0;
@@ -1639,6 +1712,23 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
          * (try_split): so a batch of fewer nodes than threads, the root's above all, still uses
          * every thread */
         const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, nthreads - 1, max_depth};
+        /* the batch's nodes are taken largest first (most vertices; then in node order), so that a
+         * large node taken last does not keep one thread busy while the others wait; each node's
+         * work goes to its own record, so the order changes nothing else */
+        size_t *bord = malloc((b1 - b0) * sizeof *bord);
+        if (!bord) {
+            free(wk);
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            goto fail;
+        }
+        for (size_t j = 0; j < b1 - b0; j++) {
+            size_t q = j, nv = t.a[b0 + j].mesh.nvertices;
+            while (q > 0 && t.a[b0 + bord[q - 1]].mesh.nvertices < nv) {
+                bord[q] = bord[q - 1];
+                q--;
+            }
+            bord[q] = j;
+        }
 #ifdef _OPENMP
 #pragma omp parallel num_threads(nthreads) if (nthreads > 1)
 #endif
@@ -1646,8 +1736,9 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
 #ifdef _OPENMP
 #pragma omp for schedule(dynamic, 1)
 #endif
-            for (long j = 0; j < (long)(b1 - b0); j++) process_node(&ctx, &t.a[b0 + (size_t)j], &wk[j]);
+            for (long j = 0; j < (long)(b1 - b0); j++) process_node(&ctx, &t.a[b0 + bord[j]], &wk[bord[j]]);
         }
+        free(bord);
         /* the first failure in node order is reported */
         for (size_t j = 0; j < b1 - b0; j++)
             if (wk[j].st != ACD_OK && st == ACD_OK) {
