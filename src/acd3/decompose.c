@@ -357,7 +357,7 @@ typedef struct split_state {
     double band;   /* its band of concavity */
     unsigned cut_flags; /* acd_plane_cut_flags */
     const acd_edge_map *em; /* solid mode: the part's edge map, checked closed (NULL: each cut builds it) */
-    uint8_t *onhull; /* by volume: 1 for m's vertices on its hull (ms->hull.source), for split_screened_out; NULL: none */
+    uint8_t *onhull; /* by volume: 1 for m's vertices on its hull (ms->hull.source), for the hull volume screen (pieces_hull_estimate); NULL: none */
     /* The candidates are slots (cand[id], ev[id]); ord[i] is the slot of the i-th candidate in the
      * sequential loop's order (pos[id]: its index there, -1 when not a candidate), set once
      * `ordered` (try_split may start evaluating slots while it still computes the global cut's
