@@ -409,6 +409,39 @@ static void test_trim_ahead_rounds(void **state) {
     acd_mesh_free(&m);
 }
 
+static double lcg(uint64_t *s) {
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*s >> 11) / 9007199254740992.0;
+}
+
+/* acd3_trim_clip_cone against acd_geom3_clipped_cone_volume, term by term (memcmp): random triangles
+ * and apexes, every sign pattern of s (each corner beyond, on the level or below: 27) */
+static void test_trim_clip_cone_bitwise(void **state) {
+    (void)state;
+    uint64_t seed = 777;
+    size_t cases[8] = {0};
+    for (int it = 0; it < 20000; it++) {
+        double P[3][3], apex[3], s[3];
+        for (int c = 0; c < 3; c++)
+            for (int q = 0; q < 3; q++) P[c][q] = 10 * lcg(&seed) - 5;
+        for (int q = 0; q < 3; q++) apex[q] = 4 * lcg(&seed) - 2;
+        const int pattern = it % 27;
+        for (int c = 0, r = pattern; c < 3; c++, r /= 3) {
+            const double mag = lcg(&seed) * (it % 5 == 0 ? 1e-300 : 3.0); /* (tiny: crossings near corners) */
+            s[c] = r % 3 == 0 ? mag + 1e-320 : r % 3 == 1 ? 0.0 : -mag - 1e-320;
+        }
+        const double *const p[3] = {P[0], P[1], P[2]};
+        double e[3][3];
+        for (int c = 0; c < 3; c++)
+            for (int q = 0; q < 3; q++) e[c][q] = P[c == 2 ? 0 : c + 1][q] - P[c][q];
+        const double got = acd3_trim_clip_cone(p, (const double(*)[3])e, s, apex);
+        const double want = acd_geom3_clipped_cone_volume(p, s, apex);
+        assert_memory_equal(&got, &want, sizeof got);
+        cases[(s[0] > 0) | (s[1] > 0) << 1 | (s[2] > 0) << 2]++;
+    }
+    for (int k = 0; k < 8; k++) assert_true(cases[k] > 100);
+}
+
 /* the reference: per level, acd_geom3_triangle_volume_beyond over the query's triangles in its order */
 typedef struct beyond_ref {
     const acd_mesh *m;
@@ -428,11 +461,6 @@ static int beyond_ref_tri(void *user, uint32_t t) {
                                                     q->n, q->L->off[k], apex);
     }
     return 0;
-}
-
-static double lcg(uint64_t *s) {
-    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(*s >> 11) / 9007199254740992.0;
 }
 
 static void test_trim_beyond_bitwise(void **state) {
@@ -522,7 +550,7 @@ int main(void) {
         cmocka_unit_test(test_trim_bumpy),           cmocka_unit_test(test_trim_max_vertices),
         cmocka_unit_test(test_trim_refused),         cmocka_unit_test(test_trim_self_crossing),
         cmocka_unit_test(test_trim_beyond_bitwise),  cmocka_unit_test(test_trim_given_trees),
-        cmocka_unit_test(test_trim_ahead_rounds),
+        cmocka_unit_test(test_trim_ahead_rounds),    cmocka_unit_test(test_trim_clip_cone_bitwise),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -41,6 +41,88 @@ static inline double acd3_trim_bot(const double d[3]) {
     return m < d[2] ? m : d[2];
 }
 
+/* acd_geom3_clipped_cone_volume(p, s, apex) bit for bit, its polygon by case instead of by the
+ * clipping loop: the corners with s > 0 and the edges' crossings in the loop's order (corner k, then
+ * the crossing on edge k -> k + 1), each coordinate by the same operations (a crossing p[k] + t * e[k]
+ * - apex, e[k] = p[k + 1] - p[k] computed once per triangle by the caller: the function's p[j] -
+ * p[k]), and the same fan (v from 0, a term per triangle of the fan, then / 6).
+ * tests/test_acd3_trim.c compares the two for every sign pattern of s. */
+static inline void acd3_trim_corner(const double *p, const double apex[3], double o[3]) {
+    for (int q = 0; q < 3; q++) o[q] = p[q] - apex[q];
+}
+
+static inline void acd3_trim_crossing(const double *pk, const double ek[3], double sk, double sj, const double apex[3],
+                                      double o[3]) {
+    const double t = sk / (sk - sj);
+    for (int q = 0; q < 3; q++) o[q] = pk[q] + t * ek[q] - apex[q];
+}
+
+/* a . (b x c), as the function adds it (acd_cross3, then the dot left to right) */
+static inline double acd3_trim_fan_term(const double a[3], const double b[3], const double c[3]) {
+    const double r0 = b[1] * c[2] - b[2] * c[1], r1 = b[2] * c[0] - b[0] * c[2], r2 = b[0] * c[1] - b[1] * c[0];
+    return a[0] * r0 + a[1] * r1 + a[2] * r2;
+}
+
+static inline double acd3_trim_clip_cone(const double *const p[3], const double e[3][3], const double s[3],
+                                         const double apex[3]) {
+    const int mask = (s[0] > 0) | (s[1] > 0) << 1 | (s[2] > 0) << 2;
+    double a[3], b[3], c[3], d[3];
+    double v = 0;
+    switch (mask) {
+    case 1: /* P0, X0, X2 */
+        acd3_trim_corner(p[0], apex, a);
+        acd3_trim_crossing(p[0], e[0], s[0], s[1], apex, b);
+        acd3_trim_crossing(p[2], e[2], s[2], s[0], apex, c);
+        v += acd3_trim_fan_term(a, b, c);
+        break;
+    case 2: /* X0, P1, X1 */
+        acd3_trim_crossing(p[0], e[0], s[0], s[1], apex, a);
+        acd3_trim_corner(p[1], apex, b);
+        acd3_trim_crossing(p[1], e[1], s[1], s[2], apex, c);
+        v += acd3_trim_fan_term(a, b, c);
+        break;
+    case 4: /* X1, P2, X2 */
+        acd3_trim_crossing(p[1], e[1], s[1], s[2], apex, a);
+        acd3_trim_corner(p[2], apex, b);
+        acd3_trim_crossing(p[2], e[2], s[2], s[0], apex, c);
+        v += acd3_trim_fan_term(a, b, c);
+        break;
+    case 3: /* P0, P1, X1, X2 */
+        acd3_trim_corner(p[0], apex, a);
+        acd3_trim_corner(p[1], apex, b);
+        acd3_trim_crossing(p[1], e[1], s[1], s[2], apex, c);
+        acd3_trim_crossing(p[2], e[2], s[2], s[0], apex, d);
+        v += acd3_trim_fan_term(a, b, c);
+        v += acd3_trim_fan_term(a, c, d);
+        break;
+    case 5: /* P0, X0, X1, P2 */
+        acd3_trim_corner(p[0], apex, a);
+        acd3_trim_crossing(p[0], e[0], s[0], s[1], apex, b);
+        acd3_trim_crossing(p[1], e[1], s[1], s[2], apex, c);
+        acd3_trim_corner(p[2], apex, d);
+        v += acd3_trim_fan_term(a, b, c);
+        v += acd3_trim_fan_term(a, c, d);
+        break;
+    case 6: /* X0, P1, P2, X2 */
+        acd3_trim_crossing(p[0], e[0], s[0], s[1], apex, a);
+        acd3_trim_corner(p[1], apex, b);
+        acd3_trim_corner(p[2], apex, c);
+        acd3_trim_crossing(p[2], e[2], s[2], s[0], apex, d);
+        v += acd3_trim_fan_term(a, b, c);
+        v += acd3_trim_fan_term(a, c, d);
+        break;
+    case 7: /* P0, P1, P2 */
+        acd3_trim_corner(p[0], apex, a);
+        acd3_trim_corner(p[1], apex, b);
+        acd3_trim_corner(p[2], apex, c);
+        v += acd3_trim_fan_term(a, b, c);
+        break;
+    default: /* no corner beyond: no polygon */
+        break;
+    }
+    return v / 6.0;
+}
+
 /* The volumes beyond the levels k >= k_lo of the triangle (p[0], p[1], p[2]), whose corners' dots
  * with n are d[0..2] (acd_dot3(n, p), as acd_geom3_triangle_volume_beyond rounds n.x before
  * subtracting the offset), added to v[k]. Each term is the arithmetic of
@@ -64,11 +146,17 @@ static inline void acd3_trim_tri_beyond(const double *const p[3], const double d
         w += p0[0] * bc0 + p0[1] * bc1 + p0[2] * bc2;
         v[k] += w / 6.0;
     }
+    if (k_whole == k_lo || !(top > L->off[k_whole - 1])) return;
+    double e[3][3]; /* the edges k -> k + 1, for the crossings at every level */
+    for (int c = 0; c < 3; c++) {
+        const double *a = p[c], *b = p[c == 2 ? 0 : c + 1];
+        for (int q = 0; q < 3; q++) e[c][q] = b[q] - a[q];
+    }
     for (size_t k = k_whole; k-- > k_lo;) { /* the level crosses the triangle, or is above it */
         if (!(top > L->off[k])) break;
         const double apex[3] = {L->ax[k], L->ay[k], L->az[k]};
         const double s[3] = {d[0] - L->off[k], d[1] - L->off[k], d[2] - L->off[k]};
-        v[k] += acd_geom3_clipped_cone_volume(p, s, apex);
+        v[k] += acd3_trim_clip_cone(p, (const double(*)[3])e, s, apex);
     }
 }
 
