@@ -331,6 +331,25 @@ static void test_trim_given_trees(void **state) {
             assert_int_equal(c0, c1);
             assert_memory_equal(p0, p1, sizeof p0);
         }
+        { /* the test trim makes (stopping at the first crossing): whether the count is > 0, on the input and
+           * on each part, with its tree and without */
+            size_t c0 = 0;
+            int any = -1, any2 = -1;
+            assert_int_equal(acd_mesh_self_intersections(&m, &c0, NULL, 0, &err), ACD_OK);
+            assert_int_equal(acd_mesh_self_intersects_bvh(&m, &BI, &any, &err), ACD_OK);
+            assert_int_equal(acd_mesh_self_intersects_bvh(&m, NULL, &any2, &err), ACD_OK);
+            assert_int_equal(any, shape == 1);
+            assert_int_equal(any, c0 > 0);
+            assert_int_equal(any2, any);
+            size_t crossing_parts = 0;
+            for (size_t i = 0; i < n; i++) {
+                assert_int_equal(acd_mesh_self_intersections(&plain->parts[i].mesh, &c0, NULL, 0, &err), ACD_OK);
+                assert_int_equal(acd_mesh_self_intersects_bvh(&plain->parts[i].mesh, &B[i], &any, &err), ACD_OK);
+                assert_int_equal(any, c0 > 0);
+                crossing_parts += c0 > 0;
+            }
+            if (shape == 1) assert_true(crossing_parts > 0);
+        }
         const acd3_trim_trees sets[4] = {{&BI, all}, {NULL, some}, {&BI, NULL}, {NULL, other}};
         acd3d_part *ref = hull_copies(plain);
         acd3_trim_stats sref;

@@ -484,7 +484,7 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
      * removes exceeds 1 + |M u U| / |M n U|; the hulls' sum over the input's volume bounds that */
     const double ratio_floor = 1.0 + hull_sum / input_volume;
     const double loss_floor = ACD3_TRIM_LOSS_FLOOR * min_gain;
-    size_t input_crossings = 0;
+    int input_crossings = 0;
     acd_status input_st = ACD_OK;
     /* the parts' planes, and (task -1) the input's self-intersections; the parts largest first (a
      * part's planes cost about its hull's size times its own: the largest last would run alone) */
@@ -504,8 +504,7 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
         const long j = c < 0 || !order ? c : (long)order[c].i;
         if (j < 0) {
             if (input)
-                input_st = acd_mesh_self_intersections_bvh(input, trees ? trees->input : NULL, &input_crossings, NULL,
-                                                           0, &e);
+                input_st = acd_mesh_self_intersects_bvh(input, trees ? trees->input : NULL, &input_crossings, &e);
             continue;
         }
         trim_hull *H = &T[j];
@@ -557,17 +556,17 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
     }
     free(order);
     /* an input that crosses itself: its parts that cross themselves are left whole */
-    if (input_st == ACD_OK && input_crossings > 0) {
+    if (input_st == ACD_OK && input_crossings) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1)
 #endif
         for (long j = 0; j < (long)nparts; j++) {
             if (!T[j].active) continue;
-            size_t crossings = 0;
+            int crossings = 0;
             acd_error e;
-            pst[j] = acd_mesh_self_intersections_bvh(&parts[j].mesh, T[j].bvh, &crossings, NULL, 0, &e);
-            if (pst[j] != ACD_OK || crossings > 0) T[j].active = 0;
-            T[j].crossing = pst[j] == ACD_OK && crossings > 0;
+            pst[j] = acd_mesh_self_intersects_bvh(&parts[j].mesh, T[j].bvh, &crossings, &e);
+            if (pst[j] != ACD_OK || crossings) T[j].active = 0;
+            T[j].crossing = pst[j] == ACD_OK && crossings;
         }
     }
     for (size_t j = 0; j < nparts; j++) { /* (the trees are not needed after the test) */

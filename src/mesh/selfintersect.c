@@ -151,6 +151,7 @@ typedef struct si_ctx {
     size_t count;
     uint32_t *pairs;
     size_t max_pairs;
+    int first_only; /* stop at the first intersecting pair */
 } si_ctx;
 
 static int visit_pair(void *user, uint32_t a, uint32_t b) {
@@ -166,6 +167,7 @@ static int visit_pair(void *user, uint32_t a, uint32_t b) {
             c->pairs[2 * c->count + 1] = b;
         }
         c->count++;
+        return c->first_only;
     }
     return 0;
 }
@@ -214,7 +216,10 @@ static acd_status sweep_pairs(const acd_mesh *m, si_ctx *c, acd_error *err) {
             if (b[j].lo[1] <= b[i].hi[1] && b[i].lo[1] <= b[j].hi[1] && b[j].lo[2] <= b[i].hi[2] &&
                 b[i].lo[2] <= b[j].hi[2]) {
                 uint32_t x = b[i].t, y = b[j].t;
-                visit_pair(c, x < y ? x : y, x < y ? y : x);
+                if (visit_pair(c, x < y ? x : y, x < y ? y : x)) {
+                    free(b);
+                    return ACD_OK;
+                }
             }
     free(b);
     return ACD_OK;
@@ -225,8 +230,8 @@ acd_status acd_mesh_self_intersections(const acd_mesh *m, size_t *count, uint32_
     return acd_mesh_self_intersections_bvh(m, NULL, count, pairs, max_pairs, err);
 }
 
-acd_status acd_mesh_self_intersections_bvh(const acd_mesh *m, const acd_bvh *given, size_t *count, uint32_t *pairs,
-                                           size_t max_pairs, acd_error *err) {
+static acd_status self_intersections(const acd_mesh *m, const acd_bvh *given, size_t *count, uint32_t *pairs,
+                                     size_t max_pairs, int first_only, acd_error *err) {
     if (!m || !count) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_self_intersections: NULL argument");
     *count = 0;
     if (m->ntriangles == 0) return ACD_OK;
@@ -241,7 +246,7 @@ acd_status acd_mesh_self_intersections_bvh(const acd_mesh *m, const acd_bvh *giv
         deg[t] = drop_axis(m->vertices + 3 * (size_t)i[0], m->vertices + 3 * (size_t)i[1],
                            m->vertices + 3 * (size_t)i[2]) < 0;
     }
-    si_ctx c = {m, deg, 0, pairs, pairs ? max_pairs : 0};
+    si_ctx c = {m, deg, 0, pairs, pairs ? max_pairs : 0, first_only};
     acd_status s;
     if (extreme_coordinates(m)) {
         s = sweep_pairs(m, &c, err);
@@ -260,4 +265,17 @@ acd_status acd_mesh_self_intersections_bvh(const acd_mesh *m, const acd_bvh *giv
     if (s != ACD_OK) return s;
     *count = c.count;
     return ACD_OK;
+}
+
+acd_status acd_mesh_self_intersections_bvh(const acd_mesh *m, const acd_bvh *given, size_t *count, uint32_t *pairs,
+                                           size_t max_pairs, acd_error *err) {
+    return self_intersections(m, given, count, pairs, max_pairs, 0, err);
+}
+
+acd_status acd_mesh_self_intersects_bvh(const acd_mesh *m, const acd_bvh *given, int *crosses, acd_error *err) {
+    size_t count = 0;
+    if (!crosses) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_self_intersects: NULL argument");
+    acd_status s = self_intersections(m, given, &count, NULL, 0, 1, err);
+    *crosses = s == ACD_OK && count > 0;
+    return s;
 }

@@ -16,4 +16,8 @@
 acd_status acd_mesh_self_intersections_bvh(const acd_mesh *m, const acd_bvh *bvh, size_t *count, uint32_t *pairs,
                                            size_t max_pairs, acd_error *err);
 
+/* Whether m intersects itself (*crosses 1: acd_mesh_self_intersections_bvh's count would be > 0), the
+ * pairs tested in the same order but stopping at the first that intersects. */
+acd_status acd_mesh_self_intersects_bvh(const acd_mesh *m, const acd_bvh *bvh, int *crosses, acd_error *err);
+
 #endif
