@@ -382,52 +382,6 @@ static void test_trim_given_trees(void **state) {
     }
 }
 
-/* acd3_trim_hulls, which makes each round's choices in the previous round's tasks and undoes them
- * when a cut is refused, trims as the rounds choosing at their start (ACD3_TRIM_ROUNDS_PLAIN), bit for
- * bit: hulls and stats, at 1 and 2 threads, with no vertex limit and with one that refuses cuts; and so
- * do the choices made ahead with 1/100 of the room and always undone (they differ from the round's: the
- * undo restores every hull's state; without it the hulls differ) */
-static void test_trim_ahead_rounds(void **state) {
-    (void)state;
-    acd_mesh m;
-    bumpy(&m);
-    acd_error err;
-    acd3d_params p = acd3d_budget_params(6);
-    p.threads = 1;
-    acd3d_result r;
-    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
-    const size_t n = r.nparts;
-    const double vol = r.input_volume, B = 0.005 * vol, G = ACD3_TRIM_MIN_GAIN_REL * vol;
-    static const size_t maxv[] = {0, 120};
-    for (size_t a = 0; a < 2; a++) {
-        acd3d_part *ref = hull_copies(&r);
-        acd3_trim_stats sref;
-        assert_int_equal(acd3_trim_hulls_rounds(ref, n, vol, B, G, maxv[a], &m, NULL, 1, ACD3_TRIM_ROUNDS_PLAIN, &sref,
-                                                &err),
-                         ACD_OK);
-        assert_true(sref.cuts > 50);
-        assert_true(maxv[a] == 0 ? sref.refused == 0 : sref.refused > 0);
-        for (int mode = 0; mode < 2; mode++)
-            for (int th = 1; th <= 2; th++) {
-                acd3d_part *c = hull_copies(&r);
-                acd3_trim_stats st;
-                if (mode == 0)
-                    assert_int_equal(acd3_trim_hulls(c, n, vol, B, G, maxv[a], &m, NULL, th, NULL, NULL, &st, &err),
-                                     ACD_OK);
-                else
-                    assert_int_equal(acd3_trim_hulls_rounds(c, n, vol, B, G, maxv[a], &m, NULL, th,
-                                                            ACD3_TRIM_ROUNDS_UNDONE, &st, &err),
-                                     ACD_OK);
-                assert_memory_equal(&st, &sref, sizeof st);
-                assert_same_hulls(c, ref, n);
-                hull_copies_free(c, n);
-            }
-        hull_copies_free(ref, n);
-    }
-    acd3d_result_free(&r);
-    acd_mesh_free(&m);
-}
-
 static double lcg(uint64_t *s) {
     *s = *s * 6364136223846793005ull + 1442695040888963407ull;
     return (double)(*s >> 11) / 9007199254740992.0;
@@ -569,7 +523,7 @@ int main(void) {
         cmocka_unit_test(test_trim_bumpy),           cmocka_unit_test(test_trim_max_vertices),
         cmocka_unit_test(test_trim_refused),         cmocka_unit_test(test_trim_self_crossing),
         cmocka_unit_test(test_trim_beyond_bitwise),  cmocka_unit_test(test_trim_given_trees),
-        cmocka_unit_test(test_trim_ahead_rounds),    cmocka_unit_test(test_trim_clip_cone_bitwise),
+        cmocka_unit_test(test_trim_clip_cone_bitwise),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -50,23 +50,6 @@ static void poly_free(trim_poly *P) {
     memset(P, 0, sizeof *P);
 }
 
-/* A plane's gains as they were before choose measured it again (trim_undo) */
-typedef struct trim_undo_plane {
-    size_t j;
-    double gain[NDEPTHS];
-} trim_undo_plane;
-
-/* What a choose made ahead changed (the hull's best cut, the planes it measured again), so that it
- * can be undone when the room it assumed was not the round's (acd3_trim_hulls) */
-typedef struct trim_undo {
-    int on;           /* recording */
-    int have, stale;
-    double plane[3], off, gain, loss, ratio, depth;
-    trim_undo_plane *pl;
-    size_t npl, cap;
-    int nomem;        /* a record could not be kept */
-} trim_undo;
-
 typedef struct trim_hull {
     trim_poly h;      /* the current hull */
     double *vdot;     /* h.nv once cut: its vertices' n.x in plane_measure (NULL: computed per triangle) */
@@ -88,7 +71,6 @@ typedef struct trim_hull {
     int stale;        /* the best cut to choose again (the hull was cut) */
     int have;         /* best cut found */
     double plane[3], off, gain, loss, ratio, depth;
-    trim_undo undo;   /* the last choose made ahead */
 } trim_hull;
 
 static void apex_on(const double centre[3], const double n[3], double off, double o[3]) {
@@ -213,54 +195,9 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
             }
         }
         if (!T->have || !T->pl[bj].dirty) return;
-        trim_undo *U = &T->undo;
-        if (U->on) { /* the plane's gains before, to be restored with dirty = 1 */
-            if (U->npl == U->cap) {
-                size_t nc = U->cap ? 2 * U->cap : 16;
-                trim_undo_plane *np = realloc(U->pl, nc * sizeof *np);
-                if (!np) {
-                    U->nomem = 1;
-                    T->have = 0;
-                    return;
-                }
-                U->pl = np, U->cap = nc;
-            }
-            U->pl[U->npl].j = bj;
-            memcpy(U->pl[U->npl].gain, T->pl[bj].gain, sizeof U->pl[U->npl].gain);
-            U->npl++;
-        }
         T->pl[bj].dirty = 0;
         plane_measure(T, &T->pl[bj], min_gain, NULL, 0); /* (its losses are kept) */
     }
-}
-
-/* choose, made ahead for the next round (with the room it will have when every cut of this round is
- * made): recorded, to be undone (undo_choose) if that room turns out otherwise */
-static void choose_ahead(trim_hull *T, double room, double min_gain, double ratio_floor) {
-    trim_undo *U = &T->undo;
-    U->on = 1;
-    U->npl = 0;
-    U->have = T->have, U->stale = T->stale;
-    memcpy(U->plane, T->plane, sizeof U->plane);
-    U->off = T->off, U->gain = T->gain, U->loss = T->loss, U->ratio = T->ratio, U->depth = T->depth;
-    choose(T, room, min_gain, ratio_floor);
-    U->on = 0;
-    T->stale = 0;
-}
-
-/* The hull as it was before choose_ahead (its planes measured again are dirty again, with their old
- * gains: the state the next round's choose starts from without the choice made ahead) */
-static void undo_choose(trim_hull *T) {
-    trim_undo *U = &T->undo;
-    for (size_t i = U->npl; i-- > 0;) {
-        trim_plane *P = &T->pl[U->pl[i].j];
-        memcpy(P->gain, U->pl[i].gain, sizeof P->gain);
-        P->dirty = 1;
-    }
-    U->npl = 0;
-    T->have = U->have, T->stale = U->stale;
-    memcpy(T->plane, U->plane, sizeof T->plane);
-    T->off = U->off, T->gain = U->gain, T->loss = U->loss, T->ratio = U->ratio, T->depth = U->depth;
 }
 
 static int after_cut(trim_hull *T, double min_gain) {
@@ -462,12 +399,9 @@ static int part_order_cmp(const void *a, const void *b) {
     return x->cost > y->cost ? -1 : x->cost < y->cost ? 1 : (x->i > y->i) - (x->i < y->i);
 }
 
-/* acd3_trim_hulls, its rounds run as `rounds` says (acd3_trim_rounds) */
-static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
-                             size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
-                             acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats,
-                             acd3_trim_rounds rounds, acd_error *err) {
-    const int make_ahead = rounds != ACD3_TRIM_ROUNDS_PLAIN;
+acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
+                           size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
+                           acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats, acd_error *err) {
     memset(stats, 0, sizeof *stats);
     for (size_t i = 0; i < nparts; i++) parts[i].trimmed_volume = 0;
     if (!(budget > 0) || nparts == 0 || !(input_volume > 0)) return ACD_OK;
@@ -579,9 +513,8 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
         stats->skipped += T[i].crossing;
     }
     double spent = 0;
-    size_t batch[ACD3_TRIM_BATCH], *pick = st == ACD_OK ? malloc(2 * nparts * sizeof *pick) : NULL;
+    size_t batch[ACD3_TRIM_BATCH], *pick = st == ACD_OK ? malloc(nparts * sizeof *pick) : NULL;
     if (st == ACD_OK && !pick) st = acd_fail(err, ACD_ERR_NOMEM, "trim: out of memory");
-    size_t *ahead = pick ? pick + nparts : NULL;
     while (st == ACD_OK) {
         if (progress && progress(progress_user, fmin(1.0, spent / budget), "trim")) {
             st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled while trimming the hulls after %zu cuts", stats->cuts);
@@ -589,9 +522,7 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
         }
         const double room = budget - spent;
         /* a hull's best cut stands while the hull is not cut and the cut fits the room (the room only
-         * shrinks: the best of fewer candidates, the same when it is still among them). The hulls to
-         * choose again here: all in the first round; later only after a refused cut (the choices are
-         * made ahead in the previous round's tasks, see below) */
+         * shrinks: the best of fewer candidates, the same when it is still among them) */
         size_t nch = 0;
         for (size_t j = 0; j < nparts; j++)
             if (T[j].stale || (T[j].have && !(T[j].loss <= room))) pick[nch++] = j;
@@ -624,30 +555,7 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
             take = b + 1;
         }
         if (take == 0) break; /* (cannot happen: the best cut of the first hull fits the room) */
-        /* The next round's choices made ahead, in this round's tasks: with every cut made, the next
-         * round starts with room_next (spent plus the losses, added in the order the bookkeeping below
-         * adds them: the same bits) and chooses again the hulls cut now and those whose best cut no
-         * longer fits room_next. Those choices are made here (choose_ahead), each after its hull's
-         * cut; a refused cut leaves the room larger, and then they are undone (undo_choose) and the
-         * next round chooses as above. One parallel region per round instead of two, and the choices
-         * fill the threads the cuts leave idle. */
-        double next = spent;
-        for (int b = 0; b < take; b++) next += T[batch[b]].loss;
-        const double room_next = rounds == ACD3_TRIM_ROUNDS_UNDONE ? 0.01 * (budget - next) : budget - next;
-        size_t nah = 0;
-        for (size_t j = 0; make_ahead && j < nparts; j++) {
-            int taken = 0;
-            for (int b = 0; b < take; b++) taken |= batch[b] == j;
-            if (!taken && T[j].have && !(T[j].loss <= room_next)) ahead[nah++] = j;
-        }
         int res[ACD3_TRIM_BATCH];
-        double cut_gain[ACD3_TRIM_BATCH], cut_loss[ACD3_TRIM_BATCH], cut_depth[ACD3_TRIM_BATCH];
-        for (int b = 0; b < take; b++) { /* (the cuts' figures: choose_ahead replaces the hulls' best) */
-            cut_gain[b] = T[batch[b]].gain;
-            cut_loss[b] = T[batch[b]].loss;
-            cut_depth[b] = T[batch[b]].depth;
-        }
-        const long ntask = (long)take + (long)nah;
         /* the round's hulls in parallel (each task touches its own hull). Measured 2026-11-26: the
          * armadillo's trimmed run 1.92 -> 1.85 s wall on 2 idle cores. With libgomp's spinning wait
          * (OMP_WAIT_POLICY unset) and both cores busy with other processes, the region's waits cost
@@ -655,20 +563,13 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
          * 0.28 s on one thread, 1.8 s on two); with the passive wait the CLI sets (cli/main.c) the
          * same as sequential rounds there (fandisk 1.10 s both) */
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ntask > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && take > 1)
 #endif
-        for (long c = 0; c < ntask; c++) {
-            if (c >= take) {
-                choose_ahead(&T[ahead[c - take]], room_next, min_gain, ratio_floor);
-                continue;
-            }
-            trim_hull *H = &T[batch[c]];
-            res[c] = cut_hull(H, max_vertices);
-            if (res[c] == 1 && !after_cut(H, min_gain)) res[c] = -1;
-            H->stale = 1;
-            if (res[c] == 1 && make_ahead) choose_ahead(H, room_next, min_gain, ratio_floor);
+        for (int b = 0; b < take; b++) {
+            res[b] = cut_hull(&T[batch[b]], max_vertices);
+            if (res[b] == 1 && !after_cut(&T[batch[b]], min_gain)) res[b] = -1;
+            T[batch[b]].stale = 1;
         }
-        int refused = 0;
         for (int b = 0; b < take; b++) {
             trim_hull *H = &T[batch[b]];
             size_t i = batch[b];
@@ -678,22 +579,14 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
             }
             if (res[b] == 0) { /* refused: this hull is left as it is */
                 H->active = 0;
-                refused = 1;
-                stats->refused++;
                 continue;
             }
-            spent += cut_loss[b];
-            parts[i].trimmed_volume += cut_loss[b];
+            spent += H->loss;
+            parts[i].trimmed_volume += H->loss;
             stats->cuts++;
-            stats->removed_hull += cut_gain[b];
-            stats->removed_part += cut_loss[b];
-            if (cut_depth[b] > stats->max_depth) stats->max_depth = cut_depth[b];
-        }
-        for (long c = 0; make_ahead && c < ntask; c++) {
-            trim_hull *H = c < take ? &T[batch[c]] : &T[ahead[c - take]];
-            if (c < take && res[c] != 1) continue;
-            if (H->undo.nomem && st == ACD_OK) st = acd_fail(err, ACD_ERR_NOMEM, "trim: out of memory");
-            if (refused || rounds == ACD3_TRIM_ROUNDS_UNDONE) undo_choose(H); /* (the cut hulls stale again, the others as they were) */
+            stats->removed_hull += H->gain;
+            stats->removed_part += H->loss;
+            if (H->depth > stats->max_depth) stats->max_depth = H->depth;
         }
     }
     free(pick);
@@ -725,24 +618,8 @@ static acd_status trim_hulls(acd3d_part *parts, size_t nparts, double input_volu
         acd3_trim_tree_free(&T[i].tree);
         free(T[i].pl);
         free(T[i].corner);
-        free(T[i].undo.pl);
     }
     free(T);
     free(pst);
     return st;
-}
-
-acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
-                           size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
-                           acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats, acd_error *err) {
-    return trim_hulls(parts, nparts, input_volume, budget, min_gain, max_vertices, input, trees, threads, progress,
-                      progress_user, stats, ACD3_TRIM_ROUNDS_AHEAD, err);
-}
-
-acd_status acd3_trim_hulls_rounds(acd3d_part *parts, size_t nparts, double input_volume, double budget,
-                                  double min_gain, size_t max_vertices, const acd_mesh *input,
-                                  const acd3_trim_trees *trees, int threads, acd3_trim_rounds rounds,
-                                  acd3_trim_stats *stats, acd_error *err) {
-    return trim_hulls(parts, nparts, input_volume, budget, min_gain, max_vertices, input, trees, threads, NULL, NULL,
-                      stats, rounds, err);
 }

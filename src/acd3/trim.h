@@ -44,7 +44,6 @@ typedef struct acd3_trim_stats {
                              union of hulls leaves uncovered) */
     double max_depth;     /* deepest cut, model units (how far below its old facet a plane went) */
     size_t skipped;       /* solid parts left whole because they intersect themselves */
-    size_t refused;       /* cuts refused (more than max_vertices, or nothing removed): hulls left as they were */
 } acd3_trim_stats;
 
 /* Trees the caller built already (acd3d_decompose: the merge's and the budget pass's), used instead
@@ -64,19 +63,5 @@ typedef struct acd3_trim_trees {
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
                            size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
                            acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats, acd_error *err);
-
-/* How acd3_trim_hulls' rounds are run, for tests (acd3_trim_hulls_rounds); the result is the same bit
- * for bit (tests/test_acd3_trim.c compares them) */
-typedef enum acd3_trim_rounds {
-    ACD3_TRIM_ROUNDS_AHEAD,  /* acd3_trim_hulls: each round's choices made in the previous round's tasks,
-                                undone when a refused cut leaves the room other than assumed */
-    ACD3_TRIM_ROUNDS_PLAIN,  /* the rounds as specified: each chooses the hulls' best cuts at its start */
-    ACD3_TRIM_ROUNDS_UNDONE  /* made ahead with 1/100 of the room and always undone (a test of the undo) */
-} acd3_trim_rounds;
-
-acd_status acd3_trim_hulls_rounds(acd3d_part *parts, size_t nparts, double input_volume, double budget,
-                                  double min_gain, size_t max_vertices, const acd_mesh *input,
-                                  const acd3_trim_trees *trees, int threads, acd3_trim_rounds rounds,
-                                  acd3_trim_stats *stats, acd_error *err);
 
 #endif
