@@ -57,6 +57,19 @@ static void assert_same_result(const acd3_budget_result *a, const acd3_budget_re
     }
 }
 
+/* Whether a and b are the same split as assert_same_result checks it (without asserting). */
+static int same_result(const acd3_budget_result *a, const acd3_budget_result *b) {
+    if (a->nnew != b->nnew || a->cuts != b->cuts || a->nalive != b->nalive || a->over != b->over ||
+        !(a->hull_volume == b->hull_volume))
+        return 0;
+    for (size_t k = 0; k < a->nnew; k++)
+        if (a->new_parent[k] != b->new_parent[k] || !(a->new_bound[k] == b->new_bound[k]) ||
+            a->new_parts[k].nvertices != b->new_parts[k].nvertices ||
+            memcmp(a->new_parts[k].vertices, b->new_parts[k].vertices, 3 * a->new_parts[k].nvertices * sizeof(double)))
+            return 0;
+    return 1;
+}
+
 /* A U of unit voxels in a 3 x 3 grid: the bottom row and the two side columns. */
 static void voxel_u(acd_mesh *m) {
     unsigned char occ[9] = {1, 1, 1, 1, 0, 1, 1, 0, 1};
@@ -484,10 +497,10 @@ static void test_direction_bound(void **state) {
             budget[nm++] = data_budget[k];
         } else
             print_message("data/meshes/%s missing (scripts/fetch-data.sh): not run on it\n", names[k]);
-    size_t pruned = 0;
+    size_t pruned = 0, differ = 0;
     for (size_t i = 0; i < nm; i++)
         for (int l = 0; l < (i < 2 ? 2 : 1); l++) {
-            acd3_budget_result def, none, def4;
+            acd3_budget_result def, none, def4, high;
             assert_int_equal(acd3_budget_split(&m[i], 1, budget[i], limit[i][l], 0, 4.0, 1, &def, &err), ACD_OK);
             assert_int_equal(acd3_budget_split(&m[i], 1, budget[i], limit[i][l], 0, 4.0, 4, &def4, &err), ACD_OK);
             assert_int_equal(acd3_budget_split_tuned(&m[i], 1, budget[i], limit[i][l], 0, 4.0, 2, 1e-3, -1.0, &none,
@@ -504,11 +517,23 @@ static void test_direction_bound(void **state) {
             pruned += none.directions_scored - def.directions_scored;
             assert_same_result(&def, &none);
             assert_same_result(&def4, &none);
+            /* the control: a "bound" 3% above the scores prunes directions that are among the best
+             * three, and the comparison above sees it (the split differs somewhere) */
+            assert_int_equal(acd3_budget_split_tuned(&m[i], 1, budget[i], limit[i][l], 0, 4.0, 2, 1e-3, -0.03, &high,
+                                                     &err),
+                             ACD_OK);
+            const int d = !same_result(&high, &none);
+            print_message("mesh %zu limit %g: a bound 3%% too high %s\n", i, limit[i][l],
+                          d ? "changes the split" : "changes nothing");
+            differ += (size_t)d;
+            acd3_budget_result_free(&high);
             acd3_budget_result_free(&def);
             acd3_budget_result_free(&def4);
             acd3_budget_result_free(&none);
         }
     assert_true(pruned > 0);
+    print_message("a bound 3%% too high changes %zu of the splits\n", differ);
+    assert_true(differ > 0);
     for (size_t i = 0; i < nm; i++) acd_mesh_free(&m[i]);
 }
 

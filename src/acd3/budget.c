@@ -84,7 +84,8 @@ typedef struct budget_state {
     int ndir, nexact;
     double screen_rel;      /* BUDGET_SCREEN_REL, or the caller's (acd3_budget_split_screen) */
     size_t *fallbacks;      /* the result's screen_fallbacks */
-    double bound_rel;       /* BUDGET_BOUND_REL, or the caller's (acd3_budget_split_tuned; < 0: no bound) */
+    double bound_rel;       /* BUDGET_BOUND_REL, or the caller's (acd3_budget_split_tuned; <= -1 or NaN: no
+                             * bound; in (-1, 0): a bound raised above the bound, for the tests) */
     size_t *dirs_bounded, *dirs_scored; /* the result's */
     acd_hull_volume_ws *ws; /* per thread of the parallel loops (nws): the sweeps' workspaces, kept
                              * between sweeps (the facets' room is not allocated and touched again) */
@@ -657,7 +658,7 @@ static int direction_bound(const acd_mesh *m, plan *P, int d, double *cs, dir_da
     P->lb[d] = -INFINITY;
     for (int i = 1; i <= BUDGET_OFFSETS; i++) cs[i - 1] = P->lo[d] + P->st[d] * i;
     if (!dir_prep(m, P, d, cs, BUDGET_OFFSETS, 0, D)) return 0;
-    if (!P->hv || !P->sord || !(bound_rel >= 0)) return 1;
+    if (!P->hv || !P->sord || !(bound_rel > -1)) return 1;
     size_t nsv = P->nsv, nc = 0;
     const uint32_t *so = P->sord + (size_t)d * nsv;
     dir_data C = *D;
@@ -947,7 +948,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nb > 1)
 #endif
     for (int j = 0; j < nb; j++)
-        if (S->a[idx[j]].st == ACD_OK) plan_init(&S->a[idx[j]].mesh, S->ndir, S->bound_rel >= 0, &P[j]);
+        if (S->a[idx[j]].st == ACD_OK) plan_init(&S->a[idx[j]].mesh, S->ndir, S->bound_rel > -1, &P[j]);
     /* tasks: (atom, direction) pairs; first every direction's offsets prepared and its bound */
     int ntask = 0, tj[BUDGET_BATCH * BUDGET_MAX_DIRS], td[BUDGET_BATCH * BUDGET_MAX_DIRS];
     for (int j = 0; j < nb; j++)

@@ -78,9 +78,10 @@ acd_status acd3_budget_split_screen(const acd_mesh *parts, size_t nparts, size_t
                                     acd_error *err);
 /* As acd3_budget_split_screen, with the directions' bound's margin bound_rel instead of
  * BUDGET_BOUND_REL (budget.c: a direction is scored only when its bound less bound_rel of it is not
- * above the scores that would make it one of the directions refined; a negative bound_rel: every
- * direction is scored). The result is the same for any margin unless an estimate is off by more than
- * it; for the tests of the bound. */
+ * above the scores that would make it one of the directions refined; bound_rel <= -1 or NaN: every
+ * direction is scored). The result is the same for any margin >= 0 unless an estimate is off by more
+ * than it; a margin in (-1, 0) raises the bound above the score it bounds (for the tests: a bound
+ * that is not one). */
 acd_status acd3_budget_split_tuned(const acd_mesh *parts, size_t nparts, size_t budget, double limit, double min_gain,
                                    double extent, int threads, double screen_rel, double bound_rel,
                                    acd3_budget_result *out, acd_error *err);
