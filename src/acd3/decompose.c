@@ -629,8 +629,8 @@ static int screen_on(const split_state *S) {
 }
 
 /* The hull volume screen on estimates, for the candidate of slot id whose e->est is set: returns 1
- * when the candidate is dropped (or the replay no longer needs it: SCREEN_GONE), else 0, with
- * *later when the test cannot be made yet (SCREEN_LATER: e->est kept), e->est = -1 when it was made.
+ * when the candidate is dropped (or the replay no longer needs it: SCREEN_GONE), else 0, e->est
+ * kept when the test cannot be made yet (SCREEN_LATER), -1 when it was made.
  * The candidate's replay's first test, split_lost_at(e, 0, 0), returns 1 for any trial whose hull
  * volume is not below the best's once the best makes progress (that test comes last; the others can
  * only return 1 too), whatever the trial's concavity bound. The pieces' estimated hull volumes
@@ -640,10 +640,9 @@ static int screen_on(const split_state *S) {
  * dropped as it would be after its hulls; e->hullvol is then the estimate (the replay's test gives
  * the same). The estimate of a subset first (split_evaluate), then, once the best is known, of all
  * the points. */
-static int screen_decide(split_state *S, int id, cand_eval *e, int *later) {
+static int screen_decide(split_state *S, int id, cand_eval *e) {
     double best = 0;
     int state = screen_state(S, id, &best);
-    *later = state == SCREEN_LATER;
     if (state == SCREEN_GONE) return 1;
     if (state == SCREEN_LATER) return 0;
     if (state == SCREEN_READY) {
@@ -679,8 +678,7 @@ static int split_screen(split_state *S, int id, cand_eval *e) {
     int all = 1;
     double vol = 0, cb = 0;
     for (size_t k = 0; k < np; k++) {
-        int later = 0;
-        if (e->est >= 0 && screen_decide(S, id, e, &later)) return 1;
+        if (e->est >= 0 && screen_decide(S, id, e)) return 1;
         const acd_mesh *pm = &trial->cut.pieces[k].mesh;
         if (acd_hull_compute(pm->vertices, pm->nvertices, &e->hulls[k], NULL) != ACD_OK) {
             acd_hull_free(&e->hulls[k]);
@@ -703,8 +701,6 @@ static int split_screen(split_state *S, int id, cand_eval *e) {
 static int part_edge_map(const acd_mesh *m, acd_edge_map *em) {
     return acd_edge_map_closed(m->triangles, m->ntriangles, em, NULL) == ACD_OK;
 }
-
-static void split_finish(split_state *S, int i);
 
 /* Cuts the part by the candidate of slot i and measures the pieces (largest first, stopping when the
  * trial has lost, or when the replay no longer needs it). By volume, the hull volume screen on
@@ -779,19 +775,7 @@ static void split_evaluate(split_state *S, int i) {
             acd_hull_volume_ws_free(&w);
         }
     }
-    split_finish(S, i);
-}
-
-/* The rest of split_evaluate for the candidate of slot i (its cut made and acceptable): the hull
- * volume screen, the pieces' hulls and their measures. */
-static void split_finish(split_state *S, int i) {
-    cand_eval *e = &S->ev[i];
-    split_choice *trial = &e->trial;
-    if (S->by_volume) {
-        int later = 0;
-        if (e->est >= 0 && screen_decide(S, i, e, &later)) return;
-        if (split_screen(S, i, e)) return;
-    }
+    if (S->by_volume && ((e->est >= 0 && screen_decide(S, i, e)) || split_screen(S, i, e))) return;
     double conc = 0;
     for (size_t i2 = 0; i2 < trial->cut.npieces; i2++) {
         int lost = 0;
