@@ -21,6 +21,7 @@
 
 #include "acd/hull.h"
 #include "acd3/budget.h"
+#include "acd3/decompose.h"
 #include "acd3/global_cut.h"
 #include "acd3/leaf_test.h"
 #include "acd3/measure.h"
@@ -250,10 +251,9 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
 /* ... and before its pieces' qhull hulls are computed, once the best it is compared with is final,
  * the sum of their hull volume estimates (geom3/hull_volume: the hull of the same points by a
  * Quickhull of floating-point tests, which can only miss a point, i.e. underestimate, apart from
- * rounding) above the best's hull volume by this much (relative) drops it as the qhull hulls' sum
- * would (split_screen); a candidate within the margin gets its qhull hulls. On bunny00's
- * tight run the dropped candidates' sums were above the best's by 3.2e-4 or more (175 of 252). */
-#define ACD3_VOLUME_SCREEN_REL 1e-4
+ * rounding) above the best's hull volume by ACD3_VOLUME_SCREEN_REL (relative; acd3/decompose.h,
+ * where acd3_decompose_screen takes another margin or none) drops it as the qhull hulls' sum
+ * would (split_screen); a candidate within the margin gets its qhull hulls. */
 
 typedef struct split_choice {
     acd_cut_result cut;
@@ -344,6 +344,7 @@ typedef struct cand_eval {
      * estimates, of all their points with est_full, else of a subset; -1: none, or decided */
     double est;
     int est_full;
+    int screened; /* dropped by the screen (screen_decide): its replay drops it */
 } cand_eval;
 
 typedef struct split_state {
@@ -358,6 +359,8 @@ typedef struct split_state {
     unsigned cut_flags; /* acd_plane_cut_flags */
     const acd_edge_map *em; /* solid mode: the part's edge map, checked closed (NULL: each cut builds it) */
     uint8_t *onhull; /* by volume: 1 for m's vertices on its hull (ms->hull.source), for the hull volume screen (pieces_hull_estimate); NULL: none */
+    double screen_rel; /* the screen's margin (ACD3_VOLUME_SCREEN_REL; with onhull NULL, no screen) */
+    acd3_decompose_stats stats; /* counted atomically (any thread evaluating a candidate) */
     /* The candidates are slots (cand[id], ev[id]); ord[i] is the slot of the i-th candidate in the
      * sequential loop's order (pos[id]: its index there, -1 when not a candidate), set once
      * `ordered` (try_split may start evaluating slots while it still computes the global cut's
@@ -465,7 +468,7 @@ static void split_replay(split_state *S) {
          * measuring there: a failure past that point is not its failure) */
         split_choice *t = &e->trial;
         double conc = 0;
-        int lost = split_lost_at(S, e, 0, 0);
+        int lost = e->screened || split_lost_at(S, e, 0, 0);
         for (size_t i2 = 0; i2 < t->cut.npieces && !lost; i2++) {
             if (i2 == e->failed_at) {
                 S->fail = (int)e->st;
@@ -646,7 +649,7 @@ static int screen_decide(split_state *S, int id, cand_eval *e) {
     if (state == SCREEN_GONE) return 1;
     if (state == SCREEN_LATER) return 0;
     if (state == SCREEN_READY) {
-        const double above = best * (1 + ACD3_VOLUME_SCREEN_REL);
+        const double above = best * (1 + S->screen_rel);
         if (!(e->est > above) && !e->est_full) {
             acd_hull_volume_ws w;
             memset(&w, 0, sizeof w);
@@ -657,6 +660,11 @@ static int screen_decide(split_state *S, int id, cand_eval *e) {
         if (e->est >= 0 && e->est > above) {
             e->hullvol = e->est;
             e->have_hullvol = 1;
+            e->screened = 1; /* (with a margin >= 0 split_lost_at drops it too) */
+#ifdef _OPENMP
+#pragma omp atomic
+#endif
+            S->stats.screened++;
             return 1;
         }
     }
@@ -692,6 +700,10 @@ static int split_screen(split_state *S, int id, cand_eval *e) {
     e->cbound = cb;
     e->have_hullvol = S->by_volume && all;
     e->hullvol = vol;
+#ifdef _OPENMP
+#pragma omp atomic
+#endif
+    S->stats.hulled++;
     return 0;
 }
 
@@ -902,11 +914,13 @@ static int split_volume_planes(const acd_mesh *m, acd3_plane_candidate vp[ACD3_V
  * splits, or -(status) on failure. choice: by concavity as above; by volume (solid mode) the volume
  * plane joins the candidates, every candidate is compared (up to its budget) and split_better's band
  * rule decides; by band (solid mode) the band rule on the same candidates, with the early acceptance
- * kept (docs/acd3d.md "Cut choice by band"). */
+ * kept (docs/acd3d.md "Cut choice by band"). screen_rel: the hull volume screen's margin (by volume;
+ * acd3_decompose_screen: <= -1 or NaN, none); its counts are added to *stats. */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
                      unsigned cut_flags, const acd3_resolve_opts *ro, acd3d_cut_choice choice, int helpers,
-                     const acd_edge_map *em, split_choice *best, acd_error *err) {
+                     const acd_edge_map *em, double screen_rel, acd3_decompose_stats *stats, split_choice *best,
+                     acd_error *err) {
     /* slots: [0, npre) the planes evaluated ahead (if any), then the candidates in order */
     acd3_plane_candidate slot[ACD3_SPLIT_SLOTS];
     cand_eval ev[ACD3_SPLIT_SLOTS];
@@ -921,7 +935,8 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     S.cut_flags = cut_flags;
     S.em = solid ? em : NULL;
     S.cand = slot, S.ev = ev;
-    if (by_volume && ACD3_VOLUME_SCREEN_HULL && !S.early && ms->hull.dim == 3 && ms->hull.source) {
+    S.screen_rel = screen_rel;
+    if (by_volume && ACD3_VOLUME_SCREEN_HULL && !S.early && screen_rel > -1 && ms->hull.dim == 3 && ms->hull.source) {
         S.onhull = calloc(m->nvertices ? m->nvertices : 1, 1);
         for (size_t v = 0; S.onhull && v < ms->hull.nvertices; v++)
             if (ms->hull.source[v] < m->nvertices) S.onhull[ms->hull.source[v]] = 1;
@@ -1020,6 +1035,8 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
 #endif
     for (int i = 0; i < npre + nc; i++) cand_eval_free(&ev[i]);
     free(S.onhull);
+    stats->screened += S.stats.screened;
+    stats->hulled += S.stats.hulled;
     if (S.fail) {
         if (S.found) choice_free(&S.best);
         if (err) *err = S.err;
@@ -1084,6 +1101,7 @@ typedef struct run_ctx {
     int tree_full; /* the node budget is spent: no more splits */
     int helpers;   /* threads that may join the evaluation of a split's candidates */
     size_t max_depth; /* params->max_depth + 2 x the input's genus */
+    double screen_rel; /* the hull volume screen's margin (acd3_decompose_screen) */
 } run_ctx;
 
 typedef struct node_work {
@@ -1092,6 +1110,7 @@ typedef struct node_work {
     acd3d_leaf_reason reason;
     int split;
     split_choice choice;
+    acd3_decompose_stats stats; /* its splits' candidate evaluations */
 } node_work;
 
 /* ACD3D_STOP_HULL: whether w, its measure above tau, is within tau of its hull both ways
@@ -1144,15 +1163,16 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         if (c->params->region_cuts || !c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
                               ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
-                              &out->choice, &out->err);
+                              c->screen_rel, &out->stats, &out->choice, &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                               ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
-                              &out->choice, &out->err);
+                              c->screen_rel, &out->stats, &out->choice, &out->err);
         if (split == 0 && c->solid)
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                               ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, ACD_PLANE_CUT_DROP_SPECKS, &ro,
-                              c->params->cut_choice, c->helpers, emp, &out->choice, &out->err);
+                              c->params->cut_choice, c->helpers, emp, c->screen_rel, &out->stats, &out->choice,
+                              &out->err);
         if (have_em) acd_edge_map_free(&em);
         if (split < 0) {
             out->st = (acd_status)(-split);
@@ -1511,7 +1531,8 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
     return st;
 }
 
-static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err);
+static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *params, double screen_rel,
+                                 acd3_decompose_stats *stats, acd3d_result *out, acd_error *err);
 
 /* The vertices some triangle uses, renumbered in their order (*c: a new mesh) when there are others;
  * *c empty (nothing allocated) when every vertex is used or an index is out of range (check_input
@@ -1556,18 +1577,27 @@ static acd_status used_vertices(const acd_mesh *m, acd_mesh *c, acd_error *err) 
  * the scale and entered the hull of an uncut part: the budget pass found a cube with three stray
  * vertices 3.9 from its hull, prim.off of the budget sweep). */
 acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
+    return acd3_decompose_screen(mesh, params, ACD3_VOLUME_SCREEN_REL, NULL, out, err);
+}
+
+acd_status acd3_decompose_screen(const acd_mesh *mesh, const acd3d_params *params, double screen_rel,
+                                 acd3_decompose_stats *stats, acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
-    if (!mesh) return decompose_mesh(mesh, params, out, err);
+    acd3_decompose_stats sink;
+    if (!stats) stats = &sink;
+    memset(stats, 0, sizeof *stats);
+    if (!mesh) return decompose_mesh(mesh, params, screen_rel, stats, out, err);
     acd_mesh c;
     acd_status st = used_vertices(mesh, &c, err);
     if (st != ACD_OK) return st;
-    if (!c.vertices) return decompose_mesh(mesh, params, out, err);
-    st = decompose_mesh(&c, params, out, err);
+    if (!c.vertices) return decompose_mesh(mesh, params, screen_rel, stats, out, err);
+    st = decompose_mesh(&c, params, screen_rel, stats, out, err);
     acd_mesh_free(&c);
     return st;
 }
 
-static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *params, acd3d_result *out, acd_error *err) {
+static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *params, double screen_rel,
+                                 acd3_decompose_stats *stats, acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!params || params->cookie != ACD3D_PARAMS_COOKIE)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd3d_params not initialised by acd3d_default_params");
@@ -1695,7 +1725,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         /* a thread without a node of its own helps with the candidates of the others' splits
          * (try_split): so a batch of fewer nodes than threads, the root's above all, still uses
          * every thread */
-        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, nthreads - 1, max_depth};
+        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, nthreads - 1, max_depth, screen_rel};
         /* the batch's nodes are taken largest first (most vertices; then in node order), so that a
          * large node taken last does not keep one thread busy while the others wait; each node's
          * work goes to its own record, so the order changes nothing else */
@@ -1724,11 +1754,14 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
         }
         free(bord);
         /* the first failure in node order is reported */
-        for (size_t j = 0; j < b1 - b0; j++)
+        for (size_t j = 0; j < b1 - b0; j++) {
+            stats->screened += wk[j].stats.screened;
+            stats->hulled += wk[j].stats.hulled;
             if (wk[j].st != ACD_OK && st == ACD_OK) {
                 st = wk[j].st;
                 if (err) *err = wk[j].err;
             }
+        }
         for (size_t j = 0; j < b1 - b0 && st == ACD_OK; j++) {
             size_t n = b0 + j;
             if (!wk[j].split) {
