@@ -28,7 +28,9 @@ static const double ACD3_TRIM_DEPTHS[ACD3_TRIM_NDEPTHS] = {0.001, 0.002, 0.005, 
 typedef struct trim_plane {
     double n[3], off0;               /* n.x = off0: the facet's plane (n unit, outward) */
     double gain[NDEPTHS], loss[NDEPTHS];
-    double den[NDEPTHS];             /* with the losses: fmax(loss, the loss floor), choose's denominators */
+    double base;                     /* the part volume beyond n.x = off0 already charged */
+    double chg[NDEPTHS];             /* loss - base, the part volume a cut charges */
+    double den[NDEPTHS];             /* with the losses: fmax(chg, the loss floor), choose's denominators */
     int have_loss;
     int dirty;                       /* gains measured before the last cuts: upper bounds */
 } trim_plane;
@@ -68,9 +70,10 @@ typedef struct trim_hull {
     size_t ncorner, cornercap;
     int cut;          /* cut at least once */
     int crossing;     /* the part intersects itself: not trimmed */
+    size_t nt_limit;  /* more triangles than this after a cut: the polytope re-hulled */
     int stale;        /* the best cut to choose again (the hull was cut) */
     int have;         /* best cut found */
-    double plane[3], off, gain, loss, ratio, depth;
+    double plane[3], off, gain, loss, full, ratio, depth;
 } trim_hull;
 
 static void apex_on(const double centre[3], const double n[3], double off, double o[3]) {
@@ -146,7 +149,8 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
     acd3_trim_tree_beyond(&T->tree, P->n, &L, k_lo, P->loss);
     for (size_t k = 0; k < NDEPTHS; k++) {
         P->loss[k] = fmax(P->loss[k], 0.0);
-        P->den[k] = fmax(P->loss[k], T->loss_floor); /* (once: the losses never change) */
+        P->chg[k] = fmax(P->loss[k] - P->base, 0.0);
+        P->den[k] = fmax(P->chg[k], T->loss_floor); /* (once: the losses never change) */
     }
     P->have_loss = 1;
 }
@@ -181,7 +185,7 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
             const trim_plane *P = &T->pl[j];
             if (!P->have_loss) continue;
             for (size_t k = 0; k < NDEPTHS; k++) {
-                if (!(P->gain[k] >= min_gain) || !(P->loss[k] <= room)) continue;
+                if (!(P->gain[k] >= min_gain) || !(P->chg[k] <= room)) continue;
                 double r = P->gain[k] / P->den[k];
                 if (!(r > ratio_floor) || (T->have && !(r > T->ratio))) continue;
                 T->have = 1;
@@ -189,7 +193,8 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
                 memcpy(T->plane, P->n, sizeof T->plane);
                 T->off = P->off0 - ACD3_TRIM_DEPTHS[k] * T->unit;
                 T->gain = P->gain[k];
-                T->loss = P->loss[k];
+                T->loss = P->chg[k];
+                T->full = P->loss[k];
                 T->ratio = r;
                 T->depth = ACD3_TRIM_DEPTHS[k] * T->unit;
             }
@@ -216,6 +221,7 @@ static int after_cut(trim_hull *T, double min_gain) {
         if (meets) P->dirty = 1; /* its caps lost what they held of the removed cap: measured when needed */
     }
     if (!add_plane(T, T->plane, T->off)) return 0;
+    T->pl[T->npl - 1].base = T->full;
     plane_measure(T, &T->pl[T->npl - 1], min_gain, NULL, 0);
     return 1;
 }
@@ -378,6 +384,22 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
     if (out.nt < 4 || (max_vertices >= 4 && out.nv > max_vertices)) goto done; /* refused */
     poly_free(&T->h);
     T->h = out;
+    if (T->h.nt > T->nt_limit) { /* the cut polytope's triangles pile up (sections fanned over collinear
+                                    crossings): its hull again */
+        acd_hull nh;
+        acd_error e;
+        if (acd_hull_compute(T->h.v, T->h.nv, &nh, &e) == ACD_OK) {
+            if (nh.dim == 3) {
+                poly_free(&T->h);
+                T->h.v = nh.vertices, T->h.nv = nh.nvertices;
+                T->h.t = nh.triangles, T->h.nt = nh.ntriangles;
+                T->h.pl = nh.planes;
+                nh.vertices = NULL, nh.triangles = NULL, nh.planes = NULL;
+            }
+            acd_hull_free(&nh);
+        } /* (else, out of memory too, the polytope is kept: its triangles hold the same solid) */
+        T->nt_limit = 2 * T->h.nt + 64;
+    }
     free(T->vdot); /* (NULL on failure: plane_measure then does without) */
     T->vdot = malloc(T->h.nv * sizeof *T->vdot);
     memset(&out, 0, sizeof out);
@@ -485,6 +507,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         for (int k = 0; k < 3; k++) H->centre[k] = lo[k] + 0.5 * (hi[k] - lo[k]);
         H->active = 1;
         H->stale = 1;
+        H->nt_limit = 2 * H->h.nt + 64;
         if (!init_planes(H, min_gain, h0.neighbors)) pst[j] = ACD_ERR_NOMEM;
         acd_hull_free(&h0);
     }
