@@ -228,8 +228,9 @@ typedef struct acd3d_part {
                                  summed over its connected components) */
     size_t boundary_loops;    /* openings of the part (0 for a closed solid) */
     double trimmed_volume;    /* with trim_coverage: the part's volume beyond the planes its hull was
-                                 cut by (an upper bound of its volume outside its hull); else 0. The
-                                 concavity above is measured against the untrimmed hull */
+                                 cut by, a plane cut deeper along its own normal counted once (an upper
+                                 bound of its volume outside its hull); else 0. The concavity above is
+                                 measured against the untrimmed hull */
 } acd3d_part;
 
 typedef struct acd3d_result {

@@ -28,8 +28,9 @@ static const double ACD3_TRIM_DEPTHS[ACD3_TRIM_NDEPTHS] = {0.001, 0.002, 0.005, 
 typedef struct trim_plane {
     double n[3], off0;               /* n.x = off0: the facet's plane (n unit, outward) */
     double gain[NDEPTHS], loss[NDEPTHS];
-    double base;                     /* the part volume beyond n.x = off0 already charged */
-    double chg[NDEPTHS];             /* loss - base, the part volume a cut charges */
+    double base;                     /* the part volume beyond n.x = off0 already charged (a cut's own
+                                        plane: that cut's loss; a facet plane: 0) */
+    double chg[NDEPTHS];             /* fmax(loss - base, 0): the part volume a cut at the depth charges */
     double den[NDEPTHS];             /* with the losses: fmax(chg, the loss floor), choose's denominators */
     int have_loss;
     int dirty;                       /* gains measured before the last cuts: upper bounds */
@@ -73,7 +74,8 @@ typedef struct trim_hull {
     size_t nt_limit;  /* more triangles than this after a cut: the polytope re-hulled */
     int stale;        /* the best cut to choose again (the hull was cut) */
     int have;         /* best cut found */
-    double plane[3], off, gain, loss, full, ratio, depth;
+    double plane[3], off, gain, loss, full, ratio, depth; /* the best cut: loss its charge, full the
+                                                             part volume beyond its plane */
 } trim_hull;
 
 static void apex_on(const double centre[3], const double n[3], double off, double o[3]) {
@@ -170,8 +172,12 @@ static int add_plane(trim_hull *T, const double n[3], double off0) {
     return 1;
 }
 
-/* The best cut of hull T among its planes' caps (largest gain / loss) removing at most `room` of
- * part volume. */
+/* The best cut of hull T among its planes' caps (largest gain / charge) charging at most `room` of
+ * part volume. A cap's charge is its loss less the plane's base: the part volume beyond the plane's
+ * own level (off0), which is beyond each of its depths, was charged already when off0 is the plane
+ * of a cut made on this hull (after_cut); 0 for a facet plane, which the part does not cross. The
+ * cuts made along one normal thus charge, summed, the part volume beyond the deepest: each region
+ * outside the trimmed hull is charged at least once (the guarantee, docs/acd3d.md). */
 static void choose(trim_hull *T, double room, double min_gain, double ratio_floor) {
     T->have = 0;
     if (!T->active) return;
@@ -384,8 +390,12 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
     if (out.nt < 4 || (max_vertices >= 4 && out.nv > max_vertices)) goto done; /* refused */
     poly_free(&T->h);
     T->h = out;
-    if (T->h.nt > T->nt_limit) { /* the cut polytope's triangles pile up (sections fanned over collinear
-                                    crossings): its hull again */
+    /* the polytope's triangles pile up where cuts cross earlier sections (a section is fanned over
+     * all its crossings, collinear ones too, and the next section crosses every fan edge: on fandisk,
+     * with the cuts deepened along their planes, 14x the triangles visited by plane_measure): past
+     * twice its size at the last hull, its hull again (qhull: the same solid, the same vertices up to
+     * those inside its faces) */
+    if (T->h.nt > T->nt_limit) {
         acd_hull nh;
         acd_error e;
         if (acd_hull_compute(T->h.v, T->h.nv, &nh, &e) == ACD_OK) {

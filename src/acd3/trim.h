@@ -7,14 +7,17 @@
  * by the ratio of the hull volume removed to the part volume removed, while the part volume
  * removed stays within `budget` (model units, summed over all parts). The union of the trimmed
  * hulls then covers all of the input but at most `budget` of its volume (each part is covered by
- * its own hull outside the caps cut from it; the sum counts a region beyond two cuts twice, so it
- * is an upper bound), and the hulls stay convex (each is the hull of its old vertices below the
+ * its own hull outside the caps cut from it; a cut made from an earlier cut's own plane, deeper,
+ * charges only the part volume between the two planes, the part beyond the first plane lying beyond
+ * the second; the sum counts a region beyond two cuts of different planes twice, so it is an upper
+ * bound), and the hulls stay convex (each is the hull of its old vertices below the
  * plane and of its edges' crossings). A cut is taken only when it raises the IoU of input and union:
  * removing hull volume g holding part volume l does when g / l > 1 + U / V (U the hulls' volume
  * sum, V the input's), the floor used here.
  *
  * Candidates: every hull facet's plane moved inward by ACD3_TRIM_DEPTHS depths (fractions of the
- * cube root of the part's initial hull volume); a cut must remove at least min_gain of hull volume.
+ * cube root of the part's initial hull volume), and each cut's own plane moved inward likewise; a cut
+ * must remove at least min_gain of hull volume.
  * With max_vertices >= 4 a cut leaving more hull vertices than that is refused (the hull is then
  * left as it is). When the input (the mesh the parts tile; NULL: not checked) intersects itself, a
  * part that intersects itself (acd_mesh_self_intersections) keeps its whole hull: its signed
