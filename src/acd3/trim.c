@@ -34,6 +34,10 @@ typedef struct trim_plane {
     double den[NDEPTHS];             /* with the losses: fmax(chg, the loss floor), choose's denominators */
     int have_loss;
     int dirty;                       /* gains measured before the last cuts: upper bounds */
+    int best_ok;                     /* best_k, best_r hold the plane's best cap for its gains and a room
+                                        no smaller than the current one (choose) */
+    int best_k;                      /* -1: no cap fits */
+    double best_r;
 } trim_plane;
 
 /* A convex polytope as outward triangles (a hull cut by planes: its triangles clipped, the section
@@ -143,6 +147,7 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
         }
     }
     memcpy(P->gain, gain, sizeof gain);
+    P->best_ok = 0;
     if (P->have_loss || !(P->gain[NDEPTHS - 1] >= min_gain)) return; /* the deepest cap holds the others */
     memset(P->loss, 0, sizeof P->loss);
     /* only the depths whose cap can be cut: gains only fall, so a cap under min_gain stays under */
@@ -185,27 +190,41 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
      * fall); when the best is such a plane its gains are measured again on the hull and the search
      * repeated, so the choice is the best of the exact ratios */
     for (;;) {
-        size_t bj = SIZE_MAX;
+        size_t bj = SIZE_MAX, bk = 0;
         T->have = 0;
         for (size_t j = 0; j < T->npl; j++) {
-            const trim_plane *P = &T->pl[j];
+            trim_plane *P = &T->pl[j];
             if (!P->have_loss) continue;
-            for (size_t k = 0; k < NDEPTHS; k++) {
-                if (!(P->gain[k] >= min_gain) || !(P->chg[k] <= room)) continue;
-                double r = P->gain[k] / P->den[k];
-                if (!(r > ratio_floor) || (T->have && !(r > T->ratio))) continue;
-                T->have = 1;
-                bj = j;
-                memcpy(T->plane, P->n, sizeof T->plane);
-                T->off = P->off0 - ACD3_TRIM_DEPTHS[k] * T->unit;
-                T->gain = P->gain[k];
-                T->loss = P->chg[k];
-                T->full = P->loss[k];
-                T->ratio = r;
-                T->depth = ACD3_TRIM_DEPTHS[k] * T->unit;
+            /* the plane's best cap (the first of largest ratio), kept while its gains stand and it fits
+             * the room: the room only shrinks, and the best of fewer caps is the same while it is among
+             * them; the first plane of largest best ratio is then the scan's first cap of largest ratio */
+            if (!P->best_ok || (P->best_k >= 0 && !(P->chg[P->best_k] <= room))) {
+                P->best_k = -1;
+                for (size_t k = 0; k < NDEPTHS; k++) {
+                    if (!(P->gain[k] >= min_gain) || !(P->chg[k] <= room)) continue;
+                    double r = P->gain[k] / P->den[k];
+                    if (!(r > ratio_floor) || (P->best_k >= 0 && !(r > P->best_r))) continue;
+                    P->best_k = (int)k;
+                    P->best_r = r;
+                }
+                P->best_ok = 1;
             }
+            if (P->best_k < 0 || (T->have && !(P->best_r > T->ratio))) continue;
+            T->have = 1;
+            bj = j, bk = (size_t)P->best_k;
+            T->ratio = P->best_r;
         }
-        if (!T->have || !T->pl[bj].dirty) return;
+        if (!T->have) return;
+        if (!T->pl[bj].dirty) {
+            const trim_plane *P = &T->pl[bj];
+            memcpy(T->plane, P->n, sizeof T->plane);
+            T->off = P->off0 - ACD3_TRIM_DEPTHS[bk] * T->unit;
+            T->gain = P->gain[bk];
+            T->loss = P->chg[bk];
+            T->full = P->loss[bk];
+            T->depth = ACD3_TRIM_DEPTHS[bk] * T->unit;
+            return;
+        }
         T->pl[bj].dirty = 0;
         plane_measure(T, &T->pl[bj], min_gain, NULL, 0); /* (its losses are kept) */
     }
@@ -288,12 +307,12 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
     size_t nv = h->nv, nt = h->nt;
     double *s = malloc(nv * sizeof *s);
     uint32_t *map = malloc(nv * sizeof *map);
-    /* crossings: per triangle edge (3 * nt slots), the new vertex of that edge (found through the
-     * edge's twin by a search over the vertex's triangles would cost more: an edge key table) */
+    /* crossings: per crossing edge, the new vertex of that edge (found through the edge's twin by a
+     * search over the vertex's triangles would cost more: an edge key table, sized once the triangles
+     * crossing the plane are counted) */
     size_t ekcap = 1;
-    while (ekcap < 6 * nt + 16) ekcap <<= 1;
-    uint64_t *ekey = malloc(ekcap * sizeof *ekey);
-    uint32_t *eval = malloc(ekcap * sizeof *eval);
+    uint64_t *ekey = NULL;
+    uint32_t *eval = NULL;
     trim_poly out = {0};
     size_t vcap = nv + 3 * nt + 8, tcap = 5 * nt + 16;
     out.v = malloc(3 * vcap * sizeof *out.v);
@@ -308,8 +327,7 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
         }
     }
     int ret = -1;
-    if (!s || !map || !ekey || !eval || !out.v || !out.t || !out.pl || !sec || T->cornercap < vcap) goto done;
-    memset(ekey, 0xff, ekcap * sizeof *ekey);
+    if (!s || !map || !out.v || !out.t || !out.pl || !sec || T->cornercap < vcap) goto done;
     size_t nbeyond = 0;
     T->ncorner = 0;
     for (size_t v = 0; v < nv; v++) {
@@ -320,6 +338,18 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
     }
     ret = 0;
     if (nbeyond == 0) goto done;
+    size_t ncross = 0; /* triangles with corners on both sides: two crossing edges each */
+    for (size_t t = 0; t < nt; t++) {
+        const uint32_t *tr = h->t + 3 * t;
+        ncross += (s[tr[0]] > 0 || s[tr[1]] > 0 || s[tr[2]] > 0) && (s[tr[0]] < 0 || s[tr[1]] < 0 || s[tr[2]] < 0);
+    }
+    while (ekcap < 4 * ncross + 16) ekcap <<= 1;
+    ekey = malloc(ekcap * sizeof *ekey);
+    eval = malloc(ekcap * sizeof *eval);
+    ret = -1;
+    if (!ekey || !eval) goto done;
+    ret = 0;
+    memset(ekey, 0xff, ekcap * sizeof *ekey);
     size_t nsec = 0;
 #define ADD_V(p) (memcpy(out.v + 3 * out.nv, (p), 3 * sizeof(double)), (uint32_t)out.nv++)
     for (size_t t = 0; t < nt; t++) {
