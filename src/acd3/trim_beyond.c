@@ -35,8 +35,8 @@ int acd3_trim_tree_build(acd3_trim_tree *R, const acd_bvh *b) {
         const uint32_t id = stack[--sp];
         const acd_bvh_node *nd = &b->nodes[id];
         acd3_trim_tree_node *o = &R->node[R->nnode];
-        memcpy(o->lo, nd->lo, sizeof o->lo);
-        memcpy(o->hi, nd->hi, sizeof o->hi);
+        memcpy(o->box[0], nd->lo, sizeof o->box[0]);
+        memcpy(o->box[1], nd->hi, sizeof o->box[1]);
         o->skip = (uint32_t)(R->nnode + size[id]);
         o->first = (uint32_t)ct;
         o->count = nd->count;
@@ -63,10 +63,17 @@ void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd
     const double deepest = L->off[ACD3_TRIM_NDEPTHS - 1];
     double acc[ACD3_TRIM_NDEPTHS]; /* (v's sums, kept apart from the tree for the compiler) */
     memcpy(acc, v, sizeof acc);
+    /* a node's box's largest n.x as acd_box_max_dot sums it (from 0, the corner of each coordinate
+     * chosen by n's sign once here) */
+    const int c0 = n[0] >= 0, c1 = n[1] >= 0, c2 = n[2] >= 0;
     size_t i = 0;
     while (i < R->nnode) {
         const acd3_trim_tree_node *nd = &R->node[i];
-        if (!(acd_box_max_dot(n, nd->lo, nd->hi) > deepest)) {
+        double top = 0;
+        top += n[0] * nd->box[c0][0];
+        top += n[1] * nd->box[c1][1];
+        top += n[2] * nd->box[c2][2];
+        if (!(top > deepest)) {
             i = nd->skip;
             continue;
         }

@@ -63,6 +63,10 @@ static inline double acd3_trim_fan_term(const double a[3], const double b[3], co
     return a[0] * r0 + a[1] * r1 + a[2] * r2;
 }
 
+/* (always inlined: called per level from acd3_trim_tri_beyond, its arrays then stay in registers) */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
 static inline double acd3_trim_clip_cone(const double *const p[3], const double e[3][3], const double s[3],
                                          const double apex[3]) {
     const int mask = (s[0] > 0) | (s[1] > 0) << 1 | (s[2] > 0) << 2;
@@ -164,7 +168,7 @@ static inline void acd3_trim_tri_beyond(const double *const p[3], const double d
  * acd_bvh_query_halfspace visits them (a node, the subtree of its second child, then that of its
  * first), each with the index past its subtree, and the leaves' triangles' corners in that order. */
 typedef struct acd3_trim_tree_node {
-    double lo[3], hi[3];
+    double box[2][3];      /* lo, hi */
     uint32_t skip;         /* the index past the node's subtree */
     uint32_t first, count; /* a leaf (count > 0): its triangles, from corner + 9 * first */
 } acd3_trim_tree_node;
