@@ -8,7 +8,19 @@
  * query: -3) must be within HV_FUZZ_TOL_REL x extent^2 x max(extent, the coordinates' magnitude) of
  * acd_hull_volume's (qhull's) on the same set: the estimate's tolerances (a point within 1e-10, a set flat within
  * 1e-8) are relative to the coordinates' magnitude, so its slack is far below that; a wrong
- * horizon or a lost point off by more is a defect. Out of memory (-1) is allowed; anything else aborts. */
+ * horizon or a lost point off by more is a defect. Out of memory (-1) is allowed; anything else aborts.
+ *
+ * The hull volume screen's assumption (docs/acd3d.md "Cut choice by volume", src/acd3/decompose.h):
+ * acd_hull_volume_fast is not above qhull's volume by more than ACD3_VOLUME_SCREEN_REL (1e-4) of
+ * qhull's volume, else the screen could drop a candidate that would have won. Checked (the same
+ * 1e-4, HV_FUZZ_SCREEN_REL) on every query set that is not thin: qhull's volume at least
+ * HV_FUZZ_SCREEN_MIN (1e-6) x extent^2 x max(extent, magnitude), the set's own extent and
+ * coordinates' magnitude. The threshold leaves out the nearly flat sets, on which rounding alone
+ * can make 1e-4: the estimate's coordinates carry about 1e-16 of the magnitude, so each facet's
+ * tetrahedron about 1e-16 x magnitude x extent^2, and up to 8192 facets 1e-12 of that scale (qhull's
+ * own roundoff is of the same kind); above the threshold that is at most 1e-6 of the volume, so an
+ * estimate above qhull's by 1e-4 is a real overestimate (a fold or a wrong horizon), not rounding.
+ * (Such a set fills at least 1e-6 of its box.) Compiled out with -DHV_FUZZ_NO_SCREEN_CHECK. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -23,6 +35,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 #define HV_FUZZ_TOL_REL 1e-6
 #define HV_FUZZ_MAX_POINTS 4096
 #define HV_FUZZ_QUERIES 8
+/* The screen's check (see above): the margin, and the volume below which a set counts as thin. */
+#define HV_FUZZ_SCREEN_REL 1e-4
+#define HV_FUZZ_SCREEN_MIN 1e-6
 
 typedef struct {
     double h;
@@ -38,6 +53,17 @@ static int cmp_keyed(const void *a, const void *b) {
 static void check(double got, double ref, double tol) {
     if (got == -3.0 || got == -1.0) return; /* declined or out of memory */
     if (!(fabs(got - ref) <= tol)) abort(); /* NaN too; a sliver may come out a hair below 0 */
+}
+
+/* The screen's assumption: the estimate got not above qhull's ref by more than HV_FUZZ_SCREEN_REL
+ * relative, on a set that is not thin (ref >= thin). */
+static void check_screen(double got, double ref, double thin) {
+#ifndef HV_FUZZ_NO_SCREEN_CHECK
+    if (got == -1.0 || !(ref >= thin) || !(ref > 0)) return;
+    if (got > ref * (1 + HV_FUZZ_SCREEN_REL)) abort();
+#else
+    (void)got, (void)ref, (void)thin;
+#endif
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
@@ -119,7 +145,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         double ref = -1;
         if (acd_hull_volume(set, m, &ref, NULL) != ACD_OK) continue; /* qhull refused: nothing to compare */
         if (r == 0) check(vol[q], ref, tol);
-        check(acd_hull_volume_fast(set, m, &w, NULL), ref, tol);
+        double fast = acd_hull_volume_fast(set, m, &w, NULL);
+        check(fast, ref, tol);
+        double slo[3], shi[3], sext = 0, smag = 0; /* the query set's own extent and magnitude */
+        for (size_t i = 0; i < m; i++)
+            for (int k = 0; k < 3; k++) {
+                if (i == 0 || set[3 * i + k] < slo[k]) slo[k] = set[3 * i + k];
+                if (i == 0 || set[3 * i + k] > shi[k]) shi[k] = set[3 * i + k];
+            }
+        for (int k = 0; k < 3; k++)
+            sext = fmax(sext, shi[k] - slo[k]), smag = fmax(smag, fmax(fabs(slo[k]), fabs(shi[k])));
+        check_screen(fast, ref, HV_FUZZ_SCREEN_MIN * sext * sext * fmax(sext, smag));
     }
     acd_hull_volume_ws_free(&w);
 out:
