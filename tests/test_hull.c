@@ -816,6 +816,31 @@ static void test_lost_point_thin(void **state) {
     hull_of_encloses(p, 17);
 }
 
+/* fuzz_hull (2026-11-26, fuzzrun; corpus hull/lost_point_small_facet): nine points spanning 1e45 to
+ * 1e-311. qhull's facet (8, 5, 2) is a small well-shaped triangle (edges 5.5e-8, 5.5e-8, 7.8e-8 of
+ * the extent, least altitude 3.9e-8) at normalised coordinates near 0.5, and point 3 is 1.34e-9 of
+ * the extent above its plane. hull_enclose trusted the facet: the trust test counted the cross
+ * product's rounding (eps x L / h: 4.4e-16) but not the vertices' own (their normalised coordinates
+ * carry eps x |w|, and qhull decided on them), which tilts so small a triangle by up to about
+ * eps |w| / h, 3e-9 here. The hull is neither thin (6.5e-7 of the diagonal cubed), repaired, nor
+ * has an extreme point outside. (The unminimised input, 34 points, had a sliver of altitude 4.9e-11
+ * and two points 1.35e-9 out.) Fails on the old code (point 3 1.34e-9 outside). */
+static void test_lost_point_small_facet(void **state) {
+    (void)state;
+    static const double p[27] = {
+        0x1.84848a3b969c8p+133, 0x1.8484848484848p+133, 0x1.8484848484848p+133,
+        0x1.8484848484848p-267, 0x1.8484848484848p+133, -0x1.7c7c7c7c74848p+125,
+        -0x1.7c7c7c7c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125, 0x1.d2dc7c7c7c7c7p-301,
+        -0x1.7c72d2d2d2d2dp+125, 0x1.9494949c7c7c7p+149, 0x1.9494949494949p+149,
+        0x1.7c7c749496349p-947, -0x1.0000007000000p+113, 0x1.316000c09d396p+149,
+        -0x1.7c7c7c7c74949p+125, -0x1.7c7c7c7c7c7c7p+125, -0x1.7c7c7c7c7c7c7p+125,
+        0x1.d2d2d2d2d2d2dp-301, 0x1.9c7c7c7c7c7c7p+149, 0x1.9494949494959p+149,
+        0x1.7c7c7c7c74949p-1011, 0x0.00f0000010000p-1022, -0x1.7c7c7c7c71300p+125,
+        -0x1.7c7c7c73ac7c7p+125, 0x1.286a3c7c7c7c7p-692, -0x1.7bedc00c77b00p-19,
+    };
+    hull_of_encloses(p, 9);
+}
+
 /* Many ill-conditioned facets at once: points on a sphere, a third of them with a twin 1e-11 to
  * 1e-7 away in a random direction (slivers of every conditioning, on both sides of hull_enclose's
  * trust test), shuffled in: every point inside every plane. (qhull's planes already pass this
@@ -901,6 +926,7 @@ int main(void) {
         cmocka_unit_test(test_lost_extreme_point),
         cmocka_unit_test(test_lost_point_repaired),
         cmocka_unit_test(test_lost_point_thin),
+        cmocka_unit_test(test_lost_point_small_facet),
         cmocka_unit_test(test_enclosure_twins),
         cmocka_unit_test(test_take),
     };

@@ -434,10 +434,11 @@ static acd_status hull_from_qhull(qhull_run *r, const double *points, const doub
  *
  * Only planes that can be off are checked (hull_plane_trusted): a facet whose triangle is well
  * shaped and whose qhull normal agrees with the triangle's own cross product. Such a plane is the
- * true plane of a hull face up to an angle of tilt + 3 eps L / h (the cross product's rounding: L
- * the longest edge, h the least altitude), so no point of the box (within a diagonal of the facet)
- * is off by more than diagonal x that angle, which the test keeps under a quarter of the
- * tolerance. On real meshes 90-96% of the facets pass (bunny00, armadillo, fandisk at tau 0.05:
+ * true plane of a hull face up to an angle of tilt + 3 eps (L + m) / h (the cross product's rounding,
+ * L the longest edge, h the least altitude; and the vertices' own, m their largest normalised
+ * coordinate: a triangle of 5e-8 of the extent near a face of the box was off by 1.3e-9, fuzz_hull,
+ * 2026-11-26), so no point of the box (within a diagonal of the facet) is off by more than diagonal
+ * x that angle, which the test keeps under a quarter of the tolerance. On real meshes 90-96% of the facets pass (bunny00, armadillo, fandisk at tau 0.05:
  * altitudes under 1e-3 of the extent on 4.6%, 4.3%, 10%); fuzz_hull still checks every plane.
  * That trusts qhull to have kept every point below a well-conditioned facet; it once did not (a
  * point lost 1.2e-9 of the extent above one), so when one of 14 extreme points of the set is
@@ -592,8 +593,10 @@ static double encl_worst(const encl_tree *T, const double *nrm, double d, double
 
 /* Checks the planes of out (built from w, the points normalised by s) against every point and
  * lifts those exceeded by more than tol (normalised units). */
-/* Rounding of a triangle's cross product, in units of DBL_EPSILON x L / h (3 in the analysis, with
- * a margin), and the share of the tolerance a trusted plane may be off by. */
+/* Rounding of a triangle's plane, in units of DBL_EPSILON x (L + m) / h (3 in the analysis, with a
+ * margin): the cross product's (L / h), and the vertices' own (m / h, m their largest normalised
+ * coordinate: w carries the normalisation's rounding, eps x |w|, and qhull decided on w with its
+ * roundoff of the same size), and the share of the tolerance a trusted plane may be off by. */
 #define HULL_ENCLOSE_ROUNDOFF 8.0
 /* A hull whose volume is under this fraction of its points' box diagonal cubed is thin (hull_enclose
  * then trusts none of its facets; 1e-6 cost 2-3% of the armadillo's budget run, many of its pieces'
@@ -616,7 +619,11 @@ static int hull_plane_trusted(const double *nrm, const double *a, const double *
     double h = area2 / lmax; /* the least altitude */
     for (int k = 0; k < 3; k++) cr[k] /= area2;
     acd_cross3(nrm, cr, x);
-    double angle = norm3(x) + HULL_ENCLOSE_ROUNDOFF * DBL_EPSILON * lmax / h;
+    /* the vertices' magnitude: a sliver far from the centre (fuzz_hull: altitude 4.9e-11, edges
+     * 5.5e-8, at |w| 0.5) is tilted by its vertices' rounding far more than by its cross product's */
+    double m = 0;
+    for (int k = 0; k < 3; k++) m = fmax(m, fmax(fabs(a[k]), fmax(fabs(b[k]), fabs(c[k]))));
+    double angle = norm3(x) + HULL_ENCLOSE_ROUNDOFF * DBL_EPSILON * (lmax + m) / h;
     return diag * angle <= HULL_ENCLOSE_TRUST_SHARE * tol;
 }
 
