@@ -102,18 +102,7 @@ typedef struct trim_adj {
     uint32_t *mark;      /* nt: the stamp of the last search that reached the triangle */
     uint32_t *stack;     /* nt */
     uint32_t stamp;
-    uint32_t *vmark;     /* nv: the stamp of the last search that computed the vertex's dot, in vdot */
-    double *vdot;        /* nv */
 } trim_adj;
-
-/* vertex v's n.x in the search of adj's stamp (acd_dot3, computed once per search) */
-static inline double adj_dot(trim_adj *adj, const double n[3], const double *hv, uint32_t v) {
-    if (adj->vmark[v] != adj->stamp) {
-        adj->vmark[v] = adj->stamp;
-        adj->vdot[v] = acd_dot3(n, hv + 3 * (size_t)v);
-    }
-    return adj->vdot[v];
-}
 
 /* P's gains for the current hull, and its losses when not known and some gain reaches min_gain.
  * With adj (the hull's neighbours) only the triangles reached from triangle `seed` (which lies in
@@ -133,10 +122,9 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
         while (sp > 0) {
             uint32_t t = adj->stack[--sp];
             const uint32_t *tr = h->t + 3 * (size_t)t;
-            const double d[3] = {adj_dot(adj, P->n, h->v, tr[0]), adj_dot(adj, P->n, h->v, tr[1]),
-                                 adj_dot(adj, P->n, h->v, tr[2])};
-            if (!(acd3_trim_top(d) > deepest)) continue;
             const double *const p[3] = {h->v + 3 * (size_t)tr[0], h->v + 3 * (size_t)tr[1], h->v + 3 * (size_t)tr[2]};
+            const double d[3] = {acd_dot3(P->n, p[0]), acd_dot3(P->n, p[1]), acd_dot3(P->n, p[2])};
+            if (!(acd3_trim_top(d) > deepest)) continue;
             acd3_trim_tri_beyond(p, d, &L, 0, gain);
             for (int e = 0; e < 3; e++) {
                 uint32_t g = adj->nbr[3 * (size_t)t + e];
@@ -287,22 +275,20 @@ static int init_planes(trim_hull *T, double min_gain, const uint32_t *nbr) {
     const trim_poly *h = &T->h;
     facet_key *keys = malloc(h->nt * sizeof *keys);
     uint32_t *mark = calloc(h->nt, sizeof *mark), *stack = malloc(h->nt * sizeof *stack);
-    uint32_t *vmark = calloc(h->nv, sizeof *vmark);
-    double *vdot = malloc(h->nv * sizeof *vdot);
-    int ok = keys && mark && stack && vmark && vdot;
+    int ok = keys && mark && stack;
     for (size_t f = 0; ok && f < h->nt; f++) {
         memcpy(keys[f].pl, h->pl + 4 * f, sizeof keys[f].pl);
         keys[f].t = (uint32_t)f;
     }
     if (ok) qsort(keys, h->nt, sizeof *keys, facet_cmp);
-    trim_adj adj = {nbr, mark, stack, 0, vmark, vdot};
+    trim_adj adj = {nbr, mark, stack, 0};
     for (size_t f = 0; f < h->nt && ok; f++) {
         const double *pl = keys[f].pl;
         if (f > 0 && !memcmp(keys[f - 1].pl, pl, sizeof keys[f].pl)) continue;
         ok = add_plane(T, pl, -pl[3]);
         if (ok) plane_measure(T, &T->pl[T->npl - 1], min_gain, &adj, keys[f].t);
     }
-    free(keys), free(mark), free(stack), free(vmark), free(vdot);
+    free(keys), free(mark), free(stack);
     return ok;
 }
 
