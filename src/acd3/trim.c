@@ -82,6 +82,16 @@ typedef struct trim_hull {
                                                              part volume beyond its plane */
 } trim_hull;
 
+/* T's polytope replaced by hull h (3D), its arrays taken over (h's set to NULL: acd_hull_free then
+ * frees the rest). */
+static void hull_take(trim_hull *T, acd_hull *h) {
+    poly_free(&T->h);
+    T->h.v = h->vertices, T->h.nv = h->nvertices;
+    T->h.t = h->triangles, T->h.nt = h->ntriangles;
+    T->h.pl = h->planes;
+    h->vertices = NULL, h->triangles = NULL, h->planes = NULL;
+}
+
 static void apex_on(const double centre[3], const double n[3], double off, double o[3]) {
     double s = acd_dot3(n, centre) - off; /* n unit */
     for (int k = 0; k < 3; k++) o[k] = centre[k] - s * n[k];
@@ -435,13 +445,7 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
         acd_hull nh;
         acd_error e;
         if (acd_hull_compute(T->h.v, T->h.nv, &nh, &e) == ACD_OK) {
-            if (nh.dim == 3) {
-                poly_free(&T->h);
-                T->h.v = nh.vertices, T->h.nv = nh.nvertices;
-                T->h.t = nh.triangles, T->h.nt = nh.ntriangles;
-                T->h.pl = nh.planes;
-                nh.vertices = NULL, nh.triangles = NULL, nh.planes = NULL;
-            }
+            if (nh.dim == 3) hull_take(T, &nh);
             acd_hull_free(&nh);
         } /* (else, out of memory too, the polytope is kept: its triangles hold the same solid) */
         T->nt_limit = 2 * T->h.nt + 64;
@@ -521,10 +525,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         }
         H->unit = cbrt(h0.volume);
         H->loss_floor = loss_floor;
-        H->h.v = h0.vertices, H->h.nv = h0.nvertices;
-        H->h.t = h0.triangles, H->h.nt = h0.ntriangles;
-        H->h.pl = h0.planes;
-        h0.vertices = NULL, h0.triangles = NULL, h0.planes = NULL;
+        hull_take(H, &h0); /* (H->h empty: T is calloc'd) */
         /* the part's tree: the caller's, else built (kept for the self-crossing test) */
         const acd_bvh *given = trees && trees->parts ? trees->parts[j] : NULL;
         if (acd_bvh_is_over(given, p->mesh.vertices, p->mesh.nvertices, p->mesh.triangles, p->mesh.ntriangles)) {
