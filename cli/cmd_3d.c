@@ -97,7 +97,8 @@ static void usage(FILE *f) {
             "                      an open or unoriented input is welded, oriented and its holes closed)\n"
             "  --verify            check: part volumes add up to the input's, every part meets tau (or says\n"
             "                      why not), every part lies inside its hull (with --trim-coverage: the parts'\n"
-            "                      volume outside their hulls is within F of the input's); exit 3 otherwise\n"
+            "                      volume outside their hulls, measured by cutting each part with its hull's\n"
+            "                      planes, is within F of the input's); exit 3 otherwise\n"
             "  -v                  report progress and statistics on stderr\n");
 }
 
@@ -342,6 +343,9 @@ typedef struct verify_part {
     double v, worst, outside;
     acd_status hst; /* the hull's rebuild (herr its message) */
     acd_error herr;
+    acd_status xst; /* the exact volume outside (acd_hull_volume_outside; xerr its message): outside is the
+                       bound where it failed */
+    acd_error xerr;
 } verify_part;
 
 static void verify_one(const acd3d_result *r, size_t i, double trim, verify_part *q) {
@@ -352,6 +356,7 @@ static void verify_one(const acd3d_result *r, size_t i, double trim, verify_part
     q->v = v / 6.0;
     q->worst = -INFINITY;
     q->outside = 0;
+    q->xst = ACD_OK;
     /* inside its hull: every part vertex on the inner side of every hull facet plane */
     acd_hull h;
     q->hst = acd_hull_compute(p->hull.vertices, p->hull.nvertices, &h, &q->herr);
@@ -360,16 +365,24 @@ static void verify_one(const acd3d_result *r, size_t i, double trim, verify_part
         double d = acd_hull_plane_distance(&h, m->vertices + 3 * k);
         if (d > q->worst) q->worst = d;
     }
-    /* trimmed hulls: an upper bound of the part's volume outside its hull (the part beyond the
-     * distinct planes of the facets it sticks out of; NaN: out of memory) */
-    if (trim > 0 && q->worst > 1e-9 * r->scale) q->outside = acd_hull_volume_outside_bound(&h, m, 1e-9 * r->scale, r->scale);
+    /* trimmed hulls: the part's volume outside its hull, exactly (the part cut by the distinct
+     * planes of the facets it sticks out of, the pieces beyond them summed); where the cuts fail
+     * (a part the rounding left pinched, or one crossing itself, or out of memory), an upper bound
+     * (the part beyond each of those planes, summed; NaN: out of memory) */
+    if (trim > 0 && q->worst > 1e-9 * r->scale) {
+        q->xst = acd_hull_volume_outside(&h, m, 1e-9 * r->scale, r->scale, &q->outside, &q->xerr);
+        if (q->xst != ACD_OK) q->outside = acd_hull_volume_outside_bound(&h, m, 1e-9 * r->scale, r->scale);
+    }
     acd_hull_free(&h);
 }
 
 /* --verify: checks computed here from the result, independently of the driver's bookkeeping. The
  * parts' own checks (verify_one) run in parallel (threads; 0: OpenMP's default), the verdict is
- * then read in part order: the same report as one serial pass for any thread count. */
-static int verify(const acd3d_result *r, int budget, double trim, int threads, double *outside_bound, acd_error *err) {
+ * then read in part order: the same report as one serial pass for any thread count. With trimmed
+ * hulls: *outside_sum the parts' volume outside their hulls, *nbound the parts where it is the
+ * bound (the exact cut failed). */
+static int verify(const acd3d_result *r, int budget, double trim, int threads, double *outside_sum, size_t *nbound,
+                  acd_error *err) {
     /* Rounding in the volume sums grows with the sum of the tetrahedra's absolute volumes (not
      * with the net volume: a thin or tiny solid far from the origin cancels a lot), so the
      * tolerances are relative to that sum. */
@@ -386,7 +399,8 @@ static int verify(const acd3d_result *r, int budget, double trim, int threads, d
     if (r->nparts > 1 && threads != 1)
 #endif
     for (long i = 0; i < (long)r->nparts; i++) verify_one(r, (size_t)i, trim, &vp[i]);
-    double outside = 0; /* with trim: an upper bound of the parts' volume outside their hulls */
+    double outside = 0; /* with trim: the parts' volume outside their hulls (exact, or bounds) */
+    size_t nb = 0, first_bound = 0; /* parts measured by the bound, the first of them */
     int ret = ACD_OK;
     for (size_t i = 0; i < r->nparts && ret == ACD_OK; i++) {
         const acd3d_part *p = &r->parts[i];
@@ -420,18 +434,29 @@ static int verify(const acd3d_result *r, int budget, double trim, int threads, d
             ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu: its hull cannot be rebuilt: %s", i, q->herr.message);
         else if (trim > 0 && q->worst > 1e-9 * r->scale && isnan(q->outside))
             ret = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-        else if (trim > 0 && q->worst > 1e-9 * r->scale)
+        else if (trim > 0 && q->worst > 1e-9 * r->scale) {
             outside += q->outside;
+            if (q->xst != ACD_OK && nb++ == 0) first_bound = i;
+        }
         else if (!(trim > 0) && q->worst > 1e-9 * r->scale)
             ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu sticks out of its hull by %g", i, q->worst);
     }
+    if (ret == ACD_OK) *outside_sum = outside, *nbound = nb;
+    if (ret == ACD_OK && trim > 0 && outside > trim * r->input_volume * (1 + 1e-6) + vtol) {
+        if (nb == 0)
+            ret = acd_fail(err, ACD_ERR_VERIFY,
+                           "the parts' volume outside their trimmed hulls, %.17g (exact: each part cut by its hull's "
+                           "facet planes), exceeds %g of the input's %.17g",
+                           outside, trim, r->input_volume);
+        else
+            ret = acd_fail(err, ACD_ERR_VERIFY,
+                           "the parts' volume outside their trimmed hulls, up to %.17g (exact on all but %zu part(s), "
+                           "on those an upper bound, the part beyond each facet plane summed, as the exact cut failed: "
+                           "part %zu: %.200s), exceeds %g of the input's %.17g",
+                           outside, nb, first_bound, vp[first_bound].xerr.message, trim, r->input_volume);
+    }
     free(vp);
     if (ret != ACD_OK) return ret;
-    *outside_bound = outside;
-    if (trim > 0 && outside > trim * r->input_volume * (1 + 1e-6) + vtol)
-        return acd_fail(err, ACD_ERR_VERIFY,
-                        "the parts' volume outside their trimmed hulls, up to %.17g, exceeds %g of the input's %.17g",
-                        outside, trim, r->input_volume);
     if (fabs(sum - r->input_volume) > vtol)
         return acd_fail(err, ACD_ERR_VERIFY, "part volumes add up to %.17g, the input's is %.17g", sum,
                         r->input_volume);
@@ -825,7 +850,9 @@ int acd_cmd_3d(int argc, char **argv) {
     if (!code && selfx.status != ACD_OK) code = acd_cli_report("3d", &selfx);
     if (!code && do_verify) {
         double outside = 0;
-        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, p.trim_coverage, p.threads, &outside, &err) : verify_surface(&mesh, &r, &err);
+        size_t nbound = 0;
+        st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, p.trim_coverage, p.threads, &outside, &nbound, &err)
+                                   : verify_surface(&mesh, &r, &err);
         /* a solid-mode result that fails on a mesh crossing itself: the input's fault (exit 2), the
          * verification's message kept */
         if (st != ACD_OK && p.mode == ACD3D_SOLID && self_crossing(&mesh, &npairs, pair) && npairs > 0) {
@@ -837,10 +864,14 @@ int acd_cmd_3d(int argc, char **argv) {
                      repaired ? "repaired " : "", npairs, pair[0], pair[1], v.message);
         }
         if (st != ACD_OK) code = acd_cli_report("3d", &err);
+        else if (verbose && p.trim_coverage > 0 && nbound == 0)
+            fprintf(stderr, "acd 3d: verified: volumes add up, parts meet tau, %.3g of the input's volume outside the "
+                            "trimmed hulls (exact; limit %g)\n", r.input_volume > 0 ? outside / r.input_volume : 0.0,
+                    p.trim_coverage);
         else if (verbose && p.trim_coverage > 0)
             fprintf(stderr, "acd 3d: verified: volumes add up, parts meet tau, at most %.3g of the input's volume "
-                            "outside the trimmed hulls (limit %g)\n", r.input_volume > 0 ? outside / r.input_volume : 0.0,
-                    p.trim_coverage);
+                            "outside the trimmed hulls (exact but on %zu part(s) where the cut failed, an upper bound; "
+                            "limit %g)\n", r.input_volume > 0 ? outside / r.input_volume : 0.0, nbound, p.trim_coverage);
         else if (verbose)
             fprintf(stderr, p.mode == ACD3D_SOLID ? "acd 3d: verified: volumes add up, parts meet tau, parts inside hulls\n"
                                                   : "acd 3d: verified: the parts tile the surface and meet tau\n");

@@ -55,17 +55,36 @@ acd_status acd_hull_volume(const double *points, size_t n, double *volume, acd_e
  * Empty hull: +INFINITY. */
 double acd_hull_plane_distance(const acd_hull *h, const double p[3]);
 
-/* An undirected hull edge v[0] < v[1]: left is the triangle that runs v[0] -> v[1] (the facet on the
- * left walking from v[0] to v[1], seen from outside), right the one that runs v[1] -> v[0];
- * ACD_HULL_NO_NEIGHBOR on the boundary of a planar hull. */
 /* An upper bound of the volume of the closed, outward solid m outside the hull h (dim 3): the
  * solid's volume beyond each plane of a facet some vertex of m lies beyond by more than tol, summed
  * over the distinct planes (the triangles of one facet share its plane, planes within 1e-9 in
  * normal and 1e-9 x tol_scale in offset count once; a region beyond two planes is counted twice).
  * 0 when every vertex of m is within tol of h. NaN when out of memory. Used to check trimmed hulls
- * (acd3d_params.trim_coverage). */
+ * (acd3d_params.trim_coverage) where acd_hull_volume_outside fails. */
 double acd_hull_volume_outside_bound(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale);
+/* The volume of the closed, outward solid m outside the hull h, exactly up to rounding: m cut
+ * successively by each of the planes acd_hull_volume_outside_bound sums over (the distinct planes of
+ * the facets some vertex of m lies beyond by more than tol; the same tol and tol_scale), every piece
+ * that reaches beyond the plane split by it (acd_plane_cut, exact sides: geom3/plane_cut.h; each
+ * plane turned into three points once, through the facet's centre projected onto it), the pieces
+ * beyond taken off; *outside is the sum of their volumes, the pieces left lie inside every plane.
+ * A region beyond several planes counts once, so *outside <= the bound (up to rounding), and is 0
+ * when no vertex of m is beyond h by more than tol (then m is not looked at further: not checked
+ * closed). h of dim < 3 (no interior): the whole solid's volume. Specks of volume within rounding
+ * and flat shells are dropped by the cuts (acd_plane_cut_flags with ACD_PLANE_CUT_DROP_SPECKS).
+ * On a solid that crosses itself the volumes are signed (winding numbers), as every volume here.
+ * Returns ACD_OK; ACD_ERR_NOMEM when out of memory (also inside a cut); ACD_ERR_INVALID_ARGUMENT
+ * for NULL pointers or a tol or tol_scale that is not finite; any other status is a plane cut that
+ * failed, its own status with the plane named in err (ACD_ERR_NON_MANIFOLD: m, or a piece the
+ * rounding left pinched, is not closed and consistently oriented; a solid crossing itself can also
+ * fail a cut so). On failure *outside is NaN: a caller may fall back to the bound. Serial and
+ * deterministic. */
+acd_status acd_hull_volume_outside(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale,
+                                   double *outside, acd_error *err);
 
+/* An undirected hull edge v[0] < v[1]: left is the triangle that runs v[0] -> v[1] (the facet on the
+ * left walking from v[0] to v[1], seen from outside), right the one that runs v[1] -> v[0];
+ * ACD_HULL_NO_NEIGHBOR on the boundary of a planar hull. */
 typedef struct acd_hull_edge {
     uint32_t v[2];
     uint32_t left, right;
