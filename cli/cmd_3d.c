@@ -851,8 +851,12 @@ int acd_cmd_3d(int argc, char **argv) {
     if (!code && do_verify) {
         double outside = 0;
         size_t nbound = 0;
+        struct timespec v0, v1;
+        clock_gettime(CLOCK_MONOTONIC, &v0);
         st = p.mode == ACD3D_SOLID ? verify(&r, p.budget_parts > 0, p.trim_coverage, p.threads, &outside, &nbound, &err)
                                    : verify_surface(&mesh, &r, &err);
+        clock_gettime(CLOCK_MONOTONIC, &v1);
+        if (verbose) fprintf(stderr, "acd 3d: --verify took %.3f s\n", since(&v0, &v1));
         /* a solid-mode result that fails on a mesh crossing itself: the input's fault (exit 2), the
          * verification's message kept */
         if (st != ACD_OK && p.mode == ACD3D_SOLID && self_crossing(&mesh, &npairs, pair) && npairs > 0) {

@@ -7,7 +7,8 @@
  *   1 - trim_coverage of the input and has a higher IoU; the same output for 1 and 2 threads;
  * - max_hull_vertices still holds with trimming; bad values and surface mode are refused;
  * - on one part, the volume outside its trimmed hull computed by cutting the part with the hull's
- *   planes: within the part's account (the guarantee), and the account within 1.1 x of it;
+ *   planes: within the part's account (the guarantee), and the account within 1.1 x of it; the
+ *   library's acd_hull_volume_outside (what --verify measures with) gives the same;
  * - a part that intersects itself is not trimmed (its signed volumes bound nothing), and it is counted;
  * - acd3/trim_beyond's volumes beyond a plane's levels, in one pass, are bitwise the sums of
  *   acd_geom3_triangle_volume_beyond per level over the triangles of acd_bvh_query_halfspace in its
@@ -360,6 +361,18 @@ static void test_trim_accounts_exact(void **state) {
                   part.trimmed_volume / vol, outside / vol, part.trimmed_volume / outside);
     assert_true(outside <= part.trimmed_volume + 1e-9 * vol);
     assert_true(part.trimmed_volume <= 1.1 * outside);
+    /* the library's measure (acd_hull_volume_outside, what --verify uses) agrees with this one, and
+     * the bound it replaced counts the caps' overlaps twice */
+    acd_hull th;
+    assert_int_equal(acd_hull_compute(part.hull.vertices, part.hull.nvertices, &th, &err), ACD_OK);
+    double lib;
+    assert_int_equal(acd_hull_volume_outside(&th, &m, 1e-9 * 2.0, 2.0, &lib, &err), ACD_OK);
+    const double bound = acd_hull_volume_outside_bound(&th, &m, 1e-9 * 2.0, 2.0);
+    print_message("trim accounts: acd_hull_volume_outside %.9g, here %.9g, the bound %.6g (of the part's volume)\n",
+                  lib / vol, outside / vol, bound / vol);
+    assert_float_equal(lib, outside, 1e-9 * vol);
+    assert_true(bound > lib);
+    acd_hull_free(&th);
     acd_mesh_free(&part.hull);
     acd_mesh_free(&m);
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # acd 3d --trim-coverage F (docs/acd3d.md "Trimmed hulls"): on a bumpy sphere at a part budget the
 # hulls are trimmed (caps cut off, reported on stdout and in --json's "trim"), --verify passes with
-# the trimmed volume within F of the input's, and acd eval (independent code) finds the union's
+# the volume outside the trimmed hulls (measured exactly) within F of the input's (also on
+# ChineseDragon-10kv, where the bound it used before failed), and acd eval (independent code) finds the union's
 # coverage at least 1 - F (up to sampling) and a higher IoU than without trimming; a run without the
 # option writes no "trim"; bad values and surface mode are usage errors.
 set -u
@@ -50,7 +51,9 @@ for n in 1 2; do
   grep "verified" "$T/v$n.err" > "$T/v$n.line" || fail "--verify -v --threads $n: no verdict: $(cat "$T/v$n.err")"
 done
 cmp -s "$T/v1.line" "$T/v2.line" || fail "--verify: threads 1 and 2 differ: $(cat "$T/v1.line" "$T/v2.line")"
-grep -q "at most [0-9.e-]* of the input's volume outside the trimmed hulls" "$T/v1.line" || fail "verdict: $(cat "$T/v1.line")"
+# the volume outside measured exactly (each part cut by its hull's planes), not bounded
+grep -q "verified: .* [0-9.e-]* of the input's volume outside the trimmed hulls (exact; limit 0.002)" "$T/v1.line" ||
+  fail "verdict: $(cat "$T/v1.line")"
 python3 - "$T/p.json" "$T/t.json" <<'PY' || fail "json"
 import json, sys
 p, t = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
@@ -79,6 +82,19 @@ for v in -0.001 0.02 abc nan; do
   "$ACD" 3d "$M" --budget 6 --trim-coverage "$v" > /dev/null 2> "$T/e.err"; rc=$?
   [ $rc -eq 1 ] || fail "--trim-coverage $v: exit $rc, expected 1"
 done
+# ChineseDragon (data/meshes): where the caps of different cuts overlap, the bound --verify used
+# before (the part beyond each plane, summed: 185.21 against the limit 184.08) failed a run whose
+# accounts hold (charged 183.81); the exact measure passes (172.81, docs/acd3d.md "Charges along a
+# plane"). Its repaired mesh crosses itself, so a --verify failure there would be exit 2.
+D="$SRC/data/meshes/ChineseDragon-10kv.off"
+if [ -f "$D" ]; then
+  timeout 120 "$ACD" 3d "$D" --budget 16 --trim-coverage 0.0008 --verify -v --threads 2 > /dev/null 2> "$T/cd.err" ||
+    fail "ChineseDragon --trim-coverage 0.0008 --verify: exit $? $(grep -v '%' "$T/cd.err")"
+  grep -q "verified: .* of the input's volume outside the trimmed hulls (exact; limit 0.0008)" "$T/cd.err" ||
+    fail "ChineseDragon verdict: $(grep -v '%' "$T/cd.err")"
+else
+  echo "skip ChineseDragon-10kv.off: no data/meshes (bash scripts/fetch-data.sh)"
+fi
 "$ACD" 3d "$M" --mode surface --trim-coverage 0.001 > /dev/null 2> "$T/e.err"; rc=$?
 [ $rc -eq 1 ] || fail "surface mode --trim-coverage: exit $rc, expected 1 $(cat "$T/e.err")"
 grep -q "solid mode only" "$T/e.err" || fail "surface mode message: $(cat "$T/e.err")"
