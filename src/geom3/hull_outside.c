@@ -68,12 +68,12 @@ acd_status acd_hull_volume_outside(const acd_hull *h, const acd_mesh *m, double 
     size_t *sel = NULL, nsel = 0;
     for (size_t f = 0; f < h->ntriangles; f++) {
         const double *q = h->planes + 4 * f;
-        double w = -INFINITY;
-        for (size_t k = 0; k < m->nvertices; k++) {
+        int reached = 0; /* the bound's max over the vertices > tol: some vertex > tol */
+        for (size_t k = 0; k < m->nvertices && !reached; k++) {
             const double *v = m->vertices + 3 * k;
-            w = fmax(w, q[0] * v[0] + q[1] * v[1] + q[2] * v[2] + q[3]);
+            reached = q[0] * v[0] + q[1] * v[1] + q[2] * v[2] + q[3] > tol;
         }
-        if (!(w > tol)) continue;
+        if (!reached) continue;
         int dup = 0;
         for (size_t j = 0; j < nsel && !dup; j++) {
             const double *s = h->planes + 4 * sel[j];
