@@ -48,13 +48,9 @@ BUDGET_PARTS=${BUDGET_PARTS:-$TIGHT_PARTS}
 BUDGET="--budget $BUDGET_PARTS --cut-choice volume --merge-order volume --merge-parts $BUDGET_PARTS --merge-refine $TIGHT_REFINE"
 # The budget pipeline with the hulls trimmed (docs/acd3d.md "Trimmed hulls"): at most TRIM_F of the
 # input's volume left outside the hulls; at TRIM_PARTS parts (the armadillo at 43, CoACD's largest
-# count in the issue, where the untrimmed budget column is at 40). trim_budget: the budget pass's own
-# count; the armadillo's is 59 (1.375 x 43), its pieces then merged to 43 (docs/results/3d-armadillo.md:
-# split further, then joined back, IoU 0.9509 -> 0.9516 at about the same CPU; not for the other meshes,
-# where it raised knot1's concavity_max and bunny00's time).
+# count in the issue, where the untrimmed budget column is at 40).
 TRIM_F=${TRIM_F:-0.0008}
 trim_parts() { case $1 in armadillo.off) echo 43;; *) echo "$BUDGET_PARTS";; esac; }
-trim_budget() { case $1 in armadillo.off) echo 59;; *) trim_parts "$1";; esac; }
 diag_radius() { # FILE -> diagonal radius
   local f=$1 r d
   r=$("$ACD" 3d "$f" -t 100 --no-merge --threads 2 2>/dev/null | head -1 | sed 's/.*radius \([0-9.e+-]*\)).*/\1/')
@@ -104,7 +100,7 @@ target_table() {
   echo "**Budget** (\`-t 10 $BUDGET\`, docs/acd3d.md \"Excess-driven budget\"): the tight column's merge tau; one run."
   echo "**Trimmed**: the budget run with \`--trim-coverage $TRIM_F\` (docs/acd3d.md \"Trimmed hulls\": caps of the hulls"
   echo "that are mostly air cut off, at most $TRIM_F of the input's volume left outside the hulls), at $BUDGET_PARTS parts"
-  echo "and the armadillo at 43 (its budget pass to 59 parts, then merged to 43: docs/results/3d-armadillo.md)."
+  echo "and the armadillo at 43."
   echo "**No merge**: the default's tau with \`--no-merge\`. cpu: user CPU seconds of the run (both threads)."
   echo
   echo "| model | triangles | default: tau / merge tau | parts | concavity_max | IoU | coverage | cpu | tight: tau / merge tau | parts | concavity_max | IoU | coverage | seconds | cpu | fastest met: tau | setting | IoU | seconds | cpu | budget: parts | concavity_max | IoU | coverage | seconds | cpu | trimmed: parts | concavity_max | IoU | coverage | seconds | cpu | no merge: parts | concavity_max | IoU |"
@@ -159,7 +155,7 @@ target_table() {
     row="$row | $1 | $4 | $5 | $6 | $2 | $3"
     local tn
     tn=$(trim_parts "$mf")
-    set -- $(run_eval "$f" 10 --merge-tau $tmt --budget "$(trim_budget "$mf")" --cut-choice volume --merge-order volume --merge-parts "$tn" \
+    set -- $(run_eval "$f" 10 --merge-tau $tmt --budget "$tn" --cut-choice volume --merge-order volume --merge-parts "$tn" \
       --merge-refine $TIGHT_REFINE --trim-coverage $TRIM_F)
     row="$row | $1 | $4 | $5 | $6 | $2 | $3"
     set -- $(run_eval "$f" "$dtau" --no-merge)

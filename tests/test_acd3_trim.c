@@ -10,6 +10,8 @@
  *   planes: within the part's account (the guarantee), and the account within 1.1 x of it; the
  *   library's acd_hull_volume_outside (what --verify measures with) gives the same;
  * - a part that intersects itself is not trimmed (its signed volumes bound nothing), and it is counted;
+ * - an internal wall on a part's hull (a face a cut made) is not cut under, which the same pass does
+ *   without the input (a U prism cut across its arms);
  * - acd3/trim_beyond's volumes beyond a plane's levels, in one pass, are bitwise the sums of
  *   acd_geom3_triangle_volume_beyond per level over the triangles of acd_bvh_query_halfspace in its
  *   order (what the trimmed hulls were chosen by before it), with levels through vertices. */
@@ -641,6 +643,98 @@ static void test_trim_beyond_bitwise(void **state) {
     acd_mesh_free(&m);
 }
 
+/* A prism over a U (in x, y; arms and bar 0.2 wide, 3 x 3), along z from 0 to 1. */
+static void u_prism(acd_mesh *m) {
+    static const double P[8][2] = {{0, 0}, {3, 0}, {3, 3}, {2.8, 3}, {2.8, 0.2}, {0.2, 0.2}, {0.2, 3}, {0, 3}};
+    static const uint32_t Q[3][4] = {{0, 1, 4, 5}, {1, 2, 3, 4}, {0, 5, 6, 7}}; /* convex, counterclockwise */
+    m->nvertices = 16;
+    m->ntriangles = 12 + 16;
+    m->vertices = malloc(3 * m->nvertices * sizeof *m->vertices);
+    m->triangles = malloc(3 * m->ntriangles * sizeof *m->triangles);
+    for (size_t k = 0; k < 16; k++) {
+        m->vertices[3 * k] = P[k % 8][0];
+        m->vertices[3 * k + 1] = P[k % 8][1];
+        m->vertices[3 * k + 2] = k < 8 ? 0 : 1;
+    }
+    uint32_t *t = m->triangles;
+    for (int q = 0; q < 3; q++) {
+        const uint32_t *c = Q[q];
+        const uint32_t tri[4][3] = {{c[0] + 8, c[1] + 8, c[2] + 8}, {c[0] + 8, c[2] + 8, c[3] + 8}, /* top */
+                                    {c[0], c[2], c[1]}, {c[0], c[3], c[2]}};                       /* bottom */
+        memcpy(t, tri, sizeof tri);
+        t += 12;
+    }
+    for (uint32_t a = 0; a < 8; a++) {
+        const uint32_t b = (a + 1) % 8, tri[2][3] = {{a, b, b + 8}, {a, b + 8, a + 8}};
+        memcpy(t, tri, sizeof tri);
+        t += 6;
+    }
+}
+
+/* Trims copies of the pieces' hulls of cr; the largest y of piece `low`'s trimmed hull. */
+static double trim_pieces_max_y(const acd_cut_result *cr, size_t low, const acd_mesh *input, size_t *cuts) {
+    const size_t n = cr->npieces;
+    acd3d_part *parts = calloc(n, sizeof *parts);
+    double vol = 0;
+    acd_error err;
+    for (size_t i = 0; i < n; i++) {
+        acd_hull h;
+        assert_int_equal(acd_hull_compute(cr->pieces[i].mesh.vertices, cr->pieces[i].mesh.nvertices, &h, &err), ACD_OK);
+        parts[i].mesh = cr->pieces[i].mesh; /* (read only) */
+        parts[i].hull.vertices = h.vertices, parts[i].hull.nvertices = h.nvertices;
+        parts[i].hull.triangles = h.triangles, parts[i].hull.ntriangles = h.ntriangles;
+        parts[i].hull_volume = h.volume;
+        parts[i].volume = closed_volume(&parts[i].mesh);
+        vol += parts[i].volume;
+        h.vertices = NULL, h.triangles = NULL;
+        acd_hull_free(&h);
+    }
+    acd3_trim_stats st;
+    assert_int_equal(acd3_trim_hulls(parts, n, vol, 0.005 * vol, ACD3_TRIM_MIN_GAIN_REL * vol, 0, input, NULL, 2, NULL,
+                                     NULL, &st, &err),
+                     ACD_OK);
+    *cuts = st.cuts;
+    double ymax = -INFINITY;
+    for (size_t v = 0; v < parts[low].hull.nvertices; v++) ymax = fmax(ymax, parts[low].hull.vertices[3 * v + 1]);
+    for (size_t i = 0; i < n; i++) acd_mesh_free(&parts[i].hull);
+    free(parts);
+    return ymax;
+}
+
+/* An internal wall on a part's hull is not cut under (acd3/trim's mark_walls). The U prism cut across
+ * its arms at y = 1: the lower piece (the bar and the arms' feet) touches the cut plane in the arms'
+ * two sections (area 0.4) where its hull's facet spans 3 x 1, so a cap under that facet passes the
+ * ratio test (about 7.5 against 1 + 3.8 / 1.72); cutting it would leave the piece's layer along the two
+ * walls outside every hull (the arms' tops lie across them), the union's boundary inside the solid.
+ * With the input given the lower hull keeps its facet at y = 1; without it (NULL: the walls are not
+ * looked for, nor the input's crossings) the same pass cuts under that facet. */
+static void test_trim_internal_wall(void **state) {
+    (void)state;
+    acd_mesh m;
+    u_prism(&m);
+    acd_error err;
+    acd_cut_plane pl;
+    const double o[3] = {1.5, 1, 0.5}, n[3] = {0, 1, 0};
+    assert_int_equal(acd_cut_plane_from_normal(o, n, 4, &pl, &err), ACD_OK);
+    acd_cut_result cr;
+    assert_int_equal(acd_plane_cut(&m, &pl, &cr, &err), ACD_OK);
+    assert_int_equal(cr.npieces, 3);
+    size_t low = SIZE_MAX;
+    for (size_t i = 0; i < cr.npieces; i++)
+        if (cr.pieces[i].side < 0) low = i;
+    assert_true(low < cr.npieces);
+    assert_float_equal(closed_volume(&cr.pieces[low].mesh), 0.92, 1e-12);
+    size_t cuts_walls, cuts_none;
+    const double y_walls = trim_pieces_max_y(&cr, low, &m, &cuts_walls);
+    const double y_none = trim_pieces_max_y(&cr, low, NULL, &cuts_none);
+    print_message("internal wall: lower hull up to y = %.6f with the walls (%zu cuts), %.6f without (%zu cuts)\n",
+                  y_walls, cuts_walls, y_none, cuts_none);
+    assert_float_equal(y_walls, 1.0, 1e-12);
+    assert_true(cuts_none > 0 && y_none < 1 - 1e-3);
+    acd_cut_result_free(&cr);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_volume_beyond_cube),   cmocka_unit_test(test_volume_beyond_sphere),
@@ -648,6 +742,7 @@ int main(void) {
         cmocka_unit_test(test_trim_refused),         cmocka_unit_test(test_trim_self_crossing),
         cmocka_unit_test(test_trim_beyond_bitwise),  cmocka_unit_test(test_trim_given_trees),
         cmocka_unit_test(test_trim_clip_cone_bitwise), cmocka_unit_test(test_trim_accounts_exact),
+        cmocka_unit_test(test_trim_internal_wall),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

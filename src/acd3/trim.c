@@ -21,6 +21,9 @@ static const double ACD3_TRIM_DEPTHS[ACD3_TRIM_NDEPTHS] = {0.001, 0.002, 0.005, 
 #define ACD3_TRIM_BATCH 4
 /* A cut removing no part volume is scored as removing this fraction of min_gain (finite ratios). */
 #define ACD3_TRIM_LOSS_FLOOR 1e-6
+/* An internal wall (is_wall): a part triangle with its corners within this fraction of the depth
+ * unit of a facet plane and its centroid farther than that from the input's surface. */
+#define ACD3_TRIM_WALL_REL 1e-6
 
 /* A candidate plane of a hull: a facet plane of the initial hull or a plane a cut was made by, and
  * its caps at the depths: the hull volume beyond (gain, for the current hull) and the part volume
@@ -33,6 +36,9 @@ typedef struct trim_plane {
     double chg[NDEPTHS];             /* fmax(loss - base, 0): the part volume a cut at the depth charges */
     double den[NDEPTHS];             /* with the losses: fmax(chg, the loss floor), choose's denominators */
     int have_loss;
+    int facet;                       /* a facet plane of the initial hull */
+    int wall_known, wall;            /* whether it holds an internal wall of the part (is_wall: then not
+                                        cut), once asked */
     int dirty;                       /* gains measured before the last cuts: upper bounds */
     int best_ok;                     /* best_k, best_r hold the plane's best cap for its gains and a room
                                         no smaller than the current one (choose) */
@@ -61,8 +67,9 @@ typedef struct trim_hull {
     trim_poly h;      /* the current hull */
     double *vdot;     /* h.nv once cut: its vertices' n.x in plane_measure (NULL: computed per triangle) */
     acd3_trim_tree tree; /* the part's triangles (from its BVH) */
-    const acd_bvh *bvh;  /* the part's BVH: the caller's (acd3_trim_trees) or own_bvh, until the
-                            self-crossing test */
+    const acd_bvh *bvh;  /* the part's BVH: the caller's (acd3_trim_trees) or own_bvh */
+    const acd_mesh *part; /* the part (its triangles: is_wall) */
+    const acd_bvh *input_bvh; /* the input's tree (is_wall), or NULL: no input, walls not looked for */
     acd_bvh own_bvh;
     double unit;      /* depth unit: cube root of the initial hull volume */
     double loss_floor; /* a cut's loss is scored as at least this (ACD3_TRIM_LOSS_FLOOR x min_gain) */
@@ -193,6 +200,43 @@ static int add_plane(trim_hull *T, const double n[3], double off0) {
     return 1;
 }
 
+/* Whether facet plane P of T holds a triangle of T's part that is not on the input's surface: an
+ * internal wall (a face a cut made, or a section of a join) lying on the hull's boundary. The hull's
+ * facet there spans the wall and air beside it, so its caps can pass the ratio test, and cutting one
+ * takes the part's layer along the wall out of every hull (the neighbour lies across the wall): the
+ * union's boundary then runs through the solid, far from its surface (fandisk with min_gain 6e-6:
+ * concavity_max 0.0116 -> 0.025; docs/results/3d-armadillo.md). A triangle of the input's surface,
+ * clipped or not, lies on it. A triangle in the plane: its corners within ACD3_TRIM_WALL_REL x the
+ * depth unit of it (the part's triangles near it from its tree); off the surface: its centroid
+ * farther than that from the input's triangles. */
+typedef struct wall_query {
+    const acd_mesh *m;
+    const acd_bvh *input;
+    const double *n;
+    double off, tol;
+    int wall;
+} wall_query;
+
+static int wall_tri(void *user, uint32_t t) {
+    wall_query *q = user;
+    const double *p[3];
+    for (int k = 0; k < 3; k++) {
+        p[k] = q->m->vertices + 3 * (size_t)q->m->triangles[3 * (size_t)t + k];
+        if (!(fabs(acd_dot3(q->n, p[k]) - q->off) <= q->tol)) return 0; /* not in the plane */
+    }
+    double g[3];
+    for (int k = 0; k < 3; k++) g[k] = (p[0][k] + p[1][k] + p[2][k]) / 3;
+    acd_bvh_closest_result r;
+    q->wall = acd_bvh_closest(q->input, g, q->tol * q->tol, &r) == 0; /* no input point within tol */
+    return q->wall;
+}
+
+static int is_wall(const trim_hull *T, const trim_plane *P) {
+    wall_query q = {T->part, T->input_bvh, P->n, P->off0, ACD3_TRIM_WALL_REL * T->unit, 0};
+    acd_bvh_query_halfspace(T->bvh, P->n, P->off0 - q.tol, wall_tri, &q);
+    return q.wall;
+}
+
 /* The best cut of hull T among its planes' caps (largest gain / charge) charging at most `room` of
  * part volume. A cap's charge is its loss less the plane's base: the part volume beyond the plane's
  * own level (off0), which is beyond each of its depths, was charged already when off0 is the plane
@@ -210,7 +254,7 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
         T->have = 0;
         for (size_t j = 0; j < T->npl; j++) {
             trim_plane *P = &T->pl[j];
-            if (!P->have_loss) continue;
+            if (!P->have_loss || P->wall) continue;
             /* the plane's best cap (the first of largest ratio), kept while its gains stand and it fits
              * the room: the room only shrinks, and the best of fewer caps is the same while it is among
              * them; the first plane of largest best ratio is then the scan's first cap of largest ratio */
@@ -231,6 +275,12 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
             T->ratio = P->best_r;
         }
         if (!T->have) return;
+        trim_plane *B = &T->pl[bj];
+        if (B->facet && !B->wall_known && T->input_bvh) { /* asked of the planes that would be cut only */
+            B->wall_known = 1;
+            B->wall = is_wall(T, B);
+            if (B->wall) continue;
+        }
         if (!T->pl[bj].dirty) {
             const trim_plane *P = &T->pl[bj];
             memcpy(T->plane, P->n, sizeof T->plane);
@@ -296,6 +346,7 @@ static int init_planes(trim_hull *T, double min_gain, const uint32_t *nbr) {
         const double *pl = keys[f].pl;
         if (f > 0 && !memcmp(keys[f - 1].pl, pl, sizeof keys[f].pl)) continue;
         ok = add_plane(T, pl, -pl[3]);
+        if (ok) T->pl[T->npl - 1].facet = 1;
         if (ok) plane_measure(T, &T->pl[T->npl - 1], min_gain, &adj, keys[f].t);
     }
     free(keys), free(mark), free(stack);
@@ -573,9 +624,22 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             T[j].crossing = pst[j] == ACD_OK && crossings;
         }
     }
-    for (size_t j = 0; j < nparts; j++) { /* (the trees are not needed after the test) */
-        acd_bvh_free(&T[j].own_bvh);
-        T[j].bvh = NULL;
+    /* the input's tree for the walls (is_wall): the caller's, else built */
+    acd_bvh own_input;
+    memset(&own_input, 0, sizeof own_input);
+    const acd_bvh *input_bvh = NULL;
+    if (input && input_st == ACD_OK) {
+        input_bvh = trees ? trees->input : NULL;
+        if (!acd_bvh_is_over(input_bvh, input->vertices, input->nvertices, input->triangles, input->ntriangles)) {
+            acd_error e;
+            input_st = acd_bvh_build(&own_input, input->vertices, input->nvertices, input->triangles,
+                                     input->ntriangles, &e);
+            input_bvh = input_st == ACD_OK ? &own_input : NULL;
+        }
+    }
+    for (size_t j = 0; j < nparts; j++) {
+        T[j].part = &parts[j].mesh;
+        T[j].input_bvh = input_bvh;
     }
     acd_status st = input_st == ACD_OK ? ACD_OK : acd_fail(err, input_st, "trim: out of memory");
     for (size_t i = 0; i < nparts && st == ACD_OK; i++) {
@@ -686,9 +750,11 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         poly_free(&T[i].h);
         free(T[i].vdot);
         acd3_trim_tree_free(&T[i].tree);
+        acd_bvh_free(&T[i].own_bvh);
         free(T[i].pl);
         free(T[i].corner);
     }
+    acd_bvh_free(&own_input);
     free(T);
     free(pst);
     return st;

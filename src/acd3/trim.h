@@ -17,7 +17,10 @@
  *
  * Candidates: every hull facet's plane moved inward by ACD3_TRIM_DEPTHS depths (fractions of the
  * cube root of the part's initial hull volume), and each cut's own plane moved inward likewise; a cut
- * must remove at least min_gain of hull volume.
+ * must remove at least min_gain of hull volume. With the input given, a facet plane holding one of the
+ * part's internal walls (a part triangle off the input's surface: a face a cut made) is not a
+ * candidate: a cap under it would take the part's layer along the wall out of every hull, and the
+ * union's boundary would run through the solid (docs/results/3d-armadillo.md).
  * With max_vertices >= 4 a cut leaving more hull vertices than that is refused (the hull is then
  * left as it is). When the input (the mesh the parts tile; NULL: not checked) intersects itself, a
  * part that intersects itself (acd_mesh_self_intersections) keeps its whole hull: its signed
@@ -54,8 +57,9 @@ typedef struct acd3_trim_stats {
  * acd_bvh_build makes of them; one over other arrays is not used: built here). The result is the
  * same, bit for bit (the losses are summed in the tree's order: the same tree, the same sums). */
 typedef struct acd3_trim_trees {
-    const acd_bvh *input;        /* the input's tree (its self-crossing test) */
-    const acd_bvh *const *parts; /* NULL, or per part its tree (the losses, its self-crossing test) */
+    const acd_bvh *input;        /* the input's tree (its self-crossing test, the walls' surface test) */
+    const acd_bvh *const *parts; /* NULL, or per part its tree (the losses, its self-crossing test, its
+                                    triangles near a plane asked to be a wall) */
 } acd3_trim_trees;
 
 /* Trims parts[i].hull (and hull_volume) of solid parts in place, setting parts[i].trimmed_volume.
