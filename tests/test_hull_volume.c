@@ -438,6 +438,41 @@ static void test_sweep_fold(void **state) {
     assert_true(sweep_fuzz_queries(pts, xs));
 }
 
+/* fuzz_hull_volume (fuzz/corpus/hull_volume/fold_per_set; fuzzrun2, 2026-11-27): eight points, a
+ * corner of a cube of side a = 1.67 with a few points moved by 3e-7 to 8e-5 of a and the zero
+ * coordinates 1e-94 (the fuzz input is these times 2^173). The per-set Quickhull
+ * (acd_hull_volume_fast) added point 5, 1.2e-8 above the facet (4, 0, 7) (70 tolerances) and as
+ * near the line of its edge (4, 7); then point 1, 3.9e-7 of a above (0, 6, 7) and 3.9e-7 off the
+ * line of the horizon edge (7, 0), made the facet (7, 0, 1), which point 5 (the third vertex of
+ * the horizon facet (0, 7, 5)) lay 1.4e-4 above: a fold (as the sweep's, test_sweep_fold), and
+ * point 3, tested against (0, 2, 6) alone, was never tested against the folded facets: the volume
+ * 2.79e-5 below qhull's (the fuzz target's slack is 1e-6 of extent^3). The fold check the sweep
+ * made now runs in the per-set hull too: the set goes to qhull. */
+static void test_fold_per_set(void **state) {
+    (void)state;
+    static const double pts[3 * 8] = {
+        -0x1.acacacacacacap+0, -0x1.acacacacacacap+0, -0x1.acacacacacacap+0,
+        -0x1.acaca37373737p+0, -0x1.acacacacacacap+0, -0x1.acacacacacacap+0,
+        -0x1.acacacacacacap+0, 0x1.73737370e3737p-313, 0x1.7373737373737p-313,
+        0x1.7373737373737p-313, -0x1.acaca37373737p+0, -0x1.acacacacacacap+0,
+        -0x1.acacacacacacap+0, -0x1.acacacacacacap+0, 0x1.acacacacacacap-304,
+        -0x1.aca37373737cap+0, -0x1.acacacacacacap+0, 0x1.7cacacacacacap-313,
+        0x1.7cacacacacacap-313, 0x1.7373737373737p-313, 0x1.7373737373737p-313,
+        0x1.7373737373737p-313, -0x1.aca3737373737p+0, 0x1.73737cacacacap-313,
+    };
+    for (int e = 0; e <= 173; e += 173) {
+        double q[3 * 8];
+        for (int i = 0; i < 3 * 8; i++) q[i] = ldexp(pts[i], e);
+        double ref = qhull_volume(q, 8);
+        acd_hull_volume_ws w;
+        memset(&w, 0, sizeof w);
+        double v = acd_hull_volume_fast(q, 8, &w, NULL);
+        acd_hull_volume_ws_free(&w);
+        assert_true(ref > 0);
+        assert_true(fabs(v - ref) <= 1e-9 * ref);
+    }
+}
+
 /* fuzz_hull_volume (fuzz/corpus/hull_volume/sweep_tiny_prefix): ten points, the first six within
  * 6e-25 of the origin, the other four near 0.9 (here scaled by 2^43 from the fuzz input). The sweep's
  * first prefix (the six) started the hull with its own tolerance, 6e-35; the four far points were
@@ -578,6 +613,7 @@ int main(void) {
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_sweep_thin_prefix),
         cmocka_unit_test(test_sweep_fold),
+        cmocka_unit_test(test_fold_per_set),
         cmocka_unit_test(test_sweep_tiny_prefix),
         cmocka_unit_test(test_sweep_thin_start),
         cmocka_unit_test(test_volume_bits),

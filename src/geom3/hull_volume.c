@@ -35,9 +35,9 @@ static double hull_volume_pts(const double *pts, size_t n) {
  * at one that folds over its horizon facet by more than this many times the tolerance (hv_expand). */
 #define HULL_VOLUME_SLIVER 1e-6
 #define HULL_VOLUME_FOLD 1e3
-/* Distance from a horizon edge's line (in tolerances) below which a sweep's new facet is checked for
- * a fold: twice D / HULL_VOLUME_FOLD (a margin for the rounding), D (the extent's diagonal) at most
- * 1.8e10 tolerances. */
+/* Distance from a horizon edge's line (in tolerances) below which a new facet (a sweep's or the
+ * per-set hull's) is checked for a fold: twice D / HULL_VOLUME_FOLD (a margin for the rounding), D
+ * (the extent's diagonal) at most 1.8e10 tolerances. */
 #define HULL_VOLUME_NARROW 4e7
 /* A sweep starts its hull only from a prefix whose scale (its largest coordinate or extent) is at
  * least this fraction of the extent of all the points the sweep may add: the tolerance is the
@@ -306,9 +306,9 @@ static inline void hv_pack(double *pl, size_t j, const double n[3], double d) {
 
 /* The cone of new facets from point pi over the nh horizon edges in w->hor / w->horf (hv_visible,
  * which found them a simple cycle unless bad; w->start / w->end reset here); undo (if not NULL)
- * records each horizon facet's neighbour changed (facet, edge, old value). In a sweep, the horizon
- * edges pi is within HULL_VOLUME_NARROW x eps of the line of into w->horu (w->nnarrow of them:
- * hv_expand's fold check). *inward: 1 when the initial simplex's centroid is above a new facet.
+ * records each horizon facet's neighbour changed (facet, edge, old value). The horizon edges pi is
+ * within HULL_VOLUME_NARROW x eps of the line of into w->horu (w->nnarrow of them: hv_expand's fold
+ * check, in a sweep and in the per-set hull alike). *inward: 1 when the initial simplex's centroid is above a new facet.
  * Returns nh (the new facets are the last nh, in w->newf too), -1 when out of memory, -2 when the
  * horizon is not one simple cycle or (in a sweep) a new facet is a sliver (nothing changed then).
  * The planes first (hv_new_facet's arithmetic, two facets at a time where SSE2 is there: the same
@@ -351,10 +351,12 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, i
             __m128d ny = _mm_sub_pd(_mm_mul_pd(e1z, e2x), _mm_mul_pd(e1x, e2z));
             __m128d nz = _mm_sub_pd(_mm_mul_pd(e1x, e2y), _mm_mul_pd(e1y, e2x));
             __m128d l2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(nx, nx), _mm_mul_pd(ny, ny)), _mm_mul_pd(nz, nz));
-            if (sweep) {
+            {
                 __m128d a2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(e1x, e1x), _mm_mul_pd(e1y, e1y)), _mm_mul_pd(e1z, e1z));
-                __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(e2x, e2x), _mm_mul_pd(e2y, e2y)), _mm_mul_pd(e2z, e2z));
-                if (_mm_movemask_pd(_mm_cmpgt_pd(l2, _mm_mul_pd(_mm_mul_pd(ss, a2), b2))) != 3) bad = 1;
+                if (sweep) {
+                    __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(e2x, e2x), _mm_mul_pd(e2y, e2y)), _mm_mul_pd(e2z, e2z));
+                    if (_mm_movemask_pd(_mm_cmpgt_pd(l2, _mm_mul_pd(_mm_mul_pd(ss, a2), b2))) != 3) bad = 1;
+                }
                 int na = _mm_movemask_pd(_mm_cmplt_pd(l2, _mm_mul_pd(nw, a2)));
                 if (na & 1) horu[nn++] = (int)k;
                 if (na & 2) horu[nn++] = (int)k + 1;
@@ -380,11 +382,12 @@ static long hv_cone(acd_hull_volume_ws *w, const double *p, int pi, size_t nh, i
         double e1[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]}, e2[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
         double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
         double l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        double a2 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
         if (sweep) {
-            double a2 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2], b2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+            double b2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
             if (!(l2 > HULL_VOLUME_SLIVER * HULL_VOLUME_SLIVER * a2 * b2)) bad = 1;
-            if (l2 < narrow * a2) horu[nn++] = (int)k; /* distance from the line: sqrt(l2 / a2) */
         }
+        if (l2 < narrow * a2) horu[nn++] = (int)k; /* distance from the line: sqrt(l2 / a2) */
         hv_set_plane(&F0[k], n, l2, A);
         in |= hv_dist(&F0[k], cen) > 0;
         hv_pack(w->pl, k, F0[k].n, F0[k].d);
@@ -553,7 +556,11 @@ static int hv_expand(acd_hull_volume_ws *w, const double *p, double eps, size_t 
          * region was inconsistent (fuzz_hull_volume: a sweep's corner then counted 1.74 of volume
          * that lay inside, +15%); numerically ambiguous */
         if (inward) return -2;
-        /* a sweep's new facet must not fold over its horizon facet (that facet's third vertex above it
+        /* a new facet (a sweep's, or the per-set hull's since fuzz_hull_volume's fold_per_set: there
+         * point 1, 3.9e-7 of the extent off the line of its horizon edge, made a facet 1.4e-4 below the
+         * horizon facet's third vertex, and a later point was never tested against it, the volume
+         * 2.8e-5 below qhull's; acd_hull_volume_fast then leaves the set to qhull) must not fold over
+         * its horizon facet (that facet's third vertex above it
          * by more than HULL_VOLUME_FOLD x eps): q within eps of the horizon facet's plane and nearly on
          * the line of their edge tilts the new plane by up to eps over q's distance from that line, the
          * hull is no longer convex there, and a later point above the horizon facet is never tested
