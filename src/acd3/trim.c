@@ -543,6 +543,11 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
     const double loss_floor = ACD3_TRIM_LOSS_FLOOR * min_gain;
     int input_crossings = 0;
     acd_status input_st = ACD_OK;
+    /* the input's tree (its self-crossing test, then the walls': is_wall): the caller's, else built
+     * once in task -1 for both */
+    acd_bvh own_input;
+    memset(&own_input, 0, sizeof own_input);
+    const acd_bvh *input_bvh = NULL;
     /* the parts' planes, and (task -1) the input's self-intersections; the parts largest first (a
      * part's planes cost about its hull's size times its own: the largest last would run alone) */
     part_order *order = malloc(nparts * sizeof *order);
@@ -560,8 +565,15 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
         acd_error e;
         const long j = c < 0 || !order ? c : (long)order[c].i;
         if (j < 0) {
-            if (input)
-                input_st = acd_mesh_self_intersects_bvh(input, trees ? trees->input : NULL, &input_crossings, &e);
+            if (!input) continue;
+            input_bvh = trees ? trees->input : NULL;
+            if (!acd_bvh_is_over(input_bvh, input->vertices, input->nvertices, input->triangles, input->ntriangles)) {
+                input_st = acd_bvh_build(&own_input, input->vertices, input->nvertices, input->triangles,
+                                         input->ntriangles, &e);
+                input_bvh = input_st == ACD_OK ? &own_input : NULL;
+            }
+            if (input_st == ACD_OK)
+                input_st = acd_mesh_self_intersects_bvh(input, input_bvh, &input_crossings, &e);
             continue;
         }
         trim_hull *H = &T[j];
@@ -624,22 +636,9 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
             T[j].crossing = pst[j] == ACD_OK && crossings;
         }
     }
-    /* the input's tree for the walls (is_wall): the caller's, else built */
-    acd_bvh own_input;
-    memset(&own_input, 0, sizeof own_input);
-    const acd_bvh *input_bvh = NULL;
-    if (input && input_st == ACD_OK) {
-        input_bvh = trees ? trees->input : NULL;
-        if (!acd_bvh_is_over(input_bvh, input->vertices, input->nvertices, input->triangles, input->ntriangles)) {
-            acd_error e;
-            input_st = acd_bvh_build(&own_input, input->vertices, input->nvertices, input->triangles,
-                                     input->ntriangles, &e);
-            input_bvh = input_st == ACD_OK ? &own_input : NULL;
-        }
-    }
     for (size_t j = 0; j < nparts; j++) {
         T[j].part = &parts[j].mesh;
-        T[j].input_bvh = input_bvh;
+        T[j].input_bvh = input_st == ACD_OK ? input_bvh : NULL;
     }
     acd_status st = input_st == ACD_OK ? ACD_OK : acd_fail(err, input_st, "trim: out of memory");
     for (size_t i = 0; i < nparts && st == ACD_OK; i++) {
