@@ -701,7 +701,7 @@ static double trim_pieces_max_y(const acd_cut_result *cr, size_t low, const acd_
     return ymax;
 }
 
-/* An internal wall on a part's hull is not cut under (acd3/trim's mark_walls). The U prism cut across
+/* An internal wall on a part's hull is not cut under (acd3/trim's is_wall). The U prism cut across
  * its arms at y = 1: the lower piece (the bar and the arms' feet) touches the cut plane in the arms'
  * two sections (area 0.4) where its hull's facet spans 3 x 1, so a cap under that facet passes the
  * ratio test (about 7.5 against 1 + 3.8 / 1.72); cutting it would leave the piece's layer along the two
