@@ -1,6 +1,10 @@
 /* Shared body of the mesh reader fuzz targets: parse the input with one reader directly, and when
- * it is accepted, validate the mesh, write it in the same format and read it back (the counts
- * must survive). Any crash, leak, hang or sanitizer report is a bug. */
+ * it is accepted, validate the mesh, write it in the same format and read it back: the same mesh
+ * must come back (OBJ, OFF, PLY: every coordinate bit and every index; STL, a soup of float32
+ * corners welded on read: the triangle count, and each triangle's corners the float-rounded
+ * originals). A refusal must say why, beginning with the file's name, and a line or byte offset it
+ * names must lie within the input. Any crash, leak, hang, sanitizer report or violation is a bug
+ * (abort). */
 #ifndef ACD_FUZZ_COMMON_H
 #define ACD_FUZZ_COMMON_H
 
@@ -9,6 +13,19 @@
 
 #include "acd/mesh.h"
 #include "mesh/io_formats.h"
+
+/* A position the message names ("fuzz:L:" or "fuzz: byte offset N:") must exist in the input
+ * (only the prefix: the rest may quote the input). */
+static void fuzz_check_message(const acd_error *err, const char *buf, size_t size) {
+    const char *msg = err->message;
+    if (strncmp(msg, "fuzz", 4) != 0) abort(); /* every failure must say why, and in which file */
+    if (msg[4] == ':' && msg[5] >= '0' && msg[5] <= '9') {
+        size_t line = strtoull(msg + 5, NULL, 10), lines = 1;
+        for (size_t i = 0; i < size; i++) lines += buf[i] == '\n';
+        if (line < 1 || line > lines) abort();
+    }
+    if (!strncmp(msg, "fuzz: byte offset ", 18) && strtoull(msg + 18, NULL, 10) > size) abort();
+}
 
 typedef acd_status (*fuzz_reader)(const char *buf, size_t len, const char *name, acd_mesh_builder *b, acd_error *err);
 
@@ -20,10 +37,11 @@ static int fuzz_one(const uint8_t *data, size_t size, fuzz_reader read, acd_mesh
     acd_mesh_builder b;
     memset(&b, 0, sizeof b);
     acd_error err;
+    err.message[0] = '\0';
     acd_status s = read(buf, size, "fuzz", &b, &err);
+    if (s != ACD_OK) fuzz_check_message(&err, buf, size);
     free(buf);
     if (s != ACD_OK) {
-        if (!err.message[0]) abort(); /* every failure must say why */
         acd_builder_free(&b);
         return 0;
     }
@@ -38,7 +56,17 @@ static int fuzz_one(const uint8_t *data, size_t size, fuzz_reader read, acd_mesh
         acd_mesh back;
         if (acd_mesh_read_memory(out, n, fmt, "fuzz-rt", &back, &err) != ACD_OK) abort();
         if (back.ntriangles != m.ntriangles) abort();
-        if (fmt != ACD_MESH_FORMAT_STL && back.nvertices != m.nvertices) abort();
+        if (fmt != ACD_MESH_FORMAT_STL) {
+            if (back.nvertices != m.nvertices) abort();
+            if (m.nvertices && memcmp(back.vertices, m.vertices, 3 * m.nvertices * sizeof(double)) != 0) abort();
+            if (m.ntriangles && memcmp(back.triangles, m.triangles, 3 * m.ntriangles * sizeof(uint32_t)) != 0) abort();
+        } else {
+            for (size_t t = 0; t < 3 * m.ntriangles; t++)
+                for (int k = 0; k < 3; k++)
+                    if (back.vertices[3 * (size_t)back.triangles[t] + k] !=
+                        (double)(float)m.vertices[3 * (size_t)m.triangles[t] + k])
+                        abort();
+        }
         acd_mesh_free(&back);
         free(out);
     }

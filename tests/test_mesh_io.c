@@ -506,6 +506,42 @@ static void test_malformed(void **state) {
     }
 }
 
+/* A vertex short of a coordinate must be an error at its own line, never completed with the next
+ * line's first number: the number parser fell back to strtod, which skips newlines, so OBJ
+ * "v 0 0\n5" was the vertex (0, 0, 5) (the line "5" eaten), an OFF vertex line "0 0" took the next
+ * vertex's x, and later errors named lines too early (fuzzrun3, docs/results/fuzz.md). */
+static void test_coordinates_on_one_line(void **state) {
+    (void)state;
+    static const bad_case cases[] = {
+        {"v 0 0\n5\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", ACD_MESH_FORMAT_OBJ, ACD_ERR_PARSE,
+         "t:1: vertex needs 3 numbers (coordinate 3"},
+        {"v 0 0 0\nv 1 0\r\n\n7\nf 1 2 3\n", ACD_MESH_FORMAT_OBJ, ACD_ERR_PARSE, "t:2: vertex needs 3 numbers (coordinate 3"},
+        {"OFF\n4 1 0\n0 0\n0\n1 0 0\n0 1 0\n3 0 1 2\n", ACD_MESH_FORMAT_OFF, ACD_ERR_PARSE,
+         "t:3: vertex 0: coordinate 3 is missing"},
+        {"OFF\n3 1 0\n0 0\n\n\n0\n1 0 0\n0 1 0\n3 0 1 2\n", ACD_MESH_FORMAT_OFF, ACD_ERR_PARSE,
+         "t:3: vertex 0: coordinate 3 is missing"},
+        {"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0\n0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+         "endsolid\n",
+         ACD_MESH_FORMAT_STL, ACD_ERR_PARSE, "t:4: vertex coordinate 3 is missing"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        acd_mesh m;
+        acd_error err;
+        acd_status s = read_str(cases[i].text, cases[i].hint, &m, &err);
+        if (s != cases[i].status || !strstr(err.message, cases[i].where))
+            fail_msg("case %zu: status %d (want %d), message '%s' (want '%s')", i, (int)s, (int)cases[i].status,
+                     s == ACD_OK ? "" : err.message, cases[i].where);
+    }
+    /* blanks other than a newline still separate numbers on a line; inf and nan are still named */
+    acd_mesh m;
+    acd_error err;
+    assert_int_equal(read_str("v 1\f2\v3 \r\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", ACD_MESH_FORMAT_OBJ, &m, &err), ACD_OK);
+    assert_true(m.nvertices == 3 && m.vertices[0] == 1 && m.vertices[1] == 2 && m.vertices[2] == 3);
+    acd_mesh_free(&m);
+    assert_int_equal(read_str("v 0 -Infinity 0\n", ACD_MESH_FORMAT_OBJ, &m, &err), ACD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "t:1: vertex coordinate 2 is not finite"));
+}
+
 static void test_text_encodings(void **state) {
     (void)state;
     /* UTF-16 (both byte orders, with BOM) and UTF-8 with BOM are read */
@@ -705,6 +741,7 @@ int main(void) {
         cmocka_unit_test(test_huge_nonconvex_face),
         cmocka_unit_test(test_write_checks),
         cmocka_unit_test(test_number_parsing_exact),
+        cmocka_unit_test(test_coordinates_on_one_line),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -207,7 +207,7 @@ static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6, 
                                        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
 const char *acd_parse_double(const char *p, double *out) {
-    while (*p == ' ' || *p == '\t') p++;
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\f' || *p == '\v') p++;
     const char *start = p, *s = p;
     int neg = 0;
     if (*s == '+' || *s == '-') neg = *s++ == '-';
@@ -241,7 +241,10 @@ const char *acd_parse_double(const char *p, double *out) {
         }
     }
     if (!any) {
-        /* nan, inf, infinity (so that callers can reject them by name), or nothing */
+        /* nan, inf, infinity (so that callers can reject them by name), or nothing. strtod only
+         * for those: it would skip a newline (or \r, \f, \v) and take the next line's first number
+         * as this one, reading "v 1 2\n3 ..." as the vertex (1, 2, 3) without an error. */
+        if (*s != 'i' && *s != 'I' && *s != 'n' && *s != 'N') return NULL;
         char *end = NULL;
         double v = strtod(start, &end);
         if (end == start) return NULL;

@@ -67,8 +67,9 @@ void acd_text_skip_space(acd_text *t, int comments);
 /* True at end of line (newline, NUL or, with comments, '#'), after skipping blanks. */
 int acd_text_at_eol(acd_text *t, int comments);
 
-/* Parses a decimal floating-point number at p (after optional blanks); returns the end of the
- * number or NULL if there is none. Correctly rounded (fast path for short decimals, strtod
+/* Parses a decimal floating-point number at p (after optional blanks: space, tab, \r, \f, \v; never
+ * a newline, so a number is never taken from the next line); returns the end of the number or NULL
+ * if there is none. Correctly rounded (fast path for short decimals, strtod
  * otherwise). Accepts nan/inf spellings so the caller can reject them by name. */
 const char *acd_parse_double(const char *p, double *out);
 /* Parses an optionally signed decimal integer; NULL if none or it overflows int64. */
