@@ -2,7 +2,8 @@
  *
  * Parses the input in one format; on success every polygon is validated with the sweep and,
  * when small, with the subdivision and brute force (all must agree), and the set must survive a .poly and a
- * GeoJSON round trip unchanged. Any disagreement aborts (a crash for libFuzzer). */
+ * GeoJSON round trip unchanged. A refusal must begin with the input's name, and a line it names
+ * ("fuzz:L:") must exist in the input. Any disagreement aborts (a crash for libFuzzer). */
 #ifndef ACD_FUZZ_COMMON_2D_H
 #define ACD_FUZZ_COMMON_2D_H
 
@@ -29,7 +30,16 @@ static void fuzz_same_sets(const acd_polygon_set *a, const acd_polygon_set *b) {
 static void fuzz_2d_one(const uint8_t *data, size_t size, acd_polygon_format fmt) {
     acd_polygon_set s;
     acd_error err;
-    if (acd_polygon_set_parse(&s, (const char *)data, size, fmt, "fuzz", NULL, &err) != ACD_OK) return;
+    err.message[0] = '\0';
+    if (acd_polygon_set_parse(&s, (const char *)data, size, fmt, "fuzz", NULL, &err) != ACD_OK) {
+        if (strncmp(err.message, "fuzz", 4) != 0) abort(); /* every failure says why, and in which input */
+        if (err.message[4] == ':' && err.message[5] >= '0' && err.message[5] <= '9') {
+            size_t line = strtoull(err.message + 5, NULL, 10), lines = 1;
+            for (size_t i = 0; i < size; i++) lines += data[i] == '\n';
+            if (line < 1 || line > lines) abort();
+        }
+        return;
+    }
     int all_valid = 1;
     for (size_t i = 0; i < s.count; i++) {
         acd_status a = acd_polygon_validate(&s.polygons[i], i, &err);
