@@ -542,6 +542,43 @@ static void test_coordinates_on_one_line(void **state) {
     assert_non_null(strstr(err.message, "t:1: vertex coordinate 2 is not finite"));
 }
 
+/* ASCII STL: a facet after endsolid was dropped without a word (other trailing text is tolerated
+ * as padding); a NUL byte inside a solid was reported as the end of the file (fuzzrun3). */
+static void test_stl_after_endsolid(void **state) {
+    (void)state;
+    static const char stl_after[] = "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                                    "endloop\nendfacet\nendsolid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 1\n"
+                                    "vertex 1 0 1\nvertex 0 1 1\nendloop\nendfacet\nendsolid a\n";
+    {
+        acd_mesh m;
+        acd_error err;
+        assert_int_equal(read_str(stl_after, ACD_MESH_FORMAT_STL, &m, &err), ACD_ERR_PARSE);
+        assert_non_null(strstr(err.message, "t:10: 'facet' after 'endsolid'"));
+        /* the NUL beyond the first KiB (text there makes the file ASCII): 12 facets of 7 lines */
+        char text[2048];
+        size_t len = (size_t)snprintf(text, sizeof text, "solid a\n");
+        for (int f = 0; f < 12; f++)
+            len += (size_t)snprintf(text + len, sizeof text - len,
+                                    "facet normal 0 0 1\nouter loop\nvertex %d 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                                    "endloop\nendfacet\n", f + 2);
+        assert_true(len > 1024 && len + 16 < sizeof text);
+        text[len++] = '\0';
+        len += (size_t)snprintf(text + len, sizeof text - len, "endsolid\n");
+        assert_int_equal(acd_mesh_read_memory(text, len, ACD_MESH_FORMAT_STL, "t", &m, &err), ACD_ERR_PARSE);
+        if (!strstr(err.message, "t:86: NUL byte inside a solid")) fail_msg("NUL byte: '%s'", err.message);
+    }
+    {
+        /* other text after the last endsolid is still read past (padding, a note) */
+        static const char padded[] = "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                     "vertex 0 1 0\nendloop\nendfacet\nendsolid a\n   \n written by x\n";
+        acd_mesh m;
+        acd_error err;
+        assert_int_equal(acd_mesh_read_memory(padded, sizeof padded - 1, ACD_MESH_FORMAT_STL, "t", &m, &err), ACD_OK);
+        assert_int_equal(m.ntriangles, 1);
+        acd_mesh_free(&m);
+    }
+}
+
 static void test_text_encodings(void **state) {
     (void)state;
     /* UTF-16 (both byte orders, with BOM) and UTF-8 with BOM are read */
@@ -742,6 +779,7 @@ int main(void) {
         cmocka_unit_test(test_write_checks),
         cmocka_unit_test(test_number_parsing_exact),
         cmocka_unit_test(test_coordinates_on_one_line),
+        cmocka_unit_test(test_stl_after_endsolid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -5,7 +5,8 @@
  * 84 + 50 * count, whatever its header says (many binary files start with "solid"); room for
  * more triangles than the count is an error (up to 49 trailing bytes are tolerated).
  * ASCII: solid / facet normal / outer loop / vertex x y z (3 or more, fanned) / endloop /
- * endfacet / endsolid, keywords case-insensitive, several solids allowed.
+ * endfacet / endsolid, keywords case-insensitive, several solids allowed; other text after the
+ * last endsolid is ignored (padding), a facet there refused (it would be lost).
  * STL stores a triangle soup; the reader welds it on exact coordinates. */
 #include "mesh/io_formats.h"
 
@@ -142,7 +143,12 @@ static acd_status read_ascii(const char *buf, size_t len, const char *name, acd_
         const char *p = token(&t);
         if (!*p && t.p >= t.end) break;
         if (!keyword_ci(p, "solid")) {
-            if (solids) break; /* trailing junk after endsolid: tolerated (some exporters pad) */
+            /* facets after an endsolid would be dropped without a word: refused */
+            if (solids && keyword_ci(p, "facet"))
+                return acd_fail(err, ACD_ERR_PARSE,
+                                "%s:%zu: 'facet' after 'endsolid' (facets must come between 'solid' and 'endsolid')",
+                                name, t.line);
+            if (solids) break; /* other trailing junk after endsolid: tolerated (some exporters pad) */
             return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: expected 'solid', found '%.16s'", name, t.line, p);
         }
         solids++;
@@ -153,6 +159,9 @@ static acd_status read_ascii(const char *buf, size_t len, const char *name, acd_
                 acd_text_next_line(&t);
                 break;
             }
+            if (!*p && t.p < t.end)
+                return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: NUL byte inside a solid (binary data in an ASCII STL?)",
+                                name, t.line);
             if (!*p) return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: end of file inside a solid (no 'endsolid')", name, t.line);
             if ((s = expect(&t, "facet", err)) != ACD_OK) return s;
             acd_text_next_line(&t); /* the normal is recomputed from the vertices */
