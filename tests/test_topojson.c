@@ -203,6 +203,39 @@ static void test_errors(void **state) {
     assert_non_null(strstr(err.message, "not TopoJSON"));
 }
 
+/* A ring's arc references copy the arcs: a 64 KB file (one arc of 2,700 positions referenced
+ * 24,000 times) expanded to 65 million points and over 2 GB (fuzzrun3). Refused beyond 16 times
+ * the arcs' positions (at least 65,536); a ring using its arc a few times is still read. */
+static char *topology_with_refs(size_t npos, size_t nrefs) {
+    char *text = malloc(64 + 12 * npos + 12 * nrefs + 64);
+    assert_non_null(text);
+    size_t len = (size_t)sprintf(text, "{\"type\":\"Topology\",\"objects\":{\"o\":{\"type\":\"Polygon\",\"arcs\":[[");
+    for (size_t r = 0; r < nrefs; r++) len += (size_t)sprintf(text + len, r ? ",0" : "0");
+    len += (size_t)sprintf(text + len, "]]}},\"arcs\":[[");
+    for (size_t p = 0; p < npos; p++) len += (size_t)sprintf(text + len, "%s[%zu,%zu]", p ? "," : "", p % 7, (p * 3) % 11);
+    sprintf(text + len, "]]}");
+    return text;
+}
+
+static void test_expansion_refused(void **state) {
+    (void)state;
+    acd_polygon_set s;
+    acd_error err;
+    char *text = topology_with_refs(2700, 24000);
+    assert_int_equal(parse(&s, text, &err), ACD_ERR_INVALID_INPUT);
+    if (!strstr(err.message, "objects.o.arcs[0][24]: the rings' arc references expand to more than 65536 positions"))
+        fail_msg("message '%s'", err.message);
+    free(text);
+    text = topology_with_refs(5000, 16); /* 80,000 positions: 16 times the arc's, the limit */
+    assert_int_equal(parse(&s, text, &err), ACD_OK);
+    assert_int_equal(s.count, 1);
+    acd_polygon_set_free(&s);
+    free(text);
+    text = topology_with_refs(5000, 17);
+    assert_int_equal(parse(&s, text, &err), ACD_ERR_INVALID_INPUT);
+    free(text);
+}
+
 /* ---- the real npm world-atlas files ---- */
 
 static const char *atlas(char *buf, size_t size, const char *file) {
@@ -314,7 +347,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shared_and_reversed_arcs), cmocka_unit_test(test_quantized_with_hole),
         cmocka_unit_test(test_selection),                cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_world_atlas_counts),       cmocka_unit_test(test_world_atlas_enclaves),
+        cmocka_unit_test(test_expansion_refused),        cmocka_unit_test(test_world_atlas_counts),       cmocka_unit_test(test_world_atlas_enclaves),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

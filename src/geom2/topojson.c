@@ -22,6 +22,13 @@
 
 #define TJ_MAX_DEPTH 64
 #define TJ_PATH 256
+/* Rings copy the arcs they reference, so a small file can expand without bound (64 KB: one arc of
+ * 2,700 positions referenced 24,000 times is 65 million points, over 2 GB). A topology uses an arc
+ * on both sides of a shared boundary, once more per object that covers it again (world-atlas'
+ * "land" beside "countries": at most 3); the positions the rings expand to are limited to
+ * TJ_MAX_EXPANSION times the arcs' positions, and at least TJ_MIN_EXPANDED. */
+#define TJ_MAX_EXPANSION 16
+#define TJ_MIN_EXPANDED ((size_t)1 << 16)
 
 typedef struct tj {
     acd_pbuild b;
@@ -33,6 +40,7 @@ typedef struct tj {
     acd_vec2 *pts;       /* decoded arcs, one after the other */
     size_t *arc_start;   /* arc a is pts[arc_start[a] .. arc_start[a+1]-1]; narcs+1 entries */
     size_t narcs;
+    size_t expanded;     /* positions the rings have copied from the arcs so far */
 } tj;
 
 static void path_index(char *dst, size_t size, const char *base, size_t i) {
@@ -139,6 +147,15 @@ static acd_status read_ring(tj *t, const cJSON *ring, const char *path) {
                             "reversed)",
                             t->name, path, i, v, t->narcs);
         size_t s = t->arc_start[a], e = t->arc_start[a + 1];
+        size_t npts = t->arc_start[t->narcs], limit = npts > TJ_MIN_EXPANDED / TJ_MAX_EXPANSION
+                                                          ? npts * TJ_MAX_EXPANSION
+                                                          : TJ_MIN_EXPANDED;
+        if (e - s > limit - t->expanded)
+            return acd_fail(t->err, ACD_ERR_INVALID_INPUT,
+                            "%s: %s[%zu]: the rings' arc references expand to more than %zu positions (%d times the "
+                            "arcs' %zu): refused (arcs referenced that often are no topology's shared boundaries)",
+                            t->name, path, i, limit, TJ_MAX_EXPANSION, npts);
+        t->expanded += e - s;
         size_t have;
         acd_vec2 *cur = acd_pbuild_ring(&t->b, &have);
         for (size_t q = 0; q < e - s && st == ACD_OK; q++) {
