@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite, as CI runs it: installs the Debian packages, builds the release and the
 # ASan+UBSan configurations, runs every CTest test in both, and runs each libFuzzer target
-# briefly. Usage: scripts/test.sh   (env FUZZ_SECONDS=N to change the fuzzing time per target)
+# briefly. Usage: scripts/test.sh   (env FUZZ_SECONDS=N to change the fuzzing time per target,
+# FUZZ_JOBS=N for the number of targets run at a time; default the core count)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS=$(nproc 2>/dev/null || echo 2)
