@@ -430,6 +430,21 @@ typedef struct bad_case {
     const char *where;
 } bad_case;
 
+/* Each case must fail with its status, the message must contain its text, and the mesh must be
+ * left empty. */
+static void check_bad_cases(const bad_case *cases, size_t n) {
+    for (size_t i = 0; i < n; i++) {
+        acd_mesh m;
+        acd_error err;
+        acd_status s = read_str(cases[i].text, cases[i].hint, &m, &err);
+        if (s != cases[i].status || !strstr(err.message, cases[i].where))
+            fail_msg("case %zu: status %d (want %d), message '%s' (want '%s')", i, (int)s, (int)cases[i].status,
+                     s == ACD_OK ? "" : err.message, cases[i].where);
+        assert_null(m.vertices);
+        assert_int_equal(m.ntriangles, 0);
+    }
+}
+
 static void test_malformed(void **state) {
     (void)state;
     static const bad_case cases[] = {
@@ -494,16 +509,7 @@ static void test_malformed(void **state) {
          ACD_MESH_FORMAT_AUTO, ACD_ERR_PARSE, "t:13: face 0: integer property has value 9e+101"},
         {"short", ACD_MESH_FORMAT_STL, ACD_ERR_PARSE, "shorter than its 84-byte header"},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        acd_mesh m;
-        acd_error err;
-        acd_status s = read_str(cases[i].text, cases[i].hint, &m, &err);
-        if (s != cases[i].status || !strstr(err.message, cases[i].where))
-            fail_msg("case %zu: status %d (want %d), message '%s' (want '%s')", i, (int)s, (int)cases[i].status,
-                     s == ACD_OK ? "" : err.message, cases[i].where);
-        assert_null(m.vertices);
-        assert_int_equal(m.ntriangles, 0);
-    }
+    check_bad_cases(cases, sizeof cases / sizeof cases[0]);
 }
 
 /* A vertex short of a coordinate must be an error at its own line, never completed with the next
@@ -524,14 +530,7 @@ static void test_coordinates_on_one_line(void **state) {
          "endsolid\n",
          ACD_MESH_FORMAT_STL, ACD_ERR_PARSE, "t:4: vertex coordinate 3 is missing"},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        acd_mesh m;
-        acd_error err;
-        acd_status s = read_str(cases[i].text, cases[i].hint, &m, &err);
-        if (s != cases[i].status || !strstr(err.message, cases[i].where))
-            fail_msg("case %zu: status %d (want %d), message '%s' (want '%s')", i, (int)s, (int)cases[i].status,
-                     s == ACD_OK ? "" : err.message, cases[i].where);
-    }
+    check_bad_cases(cases, sizeof cases / sizeof cases[0]);
     /* blanks other than a newline still separate numbers on a line; inf and nan are still named */
     acd_mesh m;
     acd_error err;
