@@ -13,19 +13,7 @@
 
 #include "acd/mesh.h"
 #include "mesh/io_formats.h"
-
-/* A position the message names ("fuzz:L:" or "fuzz: byte offset N:") must exist in the input
- * (only the prefix: the rest may quote the input). */
-static void fuzz_check_message(const acd_error *err, const char *buf, size_t size) {
-    const char *msg = err->message;
-    if (strncmp(msg, "fuzz", 4) != 0) abort(); /* every failure must say why, and in which file */
-    if (msg[4] == ':' && msg[5] >= '0' && msg[5] <= '9') {
-        size_t line = strtoull(msg + 5, NULL, 10), lines = 1;
-        for (size_t i = 0; i < size; i++) lines += buf[i] == '\n';
-        if (line < 1 || line > lines) abort();
-    }
-    if (!strncmp(msg, "fuzz: byte offset ", 18) && strtoull(msg + 18, NULL, 10) > size) abort();
-}
+#include "fuzz_refusal.h"
 
 /* Writes m in fmt and reads it back: the same mesh (STL: the same triangles' corners, float-rounded
  * in binary STL; a soup, so the vertex order may change). */
@@ -65,7 +53,7 @@ static int fuzz_one(const uint8_t *data, size_t size, fuzz_reader read, acd_mesh
     acd_error err;
     err.message[0] = '\0';
     acd_status s = read(buf, size, "fuzz", &b, &err);
-    if (s != ACD_OK) fuzz_check_message(&err, buf, size);
+    if (s != ACD_OK) fuzz_check_refusal(err.message, "fuzz", data, size, 0);
     free(buf);
     if (s != ACD_OK) {
         acd_builder_free(&b);

@@ -106,7 +106,6 @@ for i in "${!targets[@]}"; do
   fuzz_one "$i" "${targets[$i]}" &
 done
 wait || true
-report_done
 for ((i = next_report; i < ${#targets[@]}; i++)); do # after every target ended: none may lack a result
   if [ -f "$fuzzdir/$i.rc" ]; then fuzz_report "$i"; continue; fi
   echo "-- $(basename "${targets[$i]}")"; cat "$fuzzdir/$i.log" 2>/dev/null || true
