@@ -308,6 +308,26 @@ static double tet6(const acd_mesh *m, size_t t) {
     return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
+/* Signed volume of the mesh (tetrahedra to its first vertex, so that it does not depend on where
+ * the mesh lies): negative for a closed mesh facing inward. */
+static double signed_volume(const acd_mesh *m) {
+    if (!m->nvertices) return 0;
+    const double *o = m->vertices;
+    double sum = 0;
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        const double *q[3] = {m->vertices + 3 * m->triangles[3 * t], m->vertices + 3 * m->triangles[3 * t + 1],
+                              m->vertices + 3 * m->triangles[3 * t + 2]};
+        double a[3], b[3], c[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = q[0][k] - o[k];
+            b[k] = q[1][k] - o[k];
+            c[k] = q[2][k] - o[k];
+        }
+        sum += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    }
+    return sum / 6;
+}
+
 static double tri_area(const acd_mesh *m, size_t t) {
     const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
                  *c = m->vertices + 3 * m->triangles[3 * t + 2];
@@ -732,7 +752,12 @@ int acd_cmd_3d(int argc, char **argv) {
     acd3d_result r;
     int repaired = 0;
     acd_status st = acd3d_decompose(&mesh, &p, &r, &err);
-    if (st == ACD_ERR_NON_MANIFOLD && p.mode == ACD3D_SOLID && close_holes) {
+    /* a closed mesh facing inward as a whole (negative volume: a mirrored export, or every face
+     * reversed) is repaired like an unoriented one: its closed parts turned outward (cavities,
+     * parts inside an odd number of others, inward) */
+    double inside_out_volume = 0;
+    if (st == ACD_ERR_DEGENERATE && p.mode == ACD3D_SOLID && close_holes) inside_out_volume = signed_volume(&mesh);
+    if ((st == ACD_ERR_NON_MANIFOLD || inside_out_volume < 0) && p.mode == ACD3D_SOLID && close_holes) {
         repaired = 1;
         /* solid mode on an open or unoriented mesh: weld, orient and close every hole, then
          * decompose the closed mesh (the parts' volumes then add up to the closed volume) */
@@ -746,13 +771,20 @@ int acd_cmd_3d(int argc, char **argv) {
             return acd_cli_report("3d", &err);
         }
         if (verbose) fprintf(stderr, "acd 3d: %s\n", first.message);
+        char what[96];
+        if (inside_out_volume < 0)
+            snprintf(what, sizeof what, "is inside out (signed volume %.6g)", inside_out_volume);
+        else
+            snprintf(what, sizeof what, "is not a closed, consistently oriented mesh");
+        char cav[96] = "";
+        if (rs.cavities) snprintf(cav, sizeof cav, " (%zu closed part(s) inside others kept as cavities)", rs.cavities);
         fprintf(stderr,
-                "acd 3d: the input is not a closed, consistently oriented mesh; repaired for solid mode: %zu "
-                "vertices merged, %zu degenerate and %zu duplicate faces dropped, %zu faces flipped, %zu holes "
+                "acd 3d: the input %s; repaired for solid mode: %zu "
+                "vertices merged, %zu degenerate and %zu duplicate faces dropped, %zu faces flipped%s, %zu holes "
                 "closed with %zu faces (%zu new vertices) (--no-close-holes refuses instead; --mode surface keeps "
                 "it open)\n",
-                rs.vertices_merged, rs.degenerate_dropped, rs.duplicates_dropped, rs.faces_flipped, rs.holes_filled,
-                rs.hole_faces_added, rs.hole_vertices_added);
+                what, rs.vertices_merged, rs.degenerate_dropped, rs.duplicates_dropped, rs.faces_flipped, cav,
+                rs.holes_filled, rs.hole_faces_added, rs.hole_vertices_added);
         st = acd3d_decompose(&mesh, &p, &r, &err);
         if (st == ACD_ERR_NON_MANIFOLD) {
             char why[sizeof err.message];

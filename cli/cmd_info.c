@@ -45,6 +45,7 @@ static cJSON *report_json(const char *path, const acd_mesh_report *r, int list_c
             cJSON_AddNumberToObject(rp, "hole_faces_added", (double)st->hole_faces_added);
             cJSON_AddNumberToObject(rp, "hole_vertices_added", (double)st->hole_vertices_added);
             cJSON_AddNumberToObject(rp, "unused_vertices_dropped", (double)st->unused_vertices_dropped);
+            cJSON_AddNumberToObject(rp, "cavities", (double)st->cavities);
         }
     }
     cJSON_AddStringToObject(o, "file", path);
@@ -110,6 +111,9 @@ static void print_text(const char *path, const acd_mesh_report *r, int list_comp
                st->vertices_merged, st->degenerate_dropped, st->duplicates_dropped, st->faces_flipped, st->holes_filled,
                st->hole_faces_added, st->hole_vertices_added, st->unused_vertices_dropped,
                st->nonorientable_parts ? " (some parts are not orientable)" : "");
+    if (st && st->cavities)
+        printf("repair                %zu closed part(s) inside an odd number of others: oriented inward (cavities)\n",
+               st->cavities);
     printf("file                  %s\n", path);
     printf("vertices              %zu (%zu unused)\n", r->vertices, r->unused_vertices);
     printf("faces                 %zu\n", r->faces);

@@ -108,6 +108,92 @@ static void test_inside_out_is_reversed(void **state) {
     acd_mesh_free(&m);
 }
 
+/* A cube of side 3 with the unit cube (shifted by 1) as a cavity, given as a soup with each of its
+ * shells in the orientation `outer_in` / `inner_in` (1: inward). Repair must give the cavity model
+ * whatever the shells' input orientations: the outer shell outward, the inner one inward (volume
+ * 27 - 1 = 26), where orienting every closed part outward made it a solid inside a solid (28). */
+static void cavity_soup(acd_mesh *m, int outer_in, int inner_in) {
+    acd_mesh a, b;
+    cube_soup(&a, 0, 5);
+    cube_soup(&b, 0, 6);
+    m->nvertices = 72;
+    m->ntriangles = 24;
+    m->vertices = malloc(72 * 3 * sizeof(double));
+    m->triangles = malloc(24 * 3 * sizeof(uint32_t));
+    assert_non_null(m->vertices);
+    assert_non_null(m->triangles);
+    for (int i = 0; i < 36 * 3; i++) {
+        m->vertices[i] = 3 * a.vertices[i];
+        m->vertices[36 * 3 + i] = 1 + b.vertices[i];
+    }
+    for (int t = 0; t < 24; t++) {
+        int in = t < 12 ? outer_in : inner_in;
+        m->triangles[3 * t] = (uint32_t)(3 * t);
+        m->triangles[3 * t + 1] = (uint32_t)(3 * t + (in ? 2 : 1));
+        m->triangles[3 * t + 2] = (uint32_t)(3 * t + (in ? 1 : 2));
+    }
+    acd_mesh_free(&a);
+    acd_mesh_free(&b);
+}
+
+static void test_cavity_stays_inward(void **state) {
+    (void)state;
+    for (int outer_in = 0; outer_in < 2; outer_in++)
+        for (int inner_in = 0; inner_in < 2; inner_in++) {
+            acd_mesh m;
+            cavity_soup(&m, outer_in, inner_in);
+            acd_repair_options o = acd_repair_default_options();
+            acd_repair_stats st;
+            acd_error err;
+            assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+            assert_int_equal(st.vertices_merged, 56);
+            assert_int_equal(st.cavities, 1);
+            assert_int_equal(st.faces_flipped, 12 * (size_t)outer_in + 12 * (size_t)!inner_in);
+            acd_mesh_report r;
+            report(&m, &r);
+            assert_true(r.closed && r.oriented);
+            assert_int_equal(r.components, 2);
+            assert_true(fabs(r.volume - 26) < 1e-12);
+            acd_mesh_report_free(&r);
+            acd_mesh_free(&m);
+        }
+}
+
+/* Two unit cubes side by side (not nested) and a cube of side 3 around a cube that holds a
+ * smaller cube (nesting depth 2: a solid inside the cavity): outward, inward, outward. */
+static void test_nesting_parity(void **state) {
+    (void)state;
+    acd_mesh m;
+    cavity_soup(&m, 1, 1);
+    acd_mesh c;
+    cube_soup(&c, 0, 7);
+    size_t nv = m.nvertices;
+    m.vertices = realloc(m.vertices, (nv + 36) * 3 * sizeof(double));
+    assert_non_null(m.vertices);
+    for (int i = 0; i < 36 * 3; i++) m.vertices[nv * 3 + i] = 1.25 + 0.5 * c.vertices[i];
+    m.nvertices = nv + 36;
+    for (int t = 0; t < 12; t++) push_face(&m, (uint32_t)(nv + 3 * t), (uint32_t)(nv + 3 * t + 2), (uint32_t)(nv + 3 * t + 1));
+    nv = m.nvertices; /* a separate unit cube beside the others, inward */
+    m.vertices = realloc(m.vertices, (nv + 36) * 3 * sizeof(double));
+    assert_non_null(m.vertices);
+    for (int i = 0; i < 36 * 3; i++) m.vertices[nv * 3 + i] = c.vertices[i] + (i % 3 == 0 ? 5 : 0);
+    m.nvertices = nv + 36;
+    for (int t = 0; t < 12; t++) push_face(&m, (uint32_t)(nv + 3 * t), (uint32_t)(nv + 3 * t + 2), (uint32_t)(nv + 3 * t + 1));
+    acd_mesh_free(&c);
+    acd_repair_options o = acd_repair_default_options();
+    acd_repair_stats st;
+    acd_error err;
+    assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+    assert_int_equal(st.cavities, 1);
+    acd_mesh_report r;
+    report(&m, &r);
+    assert_int_equal(r.components, 4);
+    assert_int_equal(r.inward_components, 1);
+    assert_true(fabs(r.volume - (27 - 1 + 0.125 + 1)) < 1e-12);
+    acd_mesh_report_free(&r);
+    acd_mesh_free(&m);
+}
+
 static void test_fill_holes(void **state) {
     (void)state;
     acd_mesh m;
@@ -339,6 +425,8 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_soup_to_closed_cube),
         cmocka_unit_test(test_inside_out_is_reversed),
+        cmocka_unit_test(test_cavity_stays_inward),
+        cmocka_unit_test(test_nesting_parity),
         cmocka_unit_test(test_fill_holes),
         cmocka_unit_test(test_fill_caps_short_and_long),
         cmocka_unit_test(test_fill_pinched_holes),

@@ -185,14 +185,16 @@ typedef struct acd_repair_stats {
     size_t hole_faces_added;
     size_t hole_vertices_added;    /* centroids of loops closed by a fan (long loops) */
     size_t unused_vertices_dropped;
+    size_t cavities;               /* closed parts oriented inward: inside an odd number of other closed parts */
 } acd_repair_stats;
 
 /* Repairs m in place, in this order: weld, drop degenerate faces, drop duplicate faces, orient,
  * fill holes (minimum-area triangulations without repeated edges; long loops get a fan around
  * a new centroid vertex), orient again (closed parts outward),
  * drop unused vertices. Orientation: within each part connected through manifold edges, faces
- * are flipped to agree with the part's first face; a closed part with negative volume is then
- * reversed, an open part keeps the orientation of the majority of its faces. stats may be NULL. */
+ * are flipped to agree with the part's first face; a closed part then faces outward (positive
+ * volume) unless it lies inside an odd number of other closed parts (a cavity: it faces inward);
+ * an open part keeps the orientation of the majority of its faces. stats may be NULL. */
 acd_status acd_mesh_repair(acd_mesh *m, const acd_repair_options *opt, acd_repair_stats *stats, acd_error *err);
 
 #ifdef __cplusplus

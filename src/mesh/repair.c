@@ -7,8 +7,10 @@
  *     collinear by acd_orient2d), then faces whose sorted vertex triple was seen before;
  *  3. orient: breadth-first over manifold edges from each part's first face, flipping a face
  *     when it traverses the shared edge in the same direction as its neighbour; a part all of
- *     whose edges are manifold (closed) is reversed if its signed volume is negative, an open
- *     part is reversed if that flips fewer faces (majority orientation kept);
+ *     whose edges are manifold (closed) faces outward (positive signed volume), unless it lies
+ *     inside an odd number of other closed parts (by the winding number of sample vertices):
+ *     then it bounds a cavity and faces inward; an open part is reversed if that flips fewer
+ *     faces (majority orientation kept);
  *  4. fill holes: the boundary is walked along its half-edges and split into simple loops
  *     (a boundary through a pinch vertex gives one loop per side); a loop of at most
  *     fill_holes_max_edges edges is closed by the minimum-area triangulation over its own
@@ -167,6 +169,92 @@ static void flip_face(acd_mesh *m, size_t t) {
     m->triangles[3 * t + 2] = x;
 }
 
+/* Generalized winding number at p of the faces[0..n) of m, each reversed where flip[] says so:
+ * the sum of their signed solid angles (Van Oosterom and Strackee) over 4 pi. For a closed
+ * surface it is +1 or -1 (by its orientation) at a point inside, 0 outside. */
+static double winding_number(const acd_mesh *m, const uint32_t *faces, size_t n, const unsigned char *flip,
+                             const double p[3]) {
+    double sum = 0;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t t = faces[i];
+        const uint32_t *c = m->triangles + 3 * (size_t)t;
+        const double *q[3] = {m->vertices + 3 * (size_t)c[0], m->vertices + 3 * (size_t)c[1],
+                              m->vertices + 3 * (size_t)c[2]};
+        if (flip[t]) {
+            const double *x = q[1];
+            q[1] = q[2];
+            q[2] = x;
+        }
+        double a[3], b[3], d[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = q[0][k] - p[k];
+            b[k] = q[1][k] - p[k];
+            d[k] = q[2][k] - p[k];
+        }
+        double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]),
+               ld = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        double det = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                     a[2] * (b[0] * d[1] - b[1] * d[0]);
+        double den = la * lb * ld + (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * ld +
+                     (a[0] * d[0] + a[1] * d[1] + a[2] * d[2]) * lb + (b[0] * d[0] + b[1] * d[1] + b[2] * d[2]) * la;
+        sum += 2 * atan2(det, den);
+    }
+    return sum / 12.566370614359172954; /* 4 pi */
+}
+
+/* One part of orient(): its faces are queue[start .. start + n). */
+typedef struct orient_part {
+    size_t start, n;
+    double vol;     /* signed volume with the propagated orientation (closed, orientable parts) */
+    double lo[3], hi[3];
+    int closed;     /* closed and orientable */
+    int reverse;
+} orient_part;
+
+/* Vertices of a closed part tested against each other closed part that might hold it (nesting),
+ * spread over its faces; the part is inside the other when all are. */
+#define NEST_SAMPLES 8
+/* Bound on the winding-number work (samples x faces) of the nesting test; beyond it closed parts
+ * are all oriented outward (the behaviour before nesting was considered) */
+#define NEST_WORK_MAX 400000000.0
+
+/* Nesting depth of each closed part: how many other closed parts contain it whole (all its
+ * samples inside by winding number). depth[] = -1 for open parts. Returns 0 when the work bound
+ * is exceeded (no depth known). */
+static int nesting_depths(const acd_mesh *m, const uint32_t *queue, const unsigned char *flip, const orient_part *parts,
+                          size_t np, int *depth) {
+    size_t nclosed = 0;
+    for (size_t i = 0; i < np; i++) nclosed += parts[i].closed;
+    for (size_t i = 0; i < np; i++) depth[i] = parts[i].closed ? 0 : -1;
+    if (nclosed < 2) return 1;
+    double work = 0;
+    for (size_t i = 0; i < np; i++)
+        for (size_t j = 0; j < np && parts[i].closed; j++) {
+            if (j == i || !parts[j].closed) continue;
+            int boxed = 1;
+            for (int k = 0; k < 3; k++) boxed &= parts[j].lo[k] <= parts[i].lo[k] && parts[i].hi[k] <= parts[j].hi[k];
+            if (boxed) work += (double)NEST_SAMPLES * (double)parts[j].n;
+        }
+    if (work > NEST_WORK_MAX) return 0;
+    for (size_t i = 0; i < np; i++) {
+        if (!parts[i].closed) continue;
+        for (size_t j = 0; j < np; j++) {
+            if (j == i || !parts[j].closed) continue;
+            int boxed = 1;
+            for (int k = 0; k < 3; k++) boxed &= parts[j].lo[k] <= parts[i].lo[k] && parts[i].hi[k] <= parts[j].hi[k];
+            if (!boxed) continue;
+            int inside = 1;
+            for (size_t s = 0; s < NEST_SAMPLES && inside; s++) {
+                uint32_t t = queue[parts[i].start + s * parts[i].n / NEST_SAMPLES];
+                const double *p = m->vertices + 3 * (size_t)m->triangles[3 * (size_t)t + s % 3];
+                inside = fabs(winding_number(m, queue + parts[j].start, parts[j].n, flip, p)) > 0.5;
+            }
+            depth[i] += inside;
+        }
+    }
+    return 1;
+}
+
 static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorientable, acd_error *err) {
     size_t nt = m->ntriangles;
     if (!nt) return ACD_OK;
@@ -175,15 +263,19 @@ static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorienta
     if (s != ACD_OK) return s;
     unsigned char *flip = calloc(nt, 1), *seen = calloc(nt, 1);
     uint32_t *queue = malloc(nt * sizeof *queue);
+    orient_part *parts = NULL;
+    int *depth = NULL;
+    size_t np = 0, cap = 0;
     if (!flip || !seen || !queue) {
         s = acd_fail(err, ACD_ERR_NOMEM, "out of memory orienting %zu faces", nt);
         goto done;
     }
     double o[3] = {0, 0, 0};
     if (m->nvertices) memcpy(o, m->vertices, sizeof o); /* any fixed origin: volumes of closed parts do not depend on it */
+    size_t qt = 0; /* the parts follow each other in queue */
     for (size_t t0 = 0; t0 < nt; t0++) {
         if (seen[t0]) continue;
-        size_t qh = 0, qt = 0, nflip = 0;
+        size_t start = qt, qh = qt, nflip = 0;
         int closed = 1, orientable = 1;
         queue[qt++] = (uint32_t)t0;
         seen[t0] = 1;
@@ -208,29 +300,65 @@ static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorienta
             }
         }
         if (!orientable && count_nonorientable) st->nonorientable_parts++;
-        int reverse;
-        if (closed && orientable) {
-            double vol = 0;
-            for (size_t i = 0; i < qt; i++) {
-                double v = tet_volume(m, queue[i], o);
-                vol += flip[queue[i]] ? -v : v;
+        if (np == cap) {
+            size_t nc = cap ? 2 * cap : 16;
+            orient_part *q = realloc(parts, nc * sizeof *q);
+            if (!q) {
+                s = acd_fail(err, ACD_ERR_NOMEM, "out of memory orienting %zu faces", nt);
+                goto done;
             }
-            reverse = vol < 0;
-        } else {
-            reverse = 2 * nflip > qt;
+            parts = q;
+            cap = nc;
         }
-        for (size_t i = 0; i < qt; i++) {
+        orient_part *P = &parts[np++];
+        memset(P, 0, sizeof *P);
+        P->start = start;
+        P->n = qt - start;
+        P->closed = closed && orientable;
+        if (P->closed) {
+            for (int k = 0; k < 3; k++) P->lo[k] = P->hi[k] = m->vertices[3 * (size_t)m->triangles[3 * (size_t)t0] + k];
+            for (size_t i = start; i < qt; i++) {
+                double v = tet_volume(m, queue[i], o);
+                P->vol += flip[queue[i]] ? -v : v;
+                for (int c = 0; c < 3; c++)
+                    for (int k = 0; k < 3; k++) {
+                        double x = m->vertices[3 * (size_t)m->triangles[3 * (size_t)queue[i] + c] + k];
+                        P->lo[k] = fmin(P->lo[k], x);
+                        P->hi[k] = fmax(P->hi[k], x);
+                    }
+            }
+            P->reverse = P->vol < 0;
+        } else {
+            P->reverse = 2 * nflip > P->n;
+        }
+    }
+    /* a closed part inside an odd number of other closed parts bounds a cavity: it faces inward */
+    depth = malloc(np * sizeof *depth);
+    if (!depth) {
+        s = acd_fail(err, ACD_ERR_NOMEM, "out of memory orienting %zu parts", np);
+        goto done;
+    }
+    st->cavities = 0; /* counted by the last pass (orient runs again after hole filling) */
+    if (nesting_depths(m, queue, flip, parts, np, depth))
+        for (size_t i = 0; i < np; i++)
+            if (parts[i].closed && depth[i] % 2 == 1) {
+                parts[i].reverse = parts[i].vol > 0;
+                st->cavities++;
+            }
+    for (size_t p = 0; p < np; p++)
+        for (size_t i = parts[p].start; i < parts[p].start + parts[p].n; i++) {
             uint32_t t = queue[i];
-            if (flip[t] ^ (unsigned char)reverse) {
+            if (flip[t] ^ (unsigned char)parts[p].reverse) {
                 flip_face(m, t);
                 st->faces_flipped++;
             }
         }
-    }
 done:
     free(flip);
     free(seen);
     free(queue);
+    free(parts);
+    free(depth);
     acd_halfedges_free(&he);
     return s;
 }
