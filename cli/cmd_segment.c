@@ -303,6 +303,28 @@ int acd_cmd_segment(int argc, char **argv) {
     acd_error_clear(&err);
     acd_mesh mesh;
     if (acd_mesh_read(input, &mesh, &err) != ACD_OK) return acd_cli_report("segment", &err);
+    {
+        /* a triangle soup (OBJ or OFF with every face its own vertices) or a mesh with vertices
+         * split at texture seams: without welding every face was its own part. Vertices with the
+         * same coordinates are merged (faces keep their order, so labels still follow the file's
+         * faces); a mesh without such vertices is left as read (its numbering unchanged) */
+        acd_mesh w;
+        size_t merged = 0;
+        if (acd_mesh_copy(&w, &mesh, &err) != ACD_OK || acd_mesh_weld(&w, 0, &merged, &err) != ACD_OK) {
+            acd_mesh_free(&mesh);
+            return acd_cli_report("segment", &err);
+        }
+        if (merged > 0) {
+            fprintf(stderr,
+                    "acd segment: %zu vertices at the same coordinates as others merged (a triangle soup or split "
+                    "vertices): faces are joined there\n",
+                    merged);
+            acd_mesh_free(&mesh);
+            mesh = w;
+        } else {
+            acd_mesh_free(&w);
+        }
+    }
     p.progress = on_progress;
     p.progress_user = &verbose;
     acd_segment_result r;
