@@ -627,11 +627,15 @@ static void test_map_paths(void **state) {
 
 static void test_scales(void **state) {
     (void)state;
-    /* the same torus cut at scales 1e-100 and 1e100: same piece counts, volumes scale exactly-ish */
-    double scales[] = {1e-100, 1, 1e100};
-    size_t npieces[3];
-    double vol[3];
-    for (int si = 0; si < 3; si++) {
+    /* the same torus cut at scales 1e-100 and 1e100 (the cut works on a copy scaled by a power of
+     * two there) and 1e70 (not rescaled): same piece counts, also with DROP_SPECKS, volumes scale
+     * exactly-ish. DROP_SPECKS (the budget pass's cuts) compares each shell's volume with a rounding
+     * scale (sum of |a| |b| |c| / 6 per face): computed as the root of a product of squares it
+     * overflowed between 1e51 and 1e90, every shell was then a speck and the cut gave no piece */
+    double scales[] = {1e-100, 1, 1e100, 1e70};
+    size_t npieces[4];
+    double vol[4];
+    for (int si = 0; si < 4; si++) {
         acd_mesh m;
         torus_mesh(24, 12, 2, 0.7, &m);
         for (size_t i = 0; i < 3 * m.nvertices; i++) m.vertices[i] = m.vertices[i] * scales[si] + 3 * scales[si];
@@ -645,12 +649,15 @@ static void test_scales(void **state) {
         npieces[si] = res.npieces;
         vol[si] = acd_geom3_signed_volume(&res.pieces[0].mesh) / scales[si] / scales[si] / scales[si];
         acd_cut_result_free(&res);
+        assert_int_equal(acd_plane_cut_flags(&m, &pl, ACD_PLANE_CUT_DROP_SPECKS, &res, NULL), ACD_OK);
+        assert_int_equal(res.npieces, npieces[si]);
+        acd_cut_result_free(&res);
         acd_mesh_free(&m);
     }
-    assert_int_equal(npieces[0], npieces[1]);
-    assert_int_equal(npieces[2], npieces[1]);
-    assert_true(fabs(vol[0] - vol[1]) < 1e-9 * fabs(vol[1]));
-    assert_true(fabs(vol[2] - vol[1]) < 1e-9 * fabs(vol[1]));
+    for (int si = 0; si < 4; si++) {
+        assert_int_equal(npieces[si], npieces[1]);
+        assert_true(fabs(vol[si] - vol[1]) < 1e-9 * fabs(vol[1]));
+    }
 }
 
 int main(void) {

@@ -686,9 +686,13 @@ static acd_status group_cavities(cut_ctx *c, uint32_t *parent, uint8_t *flat) {
         for (int i = 0; i < 3; i++) p[i] = c->V + 3 * (size_t)c->T[3 * t + i];
         double a[3], b[3], d[3];
         for (int k = 0; k < 3; k++) a[k] = p[0][k] - o[k], b[k] = p[1][k] - o[k], d[k] = p[2][k] - o[k];
-        avol[acd_uf_find(parent, (uint32_t)t)] += sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) *
-                                                       (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]) *
-                                                       (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) / 6.0;
+        double aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2], bb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2],
+               dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], ab = aa * bb;
+        /* the product of the squares is the sixth power of the size: it overflows beyond ~1e51
+         * (the budget pass then found no cut at all); the product of the norms does not (same
+         * value up to rounding, used only where the other would overflow) */
+        avol[acd_uf_find(parent, (uint32_t)t)] +=
+            (ab <= DBL_MAX / dd || dd == 0 ? sqrt(ab * dd) : sqrt(aa) * sqrt(bb) * sqrt(dd)) / 6.0;
     }
     for (size_t t = 0; t < nt; t++) {
         /* (a threshold that overflows decides nothing: such a shell is kept) */
