@@ -797,6 +797,29 @@ int acd_cmd_3d(int argc, char **argv) {
         return acd_cli_report("3d", &err);
     }
     int code = ACD_EXIT_OK;
+    if (!repaired && p.mode == ACD3D_SOLID) {
+        /* closed and consistently oriented, positive volume: but a closed shell inside another
+         * facing outward is a solid inside a solid (its volume counted twice, hulls over what was
+         * likely meant as a cavity). Orienting a copy by nesting (acd_mesh_repair's orientation
+         * step) tells: any face it flips disagrees with the shells' nesting */
+        acd_mesh c;
+        acd_error ce;
+        if (acd_mesh_copy(&c, &mesh, &ce) == ACD_OK) {
+            acd_repair_options ro = acd_repair_default_options();
+            ro.weld = 0;
+            ro.drop_degenerate = 0;
+            ro.drop_duplicates = 0;
+            ro.drop_unused_vertices = 0;
+            acd_repair_stats rs;
+            if (acd_mesh_repair(&c, &ro, &rs, &ce) == ACD_OK && rs.faces_flipped > 0)
+                fprintf(stderr,
+                        "acd 3d: warning: %zu faces are oriented against the nesting of the closed shells (a shell inside "
+                        "another facing outward is taken as a solid inside a solid, its volume counted twice; a "
+                        "cavity faces inward): decomposed as given; 'acd info --repair' orients shells by nesting\n",
+                        rs.faces_flipped);
+            acd_mesh_free(&c);
+        }
+    }
     acd_error selfx = {0}; /* set when parts stay above tau because the solid crosses itself: bad input */
     size_t stuck = 0;
     for (size_t i = 0; i < r.nparts; i++) stuck += r.nodes[r.parts[i].node].leaf_reason == ACD3D_LEAF_NO_CUT ||

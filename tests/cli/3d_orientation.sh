@@ -57,4 +57,11 @@ d = json.load(open(sys.argv[1]))
 assert abs(d["volume"] - 26) < 1e-12, d["volume"]
 assert d["repair"]["cavities"] == 1 and d["repair"]["faces_flipped"] == 12, d["repair"]
 PY
+# acd 3d on that file (closed, consistently oriented, positive volume: decomposed as given, a
+# solid inside a solid) warns that the inner shell faces against the nesting; the cavity model
+# oriented right gets no warning
+"$ACD" 3d "$T/nested.obj" > /dev/null 2> "$T/n.err" || fail "nested: exit $? $(cat "$T/n.err")"
+grep -q "warning: 12 faces are oriented against the nesting of the closed shells" "$T/n.err" || fail "nested warning: $(cat "$T/n.err")"
+"$ACD" 3d "$T/rep.obj" > /dev/null 2> "$T/r.err" || fail "repaired cavity: exit $? $(cat "$T/r.err")"
+grep -q "warning" "$T/r.err" && fail "warning on a correctly oriented cavity: $(cat "$T/r.err")"
 echo ok
