@@ -22,6 +22,8 @@ MESHDIR = os.path.join(ROOT, "data", "meshes")
 SMALL = ["tetrahedron.off", "cube.off", "star.off", "corner.off", "P.off", "cross.off", "tripod.off",
          "3torus.off", "hole.off", "u.off", "mpi_triang.off", "dragknob.off", "sphere.off", "pipe.off",
          "eight.off", "double-torus-example.off", "rotor.off", "anchor.off"]
+# transformations that leave the solid as it is (eval scores them against the untransformed mesh)
+SAME_SOLID = {"flip_all", "flip_half", "soup_obj", "t_junctions", "centroid_split"}
 LARGE = ["fandisk.off", "knot1.off", "elephant.off", "camel.off", "bunny.obj", "armadillo.off"]
 
 
@@ -286,6 +288,8 @@ def main():
     for mname in a.meshes.split(","):
         V, F = read_mesh(os.path.join(MESHDIR, mname))
         base = os.path.splitext(mname)[0]
+        ref = os.path.join(a.out, "%s.reference.off" % base)
+        write_off(ref, V, F)
         for tname, (fmt, TV, TF) in transforms(V, F, base).items():
             if want and tname not in want:
                 continue
@@ -302,7 +306,9 @@ def main():
                                              "--json", jpath] + extra, a.timeout)
                 r = {"rc": rc, "msg": msg, "seconds": round(dt, 2), "parts": parts_of(jpath) if rc == 0 else None}
                 if rc in (0, 3):
-                    r["eval"] = eval_hulls(a.acd, path, hulls, a.samples, a.timeout)
+                    # the same solid written otherwise (faces reversed, a soup, split faces): scored
+                    # against the untransformed mesh, as eval needs a consistently oriented surface
+                    r["eval"] = eval_hulls(a.acd, ref if tname in SAME_SOLID else path, hulls, a.samples, a.timeout)
                 rec[key] = r
             jpath = path + ".seg.json"
             rc, out, err, dt, msg = run([a.acd, "segment", path, "--verify", "--json", jpath], a.timeout)
@@ -315,7 +321,7 @@ def main():
                 mname, tname, short(rec["default"]), short(rec["budget"]), short(rec["segment"]),
                 (rec["default"]["msg"] or rec["budget"]["msg"] or rec["segment"]["msg"])[:110]), flush=True)
             for f in os.listdir(a.out):
-                if f.startswith("%s.%s." % (base, tname)) and not f.endswith(".json"):
+                if f.startswith("%s.%s." % (base, tname)) and not f.endswith(".json") and "reference" not in f:
                     os.remove(os.path.join(a.out, f))
 
 
