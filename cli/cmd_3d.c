@@ -16,6 +16,7 @@
 #include "acd/mesh.h"
 #include "cli.h"
 #include "core/error.h"
+#include "geom3/frame.h"
 
 static void usage(FILE *f) {
     fprintf(f,
@@ -301,7 +302,9 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
     return o;
 }
 
-/* Six times the signed volume of the tetrahedron (origin, triangle t of m). */
+/* Six times the signed volume of the tetrahedron (origin, triangle t of m). --verify takes it in
+ * its own local frame (verify_frame): about the origin, far coordinates (1e4 times the extent
+ * already) cancelled the volume away. */
 static double tet6(const acd_mesh *m, size_t t) {
     const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
                  *c = m->vertices + 3 * m->triangles[3 * t + 2];
@@ -368,9 +371,74 @@ typedef struct verify_part {
     acd_error xerr;
 } verify_part;
 
-static void verify_one(const acd3d_result *r, size_t i, double trim, verify_part *q) {
+/* The result as --verify reads it: near the origin the result itself; far from it (geom3/frame) the
+ * parts and hulls translated into a local frame (the parts' own box, exact for the coordinates in
+ * it), where volumes and hull planes do not cancel. stick: how far a part vertex may lie beyond its
+ * hull, vtol_area the volume per unit of area the parts may gain or lose: beyond the run's own
+ * rounding, the outputs' rounding to model coordinates (half a spacing of the largest coordinate for
+ * each computed point; a point of a part and one of its hull both moved: within 2 spacings). */
+typedef struct verify_frame {
+    acd_frame f;
+    acd_mesh *parts; /* NULL when not moved */
+    double **hulls;
+    double stick, vtol_area;
+} verify_frame;
+
+static void verify_frame_free(verify_frame *vf, size_t n) {
+    for (size_t i = 0; vf->parts && i < n; i++) free(vf->parts[i].vertices), free(vf->hulls[i]);
+    free(vf->parts);
+    free(vf->hulls);
+}
+
+static acd_status verify_frame_make(const acd3d_result *r, verify_frame *vf, acd_error *err) {
+    memset(vf, 0, sizeof *vf);
+    size_t n = 0;
+    for (size_t i = 0; i < r->nparts; i++) n += r->parts[i].mesh.nvertices;
+    double *all = malloc((n ? 3 * n : 3) * sizeof *all);
+    if (!all) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    n = 0;
+    for (size_t i = 0; i < r->nparts; i++) {
+        memcpy(all + 3 * n, r->parts[i].mesh.vertices, 3 * r->parts[i].mesh.nvertices * sizeof *all);
+        n += r->parts[i].mesh.nvertices;
+    }
+    acd_geom3_frame_of(all, n, &vf->f);
+    free(all);
+    vf->stick = 1e-9 * r->scale;
+    if (!vf->f.moved) return ACD_OK;
+    double big = 0; /* the hulls' magnitude too */
+    for (size_t i = 0; i < r->nparts; i++)
+        for (size_t k = 0; k < 3 * r->parts[i].hull.nvertices; k++) big = fmax(big, fabs(r->parts[i].hull.vertices[k]));
+    double spacing = fmax(vf->f.spacing, nextafter(big, INFINITY) - big);
+    vf->stick += 2 * spacing;
+    vf->vtol_area = 2 * spacing;
+    vf->parts = calloc(r->nparts ? r->nparts : 1, sizeof *vf->parts);
+    vf->hulls = calloc(r->nparts ? r->nparts : 1, sizeof *vf->hulls);
+    if (!vf->parts || !vf->hulls) {
+        verify_frame_free(vf, 0);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
+    for (size_t i = 0; i < r->nparts; i++) {
+        const acd_mesh *m = &r->parts[i].mesh;
+        const acd_mesh *h = &r->parts[i].hull;
+        vf->parts[i] = *m;
+        vf->parts[i].vertices = malloc((m->nvertices ? 3 * m->nvertices : 3) * sizeof(double));
+        vf->hulls[i] = malloc((h->nvertices ? 3 * h->nvertices : 3) * sizeof(double));
+        if (!vf->parts[i].vertices || !vf->hulls[i]) {
+            verify_frame_free(vf, i + 1);
+            return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+        }
+        memcpy(vf->parts[i].vertices, m->vertices, 3 * m->nvertices * sizeof(double));
+        memcpy(vf->hulls[i], h->vertices, 3 * h->nvertices * sizeof(double));
+        acd_geom3_frame_to_local(&vf->f, vf->parts[i].vertices, m->nvertices);
+        acd_geom3_frame_to_local(&vf->f, vf->hulls[i], h->nvertices);
+    }
+    return ACD_OK;
+}
+
+static void verify_one(const acd3d_result *r, const verify_frame *vf, size_t i, double trim, verify_part *q) {
     const acd3d_part *p = &r->parts[i];
-    const acd_mesh *m = &p->mesh;
+    const acd_mesh *m = vf->parts ? &vf->parts[i] : &p->mesh;
+    const double *hv = vf->parts ? vf->hulls[i] : p->hull.vertices;
     double v = 0;
     for (size_t t = 0; t < m->ntriangles; t++) v += tet6(m, t);
     q->v = v / 6.0;
@@ -379,7 +447,7 @@ static void verify_one(const acd3d_result *r, size_t i, double trim, verify_part
     q->xst = ACD_OK;
     /* inside its hull: every part vertex on the inner side of every hull facet plane */
     acd_hull h;
-    q->hst = acd_hull_compute(p->hull.vertices, p->hull.nvertices, &h, &q->herr);
+    q->hst = acd_hull_compute(hv, p->hull.nvertices, &h, &q->herr);
     if (q->hst != ACD_OK) return;
     for (size_t k = 0; k < m->nvertices; k++) {
         double d = acd_hull_plane_distance(&h, m->vertices + 3 * k);
@@ -389,9 +457,9 @@ static void verify_one(const acd3d_result *r, size_t i, double trim, verify_part
      * planes of the facets it sticks out of, the pieces beyond them summed); where the cuts fail
      * (a part the rounding left pinched, or one crossing itself, or out of memory), an upper bound
      * (the part beyond each of those planes, summed; NaN: out of memory) */
-    if (trim > 0 && q->worst > 1e-9 * r->scale) {
-        q->xst = acd_hull_volume_outside(&h, m, 1e-9 * r->scale, r->scale, &q->outside, &q->xerr);
-        if (q->xst != ACD_OK) q->outside = acd_hull_volume_outside_bound(&h, m, 1e-9 * r->scale, r->scale);
+    if (trim > 0 && q->worst > vf->stick) {
+        q->xst = acd_hull_volume_outside(&h, m, vf->stick, r->scale, &q->outside, &q->xerr);
+        if (q->xst != ACD_OK) q->outside = acd_hull_volume_outside_bound(&h, m, vf->stick, r->scale);
     }
     acd_hull_free(&h);
 }
@@ -406,19 +474,28 @@ static int verify(const acd3d_result *r, int budget, double trim, int threads, d
     /* Rounding in the volume sums grows with the sum of the tetrahedra's absolute volumes (not
      * with the net volume: a thin or tiny solid far from the origin cancels a lot), so the
      * tolerances are relative to that sum. */
-    double sum = 0, abs_sum = 0;
+    verify_frame vf;
+    acd_status fst = verify_frame_make(r, &vf, err);
+    if (fst != ACD_OK) return fst;
+    double sum = 0, abs_sum = 0, area = 0;
     for (size_t i = 0; i < r->nparts; i++) {
-        const acd_mesh *m = &r->parts[i].mesh;
+        const acd_mesh *m = vf.parts ? &vf.parts[i] : &r->parts[i].mesh;
         for (size_t t = 0; t < m->ntriangles; t++) abs_sum += fabs(tet6(m, t)) / 6.0;
+        if (vf.parts)
+            for (size_t t = 0; t < m->ntriangles; t++) area += tri_area(m, t);
     }
-    const double vtol = 1e-9 * fabs(r->input_volume) + 1e-12 * abs_sum;
+    const double vtol = 1e-9 * fabs(r->input_volume) + 1e-12 * abs_sum + vf.vtol_area * area;
     verify_part *vp = malloc((r->nparts ? r->nparts : 1) * sizeof *vp);
-    if (!vp) return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    if (!vp) {
+        verify_frame_free(&vf, r->nparts);
+        return acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+    }
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads > 0 ? threads : omp_get_max_threads()) \
     if (r->nparts > 1 && threads != 1)
 #endif
-    for (long i = 0; i < (long)r->nparts; i++) verify_one(r, (size_t)i, trim, &vp[i]);
+    for (long i = 0; i < (long)r->nparts; i++) verify_one(r, &vf, (size_t)i, trim, &vp[i]);
+    verify_frame_free(&vf, r->nparts);
     double outside = 0; /* with trim: the parts' volume outside their hulls (exact, or bounds) */
     size_t nb = 0, first_bound = 0; /* parts measured by the bound, the first of them */
     int ret = ACD_OK;
@@ -452,13 +529,13 @@ static int verify(const acd3d_result *r, int budget, double trim, int threads, d
                            leaf_reason_name(n->leaf_reason));
         else if (q->hst != ACD_OK)
             ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu: its hull cannot be rebuilt: %s", i, q->herr.message);
-        else if (trim > 0 && q->worst > 1e-9 * r->scale && isnan(q->outside))
+        else if (trim > 0 && q->worst > vf.stick && isnan(q->outside))
             ret = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
-        else if (trim > 0 && q->worst > 1e-9 * r->scale) {
+        else if (trim > 0 && q->worst > vf.stick) {
             outside += q->outside;
             if (q->xst != ACD_OK && nb++ == 0) first_bound = i;
         }
-        else if (!(trim > 0) && q->worst > 1e-9 * r->scale)
+        else if (!(trim > 0) && q->worst > vf.stick)
             ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu sticks out of its hull by %g", i, q->worst);
     }
     if (ret == ACD_OK) *outside_sum = outside, *nbound = nb;

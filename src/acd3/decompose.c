@@ -37,6 +37,7 @@
 #include "core/tolerance.h"
 #include "geom3/dijkstra.h"
 #include "geom3/edge_map.h"
+#include "geom3/frame.h"
 #include "geom3/hull_simplify.h"
 #include "geom3/hull_volume.h"
 #include "geom3/plane_cut.h"
@@ -1531,8 +1532,9 @@ static acd_status split_to_budget(tree *t, size_t budget, double limit, double m
     return st;
 }
 
-static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *params, double screen_rel,
-                                 acd3_decompose_stats *stats, acd3d_result *out, acd_error *err);
+static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, const acd_mesh *model,
+                                 const acd3d_params *params, double screen_rel, acd3_decompose_stats *stats,
+                                 acd3d_result *out, acd_error *err);
 
 /* The vertices some triangle uses, renumbered in their order (*c: a new mesh) when there are others;
  * *c empty (nothing allocated) when every vertex is used or an index is out of range (check_input
@@ -1580,24 +1582,56 @@ acd_status acd3d_decompose(const acd_mesh *mesh, const acd3d_params *params, acd
     return acd3_decompose_screen(mesh, params, ACD3_VOLUME_SCREEN_REL, NULL, out, err);
 }
 
+/* The result of a run in the local frame moved back to model coordinates: the parts' and hulls'
+ * vertices + c (exact for the input's own vertices, computed ones rounded to the spacing there), the
+ * cut planes' offsets d - n.c. Everything else (volumes, concavities, scale, tolerances) does not
+ * depend on the position. */
+static void result_to_model(const acd_frame *f, acd3d_result *r) {
+    if (!f->moved) return;
+    for (size_t i = 0; i < r->nparts; i++) {
+        acd_geom3_frame_to_model(f, r->parts[i].mesh.vertices, r->parts[i].mesh.nvertices);
+        acd_geom3_frame_to_model(f, r->parts[i].hull.vertices, r->parts[i].hull.nvertices);
+    }
+    for (size_t i = 0; i < r->nnodes; i++) acd_geom3_frame_plane_to_model(f, r->nodes[i].cut_plane);
+}
+
 acd_status acd3_decompose_screen(const acd_mesh *mesh, const acd3d_params *params, double screen_rel,
                                  acd3_decompose_stats *stats, acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     acd3_decompose_stats sink;
     if (!stats) stats = &sink;
     memset(stats, 0, sizeof *stats);
-    if (!mesh) return decompose_mesh(mesh, params, screen_rel, stats, out, err);
+    acd_frame frame;
+    memset(&frame, 0, sizeof frame);
+    if (!mesh) return decompose_mesh(mesh, &frame, mesh, params, screen_rel, stats, out, err);
     acd_mesh c;
     acd_status st = used_vertices(mesh, &c, err);
     if (st != ACD_OK) return st;
-    if (!c.vertices) return decompose_mesh(mesh, params, screen_rel, stats, out, err);
-    st = decompose_mesh(&c, params, screen_rel, stats, out, err);
+    const acd_mesh *in = c.vertices ? &c : mesh;
+    /* far from the origin: the run in a local frame (geom3/frame, docs/acd3d.md "Local frame"), on a
+     * copy translated exactly; near it (every data mesh) the input as it is */
+    if (in->vertices && in->ntriangles && in->triangles) acd_geom3_frame_of(in->vertices, in->nvertices, &frame);
+    acd_mesh local;
+    memset(&local, 0, sizeof local);
+    if (frame.moved) {
+        st = acd_mesh_copy(&local, in, err);
+        if (st != ACD_OK) {
+            acd_mesh_free(&c);
+            return st;
+        }
+        acd_geom3_frame_to_local(&frame, local.vertices, local.nvertices);
+    }
+    st = decompose_mesh(frame.moved ? &local : in, &frame, in, params, screen_rel, stats, out, err);
+    if (st == ACD_OK) result_to_model(&frame, out);
+    acd_mesh_free(&local);
     acd_mesh_free(&c);
     return st;
 }
 
-static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *params, double screen_rel,
-                                 acd3_decompose_stats *stats, acd3d_result *out, acd_error *err) {
+/* mesh: the input in the frame (model: as given, for messages) */
+static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, const acd_mesh *model,
+                                 const acd3d_params *params, double screen_rel, acd3_decompose_stats *stats,
+                                 acd3d_result *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     if (!params || params->cookie != ACD3D_PARAMS_COOKIE)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd3d_params not initialised by acd3d_default_params");
@@ -1634,6 +1668,10 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd3d_params *param
                         "(--merge-parts) to end the merge at a part count");
     int solid = params->mode == ACD3D_SOLID;
     acd_status st = check_input(mesh, err);
+    if (st != ACD_OK) return st;
+    /* coordinates that cannot resolve the extent (geom3/frame): refused, never a result that the
+     * rounding back to them would break */
+    st = acd_geom3_frame_check(frame, model->vertices, solid ? "solid decomposition" : "surface decomposition", err);
     if (st != ACD_OK) return st;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);

@@ -13,6 +13,7 @@
 
 #include "acd/hull.h"
 #include "core/error.h"
+#include "geom3/frame.h"
 #include "geom3/hull_outer.h"
 #include "geom3/polyunion.h"
 #include "geom3/spatial.h"
@@ -177,9 +178,16 @@ acd_status acd_cage_build(const acd_mesh *mesh, const acd_mesh *hulls, size_t nh
     out->corners = ps.corners;
     const acd_mesh *cg = &out->cage;
     double vol = 0;
+    /* about the local frame's origin (geom3/frame: the model's origin near it, as before) */
+    acd_frame fr;
+    acd_geom3_frame_of(cg->vertices, cg->nvertices, &fr);
     for (size_t t = 0; t < cg->ntriangles; t++) {
-        const double *a = cg->vertices + 3 * (size_t)cg->triangles[3 * t], *b = cg->vertices + 3 * (size_t)cg->triangles[3 * t + 1],
-                     *c = cg->vertices + 3 * (size_t)cg->triangles[3 * t + 2];
+        double a[3], b[3], c[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = cg->vertices[3 * (size_t)cg->triangles[3 * t] + k] - fr.c[k];
+            b[k] = cg->vertices[3 * (size_t)cg->triangles[3 * t + 1] + k] - fr.c[k];
+            c[k] = cg->vertices[3 * (size_t)cg->triangles[3 * t + 2] + k] - fr.c[k];
+        }
         vol += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
     }
     out->volume = vol / 6;

@@ -14,6 +14,7 @@
 #include "acd/hull.h"
 #include "acd/mesh.h"
 #include "core/error.h"
+#include "geom3/frame.h"
 #include "geom3/plane_cut.h"
 #include "geom3/volume.h"
 
@@ -47,6 +48,12 @@ static int reaches_beyond(const acd_mesh *m, const acd_cut_plane *pl) {
     return 0;
 }
 
+static acd_status volume_outside(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale, double *outside,
+                                 acd_error *err);
+
+/* Far from the origin (geom3/frame) the solid and the hull are taken in the local frame (the
+ * planes' offsets d + n.c rounded once): the cuts' points and the pieces' volumes then carry the
+ * local coordinates' rounding, not the model coordinates' spacing. Near it, as always. */
 acd_status acd_hull_volume_outside(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale,
                                    double *outside, acd_error *err) {
     if (outside) *outside = NAN;
@@ -63,6 +70,21 @@ acd_status acd_hull_volume_outside(const acd_hull *h, const acd_mesh *m, double 
         *outside = acd_geom3_signed_volume(m);
         return ACD_OK;
     }
+    acd_frame fr;
+    acd_geom3_frame_of(m->vertices, m->nvertices, &fr);
+    if (!fr.moved) return volume_outside(h, m, tol, tol_scale, outside, err);
+    acd_mesh lm;
+    acd_hull lh;
+    acd_status st = acd_geom3_frame_mesh_view(&fr, m, &lm, err);
+    if (st != ACD_OK) return st;
+    st = acd_geom3_frame_hull_view(&fr, h, &lh, err);
+    if (st == ACD_OK) st = volume_outside(&lh, &lm, tol, tol_scale, outside, err);
+    acd_geom3_frame_view_free(&lm, &lh);
+    return st;
+}
+
+static acd_status volume_outside(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale, double *outside,
+                                 acd_error *err) {
     /* the planes, as acd_hull_volume_outside_bound picks them: reached beyond by more than tol,
      * one of each group within 1e-9 (normal) and 1e-9 x tol_scale (offset) of each other */
     size_t *sel = NULL, nsel = 0;

@@ -7,6 +7,7 @@
 
 #include "acd/hull.h"
 #include "acd/mesh.h"
+#include "geom3/frame.h"
 #include "geom3/vec3.h"
 
 /* the centre of m's bounding box (m has vertices) */
@@ -49,6 +50,12 @@ double acd_geom3_triangle_volume_beyond(const double a[3], const double b[3], co
     return nbeyond == 0 ? 0 : acd_geom3_clipped_cone_volume(p, s, apex);
 }
 
+/* Far from the origin (geom3/frame) the mesh and the plane are taken in the local frame: the
+ * plane's offset d + n.c rounded once (a plane within half a spacing of the model coordinates of the
+ * given one, which is as precisely as that offset is known), the sides and the section points then
+ * to the rounding of the local coordinates; in model coordinates the sides carried that rounding
+ * afresh at every vertex and the clipped points the model coordinates' spacing. Near the origin
+ * the computation is the one it always was. */
 double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
     if (!m || m->nvertices == 0 || m->ntriangles == 0) return 0;
     double nn = plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2];
@@ -56,6 +63,23 @@ double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
     /* the apex: the bounding-box centre projected onto the plane (near the mesh, for rounding) */
     double o[3];
     box_centre(m, o);
+    acd_frame fr;
+    acd_geom3_frame_of(m->vertices, m->nvertices, &fr);
+    if (fr.moved) { /* far from the origin: in the local frame (geom3/frame), see below */
+        double q[4] = {plane[0], plane[1], plane[2], plane[3] + plane[0] * fr.c[0] + plane[1] * fr.c[1] + plane[2] * fr.c[2]};
+        for (int k = 0; k < 3; k++) o[k] -= fr.c[k];
+        double s = (q[0] * o[0] + q[1] * o[1] + q[2] * o[2] + q[3]) / nn;
+        for (int k = 0; k < 3; k++) o[k] -= s * q[k];
+        double vol = 0;
+        for (size_t t = 0; t < m->ntriangles; t++) {
+            const uint32_t *tr = m->triangles + 3 * t;
+            double p[3][3];
+            for (int i = 0; i < 3; i++)
+                for (int k = 0; k < 3; k++) p[i][k] = m->vertices[3 * (size_t)tr[i] + k] - fr.c[k];
+            vol += acd_geom3_triangle_volume_beyond(p[0], p[1], p[2], q, -q[3], o);
+        }
+        return vol;
+    }
     double s = (plane[0] * o[0] + plane[1] * o[1] + plane[2] * o[2] + plane[3]) / nn;
     for (int k = 0; k < 3; k++) o[k] -= s * plane[k];
     double vol = 0;
@@ -67,8 +91,23 @@ double acd_mesh_volume_beyond(const acd_mesh *m, const double plane[4]) {
     return vol;
 }
 
+static double volume_outside_bound(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale);
+
+/* Far from the origin, in the local frame (geom3/frame) as acd_hull_volume_outside. */
 double acd_hull_volume_outside_bound(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale) {
     if (h->dim != 3 || m->nvertices == 0) return 0;
+    acd_frame fr;
+    acd_geom3_frame_of(m->vertices, m->nvertices, &fr);
+    if (!fr.moved) return volume_outside_bound(h, m, tol, tol_scale);
+    acd_mesh lm;
+    acd_hull lh;
+    if (acd_geom3_frame_mesh_view(&fr, m, &lm, NULL) != ACD_OK) return NAN;
+    double v = acd_geom3_frame_hull_view(&fr, h, &lh, NULL) == ACD_OK ? volume_outside_bound(&lh, &lm, tol, tol_scale) : NAN;
+    acd_geom3_frame_view_free(&lm, &lh);
+    return v;
+}
+
+static double volume_outside_bound(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale) {
     double *seen = NULL, sum = 0;
     size_t nseen = 0;
     for (size_t f = 0; f < h->ntriangles; f++) {
