@@ -36,10 +36,12 @@
 #define ACD_FRAME_NEAR 16.0
 
 /* The fewest steps of the model coordinates' spacing (the ulp of the largest coordinate) the
- * input's largest side must span: 2^20, so that an output rounded back to model coordinates is
- * within a millionth of the extent of where it was computed. Translations up to ~2^32 times the
- * extent pass (1e9 x: 4.5e6 steps); far.off (8 steps) is refused. */
-#define ACD_FRAME_MIN_STEPS 1048576.0
+ * input's largest side must span: 2^16, so that an output rounded back to model coordinates is
+ * within 1/131072 of the extent of where it was computed (1/3000 of the default tau's reach). fandisk
+ * (extent 0.6) passes up to 1e11 extents away (7.9e4 steps) and is refused at 1e12 (4900 steps), where
+ * its hulls lost 1.3e-5 of the volume to that rounding; far.off (8 steps) is refused. Real data is far
+ * inside: a part of 1 mm in UTM metres (5e6) spans 1.1e6 steps. */
+#define ACD_FRAME_MIN_STEPS 65536.0
 
 typedef struct acd_frame {
     double c[3];       /* local = model - c, exact for every input coordinate */
