@@ -821,6 +821,13 @@ int acd_cmd_3d(int argc, char **argv) {
     acd_error_clear(&err);
     acd_mesh mesh;
     if (acd_mesh_read(input, &mesh, &err) != ACD_OK) return acd_cli_report("3d", &err);
+    {
+        int ec = acd_cli_check_extent("3d", &mesh);
+        if (ec) {
+            acd_mesh_free(&mesh);
+            return ec;
+        }
+    }
     progress_state ps = {.verbose = verbose};
     clock_gettime(CLOCK_MONOTONIC, &ps.start);
     ps.last = ps.start;

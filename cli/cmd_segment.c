@@ -304,6 +304,13 @@ int acd_cmd_segment(int argc, char **argv) {
     acd_mesh mesh;
     if (acd_mesh_read(input, &mesh, &err) != ACD_OK) return acd_cli_report("segment", &err);
     {
+        int ec = acd_cli_check_extent("segment", &mesh);
+        if (ec) {
+            acd_mesh_free(&mesh);
+            return ec;
+        }
+    }
+    {
         /* a triangle soup (OBJ or OFF with every face its own vertices) or a mesh with vertices
          * split at texture seams: without welding every face was its own part. Vertices with the
          * same coordinates are merged (faces keep their order, so labels still follow the file's

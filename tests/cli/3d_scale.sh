@@ -2,7 +2,7 @@
 # acd 3d under exact uniform scales (powers of 2: every coordinate scaled without rounding): tau is
 # relative and every tolerance scales with the input, so the hulls must be the unscaled run's
 # hulls scaled, bit for bit, for the default pipeline and for --budget with --trim-coverage,
-# at 2^-150 (1e-45) and at 2^183 (1e55, under ACD_COORD_MAX 1e60). At 2^183 the plane cut's
+# at 2^-190 (1e-57), 2^-150 (1e-45) and at 2^183 (1e55, under ACD_COORD_MAX 1e60). At 2^183 the plane cut's
 # rounding scale (a product of three squared lengths: the size to the sixth power) overflowed
 # and the budget pass found no cut at all: one part, --verify failing (bench/audit_3d_transforms.py).
 set -u
@@ -12,7 +12,7 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 for m in torus sliver_part; do
-  for e in -150 183; do
+  for e in -190 -150 183; do
     python3 - "$SRC/tests/data/meshes/$m.off" "$T/s.off" "$e" <<'PY' || fail "scale writer"
 import sys
 tok = [t for line in open(sys.argv[1]) for t in line.split("#")[0].split()]
@@ -45,5 +45,24 @@ for x, y in zip(a, b):
 PY
     done
   done
+done
+# below ACD_CLI_EXTENT_MIN (1e-60) the products of differences leave the normal doubles: the
+# CGAL star scaled by 2^-266 gave 25 parts instead of 11 (exit 0), and below ~1e-103 the volume
+# underflowed to 0 ("flat or oriented inward"). Refused, exit 2, naming the size
+python3 - "$SRC/tests/data/meshes/torus.off" "$T/tiny.off" <<'PY' || fail "tiny writer"
+import sys
+tok = [t for line in open(sys.argv[1]) for t in line.split("#")[0].split()]
+nv, nf = int(tok[1]), int(tok[2])
+out = ["OFF", "%d %d 0" % (nv, nf)] + ["%r %r %r" % tuple(float(x) * 2.0 ** -266 for x in tok[4 + 3 * i:7 + 3 * i]) for i in range(nv)]
+p = 4 + 3 * nv
+for _ in range(nf):
+    n = int(tok[p]); out.append(" ".join(tok[p:p + 1 + n])); p += 1 + n
+open(sys.argv[2], "w").write("\n".join(out) + "\n")
+PY
+for cmd in 3d segment; do
+  "$ACD" $cmd "$T/tiny.off" > /dev/null 2> "$T/tiny.err"; rc=$?
+  [ $rc = 2 ] || fail "$cmd on a model of size 1e-80: exit $rc, expected 2"
+  grep -q "the model's size (largest bounding-box extent .*) is below the supported 1e-60" "$T/tiny.err" ||
+    fail "$cmd tiny message: $(cat "$T/tiny.err")"
 done
 echo ok
