@@ -278,11 +278,16 @@ def main():
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--tag", default="")
     ap.add_argument("--report", action="store_true")
+    ap.add_argument("--compare", nargs=2, metavar=("BEFORE_TAG", "AFTER_TAG"),
+                    help="a before/after table of two tagged runs (rows of the after run)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     res = os.path.join(a.out, "results%s.jsonl" % a.tag)
     if a.report:
         report(res)
+        return
+    if a.compare:
+        compare(os.path.join(a.out, "results%s.jsonl" % a.compare[0]), os.path.join(a.out, "results%s.jsonl" % a.compare[1]))
         return
     want = set(a.transforms.split(",")) if a.transforms else None
     for mname in a.meshes.split(","):
@@ -353,6 +358,39 @@ def report(res):
         print("| %s | %s | %s | %s | %s | %s |" % (
             r["mesh"], r["transform"], cell(r["default"], o.get("default")), cell(r["budget"], o.get("budget")),
             cell(r["segment"], None), msg.replace("|", "/")[:160]))
+
+
+def compare(before, after):
+    """Markdown rows: each (mesh, transform) of the after run next to the before run's."""
+    def load(path):
+        d = {}
+        if os.path.exists(path):
+            for l in open(path):
+                r = json.loads(l)
+                d[(r["mesh"], r["transform"])] = r  # the last run of a pair wins
+        return d
+    B, A = load(before), load(after)
+
+    def cell(r):
+        if r is None:
+            return "-"
+        s = "%s" % r["rc"]
+        if r.get("parts") is not None:
+            s += " %sp" % r["parts"]
+        e = r.get("eval")
+        if e and e.get("rc") == 0:
+            s += " i%.3f c%.4f" % (e["iou"], e["concavity_max"])
+        return s
+
+    print("| mesh | transform | 3d before | 3d after | --budget 16 --trim-coverage 0.0008 before | after "
+          "| segment before | after | message (after) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for key, r in A.items():
+        b = B.get(key)
+        msg = r["default"]["msg"] or r["budget"]["msg"] or r["segment"]["msg"]
+        print("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            key[0], key[1], cell(b and b["default"]), cell(r["default"]), cell(b and b["budget"]),
+            cell(r["budget"]), cell(b and b["segment"]), cell(r["segment"]), msg.replace("|", "/")[:110]))
 
 
 if __name__ == "__main__":
