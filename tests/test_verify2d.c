@@ -408,6 +408,88 @@ static void test_area_compensated(void **state) {
     assert_int_equal(r, -1);
 }
 
+/* Two L-shaped pieces whose boxes overlap in a square that no edge of either enters: not the
+ * same polygon (the verifier once said so, on the monkey scaled by 1e6, because edges it had
+ * looked at but not listed counted as listed); the missing middle is then the failure. */
+static void test_boxes_meet_edges_do_not(void **state) {
+    (void)state;
+    acd_polygon in = square_input(5);
+    acd_vec2 a[] = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
+    acd_vec2 b[] = {{4.5, 1.5}, {5, 1.5}, {5, 5}, {1.5, 5}, {1.5, 4.5}, {4.5, 4.5}};
+    const acd_vec2 *c[] = {a, b};
+    size_t sz[] = {6, 6};
+    acd_verify2d_report rep;
+    acd_error err;
+    assert_int_equal(run(&in, c, sz, 2, 100, &rep, &err), ACD_ERR_VERIFY);
+    assert_int_equal(rep.failed, ACD_V2D_AREA);
+    acd_polygon_free(&in);
+}
+
+/* Far from the origin (1e9: doubles 1.2e-7 apart). Components sharing exact diagonals pass: the
+ * midpoints the verifier locates are rounded off the diagonals by up to half that spacing, far
+ * above ACD_TOL_REL_DIST x extent (it once rejected every exact Hertel-Mehlhorn decomposition of
+ * a translated polygon); a cut end rounded off a slanted input edge passes too. */
+static void test_far_exact_and_rounded(void **state) {
+    (void)state;
+    const double T = 1e9;
+    acd_vec2 outer[] = {{T + 0.1, T + 0.3}, {T + 3.7, T + 0.1}, {T + 3.3, T + 1.9}, {T + 0.2, T + 2.3}};
+    const acd_vec2 *rings[] = {outer};
+    size_t sizes[] = {4};
+    acd_polygon in;
+    acd_error err;
+    assert_int_equal(acd_polygon_from_rings(&in, rings, sizes, 1, &err), ACD_OK);
+    acd_vec2 a[] = {outer[0], outer[1], outer[2]}, b[] = {outer[0], outer[2], outer[3]};
+    const acd_vec2 *c[] = {a, b};
+    size_t sz[] = {3, 3};
+    assert_int_equal(run(&in, c, sz, 2, 100, NULL, &err), ACD_OK);
+    int inexact = 0;
+    for (int k = 1; k < 10; k++) {
+        double s = k / 10.0;
+        acd_vec2 t = {outer[2].x + s * (outer[3].x - outer[2].x), outer[2].y + s * (outer[3].y - outer[2].y)};
+        if (acd_ref_orient(outer[2], outer[3], t) != 0) inexact++;
+        acd_vec2 p[] = {outer[0], outer[1], t, outer[3]}, q[] = {outer[1], outer[2], t};
+        const acd_vec2 *cc[] = {p, q};
+        size_t zz[] = {4, 3};
+        assert_int_equal(run(&in, cc, zz, 2, 100, NULL, &err), ACD_OK);
+    }
+    assert_true(inexact > 0);
+    acd_polygon_free(&in);
+}
+
+/* Far from the origin, a cut end w computed on an earlier cut P Q and rounded into the component
+ * on the other side (a T-junction off by a fraction of the spacing of doubles) is an overlap
+ * between components, caught; with w also in that component (a shared cut end) it passes. */
+static void test_far_t_junction(void **state) {
+    (void)state;
+    const double T = 1e9;
+    acd_polygon in = square_input(2);
+    for (size_t i = 0; i < 4; i++) {
+        in.points[i].x += T;
+        in.points[i].y += T;
+    }
+    acd_vec2 O = in.points[0], X = in.points[1], Z = in.points[2], Y = in.points[3];
+    acd_vec2 P = {T + 0.7, T}, Q = {T + 1.3, T + 2}, R = {T + 2, T + 1};
+    int overlaps = 0;
+    for (int k = 1; k < 20; k++) {
+        double s = k / 20.0;
+        acd_vec2 w = {P.x + s * (Q.x - P.x), P.y + s * (Q.y - P.y)};
+        acd_vec2 a[] = {O, P, Q, Y}, a2[] = {O, P, w, Q, Y};
+        acd_vec2 b[] = {P, X, R, w}, c2[] = {w, R, Z, Q};
+        const acd_vec2 *c[] = {a, b, c2}, *cs[] = {a2, b, c2};
+        size_t sz[] = {4, 4, 4}, szs[] = {5, 4, 4};
+        acd_verify2d_report rep;
+        acd_error err;
+        assert_int_equal(run(&in, cs, szs, 3, 100, NULL, &err), ACD_OK);
+        if (acd_ref_orient(P, Q, w) > 0) { /* w inside a */
+            assert_int_equal(run(&in, c, sz, 3, 100, &rep, &err), ACD_ERR_VERIFY);
+            assert_int_equal(rep.failed, ACD_V2D_OVERLAP);
+            overlaps++;
+        }
+    }
+    assert_true(overlaps > 0);
+    acd_polygon_free(&in);
+}
+
 /* acd_verify2d_result on a hand-made result: passes, then a hull missing a corner, a clockwise
  * hull and a result claiming a smaller tau fail. */
 static void test_result_hulls(void **state) {
@@ -476,6 +558,9 @@ int main(void) {
         cmocka_unit_test(test_many_components),
         cmocka_unit_test(test_rounded_steiner),
         cmocka_unit_test(test_area_compensated),
+        cmocka_unit_test(test_boxes_meet_edges_do_not),
+        cmocka_unit_test(test_far_exact_and_rounded),
+        cmocka_unit_test(test_far_t_junction),
         cmocka_unit_test(test_result_hulls),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

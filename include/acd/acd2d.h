@@ -65,7 +65,9 @@ typedef struct acd2d_node {
     int acceptable;          /* 1 if the polygon is simple, without holes or hole-merging slits: only
                                 such nodes can be components (acd2d_result_at_tau) */
     size_t ring_offset;      /* split nodes: position of cut[0] in this node's ring (for the rebuild) */
-    int cut_new_point;       /* split nodes: cut[1] is a new point inside an edge */
+    int cut_new_point;       /* split nodes: cut[1] is a new point inside an edge (1); 2: that point
+                                was rounded off its edge and also put into the edge's other side
+                                (far from the origin), so the node's polygon keeps it */
 } acd2d_node;
 
 typedef struct acd2d_component {

@@ -18,6 +18,7 @@
  *  counterclockwise polygon. Every cut resolves its notch and creates none (Steiner ends have
  *  two angles < 180 degrees), so the number of cuts is bounded; a hard bound guards it anyway.
  *  The progress callback is called between steps with the fraction of the area finished. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +28,7 @@
 #include "acd2/cut.h"
 #include "acd2/holes.h"
 #include "acd2/pocket.h"
+#include "acd2/resolution.h"
 #include "acd2/ring.h"
 #include "acd2/tree.h"
 #include "core/error.h"
@@ -93,6 +95,9 @@ typedef struct ctx {
     size_t ncomps, comps_cap;
     double total_area, done_area;
     size_t ncuts, max_cuts;
+    int far; /* far from the origin: new points may round off their edges by more than the weld
+                distance; they are then shared with the edge's other side, and every tree node's
+                polygon is stored (and gets the shared points) instead of rebuilt */
 } ctx;
 
 #define GROW(ptr, n, cap)                                                        \
@@ -164,6 +169,73 @@ static int ensure_buffers(ctx *c, size_t n) {
         memset(m + c->mark_cap, 0, (size_t)(nc - c->mark_cap));
         c->mark = m;
         c->mark_cap = nc;
+    }
+    return 0;
+}
+
+/* Shares a new point z, just put into the edge U -> V of a ring by a cut, with the ring that has
+ * the same edge the other way round (V -> U: the other side of an earlier cut, a finished
+ * component or a ring still to process, or the other side of a hole-merging slit in one of the
+ * pieces a, b). z is rounded off the line U V; far from the origin by more than the cut pieces'
+ * tolerances, so without it the neighbour would overlap the pieces or leave a gap (a
+ * T-junction). Returns 1 when shared, 0 when no ring has the edge, -1 when out of memory. */
+static int share_point(ctx *c, acd2_ring *a, acd2_ring *b, acd_vec2 U, acd_vec2 V, acd_vec2 z, int64_t zid) {
+    int rc = acd2_ring_insert_on_edge(a, V, U, z, zid);
+    if (rc == 0) rc = acd2_ring_insert_on_edge(b, V, U, z, zid);
+    for (size_t i = c->nstack; rc == 0 && i > 0; i--) rc = acd2_ring_insert_on_edge(&c->stack[i - 1].ring, V, U, z, zid);
+    if (rc != 0) return rc;
+    for (size_t i = c->ncomps; i > 0; i--) {
+        acd2d_component *cp = &c->comps[i - 1];
+        size_t n = cp->npoints, k = 0;
+        for (; k < n; k++)
+            if (acd2_same(cp->points[k], V) && acd2_same(cp->points[acd2_next(k, n)], U)) break;
+        if (k == n) continue;
+        acd_vec2 *np = malloc((n + 1) * sizeof *np), *hull = malloc((n + 2) * sizeof *hull);
+        size_t *idx = malloc((n + 2) * sizeof *idx), *scr = malloc((n + 2) * sizeof *scr);
+        if (!np || !hull || !idx || !scr) {
+            free(np); free(hull); free(idx); free(scr);
+            return -1;
+        }
+        memcpy(np, cp->points, (k + 1) * sizeof *np);
+        np[k + 1] = z;
+        memcpy(np + k + 2, cp->points + k + 1, (n - k - 1) * sizeof *np);
+        size_t nh = acd_hull2d_indices(np, n + 1, idx, scr);
+        for (size_t h = 0; h < nh; h++) hull[h] = np[idx[h]];
+        free(cp->points);
+        free(cp->hull);
+        free(idx);
+        free(scr);
+        cp->points = np;
+        cp->npoints = n + 1;
+        cp->hull = hull;
+        cp->nhull = nh;
+        return 1;
+    }
+    return 0;
+}
+
+/* Puts z into every stored tree-node polygon with the edge U -> V or V -> U (far from the origin
+ * every node's polygon is stored), so that the hierarchy readouts tile as the components do.
+ * 0, or -1 when out of memory. */
+static int share_in_nodes(ctx *c, acd_vec2 U, acd_vec2 V, acd_vec2 z) {
+    for (size_t i = 0; i < c->nnodes; i++) {
+        acd_polygon *pg = &c->nodes[i].polygon;
+        for (size_t r = 0; r < pg->nrings; r++) {
+            size_t s = pg->ring_start[r], e = pg->ring_start[r + 1], k = s;
+            for (; k < e; k++) {
+                acd_vec2 a = pg->points[k], b = pg->points[k + 1 == e ? s : k + 1];
+                if ((acd2_same(a, U) && acd2_same(b, V)) || (acd2_same(a, V) && acd2_same(b, U))) break;
+            }
+            if (k == e) continue;
+            size_t np = pg->ring_start[pg->nrings];
+            acd_vec2 *q = realloc(pg->points, (np + 1) * sizeof *q);
+            if (!q) return -1;
+            pg->points = q;
+            memmove(q + k + 2, q + k + 1, (np - k - 1) * sizeof *q);
+            q[k + 1] = z;
+            for (size_t t = r + 1; t <= pg->nrings; t++) pg->ring_start[t]++;
+            r = pg->nrings; /* one edge per node polygon: U V is one segment of one ring */
+        }
     }
     return 0;
 }
@@ -268,6 +340,7 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
     if ((int)prm->measure < 0 || (int)prm->measure > 3 || ((int)prm->cut != 0 && (int)prm->cut != 1))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd2d_decompose: unknown measure or cut mode");
     acd_status st = check_input(poly, err);
+    if (st == ACD_OK) st = acd2_check_resolution(poly, err);
     if (st != ACD_OK) return st;
     double t0 = now_seconds();
 
@@ -308,7 +381,13 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
     c.co.mode = prm->cut;
     c.co.far = 4 * sc.extent + 1;
     c.co.weld = sc.weld;
-    c.eps_c = sc.dist;
+    {
+        double m = 0;
+        for (size_t i = 0; i < np; i++) m = fmax(m, fmax(fabs(P.points[i].x), fabs(P.points[i].y)));
+        c.far = DBL_EPSILON * m > sc.weld;
+        /* a concavity below the rounding of the coordinates (a shared point's kink) is none */
+        c.eps_c = fmax(sc.dist, ACD2_ROUND_ULPS * DBL_EPSILON * m);
+    }
     c.next_id = (int64_t)np;
     c.total_area = acd_polygon_area(&P);
     size_t notches = 0;
@@ -351,6 +430,7 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
             if (st != ACD_OK) { st = acd_fail(err, st, "acd2d: measuring the outer boundary failed (%s)", acd_status_string(st)); goto fail; }
             st = acd2_holes_init(&hs, &P, c.conc, c.co.far, err);
             if (st != ACD_OK) goto fail;
+            hs.weld = c.far ? c.co.weld : INFINITY; /* near the origin: never shared */
             int cur = root;
             while (hs.alive > 0) {
                 if (prm->progress && prm->progress(prm->progress_user, 0.0, "merging holes")) {
@@ -504,12 +584,27 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
         }
         acd2_ring a = {0}, b = {0};
         int64_t nid = c.next_id;
+        int shared = 0;
         if (acd2_split(r, wit, &hit, nid, &a, &b)) {
             acd2_ring_free(&a); acd2_ring_free(&b); acd2_ring_free(r);
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
             goto fail;
         }
-        if (!hit.is_vertex) c.next_id++;
+        if (!hit.is_vertex) {
+            c.next_id++;
+            acd_vec2 U = r->p[hit.j], V = r->p[acd2_next(hit.j, r->n)];
+            /* near the origin z is within the weld distance of U V (as the verifier's tolerance
+             * allows) and nothing changes; far from it, the neighbour gets z too */
+            if (c.far && acd2_line_offset(U, V, hit.z) > c.co.weld) {
+                int sh = share_point(&c, &a, &b, U, V, hit.z, nid);
+                if (sh < 0) {
+                    acd2_ring_free(&a); acd2_ring_free(&b); acd2_ring_free(r);
+                    st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+                    goto fail;
+                }
+                if (sh > 0) shared = 1;
+            }
+        }
         if (a.n < 3 || b.n < 3 || !(acd2_ring_area2(a.p, a.n) > 0) || !(acd2_ring_area2(b.p, b.n) > 0)) {
             st = acd_fail(err, ACD_ERR_INTERNAL,
                           "acd2d: the cut from (%.17g, %.17g) to (%.17g, %.17g) gives a degenerate piece", r->p[wit].x,
@@ -520,15 +615,20 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
         nd->cut[0] = r->p[wit];
         nd->cut[1] = hit.z;
         nd->ring_offset = wit;
-        nd->cut_new_point = !hit.is_vertex;
+        nd->cut_new_point = hit.is_vertex ? 0 : shared ? 2 : 1;
         {
             size_t n = r->n, ea = (hit.j + n - wit) % n + 1 + (size_t)!hit.is_vertex;
             size_t eb = hit.is_vertex ? (wit + n - hit.j) % n + 1 : (wit + n - acd2_next(hit.j, n)) % n + 2;
-            if ((a.n != ea || b.n != eb) && nd->polygon.nrings == 0 && ring_to_polygon(r, &nd->polygon)) {
+            if ((c.far || a.n != ea || b.n != eb) && nd->polygon.nrings == 0 && ring_to_polygon(r, &nd->polygon)) {
                 acd2_ring_free(&a); acd2_ring_free(&b); acd2_ring_free(r);
                 st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
                 goto fail;
             }
+        }
+        if (shared && share_in_nodes(&c, r->p[hit.j], r->p[acd2_next(hit.j, r->n)], hit.z)) {
+            acd2_ring_free(&a); acd2_ring_free(&b); acd2_ring_free(r);
+            st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
+            goto fail;
         }
         acd_vec2 seg[2] = {r->p[wit], hit.z};
         acd2_ring_free(r);

@@ -180,9 +180,10 @@ static void find_target(const acd2_holes *hs, const acd2_ring *rings, size_t nr,
 }
 
 /* splices hole ring `h` (merge from its vertex e) into ring `dst` at hit (vertex or edge) */
-static int splice(acd2_ring *dst, const acd2_ring *h, size_t e, const acd2_hit *hit, int64_t new_id) {
+static int splice(acd2_ring *dst, const acd2_ring *h, size_t e, const acd2_hit *hit, int64_t new_id, double weld) {
     acd2_ring out = {0};
     size_t n = dst->n, j = hit->j;
+    acd_vec2 U = dst->p[j], V = dst->p[acd2_next(j, n)];
     int rc = 0;
     rc |= acd2_ring_append_range(&out, dst, 0, j + 1);
     if (!hit->is_vertex) rc |= acd2_ring_push(&out, hit->z, new_id);
@@ -191,6 +192,11 @@ static int splice(acd2_ring *dst, const acd2_ring *h, size_t e, const acd2_hit *
     if (hit->is_vertex) rc |= acd2_ring_push(&out, dst->p[j], dst->id[j]);
     else rc |= acd2_ring_push(&out, hit->z, new_id);
     if (j + 1 < n) rc |= acd2_ring_append_range(&out, dst, j + 1, n - j - 1);
+    /* a new point rounded off an earlier slit's edge U V by more than the weld distance (far from
+     * the origin) goes into the slit's other side V U too, so both sides stay one segment pair */
+    if (!rc && !hit->is_vertex && acd2_line_offset(U, V, hit->z) > weld &&
+        acd2_ring_insert_on_edge(&out, V, U, hit->z, new_id) < 0)
+        rc = 1;
     if (rc) {
         acd2_ring_free(&out);
         return -1;
@@ -453,7 +459,7 @@ acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, dou
     if (t.owner == 0) {
         double val = anchor_conc(hs, &t) + t.dist + hypot(P.x - Q.x, P.y - Q.y);
         hs->idconc[nid] = anchor_conc(hs, &t);
-        if (splice(&hs->outer, &h->ring, t.e, &t.hit, nid)) {
+        if (splice(&hs->outer, &h->ring, t.e, &t.hit, nid, hs->weld)) {
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory while merging a hole");
             goto done;
         }
@@ -465,7 +471,7 @@ acd_status acd2_holes_step(acd2_holes *hs, acd_vec2 seg[2], int *into_outer, dou
         into = which[t.owner] + 1;
         acd2_hole *J = &hs->h[into - 1];
         hs->idconc[nid] = 0;
-        if (splice(&J->ring, &h->ring, t.e, &t.hit, nid)) {
+        if (splice(&J->ring, &h->ring, t.e, &t.hit, nid, hs->weld)) {
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory while merging two holes");
             goto done;
         }

@@ -46,6 +46,8 @@ typedef struct acd2_holes {
     int64_t idcap;
     int64_t next_id;  /* next id for a new point */
     double far;       /* longer than the polygon's diameter */
+    double weld;      /* a new point farther than this from the edge it splits is shared with the
+                         edge's other side (a slit); set by the caller (0 after acd2_holes_init) */
     int force_bridge; /* tests only: always take the fallback bridge (0 after acd2_holes_init) */
 } acd2_holes;
 

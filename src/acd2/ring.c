@@ -1,6 +1,7 @@
 /* acd2/ring: growable struct-of-arrays ring and exact local tests (spec acd2d.md §3.0, §5.3). */
 #include "acd2/ring.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -65,6 +66,31 @@ double acd2_ring_area2(const acd_vec2 *p, size_t n) {
         s += ax * by - ay * bx;
     }
     return s;
+}
+
+int acd2_ring_insert_on_edge(acd2_ring *r, acd_vec2 from, acd_vec2 to, acd_vec2 z, int64_t id) {
+    size_t n = r->n, k = 0;
+    for (; k < n; k++)
+        if (acd2_same(r->p[k], from) && acd2_same(r->p[acd2_next(k, n)], to)) break;
+    if (k == n) return 0;
+    if (acd2_ring_reserve(r, n + 1)) return -1;
+    size_t at = k + 1; /* z goes between k and k + 1 (at the end when k + 1 wraps) */
+    memmove(r->p + at + 1, r->p + at, (n - at) * sizeof *r->p);
+    memmove(r->id + at + 1, r->id + at, (n - at) * sizeof *r->id);
+    memmove(r->c + at + 1, r->c + at, (n - at) * sizeof *r->c);
+    memmove(r->be + at + 1, r->be + at, (n - at) * sizeof *r->be);
+    r->p[at] = z;
+    r->id[at] = id;
+    r->c[at] = 0;
+    r->n = n + 1;
+    for (size_t i = 0; i < r->n; i++) r->be[i] = -1;
+    return 1;
+}
+
+double acd2_line_offset(acd_vec2 a, acd_vec2 b, acd_vec2 z) {
+    double dx = b.x - a.x, dy = b.y - a.y, l = hypot(dx, dy);
+    if (!(l > 0)) return hypot(z.x - a.x, z.y - a.y);
+    return fabs(acd2_orient(a, b, z)) / l;
 }
 
 void acd2_ring_clean(acd2_ring *r) {

@@ -32,6 +32,14 @@ int acd2_ring_append_range(acd2_ring *dst, const acd2_ring *src, size_t from, si
 /* Twice the signed area (shoelace relative to the first vertex). */
 double acd2_ring_area2(const acd_vec2 *p, size_t n);
 
+/* Inserts z (with id) between the consecutive vertices `from`, `to` (exact coordinates) of r,
+ * at the first place where they occur. Resets the ring's bridge cache (be[]). Returns 1 when
+ * inserted, 0 when the edge is not in r, -1 when out of memory. */
+int acd2_ring_insert_on_edge(acd2_ring *r, acd_vec2 from, acd_vec2 to, acd_vec2 z, int64_t id);
+
+/* Distance from z to the line through a, b (a != b), computed relative to a. */
+double acd2_line_offset(acd_vec2 a, acd_vec2 b, acd_vec2 z);
+
 /* Removes consecutive vertices at the same coordinates and spikes u,v,u (zero-area antennae),
  * cyclically, until none is left. */
 void acd2_ring_clean(acd2_ring *r);

@@ -8,9 +8,12 @@
  * frontier, which may differ from a fresh H2 run at tau'. */
 #include "acd2/tree.h"
 
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd2/resolution.h"
 #include "core/error.h"
 #include "core/tolerance.h"
 #include "geom2/hull2d.h"
@@ -173,7 +176,10 @@ acd_status acd2d_result_at_tau(const acd2d_result *res, double tau2, acd2d_resul
                         res->tau);
     const acd_polygon *root = &res->nodes[0].polygon;
     acd_scale sc = acd_scale_of_points(&root->points[0].x, acd_polygon_num_points(root), 2);
-    double eps = sc.dist;
+    double m = 0;
+    for (size_t i = 0; i < acd_polygon_num_points(root); i++)
+        m = fmax(m, fmax(fabs(root->points[i].x), fabs(root->points[i].y)));
+    double eps = fmax(sc.dist, ACD2_ROUND_ULPS * DBL_EPSILON * m); /* as acd2d_decompose */
     out->tau = tau2;
     out->measure = res->measure;
     out->input_vertices = res->input_vertices;

@@ -12,8 +12,13 @@
  *     on the boundary of Y (a duplicate). With no proper crossing, two simple polygons'
  *     interiors meet iff a boundary piece of one lies inside the other or they coincide.
  *   areas: compensated shoelace sums.
- * Sides and crossings use the exact predicates; a point within `tol` (ACD_TOL_REL_DIST x the
- * input's extent) of a boundary counts as on it, to absorb rounding in Steiner points.
+ * Sides and crossings use the exact predicates; a point within `tol` of a boundary counts as on
+ * it, to absorb rounding in Steiner points: tol = max(ACD_TOL_REL_DIST x the input's extent,
+ * 4 DBL_EPSILON x the largest coordinate magnitude). The second term is the rounding of a
+ * computed point (a Steiner point, or this file's own midpoints and feet) far from the origin:
+ * no double lies closer to the segment it was computed on, so a smaller tolerance would reject
+ * exact decompositions of translated inputs (a polygon of extent 1 at 1e9 has a spacing of
+ * 1.2e-7 between doubles).
  * Efficiency: components are paired through a uniform grid of bounding boxes; each region keeps
  * y-buckets of its edges, used both to locate points and to list its edges near a box; edge
  * pairs are found by a sweep over x. */
@@ -50,12 +55,37 @@ static box seg_box(acd_vec2 a, acd_vec2 b, double t) {
     return r;
 }
 
+/* Rounding of a point computed from coordinates of magnitude up to that of the input: a few
+ * units in the last place of the largest coordinate (see the file comment). */
+#define V2D_ROUND_ULPS 4.0
+static double round_tol(const acd_polygon *input) {
+    double m = 0;
+    size_t n = acd_polygon_num_points(input);
+    for (size_t i = 0; i < n; i++) m = fmax(m, fmax(fabs(input->points[i].x), fabs(input->points[i].y)));
+    return V2D_ROUND_ULPS * DBL_EPSILON * m;
+}
+
+/* the input's perimeter (bounds the area moved by rounding points on its edges) */
+static double perimeter(const acd_polygon *input) {
+    double s = 0;
+    for (size_t r = 0; r < input->nrings; r++) {
+        const acd_vec2 *p = acd_polygon_ring(input, r);
+        size_t n = acd_polygon_ring_size(input, r);
+        for (size_t i = 0; i < n; i++) s += hypot(p[(i + 1) % n].x - p[i].x, p[(i + 1) % n].y - p[i].y);
+    }
+    return s;
+}
+
+/* Distance from q to the segment a-b, computed relative to a (q - a and b - a are exact for
+ * nearby points): a foot point a + t (b - a) in absolute coordinates would be rounded to the
+ * spacing of doubles there, hiding any offset below it far from the origin. */
 static double seg_dist(acd_vec2 q, acd_vec2 a, acd_vec2 b) {
     double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
-    double t = l2 > 0 ? ((q.x - a.x) * dx + (q.y - a.y) * dy) / l2 : 0;
+    double qx = q.x - a.x, qy = q.y - a.y;
+    double t = l2 > 0 ? (qx * dx + qy * dy) / l2 : 0;
     if (t < 0) t = 0;
     if (t > 1) t = 1;
-    return hypot(q.x - (a.x + t * dx), q.y - (a.y + t * dy));
+    return hypot(qx - t * dx, qy - t * dy);
 }
 
 static double seg_param(acd_vec2 q, acd_vec2 a, acd_vec2 b) {
@@ -95,6 +125,14 @@ double acd_v2d_ring_area(const acd_vec2 *pts, size_t n) {
     return 0.5 * (k.s + k.c);
 }
 
+/* q lies on the closed segment a-b, exactly (orientation 0 and inside its box) */
+static int same_pt(acd_vec2 a, acd_vec2 b) { return a.x == b.x && a.y == b.y; }
+
+static int on_seg_exact(acd_vec2 q, acd_vec2 a, acd_vec2 b) {
+    if (q.x < fmin(a.x, b.x) || q.x > fmax(a.x, b.x) || q.y < fmin(a.y, b.y) || q.y > fmax(a.y, b.y)) return 0;
+    return acd_ref_orient(a, b, q) == 0;
+}
+
 /* Does edge a->b cross the horizontal ray from q towards +x (half-open in y)? Exact. */
 static int ray_crosses(acd_vec2 a, acd_vec2 b, acd_vec2 q) {
     if ((a.y > q.y) == (b.y > q.y)) return 0;
@@ -108,7 +146,7 @@ int acd_v2d_classify_point(const acd_vec2 *pts, const size_t *ring_start, size_t
         size_t s = ring_start[r], e = ring_start[r + 1];
         for (size_t i = s; i < e; i++) {
             acd_vec2 a = pts[i], b = pts[i + 1 == e ? s : i + 1];
-            if (seg_dist(q, a, b) <= tol) return 0;
+            if (on_seg_exact(q, a, b) || seg_dist(q, a, b) <= tol) return 0;
             if (ray_crosses(a, b, q)) inside ^= 1;
         }
     }
@@ -120,7 +158,7 @@ int acd_v2d_classify_point(const acd_vec2 *pts, const size_t *ring_start, size_t
 typedef struct region {
     const acd_vec2 *p;
     size_t n;        /* points = edges; edge i runs p[i] -> p[nxt[i]] */
-    size_t *nxt;
+    size_t *nxt, *prv;
     box bb;          /* exact bounding box */
     size_t nb;       /* y-buckets over [bb.y0 - tol, bb.y1 + tol] */
     double by0, bh;
@@ -131,6 +169,7 @@ typedef struct region {
 
 static void region_free(region *r) {
     free(r->nxt);
+    free(r->prv);
     free(r->bs);
     free(r->be);
     free(r->stamp);
@@ -149,11 +188,15 @@ static int region_init(region *r, const acd_vec2 *p, const size_t *ring_start, s
     r->p = p;
     r->n = n;
     r->nxt = malloc((n ? n : 1) * sizeof *r->nxt);
+    r->prv = malloc((n ? n : 1) * sizeof *r->prv);
     r->stamp = calloc(n ? n : 1, sizeof *r->stamp);
-    if (!r->nxt || !r->stamp) return -1;
+    if (!r->nxt || !r->prv || !r->stamp) return -1;
     for (size_t k = 0; k < nrings; k++) {
         size_t s = ring_start ? ring_start[k] : 0, e = ring_start ? ring_start[k + 1] : n;
-        for (size_t i = s; i < e; i++) r->nxt[i] = i + 1 == e ? s : i + 1;
+        for (size_t i = s; i < e; i++) {
+            r->nxt[i] = i + 1 == e ? s : i + 1;
+            r->prv[r->nxt[i]] = i;
+        }
     }
     r->bb = (box){INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (size_t i = 0; i < n; i++) {
@@ -202,10 +245,52 @@ static int region_classify(const region *r, acd_vec2 q, double tol) {
     for (size_t k = r->bs[b]; k < r->bs[b + 1]; k++) {
         size_t i = r->be[k];
         acd_vec2 a = r->p[i], c = r->p[r->nxt[i]];
-        if (seg_dist(q, a, c) <= tol) return 0;
+        if (on_seg_exact(q, a, c) || seg_dist(q, a, c) <= tol) return 0;
         if (ray_crosses(a, c, q)) inside ^= 1;
     }
     return inside ? 1 : -1;
+}
+
+/* The segment e0-e1 (around m) lies on one edge of r, exactly. */
+static int region_piece_on(const region *r, acd_vec2 e0, acd_vec2 e1, acd_vec2 m) {
+    if (m.y < r->by0 || m.y > r->by0 + r->bh * (double)r->nb) return 0;
+    size_t b = bucket_of(r, m.y);
+    for (size_t k = r->bs[b]; k < r->bs[b + 1]; k++) {
+        size_t i = r->be[k];
+        acd_vec2 a = r->p[i], c = r->p[r->nxt[i]];
+        if (on_seg_exact(e0, a, c) && on_seg_exact(e1, a, c)) return 1;
+    }
+    return 0;
+}
+
+/* Where the open segment e0 -> e1 lies relative to r (1 inside, -1 outside, 0 on its boundary),
+ * decided exactly from e0 and the direction to e1, when e0 lies exactly on r's boundary (a vertex
+ * or inside an edge) or at more than tol from it; the segment must cross no edge of r and hold
+ * no vertex of r. Returns 2 when undecided (e0 within tol of the boundary but not on it): the
+ * caller then locates the midpoint. Midpoints are rounded, by more than the tolerance far from
+ * the origin, and could fall on the wrong side of a sliver thinner than the rounding. */
+static int region_classify_piece(const region *r, acd_vec2 e0, acd_vec2 e1, double tol) {
+    if (e0.y >= r->by0 && e0.y <= r->by0 + r->bh * (double)r->nb) {
+        size_t b = bucket_of(r, e0.y);
+        for (size_t k = r->bs[b]; k < r->bs[b + 1]; k++) {
+            size_t i = r->be[k];
+            acd_vec2 a = r->p[i], c = r->p[r->nxt[i]];
+            if (same_pt(e0, a)) { /* at vertex a: the interior wedge between u -> a and a -> c */
+                acd_vec2 u = r->p[r->prv[i]];
+                double oc = acd_ref_orient(a, c, e1), ou = acd_ref_orient(u, a, e1);
+                if (oc == 0 && (e1.x - a.x) * (c.x - a.x) + (e1.y - a.y) * (c.y - a.y) > 0) return 0;
+                if (ou == 0 && (e1.x - a.x) * (u.x - a.x) + (e1.y - a.y) * (u.y - a.y) > 0) return 0;
+                int in = acd_ref_orient(u, a, c) > 0 ? (ou > 0 && oc > 0) : (ou > 0 || oc > 0);
+                return in ? 1 : -1;
+            }
+            if (!same_pt(e0, c) && on_seg_exact(e0, a, c)) { /* inside edge a -> c: its side */
+                double o = acd_ref_orient(a, c, e1);
+                return o > 0 ? 1 : o < 0 ? -1 : 0;
+            }
+        }
+    }
+    int w = region_classify(r, e0, tol);
+    return w == 0 ? 2 : w;
 }
 
 static unsigned next_stamp(region *r) {
@@ -226,8 +311,11 @@ static size_t region_edges_in(region *r, box q, double tol, size_t *out) {
         for (size_t k = r->bs[b]; k < r->bs[b + 1]; k++) {
             size_t i = r->be[k];
             if (r->stamp[i] == st) continue;
-            r->stamp[i] = st;
-            if (box_meets(q, seg_box(r->p[i], r->p[r->nxt[i]], tol))) out[m++] = i;
+            /* stamp only the listed edges: count_outside takes the unstamped ones as outside */
+            if (box_meets(q, seg_box(r->p[i], r->p[r->nxt[i]], tol))) {
+                r->stamp[i] = st;
+                out[m++] = i;
+            }
         }
     return m;
 }
@@ -238,6 +326,7 @@ typedef struct split {
     int side; /* 0: X, 1: Y */
     size_t edge;
     double t;
+    acd_vec2 q; /* the other region's vertex splitting the edge */
 } split;
 
 typedef struct sweep_item {
@@ -271,12 +360,12 @@ static int grow_raw(void *old, void **out, size_t *cap, size_t need, size_t elem
     return 0;
 }
 
-static int add_split(verifier *v, int side, size_t edge, double t) {
+static int add_split(verifier *v, int side, size_t edge, double t, acd_vec2 q) {
     void *mem;
     int r = grow_raw(v->splits, &mem, &v->cap_splits, v->nsplits + 1, sizeof *v->splits);
     v->splits = mem;
     if (r) return -1;
-    v->splits[v->nsplits++] = (split){side, edge, t};
+    v->splits[v->nsplits++] = (split){side, edge, t, q};
     return 0;
 }
 
@@ -336,6 +425,7 @@ static void locate_side(verifier *v, const region *X, const region *Y, const siz
         size_t e = edges[a];
         acd_vec2 p0 = X->p[e], p1 = X->p[X->nxt[e]];
         count(s, region_classify(Y, p0, v->tol), p0, e);
+        acd_vec2 e0 = p0;
         /* first split of this edge */
         size_t lo = 0, hi = nsp;
         while (lo < hi) {
@@ -348,14 +438,24 @@ static void locate_side(verifier *v, const region *X, const region *Y, const siz
         k = lo;
         double t0 = 0;
         for (;;) {
-            double t1 = (k < nsp && sp[k].side == side && sp[k].edge == e) ? sp[k].t : 1.0;
+            int at_split = k < nsp && sp[k].side == side && sp[k].edge == e;
+            double t1 = at_split ? sp[k].t : 1.0;
+            acd_vec2 e1 = at_split ? sp[k].q : p1;
             if (t1 > t0) {
                 double tm = 0.5 * (t0 + t1);
                 acd_vec2 m = {p0.x + tm * (p1.x - p0.x), p0.y + tm * (p1.y - p0.y)};
-                count(s, region_classify(Y, m, v->tol), m, e);
+                /* a piece lying exactly on an edge of Y is on its boundary, whatever the rounding of m */
+                int where = region_piece_on(Y, e0, e1, m) ? 0 : region_classify_piece(Y, e0, e1, v->tol);
+                /* undecided, or a piece along the boundary within the tolerance (a rounded point) */
+                if (where != 0) {
+                    int wm = region_classify(Y, m, v->tol);
+                    if (where == 2 || wm == 0) where = wm;
+                }
+                count(s, where, m, e);
             }
             if (t1 >= 1.0) break;
             t0 = t1;
+            e0 = e1;
             k++;
         }
     }
@@ -433,13 +533,15 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
                 return 0;
             }
             /* a vertex of one lying on the other edge splits that edge */
-            if (dc0 <= tol && seg_dist(c0, a0, a0) > tol && seg_dist(c0, a1, a1) > tol) {
+            if ((dc0 <= tol || on_seg_exact(c0, a0, a1)) && !same_pt(c0, a0) && !same_pt(c0, a1) &&
+                seg_dist(c0, a0, a0) > tol && seg_dist(c0, a1, a1) > tol) {
                 double t = seg_param(c0, a0, a1);
-                if (t > 0 && t < 1 && add_split(v, 0, e, t)) return -1;
+                if (t > 0 && t < 1 && add_split(v, 0, e, t, c0)) return -1;
             }
-            if (da0 <= tol && seg_dist(a0, c0, c0) > tol && seg_dist(a0, c1, c1) > tol) {
+            if ((da0 <= tol || on_seg_exact(a0, c0, c1)) && !same_pt(a0, c0) && !same_pt(a0, c1) &&
+                seg_dist(a0, c0, c0) > tol && seg_dist(a0, c1, c1) > tol) {
                 double t = seg_param(a0, c0, c1);
-                if (t > 0 && t < 1 && add_split(v, 1, f, t)) return -1;
+                if (t > 0 && t < 1 && add_split(v, 1, f, t, a0)) return -1;
             }
         }
     }
@@ -657,7 +759,8 @@ acd_status acd_verify2d(const acd_polygon *input, const acd_vec2 *const *compone
     acd_scale sc = acd_scale_of_points(&input->points[0].x, nin, 2);
     verifier v;
     memset(&v, 0, sizeof v);
-    v.tol = sc.dist;
+    double rtol = round_tol(input);
+    v.tol = fmax(sc.dist, rtol);
     size_t B = opt.component_base;
     char pa[96], pb[96];
 
@@ -756,7 +859,11 @@ acd_status acd_verify2d(const acd_polygon *input, const acd_vec2 *const *compone
         if (st != ACD_OK) fail(rep, ACD_V2D_OUTSIDE, (long)i, -1);
     }
 
-    /* 3. components pairwise interior-disjoint */
+    /* 3. components pairwise interior-disjoint. Components share their cut ends exactly (cut ends
+     * are points of both, or lie exactly on the other's edge), so only ACD_TOL_REL_DIST x extent
+     * is allowed here: a cut end rounded off the other component's edge by more is an overlap or
+     * a gap, however far from the origin the input lies. */
+    v.tol = sc.dist;
     if (st == ACD_OK && count > 1 && grid_build(&gr, rs, count, v.tol))
         st = acd_fail(err, ACD_ERR_NOMEM, "acd_verify2d: out of memory");
     for (size_t c = 0; st == ACD_OK && count > 1 && c < gr.g * gr.g; c++) {
@@ -806,10 +913,12 @@ acd_status acd_verify2d(const acd_polygon *input, const acd_vec2 *const *compone
             }
     }
 
+    v.tol = fmax(sc.dist, rtol);
     /* 4. areas add up */
     if (st == ACD_OK) {
         double diff = rep->components_area - rep->input_area;
-        double lim = opt.area_rel_tol * fabs(rep->input_area);
+        /* points rounded off the input's edges move at most perimeter x rtol of area */
+        double lim = opt.area_rel_tol * fabs(rep->input_area) + perimeter(input) * rtol;
         if (!(fabs(diff) <= lim)) {
             char where[160] = "";
             acd_vec2 gap;
@@ -831,7 +940,7 @@ acd_status acd_verify2d(const acd_polygon *input, const acd_vec2 *const *compone
 
     /* 5. concavity within tau */
     if (st == ACD_OK && opt.check_concavity) {
-        double bound = opt.tau + sc.dist;
+        double bound = opt.tau + v.tol;
         rep->max_concavity = 0;
         for (size_t i = 0; i < count; i++) {
             size_t w;
@@ -893,7 +1002,7 @@ acd_status acd_verify2d_result(const acd_polygon *input, const acd2d_result *res
     if (st != ACD_OK) return st;
     /* hulls: convex, counterclockwise, enclosing their components */
     size_t nin = acd_polygon_num_points(input);
-    double tol = acd_scale_of_points(&input->points[0].x, nin, 2).dist;
+    double tol = fmax(acd_scale_of_points(&input->points[0].x, nin, 2).dist, round_tol(input));
     for (size_t i = 0; i < n; i++) {
         const acd2d_component *c = &res->components[i];
         size_t h = c->nhull;
