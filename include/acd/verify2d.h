@@ -19,7 +19,10 @@
  *
  * Exact predicates decide sides and crossings; points computed by the decomposition (Steiner
  * points) may be off the segment they were cut from by rounding, so a point within
- * ACD_TOL_REL_DIST x extent of a boundary counts as on it.
+ * max(ACD_TOL_REL_DIST x extent, 4 DBL_EPSILON x the largest coordinate magnitude) of the
+ * input's boundary counts as on it (the second term: far from the origin no double lies nearer);
+ * between two components only ACD_TOL_REL_DIST x extent (cut ends must be shared exactly).
+ * Points exactly on an edge, and edge pieces exactly along one, are recognized exactly.
  * Pairs of components are found with a bounding-box grid and edges with per-component
  * y-buckets, so thousands of components are checked in near-linear time. */
 #ifndef ACD_VERIFY2D_H

@@ -12,8 +12,11 @@
 #include "acd/base.h"
 #include "acd/polygon.h"
 
-/* Rounding of a computed point, in units of DBL_EPSILON x M (as the verifier allows). */
-#define ACD2_ROUND_ULPS 4.0
+/* A point computed on an edge and rounded lies within 0.71 DBL_EPSILON x M of it; a shared point
+ * (decompose.c) thus kinks its neighbour's edge by less than ACD2_ROUND_ULPS x DBL_EPSILON x M,
+ * which the decomposition (and its readout) take as no concavity. Input notches shallower than
+ * that are not resolved far from the origin (the verifier allows 4 x as much). */
+#define ACD2_ROUND_ULPS 1.0
 
 /* Features are resolved when no edge is shorter than, and no vertex lies nearer than,
  * ACD2_RESOLVE_ULPS x DBL_EPSILON x M to an edge not incident to it. */
