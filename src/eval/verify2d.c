@@ -263,6 +263,17 @@ static int region_piece_on(const region *r, acd_vec2 e0, acd_vec2 e1, acd_vec2 m
     return 0;
 }
 
+/* q lies exactly on r's boundary (a vertex or inside an edge). */
+static int region_on_exact(const region *r, acd_vec2 q) {
+    if (q.y < r->by0 || q.y > r->by0 + r->bh * (double)r->nb) return 0;
+    size_t b = bucket_of(r, q.y);
+    for (size_t k = r->bs[b]; k < r->bs[b + 1]; k++) {
+        size_t i = r->be[k];
+        if (on_seg_exact(q, r->p[i], r->p[r->nxt[i]])) return 1;
+    }
+    return 0;
+}
+
 /* Where the open segment e0 -> e1 lies relative to r (1 inside, -1 outside, 0 on its boundary),
  * decided exactly from e0 and the direction to e1, when e0 lies exactly on r's boundary (a vertex
  * or inside an edge) or at more than tol from it; the segment must cross no edge of r and hold
@@ -446,8 +457,10 @@ static void locate_side(verifier *v, const region *X, const region *Y, const siz
                 acd_vec2 m = {p0.x + tm * (p1.x - p0.x), p0.y + tm * (p1.y - p0.y)};
                 /* a piece lying exactly on an edge of Y is on its boundary, whatever the rounding of m */
                 int where = region_piece_on(Y, e0, e1, m) ? 0 : region_classify_piece(Y, e0, e1, v->tol);
-                /* undecided, or a piece along the boundary within the tolerance (a rounded point) */
-                if (where != 0) {
+                /* undecided, or a piece along the boundary within the tolerance (a rounded point;
+                 * a piece between two points exactly on the boundary is decided exactly: a sliver
+                 * thinner than the tolerance, between three nearly collinear vertices, is not on it) */
+                if (where == 2 || (where != 0 && !region_on_exact(Y, e1))) {
                     int wm = region_classify(Y, m, v->tol);
                     if (where == 2 || wm == 0) where = wm;
                 }
@@ -533,12 +546,18 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
                 return 0;
             }
             /* a vertex of one lying on the other edge splits that edge */
-            if ((dc0 <= tol || on_seg_exact(c0, a0, a1)) && !same_pt(c0, a0) && !same_pt(c0, a1) &&
+            /* within tol splits only an edge with a computed (rounded) end: between two points
+             * exactly on the other's boundary an edge passing near a vertex is a sliver's side */
+            if ((on_seg_exact(c0, a0, a1) ||
+                 (dc0 <= tol && !(region_on_exact(Y, a0) && region_on_exact(Y, a1)))) &&
+                !same_pt(c0, a0) && !same_pt(c0, a1) &&
                 seg_dist(c0, a0, a0) > tol && seg_dist(c0, a1, a1) > tol) {
                 double t = seg_param(c0, a0, a1);
                 if (t > 0 && t < 1 && add_split(v, 0, e, t, c0)) return -1;
             }
-            if ((da0 <= tol || on_seg_exact(a0, c0, c1)) && !same_pt(a0, c0) && !same_pt(a0, c1) &&
+            if ((on_seg_exact(a0, c0, c1) ||
+                 (da0 <= tol && !(region_on_exact(X, c0) && region_on_exact(X, c1)))) &&
+                !same_pt(a0, c0) && !same_pt(a0, c1) &&
                 seg_dist(a0, c0, c0) > tol && seg_dist(a0, c1, c1) > tol) {
                 double t = seg_param(a0, c0, c1);
                 if (t > 0 && t < 1 && add_split(v, 1, f, t, a0)) return -1;
