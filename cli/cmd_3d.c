@@ -241,6 +241,7 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
     cJSON_AddNumberToObject(o, "tau", r->tau);
     cJSON_AddNumberToObject(o, "tau_relative", r->scale > 0 ? r->tau / r->scale : 0);
     cJSON_AddNumberToObject(o, "scale", r->scale);
+    cJSON_AddNumberToObject(o, "tol", r->tol);
     cJSON_AddNumberToObject(o, "input_volume", r->input_volume);
     if (p->trim_coverage > 0) { /* only with --trim-coverage: other runs' JSON unchanged */
         cJSON *t = cJSON_AddObjectToObject(o, "trim");
@@ -349,7 +350,7 @@ static int verify_surface(const acd_mesh *in, const acd3d_result *r, acd_error *
         faces += m->ntriangles;
         for (size_t t = 0; t < m->ntriangles; t++) area += tri_area(m, t);
         const acd3d_node *n = &r->nodes[r->parts[i].node];
-        if (n->leaf_reason == ACD3D_LEAF_TAU && r->parts[i].concavity > r->tau * (1 + 1e-12) + 1e-12 * r->scale)
+        if (n->leaf_reason == ACD3D_LEAF_TAU && r->parts[i].concavity > r->tau + r->tol)
             return acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g", i, r->parts[i].concavity,
                             r->tau);
     }
@@ -510,19 +511,19 @@ static int verify(const acd3d_result *r, int budget, double trim, int threads, d
             break;
         }
         sum += v;
-        if (n->leaf_reason == ACD3D_LEAF_TAU && p->concavity > r->tau * (1 + 1e-12) + 1e-12 * r->scale)
+        if (n->leaf_reason == ACD3D_LEAF_TAU && p->concavity > r->tau + r->tol)
             ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds tau %.17g", i, p->concavity, r->tau);
-        else if (n->leaf_reason == ACD3D_LEAF_JOINED && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
+        else if (n->leaf_reason == ACD3D_LEAF_JOINED && p->concavity > r->merge_tau + r->tol)
             ret = acd_fail(err, ACD_ERR_VERIFY, "joined part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
                            p->concavity, r->merge_tau);
-        else if (n->leaf_reason == ACD3D_LEAF_BUDGET && p->concavity > r->merge_tau * (1 + 1e-12) + 1e-12 * r->scale)
+        else if (n->leaf_reason == ACD3D_LEAF_BUDGET && p->concavity > r->merge_tau + r->tol)
             ret = acd_fail(err, ACD_ERR_VERIFY, "budget part %zu: bound %.17g exceeds the merge tolerance %.17g", i,
                            p->concavity, r->merge_tau);
         /* a part left above the tolerance (no_cut, depth): in a budget run the merge tolerance, which
          * the budget pass brings every part within (no_cut there: a part it could not) */
         else if (n->leaf_reason != ACD3D_LEAF_TAU && n->leaf_reason != ACD3D_LEAF_FLAT && n->leaf_reason != ACD3D_LEAF_BUDGET &&
                  n->leaf_reason != ACD3D_LEAF_MERGED && n->leaf_reason != ACD3D_LEAF_JOINED &&
-                 (p->concavity > r->tau || (budget && p->concavity > r->merge_tau) ||
+                 (p->concavity > r->tau + r->tol || (budget && p->concavity > r->merge_tau + r->tol) ||
                   (budget && (n->leaf_reason == ACD3D_LEAF_NO_CUT || n->leaf_reason == ACD3D_LEAF_DEPTH))))
             ret = acd_fail(err, ACD_ERR_VERIFY, "part %zu: concavity %.17g exceeds %s %.17g (%s)", i, p->concavity,
                            budget ? "the merge tolerance" : "tau", budget ? fmin(r->tau, r->merge_tau) : r->tau,

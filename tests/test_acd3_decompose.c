@@ -131,7 +131,7 @@ static void check_solid(const acd_mesh *in, const acd3d_result *r, const acd3d_p
             continue;
         }
         assert_true(fabs(c - r->parts[i].concavity) <= 1e-12 * (1 + c));
-        if (nd->leaf_reason == ACD3D_LEAF_TAU) assert_true(c <= r->tau + 1e-9);
+        if (nd->leaf_reason == ACD3D_LEAF_TAU) assert_true(c <= r->tau + r->tol);
         else assert_true(nd->leaf_reason == ACD3D_LEAF_FLAT || nd->leaf_reason == ACD3D_LEAF_NO_CUT ||
                          nd->leaf_reason == ACD3D_LEAF_DEPTH || nd->leaf_reason == ACD3D_LEAF_MERGED);
     }
@@ -167,8 +167,15 @@ static void test_l_shape_two_convex_parts(void **state) {
     acd_error err;
     assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
     assert_int_equal(r.nparts, 2);
+    /* tau 0: parts convex up to the stated rounding tolerance, 1e-10 of the box diagonal */
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) lo[k] = hi[k] = m.vertices[k];
+    for (size_t v = 0; v < m.nvertices; v++)
+        for (int k = 0; k < 3; k++) lo[k] = fmin(lo[k], m.vertices[3 * v + k]), hi[k] = fmax(hi[k], m.vertices[3 * v + k]);
+    double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    assert_true(fabs(r.tol - 1e-10 * diag) <= 1e-12 * r.tol);
     check_solid(&m, &r, &p);
-    for (size_t i = 0; i < r.nparts; i++) assert_true(r.parts[i].concavity <= 1e-9);
+    for (size_t i = 0; i < r.nparts; i++) assert_true(r.parts[i].concavity <= r.tol);
     acd3d_result_free(&r);
     acd_mesh_free(&m);
 }

@@ -237,6 +237,10 @@ typedef struct acd3d_result {
     double tau;               /* in model units */
     double merge_tau;         /* the merge pass's tolerance in model units (joined parts meet it) */
     double scale;             /* minimum enclosing sphere radius of the input */
+    double tol;               /* model units: a computed concavity or distance up to this counts as zero
+                                 (1e-10 of the input's bounding-box diagonal); a part is a leaf of reason
+                                 TAU when its concavity is at most tau + tol, so tau = 0 asks for parts
+                                 convex up to rounding */
     acd3d_part *parts;
     size_t nparts;
     acd3d_node *nodes;

@@ -1701,6 +1701,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
     acd_scale sc = acd_scale_of_points(mesh->vertices, mesh->nvertices, 3);
     out->scale = sph.radius;
     out->tau = params->tau_absolute ? params->tau : params->tau * sph.radius;
+    out->tol = sc.dist;
     if (params->merge_tau > 0) {
         out->merge_tau = params->tau_absolute ? params->merge_tau : params->merge_tau * sph.radius;
         out->merge_tau_relative = params->tau_absolute ? (sph.radius > 0 ? params->merge_tau / sph.radius : 0)
