@@ -321,7 +321,15 @@ int acd_cmd_segment(int argc, char **argv) {
             acd_mesh_free(&mesh);
             return acd_cli_report("segment", &err);
         }
-        if (merged > 0) {
+        /* only an open mesh is welded: shells that are closed with their own vertices (a model
+         * given twice, coincident) stay apart instead of becoming non-manifold */
+        acd_mesh_report rep;
+        int open = 0;
+        if (merged > 0 && acd_mesh_validate(&mesh, 0, &rep, &err) == ACD_OK) {
+            open = rep.boundary_edges > 0;
+            acd_mesh_report_free(&rep);
+        }
+        if (merged > 0 && open) {
             fprintf(stderr,
                     "acd segment: %zu vertices at the same coordinates as others merged (a triangle soup or split "
                     "vertices): faces are joined there\n",
