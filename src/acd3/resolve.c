@@ -6,6 +6,8 @@
 #include <string.h>
 
 #include "acd3/global_cut.h"
+#include "core/predicates.h"
+#include "geom3/edge_map.h"
 #include "geom3/pca.h"
 
 /* Fraction of the witness's concavity above which a vertex belongs to the valley. */
@@ -139,6 +141,177 @@ static int notch_plane(const acd_mesh *m, const acd3_measure *ms, int strict, ac
     return ok;
 }
 
+/* Edge planes (ours, not the seeds': docs/acd3d.md "Planes through reflex edges"). A reflex edge is
+ * sharp when its two faces' normals turn by more than this angle (degrees): the creases of a CAD
+ * part (90 degrees at a slot, 53 at the star's cube edges), not the shallow valleys of a scan,
+ * which keep exactly the candidates they had. */
+#define EDGE_PLANE_MIN_TURN_DEG 30.0
+/* A point is in a plane when orient3d says so exactly, or when its distance to the plane is below
+ * this fraction of the part's bounding-box diagonal (rounding: the endpoints of edges cut by an
+ * earlier plane are computed points). */
+#define EDGE_PLANE_COPLANAR_REL 1e-9
+/* How many edge planes are proposed (the ones holding the most sharp reflex edges). */
+#define EDGE_PLANES_MAX 3
+
+typedef struct sharp_edge {
+    uint32_t a, b;       /* endpoints */
+    uint32_t far[2];     /* the far vertices of its two faces */
+    double len;
+} sharp_edge;
+
+/* Whether the edge a -> b of the part (em: its closed edge map with twins) is a sharp reflex edge;
+ * fills *e. Reflex is decided exactly (orient3d: the far vertex of the face across it lies
+ * outside the plane of the face that holds a -> b); sharp by the turn of the face normals. */
+static int sharp_reflex(const acd_mesh *m, const acd_edge_map *em, uint32_t a, uint32_t b, double cos_max,
+                        sharp_edge *e) {
+    uint32_t h = acd_edge_map_find(em, a, b);
+    if (h == ACD_EDGE_NONE) return 0;
+    uint32_t t = em->twin[h];
+    if (t == ACD_EDGE_NONE) return 0;
+    uint32_t f = h / 3, g = t / 3;
+    uint32_t ff = m->triangles[3 * (size_t)f + (h % 3 + 2) % 3], fg = m->triangles[3 * (size_t)g + (t % 3 + 2) % 3];
+    const double *v = m->vertices;
+    const uint32_t *tf = m->triangles + 3 * (size_t)f;
+    if (acd_orient3d_sign(v + 3 * (size_t)tf[0], v + 3 * (size_t)tf[1], v + 3 * (size_t)tf[2], v + 3 * (size_t)fg) >= 0)
+        return 0; /* on or below f's plane: convex or flat */
+    double n1[3], n2[3];
+    if (face_normal(m, f, n1) == 0 || face_normal(m, g, n2) == 0) return 0;
+    if (!(n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2] < cos_max)) return 0;
+    const double *p = v + 3 * (size_t)a, *q = v + 3 * (size_t)b;
+    e->a = a, e->b = b, e->far[0] = ff, e->far[1] = fg;
+    e->len = sqrt((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]));
+    return 1;
+}
+
+/* A plane through the points x, y, w (not collinear): its unnormalized normal's length cached. */
+typedef struct edge_plane {
+    const double *x, *y, *w;
+    double nlen; /* |(y - x) x (w - x)| */
+    int count;   /* sharp reflex edges it holds and resolves */
+    double len;  /* their total length */
+    int order;   /* creation order (ties) */
+} edge_plane;
+
+static double cross_len(const double *x, const double *y, const double *w) {
+    double u[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]}, v[3] = {w[0] - x[0], w[1] - x[1], w[2] - x[2]};
+    double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    return sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+/* Whether p lies in the plane (exactly, or within tol of it). */
+static int in_plane(const edge_plane *P, const double *p, double tol) {
+    double o = acd_orient3d(P->x, P->y, P->w, p);
+    return o == 0 || fabs(o) <= tol * P->nlen;
+}
+
+/* Whether the plane holds edge e (both ends in it) and separates its two faces (their far vertices
+ * strictly on opposite sides, exactly): cutting there resolves e. */
+static int plane_resolves(const acd_mesh *m, const edge_plane *P, const sharp_edge *e, double tol) {
+    const double *v = m->vertices;
+    if (!in_plane(P, v + 3 * (size_t)e->a, tol) || !in_plane(P, v + 3 * (size_t)e->b, tol)) return 0;
+    int s0 = acd_orient3d_sign(P->x, P->y, P->w, v + 3 * (size_t)e->far[0]);
+    int s1 = acd_orient3d_sign(P->x, P->y, P->w, v + 3 * (size_t)e->far[1]);
+    return s0 * s1 < 0;
+}
+
+static int plane_rank_cmp(const void *pa, const void *pb) {
+    const edge_plane *a = pa, *b = pb;
+    if (a->count != b->count) return a->count > b->count ? -1 : 1;
+    if (a->len != b->len) return a->len > b->len ? -1 : 1;
+    return (a->order > b->order) - (a->order < b->order);
+}
+
+/* The planes through a sharp reflex edge at the witness that hold and resolve another sharp reflex
+ * edge of the part (a cube corner's three edges give its three face planes; a slot's floor holds
+ * both its edges), ranked by how many sharp reflex edges they hold and resolve, then their length;
+ * at most max, kind "edges". 0 when the witness has no sharp reflex edge (a scan's shallow valleys:
+ * no plane added), or on allocation failure. */
+static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, int max,
+                       acd3_plane_candidate *out) {
+    uint32_t x = ms->witness;
+    if (max <= 0 || g->nvertices != m->nvertices) return 0;
+    double cos_max = cos(EDGE_PLANE_MIN_TURN_DEG * (3.14159265358979323846 / 180.0));
+    acd_edge_map em;
+    if (acd_edge_map_closed(m->triangles, m->ntriangles, &em, NULL) != ACD_OK) return 0;
+    int n = 0;
+    sharp_edge *all = NULL;
+    edge_plane *pl = NULL;
+    size_t nw = 0, na = 0, npl = 0;
+    /* the witness's sharp reflex edges first (each edge once: from its half-edge x -> y) */
+    for (size_t k = g->row[x]; k < g->row[x + 1]; k++) {
+        sharp_edge e;
+        if (sharp_reflex(m, &em, x, g->adj[k], cos_max, &e)) nw++;
+    }
+    if (nw == 0) goto done;
+    all = malloc(g->nedges * sizeof *all);
+    if (!all) goto done;
+    for (size_t k = g->row[x]; k < g->row[x + 1]; k++)
+        if (sharp_reflex(m, &em, x, g->adj[k], cos_max, &all[na])) na++;
+    for (size_t i = 0; i < g->nedges; i++) {
+        uint32_t a = g->edge_v[2 * i], b = g->edge_v[2 * i + 1];
+        if (a == x || b == x) continue;
+        if (sharp_reflex(m, &em, a, b, cos_max, &all[na])) na++;
+    }
+    if (na < 2) goto done;
+    /* the planes: for each witness edge e and each other sharp reflex edge f, the plane through e and
+     * f's endpoint farther from e's line, when f lies in it and it resolves both; a plane found
+     * again (from another f or another witness edge) counts nothing new */
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t v = 0; v < m->nvertices; v++)
+        for (int c = 0; c < 3; c++) {
+            double q = m->vertices[3 * v + c];
+            if (q < lo[c]) lo[c] = q;
+            if (q > hi[c]) hi[c] = q;
+        }
+    double tol = EDGE_PLANE_COPLANAR_REL * sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    pl = malloc(nw * na * sizeof *pl);
+    if (!pl) goto done;
+    const double *V = m->vertices;
+    for (size_t i = 0; i < nw; i++) {
+        const sharp_edge *e = &all[i];
+        const double *ex = V + 3 * (size_t)e->a, *ey = V + 3 * (size_t)e->b;
+        double elen = e->len;
+        for (size_t j = 0; j < na; j++) {
+            if (j == i) continue;
+            const sharp_edge *f = &all[j];
+            const double *fa = V + 3 * (size_t)f->a, *fb = V + 3 * (size_t)f->b;
+            double da = cross_len(ex, ey, fa), db = cross_len(ex, ey, fb);
+            const double *w = da >= db ? fa : fb;
+            double dw = da >= db ? da : db;
+            if (!(dw > tol * elen)) continue; /* f on e's line: no plane */
+            edge_plane P = {ex, ey, w, dw, 0, 0, (int)npl};
+            /* already found? (its three points in that plane) */
+            int dup = 0;
+            for (size_t q = 0; q < npl && !dup; q++)
+                dup = in_plane(&pl[q], ex, tol) && in_plane(&pl[q], ey, tol) && in_plane(&pl[q], w, tol);
+            if (dup) continue;
+            if (!plane_resolves(m, &P, e, tol) || !plane_resolves(m, &P, f, tol)) continue;
+            pl[npl++] = P;
+        }
+    }
+    /* rank: the sharp reflex edges each plane holds and resolves */
+    for (size_t q = 0; q < npl; q++)
+        for (size_t j = 0; j < na; j++)
+            if (plane_resolves(m, &pl[q], &all[j], tol)) pl[q].count++, pl[q].len += all[j].len;
+    qsort(pl, npl, sizeof *pl, plane_rank_cmp);
+    for (size_t q = 0; q < npl && n < max; q++) {
+        double u[3] = {pl[q].y[0] - pl[q].x[0], pl[q].y[1] - pl[q].x[1], pl[q].y[2] - pl[q].x[2]};
+        double v[3] = {pl[q].w[0] - pl[q].x[0], pl[q].w[1] - pl[q].x[1], pl[q].w[2] - pl[q].x[2]};
+        double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        normalize(c);
+        memcpy(out[n].point, pl[q].x, sizeof(double[3]));
+        memcpy(out[n].normal, c, sizeof(double[3]));
+        out[n].kind = "edges";
+        n++;
+    }
+done:
+    free(pl);
+    free(all);
+    acd_edge_map_free(&em);
+    return n;
+}
+
 /* The global cut's plane (acd3/global_cut); 1 if found. */
 static int global_plane(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, const acd3_gc_opts *o,
                         acd3_plane_candidate *c) {
@@ -175,6 +348,9 @@ int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_m
                         const acd3_resolve_opts *ro, acd3_plane_candidate *out) {
     if (ms->witness == UINT32_MAX) return 0;
     int n = 0;
+    /* the planes through sharp reflex edges first (none at a scan's witness: its candidates are
+     * unchanged) */
+    if (!(ro && ro->notch && !ro->global)) n += edge_planes(m, g, ms, EDGE_PLANES_MAX, out);
     if (ro && ro->global) n += global_plane(m, g, ms, &ro->gc, &out[n]);
     else if (ro && ro->notch) {
         /* notch cutting (spec §5.4, A14): the bisector, then only the axis planes (progress when

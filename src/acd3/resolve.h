@@ -29,12 +29,12 @@
 #include "acd3/pocket_cut.h"
 #include "geom3/dijkstra.h"
 
-enum { ACD3_MAX_CANDIDATES = 11 };
+enum { ACD3_MAX_CANDIDATES = 14 };
 
 typedef struct acd3_plane_candidate {
     double point[3];
     double normal[3]; /* unit */
-    const char *kind; /* "global", "pocket", "cup", "valley", "notch", "face", "centroid", "axis" */
+    const char *kind; /* "edges", "global", "pocket", "cup", "valley", "notch", "face", "centroid", "axis" */
 } acd3_plane_candidate;
 
 typedef struct acd3_resolve_opts {
