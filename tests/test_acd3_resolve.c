@@ -16,6 +16,7 @@
 #include "geom3/edge_map.h"
 #include "shapes.h"
 #include "acd3d_check.h"
+#include "acd/hull.h"
 
 /* An L of unit voxels, 6 x 4 x 1 with the corner x, y >= 2 empty (arms of lengths 6 and 4, so
  * that no principal axis of the L is along a diagonal): its reflex edge is the line x = y = 2,
@@ -152,11 +153,195 @@ static void test_waist_without_grouping(void **state) {
     acd_mesh_free(&m);
 }
 
+
+/* Planes through sharp reflex edges (resolve.c edge_planes; docs/acd3d.md "Planes through reflex
+ * edges"). A part is convex when its volume equals its hull's within this fraction of the input's
+ * volume (both computed in floating point from the same vertices). */
+#define CONVEX_VOLUME_REL 1e-9
+
+/* data/meshes/star.off, made here: a cube of side 0.25 with a square pyramid on each face, tips at
+ * +-0.5 on the axes; its 12 cube edges are reflex (53 degrees between the faces' normals), four in
+ * each cube face plane. */
+static void star(acd_mesh *m) {
+    memset(m, 0, sizeof *m);
+    m->nvertices = 14, m->ntriangles = 24;
+    m->vertices = malloc(3 * 14 * sizeof(double));
+    m->triangles = malloc(3 * 24 * sizeof(uint32_t));
+    assert_non_null(m->vertices);
+    assert_non_null(m->triangles);
+    for (int i = 0; i < 8; i++)
+        for (int k = 0; k < 3; k++) m->vertices[3 * i + k] = (i >> k) & 1 ? 0.125 : -0.125;
+    for (int a = 0; a < 3; a++)
+        for (int s = 0; s < 2; s++) {
+            double *tip = m->vertices + 3 * (8 + 2 * a + s);
+            tip[0] = tip[1] = tip[2] = 0;
+            tip[a] = s ? 0.5 : -0.5;
+        }
+    size_t t = 0;
+    for (int a = 0; a < 3; a++)
+        for (int s = 0; s < 2; s++) {
+            /* the four cube corners on the face (axis a, side s), in a cycle around it */
+            int u = (a + 1) % 3, w = (a + 2) % 3, cyc[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            uint32_t c[4];
+            for (int q = 0; q < 4; q++) c[q] = (uint32_t)((s << a) | (cyc[q][0] << u) | (cyc[q][1] << w));
+            for (int q = 0; q < 4; q++) {
+                uint32_t *tr = m->triangles + 3 * t++;
+                tr[0] = (uint32_t)(8 + 2 * a + s), tr[1] = c[q], tr[2] = c[(q + 1) % 4];
+                /* outward: the normal points away from the origin (the star is star-shaped) */
+                const double *p0 = m->vertices + 3 * tr[0], *p1 = m->vertices + 3 * tr[1], *p2 = m->vertices + 3 * tr[2];
+                double e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+                double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+                if (n[0] * p0[0] + n[1] * p0[1] + n[2] * p0[2] < 0) tr[1] = c[(q + 1) % 4], tr[2] = c[q];
+            }
+        }
+    assert_true(fabs(mg_volume(m) - (0.015625 + 6 * 0.0625 * 0.375 / 3)) < 1e-15);
+}
+
+/* At the star's witness (a cube corner, three reflex edges) the first candidates are the planes
+ * through its reflex edges that hold the most of them: cube face planes (|x|, |y| or |z| = 0.125),
+ * each holding four. */
+static void test_star_edge_candidates(void **state) {
+    (void)state;
+    acd_mesh m;
+    star(&m);
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(m.vertices, m.nvertices, m.triangles, m.ntriangles, &g, &err), ACD_OK);
+    acd3_measure ms;
+    assert_int_equal(acd3_measure_compute(&m, &g, 0.0, 1e-9, &ms, &err), ACD_OK);
+    assert_true(ms.witness < 8); /* a cube corner */
+    acd3_resolve_opts ro;
+    memset(&ro, 0, sizeof ro);
+    acd3_plane_candidate c[ACD3_MAX_CANDIDATES];
+    int n = acd3_cut_candidates(&m, &g, &ms, &ro, c), edges = 0;
+    assert_true(n > 3);
+    uint8_t axis_seen[3] = {0, 0, 0};
+    for (int i = 0; i < n; i++) {
+        if (strcmp(c[i].kind, "edges")) continue;
+        assert_int_equal(i, edges); /* first */
+        edges++;
+        int a = fabs(c[i].normal[0]) == 1 ? 0 : fabs(c[i].normal[1]) == 1 ? 1 : fabs(c[i].normal[2]) == 1 ? 2 : -1;
+        assert_true(a >= 0);
+        assert_true(fabs(c[i].point[a]) == 0.125);
+        axis_seen[a] = 1;
+    }
+    assert_int_equal(edges, 3);
+    assert_true(axis_seen[0] && axis_seen[1] && axis_seen[2]);
+    /* and with the global cut: still first */
+    ro.global = 1;
+    ro.gc.tau = 0.01;
+    ro.gc.delta = 0.001;
+    ro.gc.weight = ACD3D_WEIGHT_RATIO;
+    n = acd3_cut_candidates(&m, &g, &ms, &ro, c);
+    assert_true(n > 3);
+    assert_string_equal(c[0].kind, "edges");
+    acd3_measure_free(&ms);
+    acd_edge_graph_free(&g);
+    acd_mesh_free(&m);
+}
+
+/* A decomposition into exactly `want` convex parts whose volumes add up to the input's. */
+static void check_exact(const acd_mesh *in, const acd3d_result *r, size_t want) {
+    double vin = mg_volume(in), sum = 0;
+    assert_int_equal(r->nparts, want);
+    for (size_t i = 0; i < r->nparts; i++) {
+        const acd_mesh *pm = &r->parts[i].mesh;
+        double v = mg_volume(pm), hv;
+        acd_error err;
+        assert_int_equal(acd_hull_volume(pm->vertices, pm->nvertices, &hv, &err), ACD_OK);
+        assert_true(fabs(hv - v) <= CONVEX_VOLUME_REL * vin);
+        sum += v;
+    }
+    assert_true(fabs(sum - vin) <= CONVEX_VOLUME_REL * vin);
+}
+
+/* Decomposes m at tau = rel (relative) and at tau 0 (absolute), with and without the merge pass, on
+ * 1 and 2 threads: `want` convex parts each time. */
+static void decompose_exact(const acd_mesh *m, double rel, size_t want) {
+    for (int k = 0; k < 4; k++) {
+        acd3d_params p = acd3d_default_params();
+        p.tau = k < 2 ? rel : 0.0;
+        p.tau_absolute = k >= 2;
+        p.merge = k % 2;
+        p.threads = 1;
+        acd3d_result r, r2;
+        acd_error err;
+        assert_int_equal(acd3d_decompose(m, &p, &r, &err), ACD_OK);
+        check_exact(m, &r, want);
+        p.threads = 2;
+        assert_int_equal(acd3d_decompose(m, &p, &r2, &err), ACD_OK);
+        ck3_same_parts(&r, &r2);
+        acd3d_result_free(&r2);
+        acd3d_result_free(&r);
+    }
+}
+
+/* The star: the planes of the cube's faces cut off its pyramids; two opposite pyramids stay on the
+ * cube, which is convex with them: 5 convex parts, the minimum (before the edge planes: 11 parts at
+ * tau 0.05, 51 at 0.001, 11205 at tau 0 after 171 s). */
+static void test_star_exact(void **state) {
+    (void)state;
+    acd_mesh m;
+    star(&m);
+    decompose_exact(&m, 0.001, 5);
+    acd_mesh_free(&m);
+}
+
+/* Voxel brackets: a plus (3 x 3 x 1, the corners empty; four reflex edges, two in each of the
+ * planes y = 1 and y = 2: the bar and two arms, 3 parts; before: 5) and a jack (the centre of a
+ * 3 x 3 x 3 block and its six neighbours: the centre with two opposite arms and the other four
+ * arms, 5 parts; before: 9 at tau 0, 6 at tau 0.01). */
+static void test_brackets_exact(void **state) {
+    (void)state;
+    acd_mesh m;
+    unsigned char plus[9], jack[27];
+    for (int y = 0; y < 3; y++)
+        for (int x = 0; x < 3; x++) plus[y * 3 + x] = x == 1 || y == 1;
+    assert_true(mg_voxels(&m, plus, 3, 3, 1));
+    decompose_exact(&m, 0.01, 3);
+    acd_mesh_free(&m);
+    for (int z = 0; z < 3; z++)
+        for (int y = 0; y < 3; y++)
+            for (int x = 0; x < 3; x++) jack[(z * 3 + y) * 3 + x] = (x == 1) + (y == 1) + (z == 1) >= 2;
+    assert_true(mg_voxels(&m, jack, 3, 3, 3));
+    decompose_exact(&m, 0.01, 5);
+    acd_mesh_free(&m);
+}
+
+/* A smooth part's witness has no sharp reflex edge: no edge plane among its candidates, which stay
+ * those of the code before them (a guard for the threshold EDGE_PLANE_MIN_TURN_DEG: a waist of 40 x
+ * 40 facets turns by under 10 degrees between faces). */
+static void test_smooth_no_edge_planes(void **state) {
+    (void)state;
+    double k = 0.6;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 40, 40, waist_r, &k));
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(m.vertices, m.nvertices, m.triangles, m.ntriangles, &g, &err), ACD_OK);
+    acd3_measure ms;
+    assert_int_equal(acd3_measure_compute(&m, &g, 0.0, 1e-9, &ms, &err), ACD_OK);
+    assert_true(ms.witness != UINT32_MAX && ms.concavity > 0.01);
+    acd3_resolve_opts ro;
+    memset(&ro, 0, sizeof ro);
+    acd3_plane_candidate c[ACD3_MAX_CANDIDATES];
+    int n = acd3_cut_candidates(&m, &g, &ms, &ro, c);
+    assert_true(n > 0);
+    for (int i = 0; i < n; i++) assert_string_not_equal(c[i].kind, "edges");
+    acd3_measure_free(&ms);
+    acd_edge_graph_free(&g);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_notch_candidates),
         cmocka_unit_test(test_l_shape_notch_cut),
         cmocka_unit_test(test_waist_without_grouping),
+        cmocka_unit_test(test_star_edge_candidates),
+        cmocka_unit_test(test_star_exact),
+        cmocka_unit_test(test_brackets_exact),
+        cmocka_unit_test(test_smooth_no_edge_planes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -205,13 +205,14 @@ static int in_plane(const edge_plane *P, const double *p, double tol) {
 }
 
 /* Whether the plane holds edge e (both ends in it) and separates its two faces (their far vertices
- * strictly on opposite sides, exactly): cutting there resolves e. */
+ * on opposite sides, or one face in the plane and the other off it; decided exactly): cutting
+ * there resolves e (the plane of a slot's floor extends the floor's face at both its edges). */
 static int plane_resolves(const acd_mesh *m, const edge_plane *P, const sharp_edge *e, double tol) {
     const double *v = m->vertices;
     if (!in_plane(P, v + 3 * (size_t)e->a, tol) || !in_plane(P, v + 3 * (size_t)e->b, tol)) return 0;
     int s0 = acd_orient3d_sign(P->x, P->y, P->w, v + 3 * (size_t)e->far[0]);
     int s1 = acd_orient3d_sign(P->x, P->y, P->w, v + 3 * (size_t)e->far[1]);
-    return s0 * s1 < 0;
+    return s0 * s1 < 0 || (s0 == 0) != (s1 == 0);
 }
 
 static int plane_rank_cmp(const void *pa, const void *pb) {
