@@ -291,10 +291,28 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
             pl[npl++] = P;
         }
     }
-    /* rank: the sharp reflex edges each plane holds and resolves */
-    for (size_t q = 0; q < npl; q++)
+    /* rank: the sharp reflex edges each plane holds and resolves (within rounding). A plane is
+     * kept only when they have a fourth endpoint in it exactly (orient3d zero) besides the three
+     * it was spanned by: any two edges at a vertex span a plane, and two sharp edges of one scan
+     * triangle cut by an earlier plane lie in its plane within rounding; only an exactly coplanar
+     * fourth point shows a plane of the model (a CAD face plane, a slot's floor). A scan's sharp
+     * edges at its witness so give none (bunny.obj, camel, armadillo and elephant keep their
+     * output only so, docs/acd3d.md) */
+    size_t kept = 0;
+    for (size_t q = 0; q < npl; q++) {
+        int fourth = 0;
         for (size_t j = 0; j < na; j++)
-            if (plane_resolves(m, &pl[q], &all[j], tol)) pl[q].count++, pl[q].len += all[j].len;
+            if (plane_resolves(m, &pl[q], &all[j], tol)) {
+                pl[q].count++, pl[q].len += all[j].len;
+                for (int k = 0; k < 2; k++) {
+                    const double *p = V + 3 * (size_t)(k ? all[j].b : all[j].a);
+                    fourth |= p != pl[q].x && p != pl[q].y && p != pl[q].w &&
+                              acd_orient3d_sign(pl[q].x, pl[q].y, pl[q].w, p) == 0;
+                }
+            }
+        if (fourth) pl[kept++] = pl[q];
+    }
+    npl = kept;
     qsort(pl, npl, sizeof *pl, plane_rank_cmp);
     for (size_t q = 0; q < npl && n < max; q++) {
         double u[3] = {pl[q].y[0] - pl[q].x[0], pl[q].y[1] - pl[q].x[1], pl[q].y[2] - pl[q].x[2]};
