@@ -162,13 +162,9 @@ typedef struct sharp_edge {
 /* Whether the edge a -> b of the part (em: its closed edge map with twins) is a sharp reflex edge;
  * fills *e. Reflex is decided exactly (orient3d: the far vertex of the face across it lies
  * outside the plane of the face that holds a -> b); sharp by the turn of the face normals. */
-static int sharp_reflex(const acd_mesh *m, const acd_edge_map *em, uint32_t a, uint32_t b, double cos_max,
-                        sharp_edge *e) {
-    uint32_t h = acd_edge_map_find(em, a, b);
-    if (h == ACD_EDGE_NONE) return 0;
-    uint32_t t = em->twin[h];
-    if (t == ACD_EDGE_NONE) return 0;
+static int sharp_halves(const acd_mesh *m, uint32_t h, uint32_t t, double cos_max, sharp_edge *e) {
     uint32_t f = h / 3, g = t / 3;
+    uint32_t a = m->triangles[h], b = m->triangles[3 * (size_t)f + (h % 3 + 1) % 3];
     uint32_t ff = m->triangles[3 * (size_t)f + (h % 3 + 2) % 3], fg = m->triangles[3 * (size_t)g + (t % 3 + 2) % 3];
     const double *v = m->vertices;
     const uint32_t *tf = m->triangles + 3 * (size_t)f;
@@ -181,6 +177,45 @@ static int sharp_reflex(const acd_mesh *m, const acd_edge_map *em, uint32_t a, u
     e->a = a, e->b = b, e->far[0] = ff, e->far[1] = fg;
     e->len = sqrt((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]));
     return 1;
+}
+
+/* Whether the edge a -> b of the part (em: its closed edge map with twins) is a sharp reflex edge;
+ * fills *e. Reflex is decided exactly (orient3d: the far vertex of the face across it lies
+ * outside the plane of the face that holds a -> b); sharp by the turn of the face normals. */
+static int sharp_reflex(const acd_mesh *m, const acd_edge_map *em, uint32_t a, uint32_t b, double cos_max,
+                        sharp_edge *e) {
+    uint32_t h = acd_edge_map_find(em, a, b);
+    if (h == ACD_EDGE_NONE) return 0;
+    uint32_t t = em->twin[h];
+    if (t == ACD_EDGE_NONE) return 0;
+    return sharp_halves(m, h, t, cos_max, e);
+}
+
+/* Triangles around the witness examined without an edge map (beyond: the map is built). */
+#define WITNESS_FAN_MAX 64
+
+/* Whether the witness x may have a sharp reflex edge: its fan of triangles is scanned (no edge map
+ * built for a scan's witness, which has none); 1 also when its fan is too large to pair here. */
+static int witness_sharp(const acd_mesh *m, uint32_t x, double cos_max) {
+    uint32_t half[WITNESS_FAN_MAX];
+    size_t nh = 0;
+    for (size_t i = 0; i < 3 * m->ntriangles; i++)
+        if (m->triangles[i] == x) {
+            if (nh == WITNESS_FAN_MAX) return 1;
+            half[nh++] = (uint32_t)i;
+        }
+    for (size_t i = 0; i < nh; i++) {
+        uint32_t f = half[i] / 3, y = m->triangles[3 * (size_t)f + (half[i] % 3 + 1) % 3];
+        for (size_t j = 0; j < nh; j++) {
+            /* the half-edge y -> x ends at corner half[j] of its triangle */
+            uint32_t g = half[j] / 3, pc = (half[j] % 3 + 2) % 3;
+            if (j == i || m->triangles[3 * (size_t)g + pc] != y) continue;
+            sharp_edge e;
+            if (sharp_halves(m, half[i], 3 * g + pc, cos_max, &e)) return 1;
+            break;
+        }
+    }
+    return 0;
 }
 
 /* A plane through the points x, y, w (not collinear): its unnormalized normal's length cached. */
@@ -232,6 +267,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
     uint32_t x = ms->witness;
     if (max <= 0 || g->nvertices != m->nvertices) return 0;
     double cos_max = cos(EDGE_PLANE_MIN_TURN_DEG * (3.14159265358979323846 / 180.0));
+    if (!witness_sharp(m, x, cos_max)) return 0;
     acd_edge_map em;
     if (acd_edge_map_closed(m->triangles, m->ntriangles, &em, NULL) != ACD_OK) return 0;
     int n = 0;
@@ -282,13 +318,12 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
             double dw = da >= db ? da : db;
             if (!(dw > tol * elen)) continue; /* f on e's line: no plane */
             edge_plane P = {ex, ey, w, dw, 0, 0, (int)npl};
+            if (!plane_resolves(m, &P, f, tol) || !plane_resolves(m, &P, e, tol)) continue;
             /* already found? (its three points in that plane) */
             int dup = 0;
             for (size_t q = 0; q < npl && !dup; q++)
                 dup = in_plane(&pl[q], ex, tol) && in_plane(&pl[q], ey, tol) && in_plane(&pl[q], w, tol);
-            if (dup) continue;
-            if (!plane_resolves(m, &P, e, tol) || !plane_resolves(m, &P, f, tol)) continue;
-            pl[npl++] = P;
+            if (!dup) pl[npl++] = P;
         }
     }
     /* rank: the sharp reflex edges each plane holds and resolves (within rounding). A plane is
