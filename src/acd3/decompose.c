@@ -445,6 +445,15 @@ static int split_better(const split_state *S, const split_choice *trial, int pro
              (trial->concavity <= best->concavity + S->tol && trial->cut.npieces < best->cut.npieces)));
 }
 
+/* Whether c is the cut of an edge plane (acd3/resolve, kind "edges") into three or more pieces:
+ * the plane passes through material away from the reflex edges it resolves, and is compared with
+ * the other candidates instead of being taken at once (P.off at tau 0.05: one of its edge planes
+ * cut a part into three, where a plane after it gave two as deep; docs/acd3d.md "Planes through
+ * reflex edges"). */
+static int split_edges_elsewhere(const split_choice *c) {
+    return c->plane.kind && !strcmp(c->plane.kind, "edges") && c->cut.npieces > 2;
+}
+
 /* Under "acd3_split": replays the evaluated candidates from the cursor in order, as the
  * sequential loop would have taken them, until one is not evaluated yet or the loop is over. */
 static void split_replay(split_state *S) {
@@ -508,7 +517,8 @@ static void split_replay(split_state *S) {
         cand_eval_free(e);
         /* (by volume, every candidate is compared, up to the budget; by band, as by concavity) */
         if ((!S->by_volume || S->early) && S->best_progress &&
-            (S->best.concavity <= S->tau + S->tol || S->best.concavity <= 0.5 * S->ms->concavity))
+            (S->best.concavity <= S->tau + S->tol || S->best.concavity <= 0.5 * S->ms->concavity) &&
+            !split_edges_elsewhere(&S->best))
             S->stopped = 1;
     }
     if (S->cursor >= S->nc) S->stopped = 1;
