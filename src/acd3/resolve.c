@@ -250,6 +250,11 @@ static int plane_resolves(const acd_mesh *m, const edge_plane *P, const sharp_ed
     return s0 * s1 < 0 || (s0 == 0) != (s1 == 0);
 }
 
+/* The same coordinates (a vertex repeated under another id is not a fourth point). */
+static int same_point(const double *p, const double *q) {
+    return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+}
+
 static int plane_rank_cmp(const void *pa, const void *pb) {
     const edge_plane *a = pa, *b = pb;
     if (a->count != b->count) return a->count > b->count ? -1 : 1;
@@ -341,7 +346,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
                 pl[q].count++, pl[q].len += all[j].len;
                 for (int k = 0; k < 2; k++) {
                     const double *p = V + 3 * (size_t)(k ? all[j].b : all[j].a);
-                    fourth |= p != pl[q].x && p != pl[q].y && p != pl[q].w &&
+                    fourth |= !same_point(p, pl[q].x) && !same_point(p, pl[q].y) && !same_point(p, pl[q].w) &&
                               acd_orient3d_sign(pl[q].x, pl[q].y, pl[q].w, p) == 0;
                 }
             }

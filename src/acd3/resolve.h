@@ -2,6 +2,11 @@
  * (dissertation §V.B.3, Eqn 5.3; paper §4.3, Eqn 5; spec acd3d.md §5.2, §5.4).
  *
  * Candidates, tried in order until one splits the part into two or more solids:
+ * E. The edge planes (ours; docs/acd3d.md "Planes through reflex edges"), only when the witness
+ *    has a sharp reflex edge (its faces' normals turn by more than 30 degrees): the planes through
+ *    it that hold and resolve other sharp reflex edges of the part, with a fourth endpoint of those
+ *    edges exactly in them (orient3d), ranked by how many they hold, at most 3 (kind "edges"): a
+ *    cube corner's face planes, a slot's floor. Not in the notch resolver.
  * 0. The global cut's plane (solid mode, default resolver; acd3/global_cut): the concavity-
  *    weighted best-fit plane of the minimum-weight cycle of pocket cuts through the witness's
  *    pocket (kind "global"), of the root pocket cut alone when no cycle closes ("pocket"), or of
