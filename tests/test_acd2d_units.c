@@ -1,6 +1,7 @@
 /* Unit tests of the acd2d modules: hull2d, ring tests (notch, cone, wedge), cut choice (Eqn 4.3
  * and s_c), ray shooting (vertex and edge hits), split, principal-axis extremes and the hole
- * merge order (Fig. 23 dependency order with the Eqn 4.2 ranking). */
+ * merge order (Fig. 23 dependency order with the Eqn 4.2 ranking); far from the origin: inserting a
+ * shared cut end into an edge, and the refusal of coordinates that cannot resolve a feature. */
 #include "testutil.h"
 
 #include <math.h>
@@ -9,6 +10,7 @@
 #include "acd/acd2d.h"
 #include "acd2/cut.h"
 #include "acd2/holes.h"
+#include "acd2/resolution.h"
 #include "acd2/ring.h"
 #include "geom2/hull2d.h"
 
@@ -175,8 +177,61 @@ static void test_hole_order(void **state) {
     acd_polygon_free(&p);
 }
 
+/* acd2_ring_insert_on_edge (shared cut ends): inserted between the edge's ends, also on the
+ * closing edge, not when the edge is absent or reversed; the bridge cache is reset. */
+static void test_insert_on_edge(void **state) {
+    (void)state;
+    const acd_vec2 p[] = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+    acd2_ring r;
+    ring_of(&r, p, 4);
+    for (size_t i = 0; i < r.n; i++) r.be[i] = 7;
+    acd_vec2 z = {1, 0.25};
+    assert_int_equal(acd2_ring_insert_on_edge(&r, p[1], p[0], z, 99), 0); /* reversed: absent */
+    assert_int_equal(acd2_ring_insert_on_edge(&r, p[0], p[1], z, 99), 1);
+    assert_int_equal(r.n, 5);
+    assert_true(r.p[1].x == 1 && r.p[1].y == 0.25 && r.id[1] == 99 && r.c[1] == 0);
+    assert_true(r.p[2].x == 2 && r.p[2].y == 0 && r.id[2] == 1);
+    for (size_t i = 0; i < r.n; i++) assert_true(r.be[i] == -1);
+    acd_vec2 w = {-0.25, 1};
+    assert_int_equal(acd2_ring_insert_on_edge(&r, p[3], p[0], w, 100), 1); /* closing edge: at the end */
+    assert_int_equal(r.n, 6);
+    assert_true(r.p[5].x == -0.25 && r.id[5] == 100 && r.p[0].x == 0 && r.p[0].y == 0);
+    assert_true(acd2_line_offset(p[0], p[1], z) == 0.25);
+    acd2_ring_free(&r);
+}
+
+/* acd2_check_resolution: near the origin nothing is refused, however fine; far out a feature
+ * below 64 units of the coordinates' rounding is, naming it (short edge, vertex near an edge). */
+static void test_resolution(void **state) {
+    (void)state;
+    acd_vec2 notch[] = {{0, 0}, {1, 0}, {1, 1}, {0.6, 1}, {0.5, 0.5}, {0.4, 1}, {0, 1}};
+    const acd_vec2 *rings[1] = {notch};
+    size_t sizes[1] = {7};
+    acd_polygon p;
+    acd_error err;
+    assert_int_equal(acd_polygon_from_rings(&p, rings, sizes, 1, &err), ACD_OK);
+    assert_int_equal(acd2_check_resolution(&p, &err), ACD_OK);
+    for (size_t i = 0; i < 7; i++) { p.points[i].x += 1e12; p.points[i].y += 1e12; } /* doubles 1.2e-4 apart */
+    assert_int_equal(acd2_check_resolution(&p, &err), ACD_OK);
+    for (size_t i = 0; i < 7; i++) { p.points[i].x += 1e14; p.points[i].y += 1e14; } /* 0.016 apart: 64 DBL_EPSILON M = 1.4 */
+    assert_int_equal(acd2_check_resolution(&p, &err), ACD_ERR_DEGENERATE);
+    assert_non_null(strstr(err.message, "cannot resolve a feature"));
+    acd_polygon_free(&p);
+    /* a vertex 1e-6 from an edge not its own, at 1e9: refused (64 DBL_EPSILON M = 1.4e-5) */
+    acd_vec2 thin[] = {{0, 0}, {1, 0}, {1, 1}, {0.5, 1e-6}, {0, 1}};
+    rings[0] = thin;
+    sizes[0] = 5;
+    assert_int_equal(acd_polygon_from_rings(&p, rings, sizes, 1, &err), ACD_OK);
+    for (size_t i = 0; i < 5; i++) { p.points[i].x += 1e9; p.points[i].y += 1e9; }
+    assert_int_equal(acd2_check_resolution(&p, &err), ACD_ERR_DEGENERATE);
+    assert_non_null(strstr(err.message, "vertex 3 of chain 0"));
+    assert_non_null(strstr(err.message, "from edge 0-1 of chain 0"));
+    acd_polygon_free(&p);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_insert_on_edge), cmocka_unit_test(test_resolution),
         cmocka_unit_test(test_hull),        cmocka_unit_test(test_ring_tests),  cmocka_unit_test(test_shoot_and_split),
         cmocka_unit_test(test_cut_choice),  cmocka_unit_test(test_pa_extremes), cmocka_unit_test(test_hole_order),
     };
