@@ -616,20 +616,32 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
             }
             for (size_t q = 0; q < ci->n; q++) on_cut[p[q]] = 0;
         }
+        /* each kept cut's count of kept cuts it crosses, updated as cuts are deleted (recounting
+         * them per deletion made this O(nk^3): half of the run on a 200-tooth gear) */
+        size_t *ncross = calloc(nk + 1, sizeof *ncross);
+        if (!ncross) {
+            free(cross);
+            ok = 0;
+            break;
+        }
+        for (size_t i = 0; i < nk; i++)
+            for (size_t j = 0; j < nk; j++) ncross[i] += cross[i * nk + j];
         for (;;) {
             /* the cut crossing the most others goes first, the heavier on ties */
             size_t worst = SIZE_MAX, wn = 0;
             for (size_t i = 0; i < nk; i++) {
                 if (!cands[kept.a[i]].keep) continue;
-                size_t any = 0;
-                for (size_t j = 0; j < nk; j++) any += cross[i * nk + j] && cands[kept.a[j]].keep;
+                size_t any = ncross[i];
                 if (any && (worst == SIZE_MAX || any > wn || (any == wn && cands[kept.a[i]].w > cands[kept.a[worst]].w)))
                     worst = i, wn = any;
             }
             if (worst == SIZE_MAX) break;
             cands[kept.a[worst]].keep = 0;
             cands[kept.a[worst]].crossed = 1;
+            for (size_t j = 0; j < nk; j++)
+                if (cross[worst * nk + j]) ncross[j]--;
         }
+        free(ncross);
         free(cross);
         /* the kept cuts of r */
         for (size_t c = 0; c < ncand && ok; c++) {
