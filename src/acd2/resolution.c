@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/tolerance.h"
+#include "geom2/seg_dist.h"
 
 typedef struct edge_ref {
     double x0, x1;
@@ -29,16 +30,6 @@ static int cmp_vertex(const void *p, const void *q) {
     const vertex_ref *a = p, *b = q;
     if (a->x != b->x) return (a->x > b->x) - (a->x < b->x);
     return (a->i > b->i) - (a->i < b->i);
-}
-
-/* distance from q to the segment a-b, relative to a (exact differences for nearby points) */
-static double seg_dist(acd_vec2 q, acd_vec2 a, acd_vec2 b) {
-    double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
-    double qx = q.x - a.x, qy = q.y - a.y;
-    double t = l2 > 0 ? (qx * dx + qy * dy) / l2 : 0;
-    if (t < 0) t = 0;
-    if (t > 1) t = 1;
-    return hypot(qx - t * dx, qy - t * dy);
 }
 
 static size_t ring_of(const acd_polygon *p, size_t i) {
@@ -95,7 +86,7 @@ acd_status acd2_check_resolution(const acd_polygon *p, acd_error *err) {
                 if (ed->a == v || ed->b == v) continue;
                 acd_vec2 a = p->points[ed->a], b = p->points[ed->b];
                 if (q.y < fmin(a.y, b.y) - D || q.y > fmax(a.y, b.y) + D) continue;
-                double d = seg_dist(q, a, b);
+                double d = acd_seg_dist2(q, a, b);
                 if (d < D) {
                     bad_v = v; bad_a = ed->a; bad_b = ed->b; bad_d = d;
                 }

@@ -33,6 +33,7 @@
 #include "core/error.h"
 #include "core/predicates.h"
 #include "core/tolerance.h"
+#include "geom2/seg_dist.h"
 #include "eval/concavity2d_ref.h"
 
 /* ------------------------------------------------------------------ small geometry helpers */
@@ -74,18 +75,6 @@ static double perimeter(const acd_polygon *input) {
         for (size_t i = 0; i < n; i++) s += hypot(p[(i + 1) % n].x - p[i].x, p[(i + 1) % n].y - p[i].y);
     }
     return s;
-}
-
-/* Distance from q to the segment a-b, computed relative to a (q - a and b - a are exact for
- * nearby points): a foot point a + t (b - a) in absolute coordinates would be rounded to the
- * spacing of doubles there, hiding any offset below it far from the origin. */
-static double seg_dist(acd_vec2 q, acd_vec2 a, acd_vec2 b) {
-    double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
-    double qx = q.x - a.x, qy = q.y - a.y;
-    double t = l2 > 0 ? (qx * dx + qy * dy) / l2 : 0;
-    if (t < 0) t = 0;
-    if (t > 1) t = 1;
-    return hypot(qx - t * dx, qy - t * dy);
 }
 
 static double seg_param(acd_vec2 q, acd_vec2 a, acd_vec2 b) {
@@ -146,7 +135,7 @@ int acd_v2d_classify_point(const acd_vec2 *pts, const size_t *ring_start, size_t
         size_t s = ring_start[r], e = ring_start[r + 1];
         for (size_t i = s; i < e; i++) {
             acd_vec2 a = pts[i], b = pts[i + 1 == e ? s : i + 1];
-            if (on_seg_exact(q, a, b) || seg_dist(q, a, b) <= tol) return 0;
+            if (on_seg_exact(q, a, b) || acd_seg_dist2(q, a, b) <= tol) return 0;
             if (ray_crosses(a, b, q)) inside ^= 1;
         }
     }
@@ -245,7 +234,7 @@ static int region_classify(const region *r, acd_vec2 q, double tol) {
     for (size_t k = r->bs[b]; k < r->bs[b + 1]; k++) {
         size_t i = r->be[k];
         acd_vec2 a = r->p[i], c = r->p[r->nxt[i]];
-        if (on_seg_exact(q, a, c) || seg_dist(q, a, c) <= tol) return 0;
+        if (on_seg_exact(q, a, c) || acd_seg_dist2(q, a, c) <= tol) return 0;
         if (ray_crosses(a, c, q)) inside ^= 1;
     }
     return inside ? 1 : -1;
@@ -533,9 +522,9 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
             if (A->side == B->side || A->y0 > B->y1 || B->y0 > A->y1) continue;
             size_t e = A->side == 0 ? A->edge : B->edge, f = A->side == 0 ? B->edge : A->edge;
             acd_vec2 a0 = X->p[e], a1 = X->p[X->nxt[e]], c0 = Y->p[f], c1 = Y->p[Y->nxt[f]];
-            double da0 = seg_dist(a0, c0, c1), dc0 = seg_dist(c0, a0, a1);
+            double da0 = acd_seg_dist2(a0, c0, c1), dc0 = acd_seg_dist2(c0, a0, a1);
             if (acd_ref_segrel(a0, a1, c0, c1) == ACD_SEG_PROPER &&
-                min4(da0, seg_dist(a1, c0, c1), dc0, seg_dist(c1, a0, a1)) > tol) {
+                min4(da0, acd_seg_dist2(a1, c0, c1), dc0, acd_seg_dist2(c1, a0, a1)) > tol) {
                 it->crossing = 1;
                 it->cx = e;
                 it->cy = f;
@@ -551,14 +540,14 @@ static int interact(verifier *v, region *X, region *Y, interaction *it) {
             if ((on_seg_exact(c0, a0, a1) ||
                  (dc0 <= tol && !(region_on_exact(Y, a0) && region_on_exact(Y, a1)))) &&
                 !same_pt(c0, a0) && !same_pt(c0, a1) &&
-                seg_dist(c0, a0, a0) > tol && seg_dist(c0, a1, a1) > tol) {
+                acd_seg_dist2(c0, a0, a0) > tol && acd_seg_dist2(c0, a1, a1) > tol) {
                 double t = seg_param(c0, a0, a1);
                 if (t > 0 && t < 1 && add_split(v, 0, e, t, c0)) return -1;
             }
             if ((on_seg_exact(a0, c0, c1) ||
                  (da0 <= tol && !(region_on_exact(X, c0) && region_on_exact(X, c1)))) &&
                 !same_pt(a0, c0) && !same_pt(a0, c1) &&
-                seg_dist(a0, c0, c0) > tol && seg_dist(a0, c1, c1) > tol) {
+                acd_seg_dist2(a0, c0, c0) > tol && acd_seg_dist2(a0, c1, c1) > tol) {
                 double t = seg_param(a0, c0, c1);
                 if (t > 0 && t < 1 && add_split(v, 1, f, t, a0)) return -1;
             }
@@ -599,7 +588,7 @@ static int self_crossing(verifier *v, const region *r, size_t *e1, size_t *e2, i
             if (r->nxt[e] == f || r->nxt[f] == e) continue;
             acd_vec2 a0 = r->p[e], a1 = r->p[r->nxt[e]], c0 = r->p[f], c1 = r->p[r->nxt[f]];
             if (acd_ref_segrel(a0, a1, c0, c1) == ACD_SEG_PROPER &&
-                min4(seg_dist(a0, c0, c1), seg_dist(a1, c0, c1), seg_dist(c0, a0, a1), seg_dist(c1, a0, a1)) >
+                min4(acd_seg_dist2(a0, c0, c1), acd_seg_dist2(a1, c0, c1), acd_seg_dist2(c0, a0, a1), acd_seg_dist2(c1, a0, a1)) >
                     v->tol) {
                 *e1 = e < f ? e : f;
                 *e2 = e < f ? f : e;
@@ -716,7 +705,7 @@ static size_t ring_of_boundary_point(const acd_polygon *input, const region *in,
     size_t bk = bucket_of(in, m.y);
     for (size_t k = in->bs[bk]; k < in->bs[bk + 1]; k++) {
         size_t e = in->be[k];
-        if (seg_dist(m, in->p[e], in->p[in->nxt[e]]) <= tol) {
+        if (acd_seg_dist2(m, in->p[e], in->p[in->nxt[e]]) <= tol) {
             size_t r = 0;
             while (r + 1 < input->nrings && input->ring_start[r + 1] <= e) r++;
             return r;
@@ -1039,7 +1028,7 @@ acd_status acd_verify2d_result(const acd_polygon *input, const acd2d_result *res
             }
             for (size_t j = 0; j < c->npoints; j++) {
                 acd_vec2 q = c->points[j];
-                if (acd_ref_orient(a, b, q) < 0 && seg_dist(q, a, b) > tol) {
+                if (acd_ref_orient(a, b, q) < 0 && acd_seg_dist2(q, a, b) > tol) {
                     fail(rep, ACD_V2D_HULL, (long)i, -1);
                     return acd_fail(err, ACD_ERR_VERIFY,
                                     "component %zu: its vertex %zu (%.17g, %.17g) lies outside its hull (edge %zu)",
