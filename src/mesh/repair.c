@@ -29,6 +29,7 @@
 #include "core/tolerance.h"
 #include "mesh/halfedge.h"
 #include "mesh/weld.h"
+#include "geom3/spatial.h"
 
 acd_repair_options acd_repair_default_options(void) {
     acd_repair_options o;
@@ -169,39 +170,6 @@ static void flip_face(acd_mesh *m, size_t t) {
     m->triangles[3 * t + 2] = x;
 }
 
-/* Generalized winding number at p of the faces[0..n) of m, each reversed where flip[] says so:
- * the sum of their signed solid angles (Van Oosterom and Strackee) over 4 pi. For a closed
- * surface it is +1 or -1 (by its orientation) at a point inside, 0 outside. */
-static double winding_number(const acd_mesh *m, const uint32_t *faces, size_t n, const unsigned char *flip,
-                             const double p[3]) {
-    double sum = 0;
-    for (size_t i = 0; i < n; i++) {
-        uint32_t t = faces[i];
-        const uint32_t *c = m->triangles + 3 * (size_t)t;
-        const double *q[3] = {m->vertices + 3 * (size_t)c[0], m->vertices + 3 * (size_t)c[1],
-                              m->vertices + 3 * (size_t)c[2]};
-        if (flip[t]) {
-            const double *x = q[1];
-            q[1] = q[2];
-            q[2] = x;
-        }
-        double a[3], b[3], d[3];
-        for (int k = 0; k < 3; k++) {
-            a[k] = q[0][k] - p[k];
-            b[k] = q[1][k] - p[k];
-            d[k] = q[2][k] - p[k];
-        }
-        double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]),
-               ld = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        double det = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
-                     a[2] * (b[0] * d[1] - b[1] * d[0]);
-        double den = la * lb * ld + (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * ld +
-                     (a[0] * d[0] + a[1] * d[1] + a[2] * d[2]) * lb + (b[0] * d[0] + b[1] * d[1] + b[2] * d[2]) * la;
-        sum += 2 * atan2(det, den);
-    }
-    return sum / 12.566370614359172954; /* 4 pi */
-}
-
 /* One part of orient(): its faces are queue[start .. start + n). */
 typedef struct orient_part {
     size_t start, n;
@@ -214,45 +182,83 @@ typedef struct orient_part {
 /* Vertices of a closed part tested against each other closed part that might hold it (nesting),
  * spread over its faces; the part is inside the other when all are. */
 #define NEST_SAMPLES 8
-/* Bound on the winding-number work (samples x faces) of the nesting test; beyond it closed parts
- * are all oriented outward (the behaviour before nesting was considered) */
-#define NEST_WORK_MAX 400000000.0
 
-/* Nesting depth of each closed part: how many other closed parts contain it whole (all its
- * samples inside by winding number). depth[] = -1 for open parts. Returns 0 when the work bound
- * is exceeded (no depth known). */
+/* One ray of the nesting test: from a sample point towards +x through the whole mesh's BVH, each
+ * crossing counted (exactly: geom3/spatial, simulation of simplicity at edges and vertices) for the
+ * part its face belongs to, with the orientation orient() gave it. */
+typedef struct nest_ray {
+    const acd_spatial *sp;
+    const double *p;
+    const uint32_t *part_of; /* face -> part */
+    const unsigned char *flip;
+    int *wind;               /* per part: signed crossings */
+    unsigned char *on;       /* per part: the point lies on one of its faces */
+    uint32_t *touched;       /* parts whose wind or on was set (to reset them; a part may be listed
+                                again after its crossings cancelled: at most one entry per crossing) */
+    size_t ntouched;
+} nest_ray;
+
+static int nest_visit(void *user, uint32_t t) {
+    nest_ray *r = user;
+    int on = 0;
+    int c = acd_spatial_ray_crossing(r->sp, t, r->p, &on);
+    if (!c && !on) return 0;
+    uint32_t q = r->part_of[t];
+    if (!r->wind[q] && !r->on[q]) r->touched[r->ntouched++] = q;
+    r->wind[q] += r->flip[t] ? -c : c;
+    r->on[q] |= (unsigned char)on;
+    return 0;
+}
+
+/* Nesting depth of each closed part: how many other closed parts contain it whole (all its samples
+ * inside: a non-zero crossing count of that part's faces along the ray, the point not on them).
+ * depth[] = -1 for open parts. One ray per sample through the mesh's BVH (before 2026-11-27: the
+ * winding number summed over every face of every candidate part, 12 s for 600 cubes in an
+ * 80,000-face sphere). Returns 0 when memory runs out (no depth known). */
 static int nesting_depths(const acd_mesh *m, const uint32_t *queue, const unsigned char *flip, const orient_part *parts,
                           size_t np, int *depth) {
     size_t nclosed = 0;
     for (size_t i = 0; i < np; i++) nclosed += parts[i].closed;
     for (size_t i = 0; i < np; i++) depth[i] = parts[i].closed ? 0 : -1;
     if (nclosed < 2) return 1;
-    double work = 0;
+    int ok = 0;
+    acd_spatial sp;
+    memset(&sp, 0, sizeof sp);
+    uint32_t *part_of = malloc(m->ntriangles * sizeof *part_of);
+    int *wind = calloc(np, sizeof *wind);
+    unsigned char *on = calloc(np, 1);
+    uint32_t *touched = malloc((m->ntriangles + 1) * sizeof *touched);
+    uint32_t *cnt = calloc(np, sizeof *cnt);
+    if (!part_of || !wind || !on || !touched || !cnt) goto done;
+    if (acd_spatial_build(&sp, m->vertices, m->nvertices, m->triangles, m->ntriangles, NULL) != ACD_OK) goto done;
     for (size_t i = 0; i < np; i++)
-        for (size_t j = 0; j < np && parts[i].closed; j++) {
-            if (j == i || !parts[j].closed) continue;
-            int boxed = 1;
-            for (int k = 0; k < 3; k++) boxed &= parts[j].lo[k] <= parts[i].lo[k] && parts[i].hi[k] <= parts[j].hi[k];
-            if (boxed) work += (double)NEST_SAMPLES * (double)parts[j].n;
-        }
-    if (work > NEST_WORK_MAX) return 0;
+        for (size_t k = parts[i].start; k < parts[i].start + parts[i].n; k++) part_of[queue[k]] = (uint32_t)i;
     for (size_t i = 0; i < np; i++) {
         if (!parts[i].closed) continue;
+        memset(cnt, 0, np * sizeof *cnt);
+        for (size_t s = 0; s < NEST_SAMPLES; s++) {
+            uint32_t t = queue[parts[i].start + s * parts[i].n / NEST_SAMPLES];
+            const double *p = m->vertices + 3 * (size_t)m->triangles[3 * (size_t)t + s % 3];
+            nest_ray r = {&sp, p, part_of, flip, wind, on, touched, 0};
+            acd_bvh_query_axis_line(&sp.bvh, p, 0, 1, nest_visit, &r);
+            for (size_t k = 0; k < r.ntouched; k++) {
+                uint32_t q = touched[k];
+                if (wind[q] && !on[q]) cnt[q]++;
+                wind[q] = 0, on[q] = 0; /* a part listed twice counts once: reset on its first visit */
+            }
+        }
         for (size_t j = 0; j < np; j++) {
-            if (j == i || !parts[j].closed) continue;
+            if (j == i || !parts[j].closed || cnt[j] < NEST_SAMPLES) continue;
             int boxed = 1;
             for (int k = 0; k < 3; k++) boxed &= parts[j].lo[k] <= parts[i].lo[k] && parts[i].hi[k] <= parts[j].hi[k];
-            if (!boxed) continue;
-            int inside = 1;
-            for (size_t s = 0; s < NEST_SAMPLES && inside; s++) {
-                uint32_t t = queue[parts[i].start + s * parts[i].n / NEST_SAMPLES];
-                const double *p = m->vertices + 3 * (size_t)m->triangles[3 * (size_t)t + s % 3];
-                inside = fabs(winding_number(m, queue + parts[j].start, parts[j].n, flip, p)) > 0.5;
-            }
-            depth[i] += inside;
+            depth[i] += boxed;
         }
     }
-    return 1;
+    ok = 1;
+done:
+    acd_spatial_free(&sp);
+    free(part_of), free(wind), free(on), free(touched), free(cnt);
+    return ok;
 }
 
 static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorientable, acd_error *err) {
