@@ -31,7 +31,9 @@ int acd_cli_parse_size(const char *cmd, const char *opt, const char *s, size_t *
  * doubles and decisions change: the star of CGAL's data scaled by 2^-266 (exactly) gave 25 parts
  * instead of 11 at tau 0.05 and 185 at --budget 16; below about 1e-103 volumes underflow to 0.
  * The mirror of ACD_COORD_MAX (1e60) for large coordinates. */
-#define ACD_CLI_EXTENT_MIN 1e-60
+#include "core/tolerance.h"
+
+#define ACD_CLI_EXTENT_MIN ACD_EXTENT_MIN /* core/tolerance.h: the library refuses the same */
 
 struct acd_mesh;
 /* Refuses a mesh whose bounding box's largest extent is positive and below ACD_CLI_EXTENT_MIN:

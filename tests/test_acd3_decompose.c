@@ -651,6 +651,15 @@ static void test_bad_input(void **state) {
     assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
     assert_non_null(strstr(err.message, "vertex 1 has coordinate 1e+200, beyond"));
     m.vertices[4] = 0;
+    /* a model below ACD_EXTENT_MIN (the exact predicates' products underflow): refused */
+    {
+        acd_mesh tiny;
+        assert_int_equal(acd_mesh_copy(&tiny, &m, &err), ACD_OK);
+        for (size_t i = 0; i < 3 * tiny.nvertices; i++) tiny.vertices[i] = ldexp(tiny.vertices[i], -266);
+        assert_int_equal(acd3d_decompose(&tiny, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+        assert_non_null(strstr(err.message, "below the supported"));
+        acd_mesh_free(&tiny);
+    }
     acd3d_params bad = p;
     bad.cookie = 0;
     assert_int_equal(acd3d_decompose(&m, &bad, &r, &err), ACD_ERR_INVALID_ARGUMENT);

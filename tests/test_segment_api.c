@@ -295,6 +295,15 @@ static void test_bad_params(void **state) {
     assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_INVALID_INPUT);
     assert_non_null(strstr(err.message, "magnitude"));
     m.vertices[5] = keep;
+    /* a model below ACD_EXTENT_MIN: refused (decisions changed under an exact scale of 2^-266) */
+    {
+        acd_mesh tiny;
+        assert_int_equal(acd_mesh_copy(&tiny, &m, &err), ACD_OK);
+        for (size_t i = 0; i < 3 * tiny.nvertices; i++) tiny.vertices[i] = ldexp(tiny.vertices[i], -266);
+        assert_int_equal(acd_segment(&tiny, &p, &r, &err), ACD_ERR_INVALID_INPUT);
+        assert_non_null(strstr(err.message, "below the supported"));
+        acd_mesh_free(&tiny);
+    }
     size_t nt = m.ntriangles;
     m.ntriangles = 0;
     assert_int_equal(acd_segment(&m, &p, &r, &err), ACD_ERR_DEGENERATE);

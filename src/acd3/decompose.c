@@ -208,6 +208,7 @@ static acd_status check_input(const acd_mesh *m, acd_error *err) {
         return acd_fail(err, ACD_ERR_DEGENERATE, "the mesh is empty (%zu vertices, %zu triangles)", m->nvertices,
                         m->ntriangles);
     if (acd_check_coordinates(m->vertices, m->nvertices, 3, err) != ACD_OK) return ACD_ERR_INVALID_INPUT;
+    if (acd_check_extent(m->vertices, m->nvertices, 3, err) != ACD_OK) return ACD_ERR_INVALID_INPUT;
     for (size_t i = 0; i < 3 * m->ntriangles; i++)
         if (m->triangles[i] >= m->nvertices)
             return acd_fail(err, ACD_ERR_INVALID_INPUT, "triangle %zu refers to vertex %u of %zu", i / 3,

@@ -35,3 +35,22 @@ acd_status acd_check_coordinates(const double *pts, size_t n, int dim, acd_error
     }
     return ACD_OK;
 }
+
+acd_status acd_check_extent(const double *pts, size_t n, int dim, acd_error *err) {
+    double ext = 0;
+    for (int k = 0; k < dim && n > 0; k++) {
+        double lo = pts[k], hi = lo;
+        for (size_t i = 1; i < n; i++) {
+            double x = pts[(size_t)dim * i + (size_t)k];
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
+        }
+        if (hi - lo > ext) ext = hi - lo;
+    }
+    if (ext > 0 && ext < ACD_EXTENT_MIN)
+        return acd_fail(err, ACD_ERR_INVALID_INPUT,
+                        "the model's size (largest bounding-box extent %g) is below the supported %g (the exact "
+                        "predicates' products and the volumes would underflow); scale the input up",
+                        ext, ACD_EXTENT_MIN);
+    return ACD_OK;
+}

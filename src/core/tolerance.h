@@ -24,6 +24,14 @@
  * is many orders of magnitude below; larger input is refused with a message naming the vertex. */
 #define ACD_COORD_MAX 1e60
 
+/* Smallest model accepted for 3D geometry (the largest extent of its bounding box; a model of no
+ * extent is left to the callers' degeneracy checks). Below it the products of coordinate
+ * differences (exact predicates, volumes: the size to the 3rd to 6th power) leave the range of
+ * normal doubles and decisions change: CGAL's star.off scaled exactly by 2^-266 gave 25 parts
+ * instead of 11 at tau 0.05; below about 1e-103 volumes underflow to 0. The mirror of
+ * ACD_COORD_MAX (docs/results/3d-robustness.md). */
+#define ACD_EXTENT_MIN 1e-60
+
 typedef struct acd_scale {
     double extent;  /* bounding-box diagonal of the input (>= tiny positive) */
     double weld;    /* ACD_TOL_REL_WELD * extent */
@@ -33,6 +41,10 @@ typedef struct acd_scale {
 /* Checks that every coordinate of n points of dimension dim is finite and at most ACD_COORD_MAX
  * in magnitude; fails with ACD_ERR_INVALID_INPUT naming the first offending vertex. */
 acd_status acd_check_coordinates(const double *pts, size_t n, int dim, acd_error *err);
+
+/* Checks that the largest bounding-box extent of n points of dimension dim is 0 or at least
+ * ACD_EXTENT_MIN; fails with ACD_ERR_INVALID_INPUT naming the extent otherwise. */
+acd_status acd_check_extent(const double *pts, size_t n, int dim, acd_error *err);
 
 /* Scale of n points of dimension dim (2 or 3) stored contiguously. */
 acd_scale acd_scale_of_points(const double *pts, size_t n, int dim);

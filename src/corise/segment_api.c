@@ -101,7 +101,8 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
      * scale 1 and null volumes): refused as acd3d_decompose and acd_mesh_validate refuse them */
     if (mesh->nvertices && mesh->vertices) {
         acd_error ce;
-        if (acd_check_coordinates(mesh->vertices, mesh->nvertices, 3, &ce) != ACD_OK)
+        if (acd_check_coordinates(mesh->vertices, mesh->nvertices, 3, &ce) != ACD_OK ||
+            acd_check_extent(mesh->vertices, mesh->nvertices, 3, &ce) != ACD_OK)
             return acd_fail(err, ACD_ERR_INVALID_INPUT, "segment: %s", ce.message);
     }
     double t0 = now_seconds();
