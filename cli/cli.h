@@ -26,18 +26,11 @@ int acd_cli_report(const char *cmd, const acd_error *err);
 int acd_cli_parse_double(const char *cmd, const char *opt, const char *s, double *out);
 int acd_cli_parse_size(const char *cmd, const char *opt, const char *s, size_t *out);
 
-/* The smallest model the 3D commands take: the largest extent of its bounding box. Below it the
- * products of coordinate differences (exact predicates, volumes) leave the range of normal
- * doubles and decisions change: the star of CGAL's data scaled by 2^-266 (exactly) gave 25 parts
- * instead of 11 at tau 0.05 and 185 at --budget 16; below about 1e-103 volumes underflow to 0.
- * The mirror of ACD_COORD_MAX (1e60) for large coordinates. */
-#include "core/tolerance.h"
-
-#define ACD_CLI_EXTENT_MIN ACD_EXTENT_MIN /* core/tolerance.h: the library refuses the same */
-
 struct acd_mesh;
-/* Refuses a mesh whose bounding box's largest extent is positive and below ACD_CLI_EXTENT_MIN:
- * prints "acd <cmd>: invalid input geometry: ..." and returns ACD_EXIT_BAD_INPUT; else 0. */
+/* Refuses a mesh whose bounding box's largest extent is positive and below ACD_EXTENT_MIN
+ * (core/tolerance.h, acd_check_extent: the library refuses the same): prints "acd <cmd>: invalid
+ * input geometry: ..." and returns ACD_EXIT_BAD_INPUT; else 0. Called before repair, so that the
+ * refusal names the size rather than what repair makes of such a model. */
 int acd_cli_check_extent(const char *cmd, const struct acd_mesh *m);
 
 /* Subcommands: argc/argv start at the subcommand's name. */

@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "acd/mesh.h"
+#include "core/tolerance.h"
 
 int acd_cli_exit_code(acd_status s) {
     switch (s) {
@@ -56,22 +57,6 @@ int acd_cli_parse_size(const char *cmd, const char *opt, const char *s, size_t *
 
 int acd_cli_check_extent(const char *cmd, const acd_mesh *m) {
     if (!m || !m->nvertices) return 0;
-    double ext = 0;
-    for (int k = 0; k < 3; k++) {
-        double lo = m->vertices[k], hi = lo;
-        for (size_t v = 1; v < m->nvertices; v++) {
-            double x = m->vertices[3 * v + k];
-            lo = x < lo ? x : lo;
-            hi = x > hi ? x : hi;
-        }
-        if (hi - lo > ext) ext = hi - lo;
-    }
-    if (ext > 0 && ext < ACD_CLI_EXTENT_MIN) {
-        fprintf(stderr,
-                "acd %s: %s: the model's size (largest bounding-box extent %g) is below the supported %g (the "
-                "exact predicates' products and the volumes would underflow); scale the input up\n",
-                cmd, acd_status_string(ACD_ERR_INVALID_INPUT), ext, ACD_CLI_EXTENT_MIN);
-        return ACD_EXIT_BAD_INPUT;
-    }
-    return 0;
+    acd_error e;
+    return acd_check_extent(m->vertices, m->nvertices, 3, &e) == ACD_OK ? 0 : acd_cli_report(cmd, &e);
 }

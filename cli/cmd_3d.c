@@ -17,6 +17,7 @@
 #include "cli.h"
 #include "core/error.h"
 #include "geom3/frame.h"
+#include "geom3/volume.h"
 
 static void usage(FILE *f) {
     fprintf(f,
@@ -310,26 +311,6 @@ static double tet6(const acd_mesh *m, size_t t) {
     const double *a = m->vertices + 3 * m->triangles[3 * t], *b = m->vertices + 3 * m->triangles[3 * t + 1],
                  *c = m->vertices + 3 * m->triangles[3 * t + 2];
     return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
-
-/* Signed volume of the mesh (tetrahedra to its first vertex, so that it does not depend on where
- * the mesh lies): negative for a closed mesh facing inward. */
-static double signed_volume(const acd_mesh *m) {
-    if (!m->nvertices) return 0;
-    const double *o = m->vertices;
-    double sum = 0;
-    for (size_t t = 0; t < m->ntriangles; t++) {
-        const double *q[3] = {m->vertices + 3 * m->triangles[3 * t], m->vertices + 3 * m->triangles[3 * t + 1],
-                              m->vertices + 3 * m->triangles[3 * t + 2]};
-        double a[3], b[3], c[3];
-        for (int k = 0; k < 3; k++) {
-            a[k] = q[0][k] - o[k];
-            b[k] = q[1][k] - o[k];
-            c[k] = q[2][k] - o[k];
-        }
-        sum += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-    }
-    return sum / 6;
 }
 
 static double tri_area(const acd_mesh *m, size_t t) {
@@ -841,7 +822,7 @@ int acd_cmd_3d(int argc, char **argv) {
      * reversed) is repaired like an unoriented one: its closed parts turned outward (cavities,
      * parts inside an odd number of others, inward) */
     double inside_out_volume = 0;
-    if (st == ACD_ERR_DEGENERATE && p.mode == ACD3D_SOLID && close_holes) inside_out_volume = signed_volume(&mesh);
+    if (st == ACD_ERR_DEGENERATE && p.mode == ACD3D_SOLID && close_holes) inside_out_volume = acd_geom3_signed_volume(&mesh);
     if ((st == ACD_ERR_NON_MANIFOLD || inside_out_volume < 0) && p.mode == ACD3D_SOLID && close_holes) {
         repaired = 1;
         /* solid mode on an open or unoriented mesh: weld, orient and close every hole, then

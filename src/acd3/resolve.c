@@ -7,6 +7,7 @@
 
 #include "acd3/global_cut.h"
 #include "core/predicates.h"
+#include "core/tolerance.h"
 #include "geom3/edge_map.h"
 #include "geom3/pca.h"
 
@@ -298,15 +299,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
     /* the planes: for each witness edge e and each other sharp reflex edge f, the plane through e and
      * f's endpoint farther from e's line, when f lies in it and it resolves both; a plane found
      * again (from another f or another witness edge) counts nothing new */
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t v = 0; v < m->nvertices; v++)
-        for (int c = 0; c < 3; c++) {
-            double q = m->vertices[3 * v + c];
-            if (q < lo[c]) lo[c] = q;
-            if (q > hi[c]) hi[c] = q;
-        }
-    double tol = EDGE_PLANE_COPLANAR_REL * sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    double tol = EDGE_PLANE_COPLANAR_REL * acd_scale_of_points(m->vertices, m->nvertices, 3).extent;
     pl = malloc(nw * na * sizeof *pl);
     if (!pl) goto done;
     const double *V = m->vertices;

@@ -46,7 +46,7 @@ PY
     done
   done
 done
-# below ACD_CLI_EXTENT_MIN (1e-60) the products of differences leave the normal doubles: the
+# below ACD_EXTENT_MIN (1e-60, core/tolerance.h) the products of differences leave the normal doubles: the
 # CGAL star scaled by 2^-266 gave 25 parts instead of 11 (exit 0), and below ~1e-103 the volume
 # underflowed to 0 ("flat or oriented inward"). Refused, exit 2, naming the size
 python3 - "$SRC/tests/data/meshes/torus.off" "$T/tiny.off" <<'PY' || fail "tiny writer"
