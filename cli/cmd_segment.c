@@ -310,64 +310,25 @@ int acd_cmd_segment(int argc, char **argv) {
             return ec;
         }
     }
-    {
-        /* a triangle soup (OBJ or OFF with every face its own vertices) or a mesh with vertices
-         * split at texture seams: without welding every face was its own part. Vertices with the
-         * same coordinates are merged (faces keep their order, so labels still follow the file's
-         * faces); a mesh without such vertices is left as read (its numbering unchanged) */
-        acd_mesh w;
-        size_t merged = 0;
-        if (acd_mesh_copy(&w, &mesh, &err) != ACD_OK || acd_mesh_weld(&w, 0, &merged, &err) != ACD_OK) {
-            acd_mesh_free(&mesh);
-            return acd_cli_report("segment", &err);
-        }
-        /* only an open mesh is welded: shells that are closed with their own vertices (a model
-         * given twice, coincident) stay apart instead of becoming non-manifold */
-        acd_mesh_report rep;
-        int open = 0;
-        if (merged > 0 && acd_mesh_validate(&mesh, 0, &rep, &err) == ACD_OK) {
-            open = rep.boundary_edges > 0;
-            acd_mesh_report_free(&rep);
-        }
-        if (merged > 0 && open) {
-            fprintf(stderr,
-                    "acd segment: %zu vertices at the same coordinates as others merged (a triangle soup or split "
-                    "vertices): faces are joined there\n",
-                    merged);
-            acd_mesh_free(&mesh);
-            mesh = w;
-        } else {
-            acd_mesh_free(&w);
-        }
-        /* faces oriented against their neighbours, or a closed mesh inside out: valleys and
-         * ridges swap (mpi_triang with all faces reversed: 3 parts, one unresolved, --verify
-         * failing; half of them: a valley 2.3 tau left). Faces are flipped to agree, closed parts
-         * outward (cavities inward); nothing else changes (no weld, no face dropped or moved) */
-        acd_repair_options ro = acd_repair_default_options();
-        ro.weld = 0;
-        ro.drop_degenerate = 0;
-        ro.drop_duplicates = 0;
-        ro.fill_holes_max_edges = 0;
-        ro.drop_unused_vertices = 0;
-        acd_repair_stats rs;
-        if (acd_mesh_repair(&mesh, &ro, &rs, &err) != ACD_OK) {
-            acd_mesh_free(&mesh);
-            return acd_cli_report("segment", &err);
-        }
-        if (rs.faces_flipped > 0)
-            fprintf(stderr,
-                    "acd segment: %zu of %zu faces flipped to orient the mesh consistently, closed parts outward (it "
-                    "was %s)\n",
-                    rs.faces_flipped, mesh.ntriangles,
-                    rs.faces_flipped == mesh.ntriangles ? "inside out" : "not consistently oriented");
-    }
     p.progress = on_progress;
     p.progress_user = &verbose;
     acd_segment_result r;
-    if (acd_segment(&mesh, &p, &r, &err) != ACD_OK) {
-        acd_mesh_free(&mesh);
-        return acd_cli_report("segment", &err);
-    }
+    acd_status st = acd_segment(&mesh, &p, &r, &err);
+    acd_mesh_free(&mesh);
+    if (st != ACD_OK) return acd_cli_report("segment", &err);
+    /* the library welds and orients the input (docs/corise.md, "Input preparation"); the mesh it
+     * segmented is r.mesh, which the outputs below use */
+    if (r.vertices_merged > 0)
+        fprintf(stderr,
+                "acd segment: %zu vertices at the same coordinates as others merged (a triangle soup or split "
+                "vertices): faces are joined there\n",
+                r.vertices_merged);
+    if (r.faces_flipped > 0)
+        fprintf(stderr,
+                "acd segment: %zu of %zu faces flipped to orient the mesh consistently, closed parts outward (it "
+                "was %s)\n",
+                r.faces_flipped, r.nfaces, r.faces_flipped == r.nfaces ? "inside out" : "not consistently oriented");
+    const acd_mesh *sm = &r.mesh;
     int code = ACD_EXIT_OK;
     printf("%zu parts, %zu cuts, %zu unresolved, hull/mesh volume %.6g, %.3f s\n", r.nparts, r.cuts, r.unresolved,
            r.mesh_volume > 0 ? r.hull_volume / r.mesh_volume : 0.0, r.seconds);
@@ -386,13 +347,13 @@ int acd_cmd_segment(int argc, char **argv) {
             free(lab);
         }
     }
-    if (!code && parts_path && write_groups(parts_path, &mesh, &r, 0, &err) != ACD_OK)
+    if (!code && parts_path && write_groups(parts_path, sm, &r, 0, &err) != ACD_OK)
         code = acd_cli_report("segment", &err);
-    if (!code && hulls_path && write_groups(hulls_path, &mesh, &r, 1, &err) != ACD_OK)
+    if (!code && hulls_path && write_groups(hulls_path, sm, &r, 1, &err) != ACD_OK)
         code = acd_cli_report("segment", &err);
     if (!code && cage_path) {
         acd_cage_result cr;
-        if (acd_cage_from_segment(&mesh, &r, &cp, &cr, &err) != ACD_OK) {
+        if (acd_cage_from_segment(sm, &r, &cp, &cr, &err) != ACD_OK) {
             code = acd_cli_report("segment", &err);
         } else {
             printf("cage: %zu hulls (%zu corners chosen, %zu after quantization), %zu vertices, %zu triangles, volume/mesh %.6g, "
@@ -429,10 +390,9 @@ int acd_cmd_segment(int argc, char **argv) {
         cJSON_Delete(j);
     }
     if (!code && do_verify) {
-        if (verify(&mesh, &p, &r, &err) != ACD_OK) code = acd_cli_report("segment", &err);
+        if (verify(sm, &p, &r, &err) != ACD_OK) code = acd_cli_report("segment", &err);
         else if (verbose) fprintf(stderr, "acd segment: verified: every face labelled, parts connected, parts within tau\n");
     }
-    acd_segment_result_free(&r);
-    acd_mesh_free(&mesh);
+    acd_segment_result_free(&r); /* and r.mesh */
     return code;
 }

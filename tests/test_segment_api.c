@@ -1,7 +1,8 @@
 /* Tests of the public segmentation API (acd/segment.h, src/corise/segment_api.c): a dumbbell
  * splits into its two bulbs, a convex shape stays one part, every face is labelled and the
  * parts cover the faces, per-part hulls enclose their faces, parts meet tau, output is bitwise
- * deterministic and the same for 1-4 threads, bad params are refused. */
+ * deterministic and the same for 1-4 threads, bad params are refused; a triangle soup and
+ * reversed faces are welded and oriented first (the clean mesh's labels). */
 // ctest: TIMEOUT 600
 #include "testutil.h"
 
@@ -240,6 +241,168 @@ static void test_threads_identical(void **state) {
     }
 }
 
+/* Input preparation (params.prepare, docs/corise.md "Input preparation"): a triangle soup of the
+ * torus (every face its own three vertices, as OBJ exporters write meshes split at texture seams),
+ * the torus with every face reversed and with every other face reversed give the clean torus's
+ * labels face for face, and say what was done; the input is left untouched. With prepare = 0 the
+ * soup and the reversed torus are segmented as given: other labels (the soup one part per face),
+ * which is what the preparation is there for. */
+static void test_prepare_soup_and_flips(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_torus(&m, 24, 12, 1.0, 0.4));
+    size_t nf = m.ntriangles;
+    acd_segment_params p = acd_segment_default_params();
+    p.tau = 0.3; /* 4 parts */
+    p.clamp_hull_depth = 0;
+    acd_segment_result ref;
+    acd_error err;
+    assert_int_equal(acd_segment(&m, &p, &ref, &err), ACD_OK);
+    check_result(&m, &ref, p.tau);
+    print_message("torus: %zu faces, %zu parts\n", nf, ref.nparts);
+    assert_true(ref.nparts >= 2 && ref.nparts <= 8);
+    /* a clean mesh is segmented as it is: nothing merged or flipped, result.mesh is its copy */
+    assert_int_equal(ref.vertices_merged, 0);
+    assert_int_equal(ref.faces_flipped, 0);
+    assert_int_equal(ref.mesh.nvertices, m.nvertices);
+    assert_int_equal(ref.mesh.ntriangles, nf);
+    assert_memory_equal(ref.mesh.vertices, m.vertices, 3 * m.nvertices * sizeof(double));
+    assert_memory_equal(ref.mesh.triangles, m.triangles, 3 * nf * sizeof(uint32_t));
+    assert_true(ref.mesh_volume > 0);
+
+    /* the soup: 3 nf vertices, in face order */
+    acd_mesh soup = {malloc(9 * nf * sizeof(double)), 3 * nf, malloc(3 * nf * sizeof(uint32_t)), nf};
+    assert_non_null(soup.vertices);
+    assert_non_null(soup.triangles);
+    for (size_t i = 0; i < 3 * nf; i++) {
+        memcpy(soup.vertices + 3 * i, m.vertices + 3 * (size_t)m.triangles[i], 3 * sizeof(double));
+        soup.triangles[i] = (uint32_t)i;
+    }
+    acd_mesh keep;
+    assert_int_equal(acd_mesh_copy(&keep, &soup, &err), ACD_OK);
+    acd_segment_result r;
+    assert_int_equal(acd_segment(&soup, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.nparts, ref.nparts);
+    assert_memory_equal(r.labels, ref.labels, nf * sizeof *r.labels);
+    assert_int_equal(r.vertices_merged, 3 * nf - m.nvertices);
+    assert_int_equal(r.faces_flipped, 0);
+    assert_int_equal(r.mesh.nvertices, m.nvertices);
+    assert_true(fabs(r.mesh_volume - ref.mesh_volume) <= 1e-12 * ref.mesh_volume);
+    check_result(&r.mesh, &r, p.tau);
+    assert_memory_equal(soup.vertices, keep.vertices, 9 * nf * sizeof(double)); /* input untouched */
+    assert_memory_equal(soup.triangles, keep.triangles, 3 * nf * sizeof(uint32_t));
+    acd_segment_result_free(&r);
+    assert_null(r.mesh.vertices); /* freed with the result */
+    p.prepare = 0;
+    assert_int_equal(acd_segment(&soup, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.nparts, nf); /* as before: every face its own part */
+    assert_int_equal(r.vertices_merged, 0);
+    acd_segment_result_free(&r);
+    p.prepare = 1;
+
+    /* every face reversed (inside out), then every other face reversed */
+    for (int mode = 0; mode < 2; mode++) {
+        acd_mesh f;
+        assert_int_equal(acd_mesh_copy(&f, &m, &err), ACD_OK);
+        size_t flipped = 0;
+        for (size_t t = 0; t < nf; t++)
+            if (mode == 0 || t % 2) {
+                uint32_t *T = f.triangles + 3 * t, x = T[1];
+                T[1] = T[2];
+                T[2] = x;
+                flipped++;
+            }
+        assert_int_equal(acd_segment(&f, &p, &r, &err), ACD_OK);
+        assert_int_equal(r.nparts, ref.nparts);
+        assert_memory_equal(r.labels, ref.labels, nf * sizeof *r.labels);
+        assert_int_equal(r.faces_flipped, flipped);
+        assert_int_equal(r.vertices_merged, 0);
+        assert_true(fabs(r.mesh_volume - ref.mesh_volume) <= 1e-12 * ref.mesh_volume);
+        /* the mesh segmented faces the way the clean torus does */
+        for (size_t t = 0; t < nf; t++) {
+            const uint32_t *a = r.mesh.triangles + 3 * t, *b = m.triangles + 3 * t;
+            int k = a[0] == b[0] ? 0 : a[0] == b[1] ? 1 : 2;
+            assert_true(a[0] == b[k] && a[1] == b[(k + 1) % 3] && a[2] == b[(k + 2) % 3]);
+        }
+        acd_segment_result_free(&r);
+        if (mode == 0) { /* as given: valleys and ridges swap */
+            p.prepare = 0;
+            assert_int_equal(acd_segment(&f, &p, &r, &err), ACD_OK);
+            assert_int_equal(r.faces_flipped, 0);
+            assert_true(r.mesh_volume < 0);
+            assert_true(r.nparts != ref.nparts || memcmp(r.labels, ref.labels, nf * sizeof *r.labels) != 0);
+            acd_segment_result_free(&r);
+            p.prepare = 1;
+        }
+        acd_mesh_free(&f);
+    }
+    acd_mesh_free(&keep);
+    acd_mesh_free(&soup);
+    acd_segment_result_free(&ref);
+    acd_mesh_free(&m);
+}
+
+/* Closed shells are not welded and a shell inside another is a cavity: the torus twice, coincident
+ * and each with its own vertices, stays two closed tori (twice the parts, nothing merged); a sphere
+ * inside a larger one, both facing outward, has its faces turned inward. */
+static void test_prepare_closed_shells(void **state) {
+    (void)state;
+    acd_mesh m;
+    acd_error err;
+    assert_true(mg_torus(&m, 24, 12, 1.0, 0.4));
+    size_t nv = m.nvertices, nf = m.ntriangles;
+    acd_segment_params p = acd_segment_default_params();
+    p.tau = 0.3;
+    p.clamp_hull_depth = 0;
+    acd_segment_result one, two;
+    assert_int_equal(acd_segment(&m, &p, &one, &err), ACD_OK);
+    acd_mesh d = {malloc(6 * nv * sizeof(double)), 2 * nv, malloc(6 * nf * sizeof(uint32_t)), 2 * nf};
+    assert_non_null(d.vertices);
+    assert_non_null(d.triangles);
+    memcpy(d.vertices, m.vertices, 3 * nv * sizeof(double));
+    memcpy(d.vertices + 3 * nv, m.vertices, 3 * nv * sizeof(double));
+    for (size_t i = 0; i < 3 * nf; i++) {
+        d.triangles[i] = m.triangles[i];
+        d.triangles[3 * nf + i] = m.triangles[i] + (uint32_t)nv;
+    }
+    assert_int_equal(acd_segment(&d, &p, &two, &err), ACD_OK);
+    assert_int_equal(two.vertices_merged, 0);
+    assert_int_equal(two.faces_flipped, 0);
+    assert_int_equal(two.nparts, 2 * one.nparts);
+    acd_segment_result_free(&one);
+    acd_segment_result_free(&two);
+    acd_mesh_free(&d);
+    acd_mesh_free(&m);
+
+    acd_mesh in, out;
+    assert_true(mg_radial(&in, 16, 8, sphere_r, NULL));
+    assert_true(mg_radial(&out, 16, 8, sphere_r, NULL));
+    for (size_t i = 0; i < 3 * out.nvertices; i++) out.vertices[i] *= 2;
+    acd_mesh both = {malloc(3 * (in.nvertices + out.nvertices) * sizeof(double)), in.nvertices + out.nvertices,
+                     malloc(3 * (in.ntriangles + out.ntriangles) * sizeof(uint32_t)), in.ntriangles + out.ntriangles};
+    assert_non_null(both.vertices);
+    assert_non_null(both.triangles);
+    memcpy(both.vertices, out.vertices, 3 * out.nvertices * sizeof(double));
+    memcpy(both.vertices + 3 * out.nvertices, in.vertices, 3 * in.nvertices * sizeof(double));
+    memcpy(both.triangles, out.triangles, 3 * out.ntriangles * sizeof(uint32_t));
+    for (size_t i = 0; i < 3 * in.ntriangles; i++)
+        both.triangles[3 * out.ntriangles + i] = in.triangles[i] + (uint32_t)out.nvertices;
+    acd_segment_result r;
+    assert_int_equal(acd_segment(&both, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.faces_flipped, in.ntriangles);
+    for (size_t t = 0; t < both.ntriangles; t++) { /* the outer sphere's faces kept, the inner's reversed */
+        const uint32_t *a = r.mesh.triangles + 3 * t, *b = both.triangles + 3 * t;
+        int k = a[0] == b[0] ? 0 : a[0] == b[1] ? 1 : 2, dir = t < out.ntriangles ? 1 : 2;
+        assert_true(a[0] == b[k] && a[1] == b[(k + dir) % 3] && a[2] == b[(k + 2 * dir) % 3]);
+    }
+    /* the solid between the spheres: the outer ball less the inner one */
+    assert_true(fabs(r.mesh_volume - (mg_volume(&out) - mg_volume(&in))) <= 1e-12 * mg_volume(&out));
+    acd_segment_result_free(&r);
+    acd_mesh_free(&both);
+    acd_mesh_free(&in);
+    acd_mesh_free(&out);
+}
+
 static int cancel_cb(void *u, double f, const char *s) {
     (void)f, (void)s;
     ++*(int *)u;
@@ -326,6 +489,8 @@ int main(void) {
         cmocka_unit_test(test_cross_deterministic),
         cmocka_unit_test(test_threads_identical),
         cmocka_unit_test(test_bad_params),
+        cmocka_unit_test(test_prepare_soup_and_flips),
+        cmocka_unit_test(test_prepare_closed_shells),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -97,6 +97,15 @@ typedef struct acd_segment_params {
     int threads;              /* OpenMP threads, 0: as many as cores; default 1 (on the shared 2-core
                                  machine 2 threads were slower: docs/corise.md, "Speed"); the
                                  output is the same for any count */
+    int prepare;              /* 1 (default): the mesh is prepared first (docs/corise.md, "Input
+                                 preparation"): an open mesh with vertices at the same coordinates
+                                 (a triangle soup, split texture seams) is welded, then faces are
+                                 flipped to agree with their neighbours, closed parts outward
+                                 (cavities inward), open parts as most of their faces; faces keep
+                                 their order and count. What was done is in the result
+                                 (vertices_merged, faces_flipped). 0: segmented as given (concave
+                                 edges decided from the given orientation: an inward-facing closed
+                                 mesh is segmented as the space around it) */
     acd_progress_fn progress; /* optional; may cancel */
     void *progress_user;
 } acd_segment_params;
@@ -128,11 +137,22 @@ typedef struct acd_segment_result {
     size_t depth;             /* deepest nesting of cuts */
     size_t unresolved;        /* parts left deeper than tau (a cut could not split them, or max_depth) */
     double seconds;           /* wall-clock time of acd_segment */
+    /* The mesh as segmented (params.prepare): the input's faces in the input's order (labels[f]
+     * is face f's), welded when vertices_merged > 0 (vertices renumbered in order of first use),
+     * with faces_flipped faces reversed; an exact copy of the input when both are 0. The volumes,
+     * areas and hulls above are of it; pass it (not the input) to acd_cage_from_segment or to
+     * any check that depends on the orientation or the shared vertices. Freed with the result. */
+    acd_mesh mesh;
+    size_t vertices_merged;     /* vertices merged into others at the same coordinates (0: not welded) */
+    size_t faces_flipped;       /* faces reversed (== nfaces: the input was inside out) */
+    size_t nonorientable_parts; /* parts that no orientation makes consistent (Moebius strips;
+                                   oriented as far as possible) */
 } acd_segment_result;
 
-/* Segments a triangle mesh (ideally closed and consistently oriented: concave edges are decided
- * from the faces' orientation) into nearly convex parts. Every face gets a label; parts are
- * edge-connected. out is caller-owned, freed with acd_segment_result_free (also safe after a
+/* Segments a triangle mesh into nearly convex parts. Concave edges are decided from the faces'
+ * orientation and parts are joined through shared vertices, so the mesh is first welded and
+ * oriented (params.prepare; result.mesh is the mesh segmented, result.vertices_merged and
+ * result.faces_flipped say what changed). Every face gets a label; parts are edge-connected. out is caller-owned, freed with acd_segment_result_free (also safe after a
  * failure). Bad params: ACD_ERR_INVALID_ARGUMENT; no faces: ACD_ERR_DEGENERATE; indices out of
  * range, non-finite coordinates or coordinates beyond 1e60: ACD_ERR_INVALID_INPUT. */
 acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, acd_segment_result *out,

@@ -31,6 +31,7 @@ acd_segment_params acd_segment_default_params(void) {
     p.clamp_hull_depth = 1; /* docs/corise.md, "Default of clamp_hull_depth" */
     p.max_depth = c.max_depth;
     p.threads = 1; /* docs/corise.md, "Speed": 2 threads measured slower on the shared machine */
+    p.prepare = 1; /* docs/corise.md, "Input preparation" */
     return p;
 }
 
@@ -40,6 +41,7 @@ void acd_segment_result_free(acd_segment_result *r) {
         for (size_t k = 0; k < r->nparts; k++) acd_mesh_free(&r->parts[k].hull);
     free(r->parts);
     free(r->labels);
+    acd_mesh_free(&r->mesh);
     memset(r, 0, sizeof *r);
 }
 
@@ -77,11 +79,66 @@ static acd_status part_hull(const acd_mesh *m, const uint32_t *face, size_t n, d
     return ACD_OK;
 }
 
-acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, acd_segment_result *out,
+/* The mesh to segment (docs/corise.md, "Input preparation") into out->mesh: a copy of m, welded
+ * and oriented when on. Faces keep their order and count, so the labels are the input's faces'.
+ * A mesh the loop refuses (no faces, an index out of range) is copied as is, for the loop's own
+ * message. */
+static acd_status prepare(const acd_mesh *m, int on, acd_segment_result *out, acd_error *err) {
+    acd_status st;
+    int usable = on && m->ntriangles > 0 && m->ntriangles <= UINT32_MAX / 3;
+    for (size_t t = 0; usable && t < 3 * m->ntriangles; t++) usable = m->triangles[t] < m->nvertices;
+    if (!usable) return acd_mesh_copy(&out->mesh, m, err);
+    /* a triangle soup (OBJ or OFF with every face its own vertices) or a mesh with vertices split
+     * at texture seams: without welding every face was its own part (the torus soup: 72 parts for
+     * its 72 quads). Vertices with the same coordinates are merged; a mesh without such vertices
+     * keeps its numbering. Only an open mesh is welded: shells that are closed with their own
+     * vertices (a model given twice, coincident) stay apart instead of becoming non-manifold */
+    acd_mesh w;
+    size_t merged = 0;
+    if ((st = acd_mesh_copy(&w, m, err)) != ACD_OK) return st;
+    if ((st = acd_mesh_weld(&w, 0, &merged, err)) != ACD_OK) {
+        acd_mesh_free(&w);
+        return st;
+    }
+    int open = 0;
+    if (merged > 0) {
+        acd_mesh_report rep;
+        acd_error verr;
+        if (acd_mesh_validate(m, 0, &rep, &verr) == ACD_OK) {
+            open = rep.boundary_edges > 0;
+            acd_mesh_report_free(&rep);
+        }
+    }
+    if (merged > 0 && open) {
+        out->mesh = w;
+        out->vertices_merged = merged;
+    } else {
+        acd_mesh_free(&w);
+        if ((st = acd_mesh_copy(&out->mesh, m, err)) != ACD_OK) return st;
+    }
+    /* faces oriented against their neighbours, or a closed mesh inside out: valleys and ridges
+     * swap (mpi_triang with all faces reversed: 3 parts, one unresolved; half of them: a valley
+     * 2.3 tau left). Faces are flipped to agree, closed parts outward (cavities inward), open
+     * parts as most of their faces; nothing else changes (no face dropped or moved) */
+    acd_repair_options ro = acd_repair_default_options();
+    ro.weld = 0;
+    ro.drop_degenerate = 0;
+    ro.drop_duplicates = 0;
+    ro.fill_holes_max_edges = 0;
+    ro.drop_unused_vertices = 0;
+    acd_repair_stats rs;
+    if ((st = acd_mesh_repair(&out->mesh, &ro, &rs, err)) != ACD_OK) return st;
+    out->faces_flipped = rs.faces_flipped;
+    out->nonorientable_parts = rs.nonorientable_parts;
+    return ACD_OK;
+}
+
+acd_status acd_segment(const acd_mesh *input, const acd_segment_params *params, acd_segment_result *out,
                        acd_error *err) {
     if (!out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: NULL result");
     memset(out, 0, sizeof *out);
-    if (!mesh) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: NULL mesh");
+    if (!input || (input->nvertices && !input->vertices) || (input->ntriangles && !input->triangles))
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "segment: NULL mesh");
     if (!params || params->cookie != ACD_SEGMENT_PARAMS_COOKIE)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT,
                         "segment: params not initialised by acd_segment_default_params (cookie missing)");
@@ -99,13 +156,19 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
                         params->threads);
     /* coordinates beyond ACD_COORD_MAX overflow the radius and volumes (a 1e300 tetrahedron gave
      * scale 1 and null volumes): refused as acd3d_decompose and acd_mesh_validate refuse them */
-    if (mesh->nvertices && mesh->vertices) {
+    if (input->nvertices) {
         acd_error ce;
-        if (acd_check_coordinates(mesh->vertices, mesh->nvertices, 3, &ce) != ACD_OK ||
-            acd_check_extent(mesh->vertices, mesh->nvertices, 3, &ce) != ACD_OK)
+        if (acd_check_coordinates(input->vertices, input->nvertices, 3, &ce) != ACD_OK ||
+            acd_check_extent(input->vertices, input->nvertices, 3, &ce) != ACD_OK)
             return acd_fail(err, ACD_ERR_INVALID_INPUT, "segment: %s", ce.message);
     }
     double t0 = now_seconds();
+    acd_status st = prepare(input, params->prepare, out, err);
+    if (st != ACD_OK) {
+        acd_segment_result_free(out);
+        return st;
+    }
+    const acd_mesh *mesh = &out->mesh;
     acd_corise_params c = acd_corise_default_params();
     c.tau = params->tau;
     c.cut.alpha = params->alpha;
@@ -123,7 +186,7 @@ acd_status acd_segment(const acd_mesh *mesh, const acd_segment_params *params, a
     acd_error *herr = NULL;
     out->labels = malloc((mesh->ntriangles ? mesh->ntriangles : 1) * sizeof *out->labels);
     if (!out->labels) goto nomem;
-    acd_status st = acd_corise_segment_ex(mesh, &c, out->labels, &conc, &stats, err);
+    st = acd_corise_segment_ex(mesh, &c, out->labels, &conc, &stats, err);
     if (st != ACD_OK) goto fail;
     out->nfaces = mesh->ntriangles;
     out->tau = params->tau;
