@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/minheap.h"
 #include "corise/separator.h"
 #ifdef _OPENMP
 #include <omp.h>
@@ -51,33 +52,82 @@ static int grow(uint32_t **a, size_t *cap, size_t n) {
     return 1;
 }
 
-/* w->faces[0..w->nfaces) = the facets whose three vertices are at distance < len from r (len > 0),
- * in facet order (acd_dijkstra truncated at len). 0: out of memory. */
-static int ball(const acd_mesh *m, const acd_edge_graph *g, uint32_t r, double len, ball_work *w) {
+/* A thread's ball search: a vertex's distance is valid when stamp == run, it is settled when
+ * done == run (so a ball costs its own vertices, not passes over the mesh); the heap; the
+ * settled vertices. */
+typedef struct ball_search {
+    double *dist;
+    uint32_t *stamp, *done;
+    uint32_t run;
+    acd_minheap heap;
+    uint32_t *settled;
+    size_t nsettled, cap_settled;
+} ball_search;
+
+static void ball_search_free(ball_search *s) {
+    free(s->dist);
+    free(s->stamp);
+    free(s->done);
+    acd_minheap_free(&s->heap);
+    free(s->settled);
+    memset(s, 0, sizeof *s);
+}
+
+/* w->faces[0..w->nfaces) = the facets whose three vertices are at edge-graph distance < len from r
+ * (len > 0), in no particular order (apply_claim's result does not depend on it). Dijkstra from r
+ * that settles only the vertices below len: a vertex's distance is the smallest left-to-right
+ * rounded sum of edge lengths over paths from r (rounding is monotone), so it has the same bits as
+ * acd_dijkstra's (which this replaced, with its pass over every facet per ball).
+ * by_first: the facets by their first vertex (row[v] .. row[v+1] of face). 0: out of memory. */
+static int ball(const acd_mesh *m, const acd_edge_graph *g, const size_t *first_row, const uint32_t *first_face,
+                uint32_t r, double len, ball_search *s, ball_work *w) {
     w->nfaces = 0;
-    acd_dijkstra_opts o;
-    memset(&o, 0, sizeof o);
-    o.target = ACD_NO_VERTEX;
-    o.max_distance = len;
-    acd_sp_tree t;
-    memset(&t, 0, sizeof t);
-    acd_error e;
-    if (acd_dijkstra(g, &r, 1, &o, &t, &e) != ACD_OK) {
-        acd_sp_tree_free(&t);
-        return 0;
+    size_t nv = g->nvertices;
+    if (!s->dist) {
+        s->dist = malloc((nv ? nv : 1) * sizeof *s->dist);
+        s->stamp = calloc(nv ? nv : 1, sizeof *s->stamp);
+        s->done = calloc(nv ? nv : 1, sizeof *s->done);
+        if (!s->dist || !s->stamp || !s->done) return 0;
     }
-    int ok = 1;
-    for (size_t f = 0; f < m->ntriangles && ok; f++) {
-        const uint32_t *T = m->triangles + 3 * f;
-        double d = t.dist[T[0]];
-        if (t.dist[T[1]] > d) d = t.dist[T[1]];
-        if (t.dist[T[2]] > d) d = t.dist[T[2]];
-        if (!(d < len)) continue;
-        if (!(ok = grow(&w->faces, &w->cap_faces, w->nfaces))) break;
-        w->faces[w->nfaces++] = (uint32_t)f;
+    if (++s->run == 0) { /* stamp wrap-around */
+        memset(s->stamp, 0, nv * sizeof *s->stamp);
+        memset(s->done, 0, nv * sizeof *s->done);
+        s->run = 1;
     }
-    acd_sp_tree_free(&t);
-    return ok;
+    uint32_t run = s->run;
+    s->heap.n = 0;
+    s->nsettled = 0;
+    s->stamp[r] = run;
+    s->dist[r] = 0;
+    if (!acd_minheap_push(&s->heap, 0, r)) return 0;
+    while (s->heap.n) {
+        acd_minheap_item it = acd_minheap_pop(&s->heap);
+        uint32_t u = it.id;
+        if (s->done[u] == run || it.key != s->dist[u]) continue; /* a stale item */
+        s->done[u] = run;
+        if (!grow(&s->settled, &s->cap_settled, s->nsettled)) return 0;
+        s->settled[s->nsettled++] = u;
+        for (size_t k = g->row[u]; k < g->row[u + 1]; k++) {
+            uint32_t v = g->adj[k];
+            double nd = it.key + g->length[g->adj_edge[k]];
+            if (!(nd < len)) continue; /* never settled: only distances below len count */
+            if (s->stamp[v] == run && (s->done[v] == run || !(nd < s->dist[v]))) continue;
+            s->stamp[v] = run;
+            s->dist[v] = nd;
+            if (!acd_minheap_push(&s->heap, nd, v)) return 0;
+        }
+    }
+    for (size_t i = 0; i < s->nsettled; i++) {
+        uint32_t u = s->settled[i];
+        for (size_t j = first_row[u]; j < first_row[u + 1]; j++) {
+            uint32_t f = first_face[j];
+            const uint32_t *T = m->triangles + 3 * (size_t)f;
+            if (s->done[T[1]] != run || s->done[T[2]] != run) continue;
+            if (!grow(&w->faces, &w->cap_faces, w->nfaces)) return 0;
+            w->faces[w->nfaces++] = f;
+        }
+    }
+    return 1;
 }
 
 /* Claims the facets of a ball for ridge k (a facet claimed by two ridges becomes MULTI; the final
@@ -123,6 +173,9 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
         nt = nthreads < ACD_CORISE_MAX_THREADS ? nthreads : ACD_CORISE_MAX_THREADS;
 #endif
     size_t nbw = nt > 1 ? CLAIM_ROUND : 1;
+    ball_search *bs = NULL;
+    size_t *first_row = NULL;
+    uint32_t *first_face = NULL;
     ball_work *bw = calloc(nbw, sizeof *bw);
     if (!deep || !sp || !sst || !cl || !bw) {
         st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu deep valleys", ndeep);
@@ -178,13 +231,27 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
         }
         ncl = k;
     }
-    /* the balls, a round at a time in parallel, applied in order */
+    /* the balls, a round at a time in parallel, applied in order; each thread's search workspace
+       is reused, the facets are listed by their first vertex */
     if (ncl) {
         int ok = 1;
+        size_t nv = m->nvertices;
+        first_row = calloc(nv + 1, sizeof *first_row);
+        first_face = malloc((nf ? nf : 1) * sizeof *first_face);
+        bs = calloc((size_t)nt, sizeof *bs);
+        if (!first_row || !first_face || !bs) {
+            st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for the regions of %zu facets", nf);
+            goto done;
+        }
+        for (size_t f = 0; f < nf; f++) first_row[m->triangles[3 * f] + 1]++;
+        for (size_t v = 0; v < nv; v++) first_row[v + 1] += first_row[v];
+        for (size_t f = 0; f < nf; f++) first_face[first_row[m->triangles[3 * f]]++] = (uint32_t)f;
+        for (size_t v = nv; v > 0; v--) first_row[v] = first_row[v - 1];
+        first_row[0] = 0;
         if (nt == 1) {
             for (size_t c = 0; c < ncl && ok; c++) {
                 if (!(cl[c].len > 0)) continue;
-                ok = ball(m, g, cl[c].r, cl[c].len, &bw[0]);
+                ok = ball(m, g, first_row, first_face, cl[c].r, cl[c].len, &bs[0], &bw[0]);
                 if (ok) apply_claim(&bw[0], cl[c].ridge, must_link);
             }
         } else {
@@ -198,7 +265,9 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
                 for (long c = (long)c0; c < (long)c1; c++) {
                     ball_work *w = &bw[c - (long)c0]; /* one workspace per claim of the round */
                     w->nfaces = 0;
-                    rok[c - (long)c0] = cl[c].len > 0 ? ball(m, g, cl[c].r, cl[c].len, w) : 1;
+                    rok[c - (long)c0] =
+                        cl[c].len > 0 ? ball(m, g, first_row, first_face, cl[c].r, cl[c].len, &bs[omp_get_thread_num()], w)
+                                      : 1;
                 }
                 for (size_t c = c0; c < c1; c++) {
                     ok &= rok[c - c0];
@@ -246,5 +315,10 @@ done:
     if (bw)
         for (size_t t = 0; t < nbw; t++) free(bw[t].faces);
     free(bw);
+    if (bs)
+        for (int t = 0; t < nt; t++) ball_search_free(&bs[t]);
+    free(bs);
+    free(first_row);
+    free(first_face);
     return st;
 }
