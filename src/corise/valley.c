@@ -194,15 +194,20 @@ typedef struct vs_item {
     uint32_t v;
 } vs_item;
 
+/* A vertex's state in one search, in one record (32 bytes) so that touching a vertex costs one
+ * cache line on a mesh too large for the cache (separate arrays cost one each). */
+typedef struct vs_node {
+    double cost; /* from a */
+    double dev;  /* distance to the bridge segment */
+    double h;    /* A* heuristic: distance to b */
+    uint32_t pred;
+    uint32_t mark; /* 2 * run + settled: the fields above are valid when mark >> 1 == run */
+} vs_node;
+
 typedef struct valley_search {
     size_t nv;
-    double *cost;
-    uint32_t *pred;
-    uint32_t *stamp; /* cost/pred/dev/h valid when stamp == run */
-    double *dev;     /* distance to the bridge segment */
-    double *h;       /* A* heuristic: distance to b */
-    uint8_t *done;   /* settled in run `stamp` when done == 1 */
-    uint32_t run;
+    vs_node *node;
+    uint32_t run; /* < 2^31 */
     vs_item *heap;
     size_t nheap, cap;
     uint32_t *path;
@@ -210,12 +215,7 @@ typedef struct valley_search {
 } valley_search;
 
 static void vs_free(valley_search *s) {
-    free(s->cost);
-    free(s->dev);
-    free(s->h);
-    free(s->pred);
-    free(s->stamp);
-    free(s->done);
+    free(s->node);
     free(s->heap);
     free(s->path);
     memset(s, 0, sizeof *s);
@@ -225,13 +225,8 @@ static int vs_init(valley_search *s, size_t nv) {
     memset(s, 0, sizeof *s);
     s->nv = nv;
     size_t n = nv ? nv : 1;
-    s->cost = malloc(n * sizeof *s->cost);
-    s->dev = malloc(n * sizeof *s->dev);
-    s->h = malloc(n * sizeof *s->h);
-    s->pred = malloc(n * sizeof *s->pred);
-    s->stamp = calloc(n, sizeof *s->stamp);
-    s->done = calloc(n, 1);
-    return s->cost && s->dev && s->h && s->pred && s->stamp && s->done;
+    s->node = calloc(n, sizeof *s->node);
+    return s->node != NULL;
 }
 
 static int vs_less(vs_item x, vs_item y) { return x.cost < y.cost || (x.cost == y.cost && x.v < y.v); }
@@ -283,57 +278,57 @@ static double seg_dist(const double *p, const double *a, const double *u, double
  * Returns 1 when found, 0 when b is unreachable, -1 when out of memory. */
 static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V, uint32_t a, uint32_t b, size_t *len,
                      double *length) {
-    if (++s->run == 0) { /* stamp wrap-around: clear */
-        memset(s->stamp, 0, s->nv * sizeof *s->stamp);
+    if (++s->run >= UINT32_C(1) << 31) { /* mark wrap-around: clear */
+        memset(s->node, 0, s->nv * sizeof *s->node);
         s->run = 1;
     }
     uint32_t run = s->run;
+    vs_node *N = s->node;
     const double *pa = V + 3 * (size_t)a, *pb = V + 3 * (size_t)b;
     double u[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
     double L = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     for (int k = 0; k < 3; k++) u[k] = L > 0 ? u[k] / L : 0;
     double kappa = L > 0 ? ACD_CORISE_VALLEY_TIEBREAK / (2 * L) : 0;
     s->nheap = 0;
-    s->stamp[a] = run;
-    s->done[a] = 0;
-    s->cost[a] = 0;
-    s->pred[a] = ACD_NO_VERTEX;
-    s->dev[a] = seg_dist(pa, pa, u, L);
+    N[a].mark = 2 * run;
+    N[a].cost = 0;
+    N[a].pred = ACD_NO_VERTEX;
+    N[a].dev = seg_dist(pa, pa, u, L);
     if (!vs_push(s, L, 0, a)) return -1;
     int found = 0;
     while (s->nheap) {
         vs_item it = vs_pop(s);
         uint32_t x = it.v;
-        if (s->done[x] || it.g > s->cost[x]) continue;
-        s->done[x] = 1;
+        if ((N[x].mark & 1) || it.g > N[x].cost) continue; /* x was touched in this run */
+        N[x].mark |= 1;
         if (x == b) {
             found = 1;
             break;
         }
-        double dx = s->dev[x];
+        double dx = N[x].dev;
         for (size_t k = g->row[x]; k < g->row[x + 1]; k++) {
             uint32_t y = g->adj[k];
-            int seen = s->stamp[y] == run;
-            if (seen && s->done[y]) continue;
+            vs_node *ny = &N[y];
+            int seen = ny->mark >> 1 == run;
+            if (seen && (ny->mark & 1)) continue;
             if (!seen) { /* first touch in this run: its distances, once */
                 const double *py = V + 3 * (size_t)y;
-                s->dev[y] = seg_dist(py, pa, u, L);
-                s->h[y] = sqrt((py[0] - pb[0]) * (py[0] - pb[0]) + (py[1] - pb[1]) * (py[1] - pb[1]) +
+                ny->dev = seg_dist(py, pa, u, L);
+                ny->h = sqrt((py[0] - pb[0]) * (py[0] - pb[0]) + (py[1] - pb[1]) * (py[1] - pb[1]) +
                                (py[2] - pb[2]) * (py[2] - pb[2]));
             }
-            double c = it.g + g->length[g->adj_edge[k]] * (1 + kappa * (dx + s->dev[y]));
-            if (!seen || c < s->cost[y]) {
-                s->stamp[y] = run;
-                s->done[y] = 0;
-                s->cost[y] = c;
-                s->pred[y] = x;
-                if (!vs_push(s, c + s->h[y], c, y)) return -1;
+            double c = it.g + g->length[g->adj_edge[k]] * (1 + kappa * (dx + ny->dev));
+            if (!seen || c < ny->cost) {
+                ny->mark = 2 * run;
+                ny->cost = c;
+                ny->pred = x;
+                if (!vs_push(s, c + ny->h, c, y)) return -1;
             }
         }
     }
     if (!found) return 0;
     size_t n = 0;
-    for (uint32_t x = b; x != ACD_NO_VERTEX; x = s->pred[x]) n++;
+    for (uint32_t x = b; x != ACD_NO_VERTEX; x = N[x].pred) n++;
     if (n > s->cap_path) {
         uint32_t *p = realloc(s->path, n * sizeof *p);
         if (!p) return -1;
@@ -342,10 +337,10 @@ static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V,
     }
     size_t i = n;
     double sum = 0;
-    for (uint32_t x = b; x != ACD_NO_VERTEX; x = s->pred[x]) {
+    for (uint32_t x = b; x != ACD_NO_VERTEX; x = N[x].pred) {
         s->path[--i] = x;
-        if (s->pred[x] != ACD_NO_VERTEX) {
-            const double *p = V + 3 * (size_t)x, *q = V + 3 * (size_t)s->pred[x];
+        if (N[x].pred != ACD_NO_VERTEX) {
+            const double *p = V + 3 * (size_t)x, *q = V + 3 * (size_t)N[x].pred;
             sum += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
         }
     }
