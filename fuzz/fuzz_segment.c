@@ -12,7 +12,10 @@
  *    mesh volume and the sum of the hull volumes as reported;
  *  - a part whose hull is solid (hull_dim 3) has every corner of its faces inside the hull and a
  *    hull with positive volume; a flat one (hull_dim < 3) an empty hull and volume 0;
- *  - concavity = concavity_rel x scale; every part deeper than tau counted as unresolved. */
+ *  - concavity = concavity_rel x scale; every part deeper than tau counted as unresolved;
+ *  - the mesh segmented (result.mesh: the input welded and oriented first) has the input's faces
+ *    in order with the same corners, reversed only for the faces counted as flipped; the checks
+ *    above are made on it. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -118,6 +121,43 @@ static void check(const acd_mesh *m, const acd_segment_result *r) {
     free(area);
 }
 
+/* The input preparation (params.prepare, docs/corise.md): the mesh segmented has the input's faces
+ * in order, each with the same corners in the same or the reversed cyclic order (by index when
+ * nothing was welded, else by position: the weld merges equal positions, -0 = +0), the reversed
+ * ones counted in faces_flipped (a face whose corners repeat reads both ways: either count), and
+ * vertices_merged fewer vertices. */
+static int eq3(const double *a, const double *b) {
+    return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
+
+static int corner_eq(const acd_mesh *in, const acd_mesh *sm, int welded, uint32_t u, uint32_t v) {
+    return welded ? eq3(sm->vertices + 3 * (size_t)u, in->vertices + 3 * (size_t)v) : u == v;
+}
+
+static void check_prepared(const acd_mesh *in, const acd_segment_result *r) {
+    const acd_mesh *sm = &r->mesh;
+    if (sm->ntriangles != in->ntriangles || sm->nvertices + r->vertices_merged != in->nvertices) abort();
+    int welded = r->vertices_merged > 0;
+    size_t flipped = 0, either = 0;
+    for (size_t f = 0; f < in->ntriangles; f++) {
+        const uint32_t *a = in->triangles + 3 * f, *b = sm->triangles + 3 * f;
+        int same = 0, reversed = 0;
+        for (int k = 0; k < 3; k++) {
+            int s1 = 1, s2 = 1;
+            for (int c = 0; c < 3; c++) {
+                s1 &= corner_eq(in, sm, welded, b[c], a[(k + c) % 3]);
+                s2 &= corner_eq(in, sm, welded, b[c], a[(k + 3 - c) % 3]);
+            }
+            same |= s1;
+            reversed |= s2;
+        }
+        if (!same && !reversed) abort();
+        flipped += !same;
+        either += same && reversed;
+    }
+    if (r->faces_flipped < flipped || r->faces_flipped > flipped + either) abort();
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (size < FZ_HEADER + FZ_NV) return 0;
     acd_mesh m;
@@ -144,7 +184,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         acd_mesh_free(&m);
         return 0;
     }
-    check(&m, &r);
+    check_prepared(&m, &r);
+    check(&r.mesh, &r);
     acd_segment_result_free(&r);
     acd_mesh_free(&m);
     return 0;
