@@ -33,6 +33,13 @@ struct acd_mesh;
  * refusal names the size rather than what repair makes of such a model. */
 int acd_cli_check_extent(const char *cmd, const struct acd_mesh *m);
 
+struct acd_mesh_parts;
+/* acd_mesh_read / acd_mesh_read_parts printing the reader's warnings (what it skipped that may be
+ * geometry: OBJ points, lines, free-form elements) as "acd <cmd>: warning: FILE:LINE: ..." on
+ * stderr; the exit code is not affected. */
+acd_status acd_cli_read_mesh(const char *cmd, const char *path, struct acd_mesh *out, acd_error *err);
+acd_status acd_cli_read_parts(const char *cmd, const char *path, struct acd_mesh_parts *out, acd_error *err);
+
 /* Subcommands: argc/argv start at the subcommand's name. */
 int acd_cmd_2d(int argc, char **argv);
 int acd_cmd_info(int argc, char **argv);

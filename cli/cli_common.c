@@ -60,3 +60,24 @@ int acd_cli_check_extent(const char *cmd, const acd_mesh *m) {
     acd_error e;
     return acd_check_extent(m->vertices, m->nvertices, 3, &e) == ACD_OK ? 0 : acd_cli_report(cmd, &e);
 }
+
+static void print_warning(void *user, const char *message) {
+    fprintf(stderr, "acd %s: warning: %s\n", (const char *)user, message);
+}
+
+static acd_mesh_read_options warning_options(const char *cmd) {
+    acd_mesh_read_options o = acd_mesh_read_default_options();
+    o.warning = print_warning;
+    o.warning_user = (void *)(uintptr_t)cmd;
+    return o;
+}
+
+acd_status acd_cli_read_mesh(const char *cmd, const char *path, acd_mesh *out, acd_error *err) {
+    acd_mesh_read_options o = warning_options(cmd);
+    return acd_mesh_read_ex(path, &o, out, err);
+}
+
+acd_status acd_cli_read_parts(const char *cmd, const char *path, acd_mesh_parts *out, acd_error *err) {
+    acd_mesh_read_options o = warning_options(cmd);
+    return acd_mesh_read_parts_ex(path, &o, out, err);
+}

@@ -802,7 +802,7 @@ int acd_cmd_3d(int argc, char **argv) {
     acd_error err;
     acd_error_clear(&err);
     acd_mesh mesh;
-    if (acd_mesh_read(input, &mesh, &err) != ACD_OK) return acd_cli_report("3d", &err);
+    if (acd_cli_read_mesh("3d", input, &mesh, &err) != ACD_OK) return acd_cli_report("3d", &err);
     {
         int ec = acd_cli_check_extent("3d", &mesh);
         if (ec) {

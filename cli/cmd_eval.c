@@ -119,8 +119,8 @@ int acd_cmd_eval(int argc, char **argv) {
     acd_error err;
     acd_mesh mesh = {0};
     acd_mesh_parts parts = {0};
-    if (acd_mesh_read(paths[0], &mesh, &err) != ACD_OK) return acd_cli_report("eval", &err);
-    if (acd_mesh_read_parts(paths[1], &parts, &err) != ACD_OK) {
+    if (acd_cli_read_mesh("eval", paths[0], &mesh, &err) != ACD_OK) return acd_cli_report("eval", &err);
+    if (acd_cli_read_parts("eval", paths[1], &parts, &err) != ACD_OK) {
         acd_mesh_free(&mesh);
         return acd_cli_report("eval", &err);
     }

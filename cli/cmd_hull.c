@@ -117,7 +117,7 @@ int acd_cmd_hull(int argc, char **argv) {
     acd_mesh_parts src;
     memset(&src, 0, sizeof src);
     if (parts) {
-        if (acd_mesh_read_parts(in, &src, &err) != ACD_OK) return acd_cli_report("hull", &err);
+        if (acd_cli_read_parts("hull", in, &src, &err) != ACD_OK) return acd_cli_report("hull", &err);
     } else {
         src.parts = calloc(1, sizeof *src.parts);
         if (!src.parts) {
@@ -126,7 +126,7 @@ int acd_cmd_hull(int argc, char **argv) {
         }
         src.count = 1;
         src.parts[0].name = NULL;
-        if (acd_mesh_read(in, &src.parts[0].mesh, &err) != ACD_OK) {
+        if (acd_cli_read_mesh("hull", in, &src.parts[0].mesh, &err) != ACD_OK) {
             acd_mesh_parts_free(&src);
             return acd_cli_report("hull", &err);
         }

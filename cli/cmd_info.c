@@ -197,7 +197,7 @@ int acd_cmd_info(int argc, char **argv) {
     }
     acd_error err;
     acd_mesh m;
-    if (acd_mesh_read(path, &m, &err) != ACD_OK) return acd_cli_report("info", &err);
+    if (acd_cli_read_mesh("info", path, &m, &err) != ACD_OK) return acd_cli_report("info", &err);
     acd_repair_stats st;
     if (repair_out) {
         if (acd_mesh_repair(&m, &ro, &st, &err) != ACD_OK || acd_mesh_write(repair_out, &m, ACD_MESH_FORMAT_AUTO, &err) != ACD_OK) {

@@ -194,7 +194,7 @@ int acd_cmd_segeval(int argc, char **argv) {
     size_t n = 0;
     acd_segeval_result *res = NULL;
     cJSON *root = NULL;
-    if (acd_mesh_read(mesh_path, &mesh, &err) != ACD_OK) {
+    if (acd_cli_read_mesh("segeval", mesh_path, &mesh, &err) != ACD_OK) {
         rc = acd_cli_report("segeval", &err);
         goto done;
     }

@@ -302,7 +302,7 @@ int acd_cmd_segment(int argc, char **argv) {
     acd_error err;
     acd_error_clear(&err);
     acd_mesh mesh;
-    if (acd_mesh_read(input, &mesh, &err) != ACD_OK) return acd_cli_report("segment", &err);
+    if (acd_cli_read_mesh("segment", input, &mesh, &err) != ACD_OK) return acd_cli_report("segment", &err);
     {
         int ec = acd_cli_check_extent("segment", &mesh);
         if (ec) {

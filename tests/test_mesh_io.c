@@ -232,6 +232,120 @@ static void test_obj_features(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Warnings collected by a read (acd_mesh_read_options.warning). */
+typedef struct warn_log {
+    char msg[16][ACD_ERROR_MESSAGE_SIZE];
+    size_t n;
+} warn_log;
+
+static void log_warning(void *user, const char *message) {
+    warn_log *l = user;
+    assert_true(l->n < 16);
+    assert_non_null(message);
+    assert_true(strlen(message) < ACD_ERROR_MESSAGE_SIZE);
+    snprintf(l->msg[l->n++], ACD_ERROR_MESSAGE_SIZE, "%s", message);
+}
+
+/* OBJ statements other than v, f, o, g (docs/mesh.md "OBJ statements"): those without geometry of
+ * the surface are skipped silently, those with geometry the reader does not read (points, lines,
+ * free-form curves and surfaces, superseded patches, calls) are skipped and reported, one warning
+ * per keyword with the count and the first line, in the order of those lines; continuation lines
+ * of a skipped statement are skipped with it; an unknown keyword is an error naming its line. */
+static void test_obj_statements(void **state) {
+    (void)state;
+    const char *text = "# every statement of the format\n"                       /* 1 */
+                       "mtllib a.mtl\nusemtl m\nmaplib x\nusemap y\n"            /* 2-5 */
+                       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"                    /* 6-9 */
+                       "vt 0 0\nvn 0 0 1\nvp 0.5 0.5\n"                          /* 10-12 */
+                       "s 1\nmg 1 0.5\nbevel off\nc_interp off\nd_interp off\n"  /* 13-17 */
+                       "lod 1\nshadow_obj s.obj\ntrace_obj t.obj\n"              /* 18-20 */
+                       "ctech cparm 1\nstech cparm 1\nres 4 4\nt crease 2/1/0 1 2 5\n" /* 21-24 */
+                       "g a\nf 1 2 3\nf 1 3 4\n"                                 /* 25-27 */
+                       "l 1 2\np 1\nl 2 3 \\\n  4\n"                             /* 28-31: l continued */
+                       "cstype bspline\ndeg 3 3\nstep 1 1\nbmat u 1 0 0 1\n"     /* 32-35 */
+                       "surf 0 1 0 1 1 2 \\\n 3 4\n"                             /* 36-37 */
+                       "parm u 0 0 0 0 1 1 1 1\ntrim 0 1 1\nhole 0 1 1\nscrv 0 1 1\nsp 1\nend\n" /* 38-43 */
+                       "con 1 0 1 1 2 0 1 1\ncurv 0 1 1 2 3 4\ncurv2 1 2 3\nsurf 0 1 0 1 1 2 3 4\n" /* 44-47 */
+                       "bsp 1 2 3 4\nbzp 1 2 3 4\ncdc 1 2 3 4\ncdp 1 2 3 4\n"    /* 48-51 */
+                       "call other.obj\ncsh ls\n"                                 /* 52-53 */
+                       "o b\nf 1 4 2\n";                                          /* 54-55 */
+    static const char *const expect[] = {
+        "t:28: 2 'l' statements skipped (line elements; the first on this line)",
+        "t:29: 1 'p' statement skipped (point elements;",
+        "t:36: 2 'surf' statements skipped (free-form surfaces;",
+        "t:45: 1 'curv' statement skipped (free-form curves;",
+        "t:46: 1 'curv2' statement skipped (free-form curves on surfaces;",
+        "t:48: 1 'bsp' statement skipped (B-spline patches;",
+        "t:49: 1 'bzp' statement skipped (Bezier patches;",
+        "t:50: 1 'cdc' statement skipped (Cardinal curves;",
+        "t:51: 1 'cdp' statement skipped (Cardinal patches;",
+        "t:52: 1 'call' statement skipped (calls of other OBJ files, not read;",
+        "t:53: 1 'csh' statement skipped (shell commands, not run;",
+    };
+    static warn_log log;
+    log.n = 0;
+    acd_mesh_read_options o = acd_mesh_read_default_options();
+    assert_null(o.warning);
+    o.warning = log_warning;
+    o.warning_user = &log;
+    acd_mesh m;
+    acd_error err;
+    acd_status s = acd_mesh_read_memory_ex(text, strlen(text), ACD_MESH_FORMAT_OBJ, "t", &o, &m, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.nvertices, 4);
+    assert_int_equal(m.ntriangles, 3);
+    const uint32_t tri[9] = {0, 1, 2, 0, 2, 3, 0, 3, 1};
+    assert_memory_equal(m.triangles, tri, sizeof tri);
+    acd_mesh_free(&m);
+    size_t nexpect = sizeof expect / sizeof expect[0];
+    assert_int_equal(log.n, nexpect);
+    for (size_t i = 0; i < nexpect; i++) {
+        if (strncmp(log.msg[i], expect[i], strlen(expect[i])) != 0) fail_msg("warning %zu: '%s'", i, log.msg[i]);
+        assert_non_null(strstr(log.msg[i], "the mesh may be incomplete"));
+    }
+    /* the same warnings from the parts reader; none without a callback (the plain readers) */
+    log.n = 0;
+    acd_mesh_parts parts;
+    assert_int_equal(acd_mesh_read_parts_memory_ex(text, strlen(text), ACD_MESH_FORMAT_OBJ, "t", &o, &parts, &err), ACD_OK);
+    assert_int_equal(parts.count, 2);
+    assert_int_equal(log.n, nexpect);
+    for (size_t i = 0; i < nexpect; i++)
+        if (strncmp(log.msg[i], expect[i], strlen(expect[i])) != 0) fail_msg("parts warning %zu: '%s'", i, log.msg[i]);
+    acd_mesh_parts_free(&parts);
+    assert_int_equal(acd_mesh_read_memory(text, strlen(text), ACD_MESH_FORMAT_OBJ, "t", &m, &err), ACD_OK);
+    assert_int_equal(m.ntriangles, 3);
+    acd_mesh_free(&m);
+    /* a file without skipped geometry: no warning (attributes, free-form types and bodies alone) */
+    log.n = 0;
+    const char *quiet = "mtllib a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\ns off\nusemtl m\ncstype bezier\n"
+                        "deg 1\nparm u 0 1\nend\nt crease 2/1/0 1 2 5\nf 1/1/1 2/1/1 3/1/1\n";
+    assert_int_equal(acd_mesh_read_memory_ex(quiet, strlen(quiet), ACD_MESH_FORMAT_OBJ, "t", &o, &m, &err), ACD_OK);
+    assert_int_equal(m.ntriangles, 1);
+    assert_int_equal(log.n, 0);
+    acd_mesh_free(&m);
+    /* refused input: the error, no warning (the l before it is not reported) */
+    static const struct {
+        const char *text, *where;
+    } bad[] = {
+        {"v 0 0 0\nl 1 1\nfoo 1 2\n", "t:3: unknown statement 'foo'"},
+        {"V 0 0 0\n", "t:1: unknown statement 'V'"},          /* keywords are lower case */
+        {"v 0 0 0\nvertex 1 2 3\n", "t:2: unknown statement 'vertex'"},
+        {"v 0 0 0\nv1 0 0\n", "t:2: unknown statement 'v1'"},
+        {"v 0 0 0\nfo\x01o 1\n", "t:2: unknown statement 'fo?o'"},
+        {"v 0 0 0\nl 1 1 \\\n 1\n2 3\n", "t:4: unexpected text"}, /* a continuation ends */
+        {"v 0 0 0\nl 1 1\n1 1\n", "t:3: unexpected text"},        /* no continuation without '\\' */
+        {"v 0 0 0\nl 1 1 # \\\n1 1\n", "t:3: unexpected text"},   /* a '\\' in a comment continues nothing */
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        log.n = 0;
+        s = acd_mesh_read_memory_ex(bad[i].text, strlen(bad[i].text), ACD_MESH_FORMAT_OBJ, "t", &o, &m, &err);
+        if (s != ACD_ERR_PARSE || !strstr(err.message, bad[i].where))
+            fail_msg("bad %zu: status %d, '%s' (want '%s')", i, (int)s, s == ACD_OK ? "" : err.message, bad[i].where);
+        assert_int_equal(log.n, 0);
+        assert_null(m.vertices);
+    }
+}
+
 static void test_obj_groups(void **state) {
     (void)state;
     const char *text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 5 5\n"
@@ -767,6 +881,7 @@ int main(void) {
         cmocka_unit_test(test_ply_ascii_features),
         cmocka_unit_test(test_roundtrip_files_and_gzip),
         cmocka_unit_test(test_obj_features),
+        cmocka_unit_test(test_obj_statements),
         cmocka_unit_test(test_obj_groups),
         cmocka_unit_test(test_off_features),
         cmocka_unit_test(test_nonconvex_polygon_faces),

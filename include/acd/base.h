@@ -1,4 +1,4 @@
-/* acd/base.h: version, result codes and messages, progress and cancellation.
+/* acd/base.h: version, result codes and messages, progress and cancellation, warnings.
  *
  * Every public function that can fail returns an acd_status and, when given a non-NULL
  * acd_error*, fills it with a message naming the problem and where it is (file, line,
@@ -48,6 +48,12 @@ typedef struct acd_error {
 /* Progress report: fraction in [0,1] (or negative when unknown), stage a short static text.
  * Return non-zero to cancel: the running function then returns ACD_ERR_CANCELLED. */
 typedef int (*acd_progress_fn)(void *user, double fraction, const char *stage);
+
+/* Warning report: input that was accepted but not all used (e.g. OBJ statements a reader skipped,
+ * so that the result may lack geometry). message names the input and where ("FILE:LINE: ..."),
+ * is valid during the call only, and never ends with a newline. Called on the calling thread, in
+ * input order; not called for an input that is refused (the error says why). */
+typedef void (*acd_warning_fn)(void *user, const char *message);
 
 #ifdef __cplusplus
 }

@@ -4,8 +4,10 @@
  * Readers take what real files contain (open, non-manifold, badly oriented meshes, polygon
  * soups): polygons are fanned into triangles, STL soups are welded on exact coordinates, and the
  * result is reported on by acd_mesh_validate rather than refused. A reader fails only on a file
- * it cannot make sense of (malformed syntax, index out of range, NaN/Inf coordinate), with a
- * message naming the file and the line (text formats) or byte offset (binary formats). */
+ * it cannot make sense of (malformed syntax, an unknown OBJ statement, index out of range, NaN/Inf
+ * coordinate), with a message naming the file and the line (text formats) or byte offset (binary
+ * formats). What a reader skips that may be geometry (OBJ points, lines, free-form curves and
+ * surfaces) is told to the warning callback of the _ex readers (acd_mesh_read_options). */
 #ifndef ACD_MESH_H
 #define ACD_MESH_H
 
@@ -59,6 +61,23 @@ acd_status acd_mesh_read(const char *path, acd_mesh *out, acd_error *err);
 acd_status acd_mesh_read_memory(const void *data, size_t size, acd_mesh_format hint, const char *name,
                                 acd_mesh *out, acd_error *err);
 
+/* Options of the _ex readers. Zero-initialised (or acd_mesh_read_default_options) they read as
+ * the plain functions do. */
+typedef struct acd_mesh_read_options {
+    acd_warning_fn warning; /* optional: told about what was read but not used (OBJ: point, line and
+                               free-form elements, docs/mesh.md "OBJ statements"), one message per
+                               kind of statement, naming the file, the first line and the count */
+    void *warning_user;
+} acd_mesh_read_options;
+
+acd_mesh_read_options acd_mesh_read_default_options(void);
+
+/* acd_mesh_read, acd_mesh_read_memory, acd_mesh_read_parts and acd_mesh_read_parts_memory with
+ * options (opt may be NULL: the defaults). */
+acd_status acd_mesh_read_ex(const char *path, const acd_mesh_read_options *opt, acd_mesh *out, acd_error *err);
+acd_status acd_mesh_read_memory_ex(const void *data, size_t size, acd_mesh_format hint, const char *name,
+                                   const acd_mesh_read_options *opt, acd_mesh *out, acd_error *err);
+
 /* Writes m to path. fmt AUTO: from the extension. A path ending in ".gz" is gzip-compressed.
  * Indices must be < nvertices (checked: ACD_ERR_INVALID_ARGUMENT). */
 acd_status acd_mesh_write(const char *path, const acd_mesh *m, acd_mesh_format fmt, acd_error *err);
@@ -94,6 +113,10 @@ void acd_mesh_parts_free(acd_mesh_parts *p);
 acd_status acd_mesh_read_parts(const char *path, acd_mesh_parts *out, acd_error *err);
 acd_status acd_mesh_read_parts_memory(const void *data, size_t size, acd_mesh_format hint, const char *name,
                                       acd_mesh_parts *out, acd_error *err);
+acd_status acd_mesh_read_parts_ex(const char *path, const acd_mesh_read_options *opt, acd_mesh_parts *out,
+                                  acd_error *err);
+acd_status acd_mesh_read_parts_memory_ex(const void *data, size_t size, acd_mesh_format hint, const char *name,
+                                         const acd_mesh_read_options *opt, acd_mesh_parts *out, acd_error *err);
 /* acd_mesh_read_parts restricted to OBJ files (another format is ACD_ERR_UNSUPPORTED). */
 acd_status acd_mesh_read_obj_groups(const char *path, acd_mesh_parts *out, acd_error *err);
 

@@ -2,15 +2,74 @@
  *
  * Reads v (extra w or colour values ignored), f (v, v/vt, v//vn, v/vt/vn; negative indices
  * relative to the vertices read so far; polygons fanned from their first vertex), o and g
- * (group starts, kept for acd_mesh_read_parts). vt, vn, vp, l, p, s, usemtl, mtllib and the
- * free-form curve keywords are skipped. Positive indices may refer to vertices defined later in
+ * (group starts, kept for acd_mesh_read_parts). Every other statement of the format (Wavefront's
+ * "Object Files (.obj)", Advanced Visualizer 3.0 manual, appendix B1, and the statements it
+ * supersedes) is skipped, with its '\' continuation lines: silently when it carries no geometry
+ * of the surface (texture and normal data, smoothing groups, materials, display attributes, the
+ * body statements of free-form elements), told to the builder's warning channel when it is
+ * geometry this reader does not read (points, lines, free-form curves and surfaces, calls of
+ * other files), so that the caller knows the mesh may be incomplete. A statement that is not an
+ * OBJ keyword is an error with its line. Positive indices may refer to vertices defined later in
  * the file (checked at the end). Writes %.17g coordinates, which round-trip exactly. */
 #include "mesh/io_formats.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/error.h"
+
+/* The OBJ statements other than v, f, o and g. what: NULL for those skipped silently; for those
+ * reported, what the skipped statements are (plural, the warning's words). */
+typedef struct obj_keyword {
+    const char *kw, *what;
+} obj_keyword;
+
+static const obj_keyword obj_keywords[] = {
+    /* vertex data: texture, normal and parameter-space vertices, free-form curve/surface types */
+    {"vt", NULL}, {"vn", NULL}, {"vp", NULL}, {"cstype", NULL}, {"deg", NULL}, {"bmat", NULL}, {"step", NULL},
+    /* elements other than faces: geometry this reader does not read */
+    {"p", "point elements"}, {"l", "line elements"}, {"curv", "free-form curves"},
+    {"curv2", "free-form curves on surfaces"}, {"surf", "free-form surfaces"},
+    /* body statements of free-form elements (the element itself is reported), connectivity */
+    {"parm", NULL}, {"trim", NULL}, {"hole", NULL}, {"scrv", NULL}, {"sp", NULL}, {"end", NULL}, {"con", NULL},
+    /* grouping, display and rendering attributes */
+    {"s", NULL}, {"mg", NULL}, {"usemtl", NULL}, {"mtllib", NULL}, {"usemap", NULL}, {"maplib", NULL},
+    {"bevel", NULL}, {"c_interp", NULL}, {"d_interp", NULL}, {"lod", NULL}, {"shadow_obj", NULL},
+    {"trace_obj", NULL}, {"ctech", NULL}, {"stech", NULL},
+    /* superseded by curv/surf (older versions of the format): patches and curves; their resolution */
+    {"bsp", "B-spline patches"}, {"bzp", "Bezier patches"}, {"cdc", "Cardinal curves"}, {"cdp", "Cardinal patches"},
+    {"res", NULL},
+    /* general statements: another file's geometry, a shell command */
+    {"call", "calls of other OBJ files, not read"}, {"csh", "shell commands, not run"},
+    /* extension (OpenSubdiv, tinyobjloader): subdivision tags such as creases */
+    {"t", NULL},
+};
+#define OBJ_NKEYWORDS (sizeof obj_keywords / sizeof obj_keywords[0])
+
+/* Index of the keyword kw[0..n) in obj_keywords, or -1. */
+static int obj_keyword_find(const char *kw, size_t n) {
+    for (size_t k = 0; k < OBJ_NKEYWORDS; k++)
+        if (strlen(obj_keywords[k].kw) == n && !memcmp(obj_keywords[k].kw, kw, n)) return (int)k;
+    return -1;
+}
+
+/* Moves past the statement at t->p and its continuation lines (a line whose last character before
+ * a comment or the newline, blanks aside, is a backslash continues on the next line). */
+static void obj_skip_statement(acd_text *t) {
+    for (;;) {
+        const char *p = t->p, *c = NULL;
+        while (*p != '\n' && *p != '\0') {
+            if (*p == '#' && !c) c = p;
+            p++;
+        }
+        const char *e = c ? c : p;
+        while (e > t->p && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\f' || e[-1] == '\v')) e--;
+        int more = e > t->p && e[-1] == '\\' && *p == '\n';
+        acd_text_next_line(t);
+        if (!more || t->p >= t->end) return;
+    }
+}
 
 static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 static int is_eol(char c) { return c == '\n' || c == '\0' || c == '#'; }
@@ -41,6 +100,7 @@ acd_status acd_obj_read(const char *buf, size_t len, const char *name, acd_mesh_
     int64_t max_index = 0;
     size_t max_line = 0;
     const size_t v0 = b->nv;
+    size_t skipped[OBJ_NKEYWORDS] = {0}, first_line[OBJ_NKEYWORDS] = {0}; /* reported statements */
     while (t.p < t.end) {
         acd_text_skip_blank(&t);
         const char *p = t.p;
@@ -51,7 +111,9 @@ acd_status acd_obj_read(const char *buf, size_t len, const char *name, acd_mesh_
             acd_text_next_line(&t);
             continue;
         }
-        if (c == 'v' && is_blank(p[1])) {
+        size_t kwlen = 0; /* the statement's keyword: up to a blank, a comment or the end of the line */
+        while (!is_blank(p[kwlen]) && !is_eol(p[kwlen])) kwlen++;
+        if (c == 'v' && kwlen == 1) {
             double x[3];
             p += 1;
             for (int k = 0; k < 3; k++) {
@@ -69,7 +131,7 @@ acd_status acd_obj_read(const char *buf, size_t len, const char *name, acd_mesh_
             acd_text_next_line(&t);
             continue;
         }
-        if (c == 'f' && (is_blank(p[1]) || p[1] == '\n' || p[1] == '\0')) {
+        if (c == 'f' && kwlen == 1) {
             p += 1;
             b->npoly = 0;
             for (;;) {
@@ -128,7 +190,7 @@ acd_status acd_obj_read(const char *buf, size_t len, const char *name, acd_mesh_
             acd_text_next_line(&t);
             continue;
         }
-        if ((c == 'o' || c == 'g') && (is_blank(p[1]) || p[1] == '\n' || p[1] == '\0')) {
+        if ((c == 'o' || c == 'g') && kwlen == 1) {
             p += 1;
             while (is_blank(*p)) p++;
             const char *e = p;
@@ -139,15 +201,42 @@ acd_status acd_obj_read(const char *buf, size_t len, const char *name, acd_mesh_
             acd_text_next_line(&t);
             continue;
         }
-        if (is_alpha(c)) { /* vt, vn, vp, l, p, s, usemtl, mtllib, curves: not needed */
-            acd_text_next_line(&t);
+        int k = obj_keyword_find(p, kwlen);
+        if (k >= 0) {
+            if (obj_keywords[k].what && !skipped[k]++) first_line[k] = t.line;
+            obj_skip_statement(&t);
             continue;
+        }
+        if (is_alpha(c)) {
+            char kw[25]; /* printable ASCII only in the message */
+            size_t n = 0;
+            for (; n < kwlen && n + 1 < sizeof kw; n++) kw[n] = p[n] > ' ' && p[n] < 127 ? p[n] : '?';
+            kw[n] = '\0';
+            return acd_fail(err, ACD_ERR_PARSE,
+                            "%s:%zu: unknown statement '%s%s' (not an OBJ keyword; docs/mesh.md lists those read and "
+                            "those skipped)",
+                            name, t.line, kw, n < kwlen ? "..." : "");
         }
         return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: unexpected text '%.16s' (not an OBJ statement)", name, t.line, p);
     }
     if (max_index > (int64_t)(b->nv - v0))
         return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: vertex index %lld out of range (the file has %zu vertices)", name,
                         max_line, (long long)max_index, b->nv - v0);
+    /* the skipped geometry, one warning per keyword, in the order of their first lines */
+    for (size_t done = 0; b->warn;) {
+        int next = -1;
+        for (size_t k = 0; k < OBJ_NKEYWORDS; k++)
+            if (skipped[k] && first_line[k] > done && (next < 0 || first_line[k] < first_line[next])) next = (int)k;
+        if (next < 0) break;
+        char msg[ACD_ERROR_MESSAGE_SIZE];
+        snprintf(msg, sizeof msg,
+                 "%s:%zu: %zu '%s' statement%s skipped (%s; the first on this line): only faces (f) are read as "
+                 "geometry, so the mesh may be incomplete",
+                 name, first_line[next], skipped[next], obj_keywords[next].kw, skipped[next] == 1 ? "" : "s",
+                 obj_keywords[next].what);
+        b->warn(b->warn_user, msg);
+        done = first_line[next];
+    }
     return ACD_OK;
 }
 

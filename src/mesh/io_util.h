@@ -24,6 +24,8 @@ typedef struct acd_mesh_builder {
     size_t ngroups, gcap;
     uint32_t *poly;         /* scratch polygon indices */
     size_t npoly, polycap;
+    acd_warning_fn warn;    /* optional (acd_mesh_read_options): told what a reader skipped */
+    void *warn_user;
 } acd_mesh_builder;
 
 void acd_builder_free(acd_mesh_builder *b);

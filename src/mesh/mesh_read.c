@@ -277,21 +277,45 @@ static acd_status finish_mesh(acd_mesh_builder *b, acd_status s, acd_mesh *out) 
     return s;
 }
 
-acd_status acd_mesh_read_memory(const void *data, size_t size, acd_mesh_format hint, const char *name,
-                                acd_mesh *out, acd_error *err) {
+acd_mesh_read_options acd_mesh_read_default_options(void) {
+    acd_mesh_read_options o;
+    memset(&o, 0, sizeof o);
+    return o;
+}
+
+/* An empty builder with the options' warning channel. */
+static void builder_init(acd_mesh_builder *b, const acd_mesh_read_options *opt) {
+    memset(b, 0, sizeof *b);
+    if (opt) {
+        b->warn = opt->warning;
+        b->warn_user = opt->warning_user;
+    }
+}
+
+acd_status acd_mesh_read_memory_ex(const void *data, size_t size, acd_mesh_format hint, const char *name,
+                                   const acd_mesh_read_options *opt, acd_mesh *out, acd_error *err) {
     if (!out || (!data && size)) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_read_memory: NULL argument");
     acd_error_clear(err);
     acd_mesh_builder b;
-    memset(&b, 0, sizeof b);
+    builder_init(&b, opt);
     return finish_mesh(&b, parse_memory(data, size, hint, name, &b, NULL, err), out);
 }
 
-acd_status acd_mesh_read(const char *path, acd_mesh *out, acd_error *err) {
+acd_status acd_mesh_read_memory(const void *data, size_t size, acd_mesh_format hint, const char *name,
+                                acd_mesh *out, acd_error *err) {
+    return acd_mesh_read_memory_ex(data, size, hint, name, NULL, out, err);
+}
+
+acd_status acd_mesh_read_ex(const char *path, const acd_mesh_read_options *opt, acd_mesh *out, acd_error *err) {
     if (!out || !path) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_read: NULL argument");
     acd_error_clear(err);
     acd_mesh_builder b;
-    memset(&b, 0, sizeof b);
+    builder_init(&b, opt);
     return finish_mesh(&b, parse_file(path, &b, NULL, err), out);
+}
+
+acd_status acd_mesh_read(const char *path, acd_mesh *out, acd_error *err) {
+    return acd_mesh_read_ex(path, NULL, out, err);
 }
 
 void acd_mesh_parts_free(acd_mesh_parts *p) {
@@ -366,36 +390,47 @@ static acd_status finish_parts(acd_mesh_builder *b, acd_status s, const char *na
     return s;
 }
 
-acd_status acd_mesh_read_parts_memory(const void *data, size_t size, acd_mesh_format hint, const char *name,
-                                      acd_mesh_parts *out, acd_error *err) {
+acd_status acd_mesh_read_parts_memory_ex(const void *data, size_t size, acd_mesh_format hint, const char *name,
+                                         const acd_mesh_read_options *opt, acd_mesh_parts *out, acd_error *err) {
     if (!out || (!data && size))
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_read_parts_memory: NULL argument");
     acd_error_clear(err);
     out->parts = NULL;
     out->count = 0;
     acd_mesh_builder b;
-    memset(&b, 0, sizeof b);
+    builder_init(&b, opt);
     acd_mesh_format used = ACD_MESH_FORMAT_AUTO;
     acd_status s = parse_memory(data, size, hint, name, &b, &used, err);
     return finish_parts(&b, s, name ? name : "<memory>", used, 0, out, err);
 }
 
-static acd_status read_parts(const char *path, acd_mesh_parts *out, int obj_only, acd_error *err) {
+acd_status acd_mesh_read_parts_memory(const void *data, size_t size, acd_mesh_format hint, const char *name,
+                                      acd_mesh_parts *out, acd_error *err) {
+    return acd_mesh_read_parts_memory_ex(data, size, hint, name, NULL, out, err);
+}
+
+static acd_status read_parts(const char *path, const acd_mesh_read_options *opt, acd_mesh_parts *out, int obj_only,
+                             acd_error *err) {
     if (!out || !path) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "acd_mesh_read_parts: NULL argument");
     acd_error_clear(err);
     out->parts = NULL;
     out->count = 0;
     acd_mesh_builder b;
-    memset(&b, 0, sizeof b);
+    builder_init(&b, opt);
     acd_mesh_format used = ACD_MESH_FORMAT_AUTO;
     acd_status s = parse_file(path, &b, &used, err);
     return finish_parts(&b, s, path, used, obj_only, out, err);
 }
 
+acd_status acd_mesh_read_parts_ex(const char *path, const acd_mesh_read_options *opt, acd_mesh_parts *out,
+                                  acd_error *err) {
+    return read_parts(path, opt, out, 0, err);
+}
+
 acd_status acd_mesh_read_parts(const char *path, acd_mesh_parts *out, acd_error *err) {
-    return read_parts(path, out, 0, err);
+    return read_parts(path, NULL, out, 0, err);
 }
 
 acd_status acd_mesh_read_obj_groups(const char *path, acd_mesh_parts *out, acd_error *err) {
-    return read_parts(path, out, 1, err);
+    return read_parts(path, NULL, out, 1, err);
 }
