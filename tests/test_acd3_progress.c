@@ -41,6 +41,13 @@ static int on_progress(void *user, double fraction, const char *stage) {
     return S->cancel_prefix && starts(stage, S->cancel_prefix);
 }
 
+/* Counts as on_progress does, and cancels at the second call. */
+static int cancel_second(void *user, double fraction, const char *stage) {
+    seen *S = user;
+    on_progress(user, fraction, stage);
+    return S->tree + S->budget + S->join + S->refine + S->surface + S->other >= 2;
+}
+
 /* The budget pipeline (docs/acd3d.md "Excess-driven budget") at 8 parts, refined. */
 static acd3d_params budget_params(void) {
     acd3d_params p = acd3d_default_params();
@@ -110,6 +117,38 @@ static void test_cancel_in_each_stage(void **state) {
     acd_mesh_free(&m);
 }
 
+/* The tree polls the callback within a batch of nodes too (between candidate cuts, before each cut
+ * try: the root's batch is most of a large mesh's run), not only once per batch: with one thread
+ * every split node calls it at least three times (before its try, before claiming its first
+ * candidate, once more when its candidates are done), so a run makes more calls than it has nodes
+ * (one call per batch, at most one per tree level, would be far fewer). Cancelled at the second
+ * call (inside the root's batch): ACD_ERR_CANCELLED, and no call after it. */
+static void test_cancel_within_batch(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 32, mg_bumpy_r, NULL));
+    acd3d_params p = acd3d_default_params();
+    p.threads = 1;
+    seen S = {.last_fraction = -1};
+    p.progress = on_progress;
+    p.progress_user = &S;
+    acd3d_result r;
+    acd_error err = {0};
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    print_message("%d tree calls, %zu nodes, %zu parts\n", S.tree, r.nnodes, r.nparts);
+    assert_true(r.nnodes >= 3);
+    assert_true((size_t)S.tree > r.nnodes);
+    acd3d_result_free(&r);
+    seen C = {.cancel_prefix = NULL, .last_fraction = -1};
+    p.progress = cancel_second;
+    p.progress_user = &C;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_CANCELLED);
+    assert_non_null(strstr(err.message, "cancelled"));
+    assert_int_equal(C.tree, 2);
+    assert_int_equal(C.other + C.budget + C.join + C.refine, 0);
+    acd_mesh_free(&m);
+}
+
 /* Surface mode's merge pass (acd3/surface_merge): reported, and cancelled there. */
 static void test_surface_merge(void **state) {
     (void)state;
@@ -140,6 +179,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stages_reported),
         cmocka_unit_test(test_cancel_in_each_stage),
+        cmocka_unit_test(test_cancel_within_batch),
         cmocka_unit_test(test_surface_merge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

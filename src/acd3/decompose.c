@@ -349,7 +349,37 @@ typedef struct cand_eval {
     int screened; /* dropped by the screen (screen_decide): its replay drops it */
 } cand_eval;
 
+/* Cancellation within a batch of nodes: the progress callback is called by the calling thread
+ * (the one whose poll_owner is this poll) between candidate evaluations, not only between
+ * batches (the root's batch is most of a large mesh's run); once it asks to stop, every thread
+ * stops claiming candidates and the batch ends ACD_ERR_CANCELLED. */
+typedef struct cancel_poll {
+    acd_progress_fn fn;
+    void *user;
+    int stop; /* read and written atomically */
+} cancel_poll;
+
+static _Thread_local const cancel_poll *poll_owner;
+
+static int poll_stop(cancel_poll *p) {
+    if (!p) return 0;
+    int stop;
+#ifdef _OPENMP
+#pragma omp atomic read
+#endif
+    stop = p->stop;
+    if (!stop && poll_owner == p && p->fn(p->user, -1.0, "measuring and cutting")) {
+        stop = 1;
+#ifdef _OPENMP
+#pragma omp atomic write
+#endif
+        p->stop = 1;
+    }
+    return stop;
+}
+
 typedef struct split_state {
+    cancel_poll *poll; /* NULL: no progress callback */
     const acd_mesh *m;
     const acd_edge_graph *g;
     const acd3_measure *ms;
@@ -821,6 +851,7 @@ static void split_evaluate(split_state *S, int i) {
  * them until the replay is over. */
 static void split_work(split_state *S) {
     for (;;) {
+        if (poll_stop(S->poll)) return;
         int id = -1;
 #ifdef _OPENMP
 #pragma omp critical(acd3_split)
@@ -931,8 +962,8 @@ static int split_volume_planes(const acd_mesh *m, acd3_plane_candidate vp[ACD3_V
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
                      unsigned cut_flags, const acd3_resolve_opts *ro, acd3d_cut_choice choice, int helpers,
-                     const acd_edge_map *em, double screen_rel, acd3_decompose_stats *stats, split_choice *best,
-                     acd_error *err) {
+                     const acd_edge_map *em, double screen_rel, cancel_poll *poll, acd3_decompose_stats *stats,
+                     split_choice *best, acd_error *err) {
     /* slots: [0, npre) the planes evaluated ahead (if any), then the candidates in order */
     acd3_plane_candidate slot[ACD3_SPLIT_SLOTS];
     cand_eval ev[ACD3_SPLIT_SLOTS];
@@ -948,6 +979,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     S.em = solid ? em : NULL;
     S.cand = slot, S.ev = ev;
     S.screen_rel = screen_rel;
+    S.poll = poll;
     if (by_volume && ACD3_VOLUME_SCREEN_HULL && !S.early && screen_rel > -1 && ms->hull.dim == 3 && ms->hull.source) {
         S.onhull = calloc(m->nvertices ? m->nvertices : 1, 1);
         for (size_t v = 0; S.onhull && v < ms->hull.nvertices; v++)
@@ -1114,6 +1146,7 @@ typedef struct run_ctx {
     int helpers;   /* threads that may join the evaluation of a split's candidates */
     size_t max_depth; /* params->max_depth + 2 x the input's genus */
     double screen_rel; /* the hull volume screen's margin (acd3_decompose_screen) */
+    cancel_poll *poll; /* NULL without a progress callback */
 } run_ctx;
 
 typedef struct node_work {
@@ -1172,18 +1205,18 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         acd_edge_map em;
         const int have_em = c->solid && cur.ms.witness != UINT32_MAX && part_edge_map(&w->mesh, &em);
         const acd_edge_map *emp = have_em ? &em : NULL;
-        if (c->params->region_cuts || !c->solid)
+        if ((c->params->region_cuts || !c->solid) && !poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
                               ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
-                              c->screen_rel, &out->stats, &out->choice, &out->err);
-        if (split == 0 && c->solid)
+                              c->screen_rel, c->poll, &out->stats, &out->choice, &out->err);
+        if (split == 0 && c->solid && !poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                               ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
-                              c->screen_rel, &out->stats, &out->choice, &out->err);
-        if (split == 0 && c->solid)
+                              c->screen_rel, c->poll, &out->stats, &out->choice, &out->err);
+        if (split == 0 && c->solid && !poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                               ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, ACD_PLANE_CUT_DROP_SPECKS, &ro,
-                              c->params->cut_choice, c->helpers, emp, c->screen_rel, &out->stats, &out->choice,
+                              c->params->cut_choice, c->helpers, emp, c->screen_rel, c->poll, &out->stats, &out->choice,
                               &out->err);
         if (have_em) acd_edge_map_free(&em);
         if (split < 0) {
@@ -1760,6 +1793,8 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
     /* Nodes are processed in batches: every node waiting when a batch starts is measured and
      * split independently (in parallel), then the children are appended in node order. The
      * tree, and so the output, is the same for any number of threads. */
+    cancel_poll poll = {params->progress, params->progress_user, 0};
+    poll_owner = &poll;
     for (size_t i = 0; i < t.n;) {
         if (params->progress && params->progress(params->progress_user, -1.0, "measuring and cutting")) {
             st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled after %zu parts", nleaves);
@@ -1775,7 +1810,8 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
         /* a thread without a node of its own helps with the candidates of the others' splits
          * (try_split): so a batch of fewer nodes than threads, the root's above all, still uses
          * every thread */
-        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, nthreads - 1, max_depth, screen_rel};
+        const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, nthreads - 1, max_depth, screen_rel,
+                             params->progress ? &poll : NULL};
         /* the batch's nodes are taken largest first (most vertices; then in node order), so that a
          * large node taken last does not keep one thread busy while the others wait; each node's
          * work goes to its own record, so the order changes nothing else */
@@ -1803,6 +1839,8 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
             for (long j = 0; j < (long)(b1 - b0); j++) process_node(&ctx, &t.a[b0 + bord[j]], &wk[bord[j]]);
         }
         free(bord);
+        if (poll.stop) /* the callback asked to stop during the batch: its nodes' work is dropped */
+            st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled after %zu parts", nleaves);
         /* the first failure in node order is reported */
         for (size_t j = 0; j < b1 - b0; j++) {
             stats->screened += wk[j].stats.screened;
@@ -1848,6 +1886,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
         if (st != ACD_OK) goto fail;
         i = b1;
     }
+    poll_owner = NULL;
 
     /* max_hulls: merge the cheapest adjacent parts. Siblings are adjacent (they share their
      * parent's cut), and their union is their parent, whose concavity is known: collapse the
@@ -1987,6 +2026,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
     out->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     return ACD_OK;
 fail:
+    poll_owner = NULL;
     for (size_t i = 0; i < t.n; i++) {
         acd_mesh_free(&t.a[i].mesh);
         measured_free(&t.a[i].cache);
