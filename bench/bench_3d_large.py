@@ -37,10 +37,9 @@ def read_off(path):
                 toks.extend(line.split())
     if not toks[0].startswith('OFF'):
         raise SystemExit(f"{path}: not OFF")
-    head = toks[0][3:]
+    if toks[0] != 'OFF':  # COFF, NOFF, "OFF12 ...": not in the models this uses
+        raise SystemExit(f"{path}: unsupported OFF header {toks[0]}")
     i = 1
-    if head:  # "OFFnv nf ne" written together is not used by the data; keep it simple
-        raise SystemExit(f"{path}: unsupported OFF header")
     nv, nf = int(toks[i]), int(toks[i + 1])
     i += 3
     V = array('d', (float(t) for t in toks[i:i + 3 * nv]))
@@ -147,7 +146,7 @@ def make_inputs(model, levels):
 
 
 def run(cmd, timeout):
-    """(wall s, cpu s, peak RSS MiB, rc, stdout, stderr) of one child."""
+    """(wall s, stdout, stderr, exit code) of one child; SIGINT after timeout seconds."""
     t0 = time.monotonic()
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
@@ -156,26 +155,15 @@ def run(cmd, timeout):
         p.send_signal(signal.SIGINT)
         out, err = p.communicate()
         err += f"\n(timeout after {timeout} s)"
-    wall = time.monotonic() - t0
-    # the child's rusage: os.wait4 is done by communicate, so read it from RUSAGE_CHILDREN deltas
-    return wall, out, err, p.returncode
-
-
-def run_measured(cmd, timeout):
-    import resource
-    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    wall, out, err, rc = run(cmd, timeout)
-    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-    # ru_maxrss of RUSAGE_CHILDREN is the largest child so far: run children in increasing size order,
-    # or use /usr/bin/time; here each measurement runs under /usr/bin/time -f when it is there
-    return wall, cpu, r1.ru_maxrss / 1024.0, rc, out, err
+    return time.monotonic() - t0, out, err, p.returncode
 
 
 TIMEFMT = "@@time %e %U %S %M"
 
 
 def measure(cmd, timeout):
+    """wall, cpu (user + system), user, rss (MiB, peak), rc, out, err: by /usr/bin/time when it is
+    there, else by the children's rusage (whose peak RSS is the largest child's so far)."""
     if os.path.exists('/usr/bin/time'):
         wall, out, err, rc = run(['/usr/bin/time', '-f', TIMEFMT] + cmd, timeout)
         m = re.search(r"@@time ([\d.]+) ([\d.]+) ([\d.]+) (\d+)", err)
@@ -183,8 +171,13 @@ def measure(cmd, timeout):
             return dict(wall=float(m.group(1)), cpu=float(m.group(2)) + float(m.group(3)),
                         user=float(m.group(2)), rss=int(m.group(4)) / 1024.0, rc=rc, out=out, err=err)
         return dict(wall=wall, cpu=float('nan'), user=float('nan'), rss=float('nan'), rc=rc, out=out, err=err)
-    wall, cpu, rss, rc, out, err = run_measured(cmd, timeout)
-    return dict(wall=wall, cpu=cpu, user=cpu, rss=rss, rc=rc, out=out, err=err)
+    import resource
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    wall, out, err, rc = run(cmd, timeout)
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    return dict(wall=wall, cpu=cpu, user=r1.ru_utime - r0.ru_utime, rss=r1.ru_maxrss / 1024.0, rc=rc, out=out,
+                err=err)
 
 
 def count_hulls(path):
@@ -224,9 +217,13 @@ def main():
     rows = []  # (command, level, triangles, result)
     tris = {}
     for lv in levels:
-        with open(paths[lv]) as f:
-            f.readline()
-            tris[lv] = int(f.readline().split()[1])
+        if paths[lv].endswith('.off'):
+            with open(paths[lv]) as f:
+                f.readline()
+                tris[lv] = int(f.readline().split()[1])
+        else:
+            V, F = read_obj(paths[lv])
+            tris[lv] = len(F) // 3
     for lv in levels:
         p = paths[lv]
         hulls = f"{tmp}/d{lv}.obj"
@@ -263,8 +260,6 @@ def main():
                   f"rc {r['rc']} parts {parts} {extra}", file=sys.stderr, flush=True)
             if r['rc'] != 0:
                 print(r['err'][-2000:], file=sys.stderr)
-            if c == '3d':
-                pass
     lines = [f"| command | triangles | wall s | CPU s | peak RSS MiB | parts | CPU exponent | note |",
              "|---|---:|---:|---:|---:|---:|---:|---|"]
     for c in cmds:
