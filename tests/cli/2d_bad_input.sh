@@ -1,11 +1,7 @@
 #!/usr/bin/env bash
 # acd 2d on bad input: exit 2 with a message naming the file and where (chain, vertex, line,
 # byte); a missing file exits 4. Never a crash.
-set -u
-ACD=$1
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 # bad CODE FILE WORD...: exit CODE, stderr names the file and holds every WORD
 bad() {
   local code=$1 file=$2; shift 2

@@ -3,17 +3,12 @@
 # texas.poly: both methods pass --verify, the JSON report parses, has one more component than
 # diagonals (no holes), convex components that are their own hulls, and MCD <= HM; a polygon with
 # a hole is refused by MCD (exit 2) and decomposed by HM; bad or conflicting options exit 1.
-set -u
-ACD=$1
-DATA=${3:-}
+. "$(dirname "$0")/lib.sh"
 M="$DATA/polygons-lien"
 if [ ! -d "$M" ]; then
   echo "skip: $M missing"
   exit 77
 fi
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
 
 for m in mcd hm; do
   "$ACD" 2d "$M/texas.poly" --exact $m --verify --json "$T/$m.json" -o "$T/$m.geojson" --svg "$T/$m.svg" \

@@ -3,12 +3,7 @@
 # of extent 14) decomposes and verifies under every measure (it exited 3 with two overlapping
 # components before cut ends were shared); translated by 1e14 its coordinates cannot resolve
 # its edges and it is refused with exit 2, naming the edge and the ratio.
-set -u
-ACD=$1
-DATA=${3:-}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 B="$DATA/polygons-lien/BarbedThing.poly"
 [ -f "$B" ] || { echo "note: $B missing, skipped"; exit 77; }
 # .poly: chain count, then per chain "N out|in", N lines "x y", one order line

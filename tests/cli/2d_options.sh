@@ -1,11 +1,7 @@
 #!/usr/bin/env bash
 # acd 2d command line: help, usage errors (exit 1 with a message), every option accepted in
 # both "--opt V" and "--opt=V" forms, and the summary line.
-set -u
-ACD=$1
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 # expect CODE WORD CMD...: exit code CODE and WORD in stderr
 expect() {
   local code=$1 word=$2; shift 2

@@ -3,11 +3,7 @@
 # repeated; parses with python3 -m json.tool), --json - on stdout, -o .geojson/.json/.poly that
 # read back, --svg (well-formed XML with one path per component); every polygon of a
 # multi-polygon input is decomposed; -v reports normalization fixes.
-set -u
-ACD=$1
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 command -v python3 > /dev/null || { echo "skip: python3 missing"; exit 77; }
 printf '1\n6 out\n0 0\n2 0\n2 1\n1 1\n1 2\n0 2\n1 2 3 4 5 6\n' > "$T/L.poly"
 

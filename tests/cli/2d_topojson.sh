@@ -2,12 +2,7 @@
 # acd 2d on TopoJSON: detection, --feature / --object selection (on a committed excerpt of
 # world-atlas: South Africa with Lesotho as its hole), the messages of a selector that selects
 # nothing, and the real world-atlas file when scripts/fetch-data.sh has fetched it.
-set -u
-ACD=$1
-SRC=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 SA=$SRC/fuzz/corpus/topojson/south_africa_110m.json
 
 "$ACD" 2d "$SA" --exact hm > "$T/out" 2> "$T/err" || fail "whole file: $(cat "$T/err")"

@@ -1,12 +1,7 @@
 #!/usr/bin/env bash
 # acd 2d --verify: passes (exit 0) on real models for every measure; a stricter --verify-tau
 # makes it fail with exit 3 and a message naming the component, its concavity and vertex.
-set -u
-ACD=$1
-DATA=${3:-}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 printf '1\n6 out\n0 0\n2 0\n2 1\n1 1\n1 2\n0 2\n1 2 3 4 5 6\n' > "$T/L.poly"
 
 "$ACD" 2d "$T/L.poly" --verify > "$T/out" || fail "L --verify exit $?"

@@ -1,9 +1,6 @@
 #!/usr/bin/env bash
 # acd 3d: outputs, --verify, JSON, and bad input exit codes.
-set -u
-ACD=$1; SRC=$2
-T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 # an L-shaped prism (closed, outward) written as OBJ
 cat > "$T/l.obj" <<'OBJ'
 v 0 0 0

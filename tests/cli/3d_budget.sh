@@ -4,10 +4,7 @@
 # --merge-parts N --merge-refine 40), the hull OBJ byte-identical to the long command line; the
 # settings that ran printed and in --json ("settings"), the long form's JSON without them; options
 # given win over the implied ones; the combinations --budget excludes are usage errors.
-set -u
-ACD=$1; SRC=$2
-T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 M="$SRC/tests/data/meshes/sliver_part.off"
 N=6
 LONG_FIXED="--cut-choice volume --merge-order volume --merge-parts $N --merge-refine 40"

@@ -9,12 +9,8 @@
 #    fandisk 1e6 extents away reported hull/mesh 0.00013), and acd info's;
 #  - coordinates that cannot resolve the extent (a cube of side 1e-3 at 1e12, 8 doubles a side):
 #    refused, exit 2, naming a vertex.
-set -u
-ACD=$1; SRC=$2
-T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 M="$SRC/tests/data/meshes/torus.off"
-getnum() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.eE+]*\).*/\1/p" "$2" | head -1; }
 # the torus's coordinates + d (OFF: header, counts, vertices; comments dropped)
 move() {
   awk -v d="$1" '
@@ -27,16 +23,16 @@ move() {
 close_to() { awk -v a="$1" -v b="$2" -v r="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(d <= r * m) }'; }
 
 "$ACD" 3d "$M" --json "$T/near.json" -o "$T/near.obj" > /dev/null 2>&1 || fail "near run: exit $?"
-V0=$(getnum input_volume "$T/near.json")
+V0=$(get input_volume "$T/near.json")
 "$ACD" segment "$M" -t 0.2 --json "$T/snear.json" -o "$T/snear.obj" > /dev/null 2>&1 || fail "near segment: exit $?"
-S0=$(getnum mesh_volume "$T/snear.json")
+S0=$(get mesh_volume "$T/snear.json")
 E=5 # the torus's largest side (R 1.5 + r 1 each way)
 for ratio in 1e4 1e6 1e8; do
   d=$(awk -v r="$ratio" -v e="$E" 'BEGIN { printf "%.17g", r * e }')
   move "$d" "$T/far.off"
   "$ACD" 3d "$T/far.off" --verify --json "$T/far.json" -o "$T/far.obj" > "$T/out" 2> "$T/err" ||
     fail "$ratio extents: acd 3d --verify exit $?: $(grep -v '(.*s)$' "$T/err" | tail -1)"
-  V=$(getnum input_volume "$T/far.json")
+  V=$(get input_volume "$T/far.json")
   close_to "$V" "$V0" 1e-6 || fail "$ratio extents: input volume $V, near $V0"
   X=$(awk '$1 == "v" { print $2; exit }' "$T/far.obj")
   awk -v x="$X" -v d="$d" 'BEGIN { exit !(x > d - 10 && x < d + 10) }' || fail "$ratio extents: hull vertex x $X, not near $d"
@@ -44,7 +40,7 @@ for ratio in 1e4 1e6 1e8; do
     fail "$ratio extents: --budget 8 --trim-coverage 0.0008 --verify exit $?: $(grep -v '(.*s)$' "$T/err" | tail -1)"
   "$ACD" segment "$T/far.off" -t 0.2 --verify --json "$T/sfar.json" -o "$T/sfar.obj" > /dev/null 2> "$T/err" ||
     fail "$ratio extents: acd segment --verify exit $?: $(tail -1 "$T/err")"
-  S=$(getnum mesh_volume "$T/sfar.json")
+  S=$(get mesh_volume "$T/sfar.json")
   close_to "$S" "$S0" 1e-6 || fail "$ratio extents: segment's mesh volume $S, near $S0"
   I=$("$ACD" info "$T/far.off" | awk '$1 == "volume" { print $2 }')
   close_to "$I" "$S0" 1e-6 || fail "$ratio extents: acd info volume $I, near $S0"

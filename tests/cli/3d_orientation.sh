@@ -3,10 +3,7 @@
 # (bench/audit_3d_transforms.py, docs/results/3d-robustness.md): an inside-out closed mesh is
 # repaired and decomposed (it was refused as "flat or oriented inward"); a cavity keeps facing
 # inward through repair (it was turned outward: a solid inside a solid, volume counted twice).
-set -u
-ACD=$1
-T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 # box(x0 y0 z0 x1 y1 z1 first_index inward): an axis-aligned box as OBJ (first_index: the OBJ index of its first vertex)
 box() {
   local x0=$1 y0=$2 z0=$3 x1=$4 y1=$5 z1=$6 b=$7 in=$8

@@ -5,12 +5,7 @@
 # at 2^-190 (1e-57), 2^-150 (1e-45) and at 2^183 (1e55, under ACD_COORD_MAX 1e60). At 2^183 the plane cut's
 # rounding scale (a product of three squared lengths: the size to the sixth power) overflowed
 # and the budget pass found no cut at all: one part, --verify failing (bench/audit_3d_transforms.py).
-set -u
-ACD=$1
-SRC=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 for m in torus sliver_part; do
   for e in -190 -150 183; do
     python3 - "$SRC/tests/data/meshes/$m.off" "$T/s.off" "$e" <<'PY' || fail "scale writer"

@@ -2,10 +2,7 @@
 # acd 3d --stop: the hull-distance stopping test keeps some torus parts whole (leaf reason
 # "hull_distance", concavity within tau, --verify passes) and gives fewer leaves than the measure
 # alone; a bad value is a usage error.
-set -u
-ACD=$1; SRC=$2
-T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 IN=$SRC/tests/data/meshes/torus.off
 "$ACD" 3d "$IN" -t 0.1 --no-merge --stop hull --verify --json "$T/h.json" -o "$T/h.obj" > "$T/h.txt" || fail "--stop hull failed"
 "$ACD" 3d "$IN" -t 0.1 --no-merge --stop measure --json "$T/m.json" > "$T/m.txt" || fail "--stop measure failed"

@@ -5,10 +5,7 @@
 # ChineseDragon-10kv, where the bound it used before failed), and acd eval (independent code) finds the union's
 # coverage at least 1 - F (up to sampling) and a higher IoU than without trimming; a run without the
 # option writes no "trim"; bad values and surface mode are usage errors.
-set -u
-ACD=$1; SRC=$2
-T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 M="$T/bumpy.off"
 python3 - "$M" <<'PY'
 import math, sys

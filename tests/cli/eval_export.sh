@@ -2,11 +2,7 @@
 # acd eval --export: the hulls of a peer decomposition written as one OBJ (which acd eval reads back
 # with the same score), per-hull files, summary.json, URDF and MJCF; --max-hull-vertices keeps the
 # budget; bad options exit 1.
-set -u
-ACD=$1
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 
 # an octagonal prism (16 vertices) split in two groups
 {

@@ -1,11 +1,7 @@
 #!/usr/bin/env bash
 # acd eval on decompositions with known answers: a cube scored against itself, split in two
 # (one o group each), and against a hull missing half of it; JSON keys; errors and exit codes.
-set -u
-ACD=$1
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 
 # box X0 X1 Y0 Y1 Z0 Z1 OFFSET: 8 vertices and 12 triangles (indices from OFFSET+1)
 box() {
@@ -20,11 +16,6 @@ box() {
 box 0 1 0 1 0 1 0 > "$T/cube.obj"
 { echo "o left"; box 0 0.5 0 1 0 1 0; echo "o right"; box 0.5 1 0 1 0 1 8; } > "$T/halves.obj"
 { echo "g left"; box 0 0.5 0 1 0 1 0; } > "$T/half.obj"
-
-get() { # get KEY FILE: the number after "KEY":
-  sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.eE+]*\).*/\1/p" "$2" | head -1
-}
-near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
 
 "$ACD" eval "$T/cube.obj" "$T/cube.obj" --json --samples 64000 --surface-samples 20000 > "$T/self.json" || fail "self exit $?"
 for k in parts hull_vertices mesh_volume hull_volume_sum union_volume iou coverage excess distance \

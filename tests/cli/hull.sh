@@ -1,13 +1,7 @@
 #!/usr/bin/env bash
 # acd hull: a cube with interior, face and duplicate points -> 8 vertices, 12 triangles, volume 1,
 # written OBJ re-read by acd info; per-part hulls; planar and collinear input; errors and exit codes.
-set -u
-ACD=$1
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
-get() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.eE+]*\).*/\1/p" "$2" | head -1; }
-near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'; }
+. "$(dirname "$0")/lib.sh"
 
 {
   for x in 0 1; do for y in 0 1; do for z in 0 1; do echo "v $x $y $z"; done; done; done

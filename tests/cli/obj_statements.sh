@@ -2,12 +2,7 @@
 # OBJ statements the reader skips with a warning (points, lines, free-form geometry) reach the
 # CLI's stderr as "acd CMD: warning: FILE:LINE: ...", exit 0 and the faces read as without them;
 # an unknown statement is an error naming its line, exit 2 (docs/mesh.md, "OBJ statements").
-set -u
-ACD=$1
-SRC=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 faces='v 0 0 0
 v 1 0 0
 v 0 1 0

@@ -4,11 +4,7 @@
 # DCD both ways 1, CD = 2/avg_radius with avg_radius = (sqrt5+sqrt17+sqrt65+sqrt101)/24.
 # Identical segmentations give 0 everywhere; a reference directory is averaged; errors and
 # exit codes.
-set -u
-ACD=$1
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 
 {
   echo OFF
@@ -22,30 +18,25 @@ fail() { echo "FAIL: $*"; exit 1; }
 printf '0\n0\n0\n0\n1\n1\n1\n1\n' > "$T/a.seg"
 printf '5\n5\n9\n9\n9\n9\n9\n9\n' > "$T/b.seg"
 
-get() { # get KEY FILE: first number after "KEY":
-  sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.eE+]*\).*/\1/p" "$2" | head -1
-}
-near() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-9) }'; }
-
 "$ACD" segeval "$T/strip.off" "$T/a.seg" "$T/b.seg" --json > "$T/ab.json" || fail "exit $?"
-near "$(get rand_index "$T/ab.json")" "$(awk 'BEGIN { printf "%.17g", 4/7 }')" || fail "rand index"
-near "$(get hamming "$T/ab.json")" 0.25 || fail "hamming"
-near "$(get hamming_rm "$T/ab.json")" 0.25 || fail "rm"
-near "$(get hamming_rf "$T/ab.json")" 0.25 || fail "rf"
-near "$(get gce "$T/ab.json")" 0.25 || fail "gce"
-near "$(get lce "$T/ab.json")" 0.125 || fail "lce"
+near "$(get rand_index "$T/ab.json")" "$(awk 'BEGIN { printf "%.17g", 4/7 }')" 1e-9 || fail "rand index"
+near "$(get hamming "$T/ab.json")" 0.25 1e-9 || fail "hamming"
+near "$(get hamming_rm "$T/ab.json")" 0.25 1e-9 || fail "rm"
+near "$(get hamming_rf "$T/ab.json")" 0.25 1e-9 || fail "rf"
+near "$(get gce "$T/ab.json")" 0.25 1e-9 || fail "gce"
+near "$(get lce "$T/ab.json")" 0.125 1e-9 || fail "lce"
 CD=$(awk 'BEGIN { printf "%.17g", 48 / (sqrt(5) + sqrt(17) + sqrt(65) + sqrt(101)) }')
-near "$(get cut_discrepancy "$T/ab.json")" "$CD" || fail "cut discrepancy $(get cut_discrepancy "$T/ab.json") vs $CD"
+near "$(get cut_discrepancy "$T/ab.json")" "$CD" 1e-9 || fail "cut discrepancy $(get cut_discrepancy "$T/ab.json") vs $CD"
 grep -q '"weights":[[:space:]]*"area"' "$T/ab.json" || fail "weights key"
 
 # face weighting: same values here (equal areas)
 "$ACD" segeval "$T/strip.off" "$T/a.seg" "$T/b.seg" --json --weights faces > "$T/abf.json" || fail "faces exit"
-near "$(get gce "$T/abf.json")" 0.25 || fail "faces gce"
+near "$(get gce "$T/abf.json")" 0.25 1e-9 || fail "faces gce"
 
 # identical: exact zeros, RI 1
 "$ACD" segeval "$T/strip.off" "$T/a.seg" "$T/a.seg" --json > "$T/aa.json" || fail "aa exit"
-near "$(get rand_index "$T/aa.json")" 1 || fail "aa ri"
-for k in hamming gce lce cut_discrepancy; do near "$(get $k "$T/aa.json")" 0 || fail "aa $k"; done
+near "$(get rand_index "$T/aa.json")" 1 1e-9 || fail "aa ri"
+for k in hamming gce lce cut_discrepancy; do near "$(get $k "$T/aa.json")" 0 1e-9 || fail "aa $k"; done
 
 # a directory of references: both files, mean of (A,A) and (A,B)
 mkdir "$T/refs"
@@ -53,7 +44,7 @@ cp "$T/a.seg" "$T/refs/1.seg"; cp "$T/b.seg" "$T/refs/2.seg"; echo junk > "$T/re
 "$ACD" segeval "$T/strip.off" "$T/a.seg" "$T/refs" --json > "$T/dir.json" || fail "dir exit"
 grep -q '"references":[[:space:]]*2' "$T/dir.json" || fail "dir count"
 MEAN=$(sed -n '/"mean"/,$p' "$T/dir.json" > "$T/mean.json"; get gce "$T/mean.json")
-near "$MEAN" 0.125 || fail "dir mean gce $MEAN"
+near "$MEAN" 0.125 1e-9 || fail "dir mean gce $MEAN"
 
 # text output names the metrics
 "$ACD" segeval "$T/strip.off" "$T/a.seg" "$T/b.seg" > "$T/ab.txt" || fail "text exit"

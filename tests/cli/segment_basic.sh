@@ -5,13 +5,7 @@
 # part; JSON has parts and seconds), --verify passes, the run is deterministic; exit codes for
 # bad input (2), bad command lines (1); --cage gives a closed genus-1 cage around the 5 parts.
 # With the fetched meshes: elephant verifies.
-set -u
-ACD=$1
-SRC=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
-get() { sed -n "s/.*\"$1\":[[:space:]]*\([-0-9.eE+]*\).*/\1/p" "$2" | head -1; }
+. "$(dirname "$0")/lib.sh"
 
 M="$SRC/tests/data/meshes/torus.off"
 "$ACD" segment "$M" -t 0.2 --clamp-hull-depth 0 --seg "$T/t.seg" --parts "$T/p.obj" -o "$T/h.obj" --json "$T/t.json" --verify \

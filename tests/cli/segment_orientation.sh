@@ -3,12 +3,7 @@
 # the faces are flipped back (notice on stderr) and the labels are the correctly oriented mesh's,
 # face for face. Before, valleys and ridges swapped (bench/audit_3d_transforms.py: mpi_triang with
 # all faces reversed gave 3 parts, one unresolved, --verify failing).
-set -u
-ACD=$1
-SRC=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 M="$SRC/tests/data/meshes/torus.off"
 # the torus's quads split into triangles (same diagonals in every file), as is and reversed
 python3 - "$M" "$T" <<'PY' || fail "writer"

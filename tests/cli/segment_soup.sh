@@ -3,12 +3,7 @@
 # split at texture seams): the vertices at the same coordinates are merged, with a notice, so the
 # committed torus segments as it does when indexed (bench/audit_3d_transforms.py found one part per
 # face: 72 parts for its 72 quads, --verify passing). Labels stay in the file's face order.
-set -u
-ACD=$1
-SRC=$2
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/lib.sh"
 M="$SRC/tests/data/meshes/torus.off"
 python3 - "$M" "$T/soup.obj" <<'PY' || fail "soup writer"
 import sys
