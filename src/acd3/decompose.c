@@ -40,6 +40,7 @@
 #include "geom3/frame.h"
 #include "geom3/hull_simplify.h"
 #include "geom3/hull_volume.h"
+#include "geom3/pca.h"
 #include "geom3/plane_cut.h"
 #include "geom3/volume.h"
 #include "geom3/sphere.h"
@@ -55,6 +56,14 @@
  * rounding (ACD_PLANE_CUT_DROP_SPECKS), which would otherwise come back as a piece the sliver rule
  * refuses (4 of the 72 stars of bench/bench_spiky_stars.py ended with a part above tau so). */
 #define ACD3_MIN_PIECE_FRACTION_RETRY 1e-12
+/* A part no candidate splits, above tau and not within tau of its hull (it would be a no_cut leaf),
+ * is cut by planes through the centroid of its volume across its principal axes (halving_planes),
+ * with the sliver rule and then its retry, the best by the usual rule. Such parts are crumpled
+ * pieces (volume 1e-6 to 4e-4 of their hull's: thin wedges, folded layers) that earlier cuts left
+ * after a one-rounding perturbation of the input; the witness planes only shave them, as the
+ * witness is a tip of a layer. Halving shrinks them until the measure, at most their extent, meets
+ * tau (docs/acd3d.md "Crumpled parts"). */
+#define ACD3_HALVING_PLANES 3
 /* Safety net on the number of nodes of the tree. */
 #define ACD3_MAX_NODES 20000
 /* Surface mode with the merge pass: the tree is cut down to this fraction of tau (its measure's
@@ -947,6 +956,35 @@ static int split_volume_planes(const acd_mesh *m, acd3_plane_candidate vp[ACD3_V
                                      NULL);
 }
 
+/* The halving planes of m (ACD3_HALVING_PLANES): through the centroid of its volume, perpendicular
+ * to each principal axis of its vertices, the longest first. Returns how many: 0 when m encloses no
+ * positive volume. */
+static int halving_planes(const acd_mesh *m, acd3_plane_candidate out[ACD3_HALVING_PLANES]) {
+    acd_pca pca;
+    if (!m->nvertices || acd_pca_points(m->vertices, m->nvertices, NULL, &pca, NULL) != ACD_OK) return 0;
+    /* the signed tetrahedra from the vertices' centroid o (near the part: little cancellation) */
+    const double *o = pca.centroid;
+    double v6 = 0, c[3] = {0, 0, 0};
+    for (size_t t = 0; t < m->ntriangles; t++) {
+        const double *a = m->vertices + 3 * (size_t)m->triangles[3 * t];
+        const double *b = m->vertices + 3 * (size_t)m->triangles[3 * t + 1];
+        const double *d = m->vertices + 3 * (size_t)m->triangles[3 * t + 2];
+        const double p[3] = {a[0] - o[0], a[1] - o[1], a[2] - o[2]}, q[3] = {b[0] - o[0], b[1] - o[1], b[2] - o[2]},
+                     r[3] = {d[0] - o[0], d[1] - o[1], d[2] - o[2]};
+        const double w = p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) +
+                         p[2] * (q[0] * r[1] - q[1] * r[0]);
+        v6 += w;
+        for (int k = 0; k < 3; k++) c[k] += w * (p[k] + q[k] + r[k]);
+    }
+    if (!(v6 > 0) || !isfinite(v6)) return 0;
+    for (int a = 0; a < ACD3_HALVING_PLANES; a++) {
+        for (int k = 0; k < 3; k++) out[a].point[k] = o[k] + c[k] / (4 * v6);
+        memcpy(out[a].normal, pca.axes[a], sizeof(double[3]));
+        out[a].kind = "halving";
+    }
+    return ACD3_HALVING_PLANES;
+}
+
 /* Splits m by the best of the first candidates that give >= 2 solid pieces: the smallest largest
  * piece concavity (up to tol), then the fewest pieces, then the candidates' order. A cut whose
  * pieces all meet tau, or that at least halves the concavity, is taken at once. With
@@ -958,12 +996,14 @@ static int split_volume_planes(const acd_mesh *m, acd3_plane_candidate vp[ACD3_V
  * plane joins the candidates, every candidate is compared (up to its budget) and split_better's band
  * rule decides; by band (solid mode) the band rule on the same candidates, with the early acceptance
  * kept (docs/acd3d.md "Cut choice by band"). screen_rel: the hull volume screen's margin (by volume;
- * acd3_decompose_screen: <= -1 or NaN, none); its counts are added to *stats. */
+ * acd3_decompose_screen: <= -1 or NaN, none); its counts are added to *stats. fixed (nfixed of
+ * them; NULL: none): these candidates instead of the resolver's (the halving planes). */
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
                      unsigned cut_flags, const acd3_resolve_opts *ro, acd3d_cut_choice choice, int helpers,
-                     const acd_edge_map *em, double screen_rel, cancel_poll *poll, acd3_decompose_stats *stats,
-                     split_choice *best, acd_error *err) {
+                     const acd_edge_map *em, double screen_rel, cancel_poll *poll,
+                     const acd3_plane_candidate *fixed, int nfixed, acd3_decompose_stats *stats, split_choice *best,
+                     acd_error *err) {
     /* slots: [0, npre) the planes evaluated ahead (if any), then the candidates in order */
     acd3_plane_candidate slot[ACD3_SPLIT_SLOTS];
     cand_eval ev[ACD3_SPLIT_SLOTS];
@@ -991,7 +1031,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
      * step, the root's above all) */
     int npre = 0, nvp = 0;
     acd3_plane_candidate vp[ACD3_VOLUME_PLANES];
-    int ahead = solid && ro && ro->global && helpers > 0 && ms->witness != UINT32_MAX;
+    int ahead = !fixed && solid && ro && ro->global && helpers > 0 && ms->witness != UINT32_MAX;
     if (ahead) {
         acd3_resolve_opts r2 = *ro;
         r2.global = r2.notch = 0;
@@ -1029,10 +1069,13 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
             *best = cyc;
             return 1;
         }
+    } else if (fixed) {
+        nc = nfixed;
+        memcpy(cand, fixed, (size_t)nfixed * sizeof *cand);
     } else {
         nc = acd3_cut_candidates(m, g, ms, ro, cand);
     }
-    if (vplanes && nc > 0) { /* the volume planes after the first candidate */
+    if (vplanes && nc > 0 && !fixed) { /* the volume planes after the first candidate */
         if (!ahead) nvp = split_volume_planes(m, vp);
         memmove(cand + 1 + nvp, cand + 1, (size_t)(nc - 1) * sizeof *cand);
         memcpy(cand + 1, vp, (size_t)nvp * sizeof *cand);
@@ -1208,25 +1251,44 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         if ((c->params->region_cuts || !c->solid) && !poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
                               ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
-                              c->screen_rel, c->poll, &out->stats, &out->choice, &out->err);
+                              c->screen_rel, c->poll, NULL, 0, &out->stats, &out->choice, &out->err);
         if (split == 0 && c->solid && !poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                               ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
-                              c->screen_rel, c->poll, &out->stats, &out->choice, &out->err);
+                              c->screen_rel, c->poll, NULL, 0, &out->stats, &out->choice, &out->err);
         if (split == 0 && c->solid && !poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                               ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, ACD_PLANE_CUT_DROP_SPECKS, &ro,
-                              c->params->cut_choice, c->helpers, emp, c->screen_rel, c->poll, &out->stats, &out->choice,
-                              &out->err);
-        if (have_em) acd_edge_map_free(&em);
+                              c->params->cut_choice, c->helpers, emp, c->screen_rel, c->poll, NULL, 0, &out->stats,
+                              &out->choice, &out->err);
         if (split < 0) {
             out->st = (acd_status)(-split);
             split = 0;
         }
         /* no cut split it: whatever --stop says, the part is still a leaf within tau when it is
-         * within tau of its hull both ways (acd3/leaf_test); else it stays above tau, said so */
+         * within tau of its hull both ways (acd3/leaf_test); else (solid mode) the halving planes,
+         * as for the candidates with the sliver rule and then its retry; else it stays above tau,
+         * said so */
         if (!split && out->st == ACD_OK)
             reason = c->params->stop != ACD3D_STOP_HULL && hull_leaf(c, w, &cur.ms, out) ? ACD3D_LEAF_HULL : ACD3D_LEAF_NO_CUT;
+        if (!split && out->st == ACD_OK && reason == ACD3D_LEAF_NO_CUT && c->solid) {
+            acd3_plane_candidate hv[ACD3_HALVING_PLANES];
+            const int nh = halving_planes(&w->mesh, hv);
+            for (int retry = 0; nh > 0 && split == 0 && retry < 2 && !poll_stop(c->poll); retry++)
+                split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
+                                  retry ? ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume : ACD3_MIN_PIECE_FRACTION * vol,
+                                  retry ? ACD_PLANE_CUT_DROP_SPECKS : 0, &ro, ACD3D_CHOICE_CONCAVITY, c->helpers, emp,
+                                  c->screen_rel, c->poll, hv, nh, &out->stats, &out->choice, &out->err);
+            if (split < 0) {
+                out->st = (acd_status)(-split);
+                split = 0;
+            }
+            if (split) {
+                reason = ACD3D_LEAF_NONE;
+                out->stats.halved++;
+            }
+        }
+        if (have_em) acd_edge_map_free(&em);
     }
     if (!split && out->st == ACD_OK) { /* a leaf: its hull is its part's (until the mesh changes) */
         w->hull = acd_hull_take(&cur.ms.hull);
@@ -1845,6 +1907,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
         for (size_t j = 0; j < b1 - b0; j++) {
             stats->screened += wk[j].stats.screened;
             stats->hulled += wk[j].stats.hulled;
+            stats->halved += wk[j].stats.halved;
             if (wk[j].st != ACD_OK && st == ACD_OK) {
                 st = wk[j].st;
                 if (err) *err = wk[j].err;

@@ -24,6 +24,8 @@
 typedef struct acd3_decompose_stats {
     size_t screened; /* candidates the screen dropped on their estimates (before their qhull hulls) */
     size_t hulled;   /* candidates whose pieces' qhull hulls were computed */
+    size_t halved;   /* parts no candidate split, cut by their halving planes (decompose.c; the same
+                        for any number of threads) */
 } acd3_decompose_stats;
 
 /* As acd3d_decompose with the screen's margin screen_rel instead of ACD3_VOLUME_SCREEN_REL:
