@@ -346,6 +346,56 @@ static void test_obj_statements(void **state) {
     }
 }
 
+/* PLY triangle strips (the Stanford tools' "tristrips": -1 ends a strip, alternate triangles
+ * reversed, joins by a repeated index dropped) and the warnings for skipped elements */
+static void test_ply_tristrips_and_skipped(void **state) {
+    (void)state;
+    /* a 3 x 2 grid of vertices in z = 0, ids 0 1 2 / 3 4 5; two strips: 0 3 1 4 (two triangles),
+     * then 1 4 2 5 joined to a repeat of 5 (dropped) and ended with -1 */
+    const char *text = "ply\nformat ascii 1.0\n"                                       /* 1-2 */
+                       "element vertex 6\nproperty double x\nproperty double y\nproperty double z\n" /* 3-6 */
+                       "element edge 2\nproperty int vertex1\nproperty int vertex2\n"  /* 7-9 */
+                       "element tristrips 1\nproperty list int int vertex_indices\n"   /* 10-11 */
+                       "element material 1\nproperty uchar red\n"                      /* 12-13 */
+                       "end_header\n"
+                       "0 1 0\n1 1 0\n2 1 0\n0 0 0\n1 0 0\n2 0 0\n"
+                       "0 1\n1 2\n"
+                       "10 0 3 1 4 -1 1 4 2 5 5\n"
+                       "7\n";
+    static warn_log log;
+    log.n = 0;
+    acd_mesh_read_options o = acd_mesh_read_default_options();
+    o.warning = log_warning;
+    o.warning_user = &log;
+    acd_mesh m;
+    acd_error err;
+    acd_status s = acd_mesh_read_memory_ex(text, strlen(text), ACD_MESH_FORMAT_PLY, "p", &o, &m, &err);
+    if (s != ACD_OK) fail_msg("%s", err.message);
+    assert_int_equal(m.nvertices, 6);
+    assert_int_equal(m.ntriangles, 4);
+    const uint32_t tri[12] = {0, 3, 1, 1, 3, 4, 1, 4, 2, 2, 4, 5};
+    assert_memory_equal(m.triangles, tri, sizeof tri);
+    /* every triangle faces the first's way (+z): the strip's alternation is undone */
+    for (size_t t = 0; t < m.ntriangles; t++) {
+        const double *a = m.vertices + 3 * m.triangles[3 * t], *b = m.vertices + 3 * m.triangles[3 * t + 1],
+                     *c = m.vertices + 3 * m.triangles[3 * t + 2];
+        double nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if (!(nz > 0)) fail_msg("triangle %zu faces -z (%g)", t, nz);
+    }
+    acd_mesh_free(&m);
+    assert_int_equal(log.n, 2);
+    if (strncmp(log.msg[0], "p:7: 2 'edge' elements skipped (line segments)", 46) != 0) fail_msg("'%s'", log.msg[0]);
+    assert_non_null(strstr(log.msg[0], "the mesh may be incomplete"));
+    if (strncmp(log.msg[1], "p:12: 1 'material' element skipped", 34) != 0) fail_msg("'%s'", log.msg[1]);
+    /* an index below -1 in a strip is refused with its place */
+    const char *bad = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                      "property double z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+                      "0 0 0\n1 0 0\n0 1 0\n4 0 1 -2 2\n";
+    assert_int_equal(acd_mesh_read_memory(bad, strlen(bad), ACD_MESH_FORMAT_PLY, "q", &m, &err), ACD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "q:13: strip 0: vertex index -2 out of range (0..2, or -1 ending a strip)"));
+    assert_int_equal(m.ntriangles, 0);
+}
+
 static void test_obj_groups(void **state) {
     (void)state;
     const char *text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 5 5\n"
@@ -882,6 +932,7 @@ int main(void) {
         cmocka_unit_test(test_roundtrip_files_and_gzip),
         cmocka_unit_test(test_obj_features),
         cmocka_unit_test(test_obj_statements),
+        cmocka_unit_test(test_ply_tristrips_and_skipped),
         cmocka_unit_test(test_obj_groups),
         cmocka_unit_test(test_off_features),
         cmocka_unit_test(test_nonconvex_polygon_faces),

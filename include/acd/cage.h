@@ -64,7 +64,9 @@ typedef struct acd_cage_result {
 acd_status acd_cage_build(const acd_mesh *mesh, const acd_mesh *hulls, size_t nhulls, const acd_cage_params *params,
                           acd_cage_result *out, acd_error *err);
 /* The same from a segmentation of mesh (acd_segment): one point set per part, the vertices of its
- * faces (flat parts included, which the result's hulls leave empty). */
+ * faces (flat parts included, which the result's hulls leave empty). Pass seg->mesh, the mesh
+ * acd_segment segmented (the input welded and oriented: the same faces in the same order), so
+ * that the inside tests see the orientation the labels were made with. */
 acd_status acd_cage_from_segment(const acd_mesh *mesh, const acd_segment_result *seg, const acd_cage_params *params,
                                  acd_cage_result *out, acd_error *err);
 void acd_cage_result_free(acd_cage_result *r);

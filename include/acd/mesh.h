@@ -7,7 +7,7 @@
  * it cannot make sense of (malformed syntax, an unknown OBJ statement, index out of range, NaN/Inf
  * coordinate), with a message naming the file and the line (text formats) or byte offset (binary
  * formats). What a reader skips that may be geometry (OBJ points, lines, free-form curves and
- * surfaces) is told to the warning callback of the _ex readers (acd_mesh_read_options). */
+ * surfaces; PLY elements such as edge) is told to the warning callback of the _ex readers (acd_mesh_read_options). */
 #ifndef ACD_MESH_H
 #define ACD_MESH_H
 
@@ -65,7 +65,8 @@ acd_status acd_mesh_read_memory(const void *data, size_t size, acd_mesh_format h
  * the plain functions do. */
 typedef struct acd_mesh_read_options {
     acd_warning_fn warning; /* optional: told about what was read but not used (OBJ: point, line and
-                               free-form elements, docs/mesh.md "OBJ statements"), one message per
+                               free-form elements, docs/mesh.md "OBJ statements"; PLY: elements
+                               other than vertex, face and tristrips), one message per
                                kind of statement, naming the file, the first line and the count */
     void *warning_user;
 } acd_mesh_read_options;

@@ -2,8 +2,10 @@
  *
  * The header's elements are read in order. "vertex" needs properties x, y, z (any numeric type;
  * other properties skipped); "face" needs a list property vertex_indices (or vertex_index, or
- * else its first list), fanned into triangles; every other element is skipped by its declared
- * layout. Header lines with an unknown keyword are ignored like comments. Byte order is handled byte by byte, independent of the host. Writes binary
+ * else its first list), fanned into triangles; "tristrips" (the Stanford tools' triangle strips)
+ * the same list, -1 ending a strip, its triangles in alternating order and those with a repeated
+ * corner (strip joins) dropped; every other element is skipped by its declared layout, told to
+ * the warning channel (acd_mesh_read_options) when it has records. Header lines with an unknown keyword are ignored like comments. Byte order is handled byte by byte, independent of the host. Writes binary
  * little-endian (double coordinates, uint32 indices: exact) or ASCII with %.17g. */
 #include "mesh/io_formats.h"
 
@@ -51,11 +53,32 @@ typedef struct ply_prop {
 typedef struct ply_elem {
     char name[32];
     uint64_t count;
+    size_t line; /* of its header line */
     ply_prop props[PLY_MAX_PROPS];
     int nprops;
 } ply_elem;
 
 enum { PLY_ASCII, PLY_LE, PLY_BE };
+
+/* The triangles of the strips in b's scratch polygon (UINT32_MAX ends a strip): triangle k of a
+ * strip s is (s[k], s[k+1], s[k+2]), its first two corners swapped when k is odd, so that all face
+ * one way; a triangle with a repeated corner (strips joined by repeating an index) is dropped. */
+static acd_status strip_triangles(acd_mesh_builder *b, const char *name, acd_error *err) {
+    size_t k = 0; /* position within the current strip */
+    for (size_t i = 0; i < b->npoly; i++) {
+        if (b->poly[i] == UINT32_MAX) {
+            k = 0;
+            continue;
+        }
+        if (++k < 3) continue;
+        uint32_t a = b->poly[i - 2], c = b->poly[i - 1], d = b->poly[i];
+        if (a == c || c == d || a == d) continue;
+        if (!((k - 3) % 2 == 0 ? acd_builder_triangle(b, a, c, d) : acd_builder_triangle(b, c, a, d)))
+            return acd_fail(err, ACD_ERR_NOMEM, "%s: out of memory", name);
+    }
+    b->npoly = 0;
+    return ACD_OK;
+}
 
 int acd_ply_sniff(const char *buf, size_t len) {
     return len >= 4 && !strncmp(buf, "ply", 3) && (buf[3] == '\n' || buf[3] == '\r');
@@ -202,6 +225,7 @@ static acd_status parse_header(acd_text *t, int *format, ply_elem *elems, int *n
                 return acd_fail(err, ACD_ERR_UNSUPPORTED, "%s:%zu: more than %d elements", t->name, t->line, PLY_MAX_ELEMS);
             ply_elem *e = &elems[(*nelems)++];
             memset(e, 0, sizeof *e);
+            e->line = t->line;
             n = word(t, &w);
             if (n == 0) return acd_fail(err, ACD_ERR_PARSE, "%s:%zu: element without a name", t->name, t->line);
             snprintf(e->name, sizeof e->name, "%.*s", (int)(n > 31 ? 31 : n), w);
@@ -275,7 +299,21 @@ acd_status acd_ply_read(const char *buf, size_t len, const char *name, acd_mesh_
     char pos[600];
     for (int ei = 0; ei < nelems && s == ACD_OK; ei++) {
         ply_elem *e = &elems[ei];
-        int is_vertex = !strcmp(e->name, "vertex"), is_face = !strcmp(e->name, "face");
+        int is_vertex = !strcmp(e->name, "vertex"), is_face = !strcmp(e->name, "face"),
+            is_strip = !strcmp(e->name, "tristrips");
+        if (e->count > 0 && !is_vertex && !is_face && !is_strip && b->warn) {
+            char msg[ACD_ERROR_MESSAGE_SIZE];
+            if (!strcmp(e->name, "edge"))
+                snprintf(msg, sizeof msg,
+                         "%s:%zu: %llu 'edge' element%s skipped (line segments): only faces and triangle strips are "
+                         "read as geometry, so the mesh may be incomplete",
+                         name, e->line, (unsigned long long)e->count, e->count == 1 ? "" : "s");
+            else
+                snprintf(msg, sizeof msg,
+                         "%s:%zu: %llu '%s' element%s skipped: only vertex, face and tristrips elements are read", name,
+                         e->line, (unsigned long long)e->count, e->name, e->count == 1 ? "" : "s");
+            b->warn(b->warn_user, msg);
+        }
         if (e->nprops == 0) continue;
         /* every record takes at least one byte: refuse counts the rest of the file cannot hold */
         size_t left = format == PLY_ASCII ? (size_t)(r.t.end - r.t.p) : r.len - r.pos;
@@ -292,7 +330,7 @@ acd_status acd_ply_read(const char *buf, size_t len, const char *name, acd_mesh_
                 if (!strcmp(p->name, "y")) py = k;
                 if (!strcmp(p->name, "z")) pz = k;
             } else if (!strcmp(p->name, "vertex_indices") || !strcmp(p->name, "vertex_index") ||
-                       (plist < 0 && is_face)) {
+                       (plist < 0 && (is_face || is_strip))) {
                 if (plist < 0 || strcmp(e->props[plist].name, "vertex_indices") != 0) plist = k;
             }
         }
@@ -300,8 +338,8 @@ acd_status acd_ply_read(const char *buf, size_t len, const char *name, acd_mesh_
             s = acd_fail(err, ACD_ERR_PARSE, "%s: element 'vertex' lacks property x, y or z", name);
             break;
         }
-        if (is_face && plist < 0) {
-            s = acd_fail(err, ACD_ERR_PARSE, "%s: element 'face' has no list property vertex_indices", name);
+        if ((is_face || is_strip) && plist < 0) {
+            s = acd_fail(err, ACD_ERR_PARSE, "%s: element '%s' has no list property vertex_indices", name, e->name);
             break;
         }
         have_face |= is_face;
@@ -332,8 +370,8 @@ acd_status acd_ply_read(const char *buf, size_t len, const char *name, acd_mesh_
                                  e->name, (unsigned long long)i, c);
                     break;
                 }
-                int take = is_face && k == plist;
-                if (take && c < 3) {
+                int take = (is_face || is_strip) && k == plist;
+                if (take && is_face && c < 3) {
                     s = acd_fail(err, ACD_ERR_PARSE, "%s: face %llu has %g vertices (at least 3 needed)",
                                  where(&r, pos, sizeof pos), (unsigned long long)i, c);
                     break;
@@ -351,10 +389,15 @@ acd_status acd_ply_read(const char *buf, size_t len, const char *name, acd_mesh_
                 for (uint64_t j = 0; j < (uint64_t)c && s == ACD_OK; j++) {
                     s = read_value(&r, p->type, &v, e->name, i, err);
                     if (s != ACD_OK || !take) continue;
+                    if (is_strip && v == -1) { /* the end of a strip */
+                        if (!acd_builder_poly_push(b, UINT32_MAX))
+                            s = acd_fail(err, ACD_ERR_NOMEM, "%s: out of memory", name);
+                        continue;
+                    }
                     if (!(v >= 0 && v < (double)nverts)) {
-                        s = acd_fail(err, ACD_ERR_PARSE, "%s: face %llu: vertex index %g out of range (0..%llu)",
-                                     where(&r, pos, sizeof pos), (unsigned long long)i, v,
-                                     (unsigned long long)nverts - 1);
+                        s = acd_fail(err, ACD_ERR_PARSE, "%s: %s %llu: vertex index %g out of range (0..%llu%s)",
+                                     where(&r, pos, sizeof pos), is_strip ? "strip" : "face", (unsigned long long)i, v,
+                                     (unsigned long long)nverts - 1, is_strip ? ", or -1 ending a strip" : "");
                         break;
                     }
                     if (!acd_builder_poly_push(b, (uint32_t)(v0 + (size_t)v)))
@@ -365,6 +408,7 @@ acd_status acd_ply_read(const char *buf, size_t len, const char *name, acd_mesh_
             if (is_vertex && !acd_builder_vertex(b, xyz[0], xyz[1], xyz[2]))
                 s = acd_fail(err, ACD_ERR_NOMEM, "%s: out of memory", name);
             if (is_face) s = acd_builder_fan_or_fail(b, name, 0, err);
+            if (is_strip) s = strip_triangles(b, name, err);
         }
     }
     free(elems);
