@@ -479,9 +479,11 @@ static int split_better(const split_state *S, const split_choice *trial, int pro
                (progress == S->best_progress &&
                 (trial->concavity < best->concavity - S->band ||
                  (trial->concavity <= best->concavity + S->band && trial->hullvol < best->hullvol)));
+    /* against an edge plane, less concave only by more than the input's rounding (acd3/resolve) */
+    double tie = best->plane.kind && !strcmp(best->plane.kind, "edges") ? fmax(S->tol, best->plane.rounding) : S->tol;
     return !S->found || (progress && !S->best_progress) ||
            (progress == S->best_progress &&
-            (trial->concavity < best->concavity - S->tol ||
+            (trial->concavity < best->concavity - tie ||
              (trial->concavity <= best->concavity + S->tol && trial->cut.npieces < best->cut.npieces)));
 }
 
@@ -776,7 +778,11 @@ static void split_evaluate(split_state *S, int i) {
     e->ord = e->order;
     acd_cut_plane pl;
     const acd3_plane_candidate *cd = &S->cand[i];
-    if (acd_cut_plane_from_normal(cd->point, cd->normal, S->extent, &pl, NULL) != ACD_OK) return;
+    /* an edge plane (acd3/resolve) goes exactly through the three points it was spanned by */
+    int spanned = cd->kind && !strcmp(cd->kind, "edges");
+    if ((spanned ? acd_cut_plane_from_points(cd->span[0], cd->span[1], cd->span[2], &pl, NULL)
+                 : acd_cut_plane_from_normal(cd->point, cd->normal, S->extent, &pl, NULL)) != ACD_OK)
+        return;
     split_choice *trial = &e->trial;
     acd_error cerr;
     acd_status cst = S->solid ? acd_plane_cut_map(S->m, S->em, &pl, S->cut_flags, &trial->cut, &cerr)

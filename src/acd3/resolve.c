@@ -151,6 +151,18 @@ static int notch_plane(const acd_mesh *m, const acd3_measure *ms, int strict, ac
  * this fraction of the part's bounding-box diagonal (rounding: the endpoints of edges cut by an
  * earlier plane are computed points). */
 #define EDGE_PLANE_COPLANAR_REL 1e-9
+/* The input's own rounding: a model as users have it was rotated and written in decimal or as
+ * float32, which moves each coordinate by up to 5e-6 of its magnitude (6 significant digits, %g)
+ * or 6e-8 (binary STL). A point is in a plane also when its distance to it is below this fraction
+ * of the part's largest coordinate magnitude (2x the 6-digit rounding; measured deviations of a
+ * fourth endpoint on the rotated CAD models of bench/bench_3d_tilt.py: up to 2.4e-6) ... */
+#define EDGE_PLANE_ROUNDING_REL 1e-5
+/* ... and at most this fraction of the part's bounding-box diagonal (far from the origin the
+ * coordinates' magnitude says nothing of the model's precision). */
+#define EDGE_PLANE_ROUNDING_MAX 1e-4
+/* A face of a sharp reflex edge lies in an edge plane when their normals are within this angle
+ * (degrees): rounding tilts a CAD face by far less, a sharp edge's other face by more than 30. */
+#define EDGE_PLANE_FLAT_DEG 3.0
 /* How many edge planes are proposed (the ones holding the most sharp reflex edges). */
 #define EDGE_PLANES_MAX 3
 
@@ -226,7 +238,16 @@ typedef struct edge_plane {
     int count;   /* sharp reflex edges it holds and resolves */
     double len;  /* their total length */
     int order;   /* creation order (ties) */
+    double shift; /* the cut's distance from it along its unit normal (plane_loop) */
 } edge_plane;
+
+/* The plane's unit normal, (y - x) x (w - x) normalised. */
+static void plane_normal(const edge_plane *P, double n[3]) {
+    double u[3] = {P->y[0] - P->x[0], P->y[1] - P->x[1], P->y[2] - P->x[2]};
+    double v[3] = {P->w[0] - P->x[0], P->w[1] - P->x[1], P->w[2] - P->x[2]};
+    n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
+    normalize(n);
+}
 
 static double cross_len(const double *x, const double *y, const double *w) {
     double u[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]}, v[3] = {w[0] - x[0], w[1] - x[1], w[2] - x[2]};
@@ -234,26 +255,61 @@ static double cross_len(const double *x, const double *y, const double *w) {
     return sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
 }
 
-/* Whether p lies in the plane (exactly, or within tol of it). */
-static int in_plane(const edge_plane *P, const double *p, double tol) {
+/* The side of p: +1, -1, or 0 when it lies in the plane exactly or within tol of it. */
+static int plane_side(const edge_plane *P, const double *p, double tol) {
     double o = acd_orient3d(P->x, P->y, P->w, p);
-    return o == 0 || fabs(o) <= tol * P->nlen;
+    if (o == 0 || fabs(o) <= tol * P->nlen) return 0;
+    return o > 0 ? 1 : -1;
 }
 
+/* Whether p lies in the plane (exactly, or within tol of it). */
+static int in_plane(const edge_plane *P, const double *p, double tol) { return plane_side(P, p, tol) == 0; }
+
 /* Whether the plane holds edge e (both ends in it) and separates its two faces (their far vertices
- * on opposite sides, or one face in the plane and the other off it; decided exactly): cutting
- * there resolves e (the plane of a slot's floor extends the floor's face at both its edges). */
+ * on opposite sides, or one face in the plane and the other off it; within tol): cutting there
+ * resolves e (the plane of a slot's floor extends the floor's face at both its edges). */
 static int plane_resolves(const acd_mesh *m, const edge_plane *P, const sharp_edge *e, double tol) {
     const double *v = m->vertices;
     if (!in_plane(P, v + 3 * (size_t)e->a, tol) || !in_plane(P, v + 3 * (size_t)e->b, tol)) return 0;
-    int s0 = acd_orient3d_sign(P->x, P->y, P->w, v + 3 * (size_t)e->far[0]);
-    int s1 = acd_orient3d_sign(P->x, P->y, P->w, v + 3 * (size_t)e->far[1]);
+    int s0 = plane_side(P, v + 3 * (size_t)e->far[0], tol), s1 = plane_side(P, v + 3 * (size_t)e->far[1], tol);
     return s0 * s1 < 0 || (s0 == 0) != (s1 == 0);
+}
+
+/* Whether one of e's faces lies in the plane of unit normal n: its normal within
+ * EDGE_PLANE_FLAT_DEG of n. (By the angle, not by the far vertex's distance: a needle along e left
+ * by an earlier cut has its far vertex within rounding of every plane through e.) */
+static int face_in_plane(const double *V, const sharp_edge *e, const double n[3]) {
+    const double *a = V + 3 * (size_t)e->a, *b = V + 3 * (size_t)e->b;
+    double cmin = cos(EDGE_PLANE_FLAT_DEG * (3.14159265358979323846 / 180.0));
+    for (int k = 0; k < 2; k++) {
+        const double *c = V + 3 * (size_t)e->far[k];
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double f[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        double l = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        if (l > 0 && fabs(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) >= cmin * l) return 1;
+    }
+    return 0;
 }
 
 /* The same coordinates (a vertex repeated under another id is not a fourth point). */
 static int same_point(const double *p, const double *q) {
     return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+}
+
+/* Whether the line of edge e passes within tol of p. */
+static int on_line(const double *V, const sharp_edge *e, const double *p, double tol) {
+    const double *a = V + 3 * (size_t)e->a, *b = V + 3 * (size_t)e->b;
+    return cross_len(a, b, p) <= tol * e->len;
+}
+
+/* Whether two sharp reflex edges of a plane say it is a plane of the model: they lie in it without
+ * meeting: neither's line passes (within tol) through an endpoint of the other. Two edges meeting
+ * at a point always span a plane (two edges at a vertex, the two pieces of an edge split by a cut,
+ * an edge and a piece of another that ended where it starts), two that do not are coplanar only by
+ * design (a cube face's opposite edges, a slot's two rims) or by chance within tol. */
+static int apart(const double *V, const sharp_edge *e, const sharp_edge *f, double tol) {
+    return !on_line(V, e, V + 3 * (size_t)f->a, tol) && !on_line(V, e, V + 3 * (size_t)f->b, tol) &&
+           !on_line(V, f, V + 3 * (size_t)e->a, tol) && !on_line(V, f, V + 3 * (size_t)e->b, tol);
 }
 
 static int plane_rank_cmp(const void *pa, const void *pb) {
@@ -263,11 +319,142 @@ static int plane_rank_cmp(const void *pa, const void *pb) {
     return (a->order > b->order) - (a->order < b->order);
 }
 
+/* Scratch of plane_loop: marks of the vertices in the plane, and a breadth-first search's. */
+typedef struct loop_scratch {
+    uint8_t *in;      /* by vertex: 1 in the plane */
+    uint32_t *marked; /* the vertices marked in */
+    uint32_t *seen;   /* by vertex: the search that reached it (stamp) */
+    uint32_t *from;   /* by vertex: the vertex it was reached from */
+    uint32_t *queue;
+    uint32_t stamp;
+} loop_scratch;
+
+static int loop_init(loop_scratch *L, size_t nv) {
+    L->in = calloc(nv ? nv : 1, 1);
+    L->seen = calloc(nv ? nv : 1, sizeof *L->seen);
+    L->marked = malloc((nv ? nv : 1) * sizeof *L->marked);
+    L->from = malloc((nv ? nv : 1) * sizeof *L->from);
+    L->queue = malloc((nv ? nv : 1) * sizeof *L->queue);
+    L->stamp = 0;
+    return L->in && L->seen && L->marked && L->from && L->queue;
+}
+
+static void loop_free(loop_scratch *L) {
+    free(L->in), free(L->seen), free(L->marked), free(L->from), free(L->queue);
+}
+
+/* Whether the mesh edge a - b (em: closed edge map with twins) has a face lying in the plane of
+ * unit normal n. */
+static int edge_flat(const acd_mesh *m, const acd_edge_map *em, uint32_t a, uint32_t b, const double n[3]) {
+    uint32_t h = acd_edge_map_find(em, a, b);
+    if (h == ACD_EDGE_NONE || em->twin[h] == ACD_EDGE_NONE) return 1;
+    uint32_t t = em->twin[h];
+    sharp_edge e = {a, b, {m->triangles[3 * (size_t)(h / 3) + (h % 3 + 2) % 3], m->triangles[3 * (size_t)(t / 3) + (t % 3 + 2) % 3]}, 0};
+    return face_in_plane(m->vertices, &e, n);
+}
+
+/* A path from a to b through the vertices in the plane, not along the edge a - b itself nor through
+ * vertex skip (UINT32_MAX: none); its length in edges (0: none), the path in L->from from b. */
+static size_t loop_path(const acd_edge_graph *g, loop_scratch *L, uint32_t a, uint32_t b, uint32_t skip) {
+    uint32_t st = ++L->stamp;
+    size_t qh = 0, qt = 0;
+    L->queue[qt++] = a;
+    L->seen[a] = st;
+    while (qh < qt) {
+        uint32_t v = L->queue[qh++];
+        for (size_t k = g->row[v]; k < g->row[v + 1]; k++) {
+            uint32_t u = g->adj[k];
+            if (!L->in[u] || L->seen[u] == st || u == skip || (v == a && u == b)) continue;
+            L->seen[u] = st, L->from[u] = v;
+            if (u == b) {
+                size_t len = 0;
+                for (uint32_t w = b; w != a; w = L->from[w]) len++;
+                return len;
+            }
+            L->queue[qt++] = u;
+        }
+    }
+    return 0;
+}
+
+/* Whether the plane closes a loop of the part's edges through one of the sharp reflex edges it
+ * holds (held[0..nh) of all): a cycle of at least four edges lying in it (within tol), one of them
+ * with no face in it. A feature set on a planar face meets the body along such a loop (the star's
+ * pyramid along a cube face's square, a bar of a cross along a rectangle; after earlier cuts the
+ * loop goes on along their caps' edges), so the plane cuts the part along existing edges. Two
+ * edges of a scan that lie in a plane by chance within tol (mirror images on a symmetric model,
+ * three edges of a crease) close no loop; the edges of one face region lying in the plane do (the
+ * remnant of a scan triangle cut by an earlier plane), but all have a face in it. */
+static int plane_loop(const acd_mesh *m, const acd_edge_graph *g, const acd_edge_map *em, edge_plane *P,
+                      const sharp_edge *all, const uint32_t *held, size_t nh, double tol, loop_scratch *L) {
+    double n[3];
+    plane_normal(P, n);
+    /* the vertices in the plane: the rounded distance first, exact within twice tol */
+    size_t nm = 0;
+    for (uint32_t v = 0; v < m->nvertices; v++) {
+        const double *p = m->vertices + 3 * (size_t)v;
+        double d = n[0] * (p[0] - P->x[0]) + n[1] * (p[1] - P->x[1]) + n[2] * (p[2] - P->x[2]);
+        if (fabs(d) <= 2 * tol && in_plane(P, p, tol)) L->in[v] = 1, L->marked[nm++] = v;
+    }
+    int found = 0;
+    for (size_t i = 0; i < nh && !found; i++) {
+        const sharp_edge *e = &all[held[i]];
+        if (!L->in[e->a] || !L->in[e->b]) continue;
+        uint32_t skip = UINT32_MAX;
+        size_t len = loop_path(g, L, e->a, e->b, skip);
+        if (len == 2) { /* a triangle: three points span any plane; around its apex */
+            skip = L->from[e->b];
+            len = loop_path(g, L, e->a, e->b, skip);
+        }
+        if (len < 3) continue;
+        found = !edge_flat(m, em, e->a, e->b, n);
+        for (uint32_t w = e->b; w != e->a && !found; w = L->from[w]) found = !edge_flat(m, em, L->from[w], w, n);
+    }
+    /* the faces lying in the plane (a crossing bar's side at a cross's junction): the cut puts each
+     * on the side opposite its outward normal when it lies in the plane exactly; within rounding its
+     * corners fall on both sides and the cut would leave slivers of it on the other piece (fins as
+     * long as the face, which the pieces' concavity measures). The plane is moved off them, to the
+     * side they face, by twice the largest distance of a corner on that side. */
+    P->shift = 0;
+    int facing = 0;
+    double cmin = cos(EDGE_PLANE_FLAT_DEG * (3.14159265358979323846 / 180.0)), out = 0;
+    for (size_t t = 0; t < m->ntriangles && found; t++) {
+        const uint32_t *tr = m->triangles + 3 * t;
+        if (!L->in[tr[0]] || !L->in[tr[1]] || !L->in[tr[2]]) continue;
+        const double *a = m->vertices + 3 * (size_t)tr[0], *b = m->vertices + 3 * (size_t)tr[1],
+                     *c = m->vertices + 3 * (size_t)tr[2];
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double f[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        double fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2], fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        if (!(fabs(fn) >= cmin * fl) || !(fl > 0)) continue; /* a needle along a line in the plane */
+        int s = fn > 0 ? 1 : -1;
+        if (facing && s != facing) found = 0; /* faces in it facing both ways: none is cut cleanly */
+        facing = s;
+        for (int k = 0; k < 3; k++) {
+            const double *p = m->vertices + 3 * (size_t)tr[k];
+            out = fmax(out, s * (n[0] * (p[0] - P->x[0]) + n[1] * (p[1] - P->x[1]) + n[2] * (p[2] - P->x[2])));
+        }
+    }
+    if (facing && out > 0) P->shift = facing * 2 * out;
+    for (size_t k = 0; k < nm; k++) L->in[L->marked[k]] = 0;
+    return found;
+}
+
+/* The distance within which a point is in an edge plane: EDGE_PLANE_ROUNDING_REL of the part's
+ * largest coordinate magnitude, at most EDGE_PLANE_ROUNDING_MAX and at least EDGE_PLANE_COPLANAR_REL
+ * of its bounding-box diagonal. */
+static double edge_plane_tol(const acd_mesh *m) {
+    double extent = acd_scale_of_points(m->vertices, m->nvertices, 3).extent, mag = 0;
+    for (size_t i = 0; i < 3 * m->nvertices; i++) mag = fmax(mag, fabs(m->vertices[i]));
+    return fmax(EDGE_PLANE_COPLANAR_REL * extent, fmin(EDGE_PLANE_ROUNDING_REL * mag, EDGE_PLANE_ROUNDING_MAX * extent));
+}
+
 /* The planes through a sharp reflex edge at the witness that hold and resolve another sharp reflex
  * edge of the part (a cube corner's three edges give its three face planes; a slot's floor holds
  * both its edges), ranked by how many sharp reflex edges they hold and resolve, then their length;
- * at most max, kind "edges". 0 when the witness has no sharp reflex edge (a scan's shallow valleys:
- * no plane added), or on allocation failure. */
+ * at most max, kind "edges", each with the three points it was spanned by (the cut goes through
+ * them exactly). 0 when the witness has no sharp reflex edge (a scan's shallow valleys: no plane
+ * added), or on allocation failure. */
 static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, int max,
                        acd3_plane_candidate *out) {
     uint32_t x = ms->witness;
@@ -279,6 +466,8 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
     int n = 0;
     sharp_edge *all = NULL;
     edge_plane *pl = NULL;
+    uint32_t *held = NULL;
+    loop_scratch L = {0};
     size_t nw = 0, na = 0, npl = 0;
     /* the witness's sharp reflex edges first (each edge once: from its half-edge x -> y) */
     for (size_t k = g->row[x]; k < g->row[x + 1]; k++) {
@@ -299,9 +488,10 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
     /* the planes: for each witness edge e and each other sharp reflex edge f, the plane through e and
      * f's endpoint farther from e's line, when f lies in it and it resolves both; a plane found
      * again (from another f or another witness edge) counts nothing new */
-    double tol = EDGE_PLANE_COPLANAR_REL * acd_scale_of_points(m->vertices, m->nvertices, 3).extent;
+    double tol = edge_plane_tol(m);
     pl = malloc(nw * na * sizeof *pl);
-    if (!pl) goto done;
+    held = malloc(na * sizeof *held);
+    if (!pl || !held || !loop_init(&L, m->nvertices)) goto done;
     const double *V = m->vertices;
     for (size_t i = 0; i < nw; i++) {
         const sharp_edge *e = &all[i];
@@ -315,7 +505,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
             const double *w = da >= db ? fa : fb;
             double dw = da >= db ? da : db;
             if (!(dw > tol * elen)) continue; /* f on e's line: no plane */
-            edge_plane P = {ex, ey, w, dw, 0, 0, (int)npl};
+            edge_plane P = {ex, ey, w, dw, 0, 0, (int)npl, 0};
             if (!plane_resolves(m, &P, f, tol) || !plane_resolves(m, &P, e, tol)) continue;
             /* already found? (its three points in that plane) */
             int dup = 0;
@@ -324,40 +514,50 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
             if (!dup) pl[npl++] = P;
         }
     }
-    /* rank: the sharp reflex edges each plane holds and resolves (within rounding). A plane is
-     * kept only when they have a fourth endpoint in it exactly (orient3d zero) besides the three
-     * it was spanned by: any two edges at a vertex span a plane, and two sharp edges of one scan
-     * triangle cut by an earlier plane lie in its plane within rounding; only an exactly coplanar
-     * fourth point shows a plane of the model (a CAD face plane, a slot's floor). A scan's sharp
-     * edges at its witness so give none (bunny.obj, camel, armadillo and elephant keep their
-     * output only so, docs/acd3d.md) */
+    /* rank: the sharp reflex edges each plane holds and resolves (within tol). A plane is kept only
+     * when something besides the three points that spanned it says it is a plane of the model:
+     * - a fourth endpoint of those edges exactly in it (orient3d zero): a CAD face plane, a slot's
+     *   floor, as written;
+     * - or two of those edges that cross it (neither has a face in it) and lie apart (apart()): a
+     *   CAD plane after rotation and rounding (bench/bench_3d_tilt.py).
+     * Any two edges at a vertex span a plane, and two sharp edges of one scan triangle cut by an
+     * earlier plane lie in the triangle's plane within rounding, with a face in it; neither says
+     * anything about the model, and a scan's witnesses give none (bunny.obj, camel, armadillo and
+     * elephant keep their output only so, docs/acd3d.md) */
     size_t kept = 0;
     for (size_t q = 0; q < npl; q++) {
-        int fourth = 0;
-        for (size_t j = 0; j < na; j++)
-            if (plane_resolves(m, &pl[q], &all[j], tol)) {
-                pl[q].count++, pl[q].len += all[j].len;
-                for (int k = 0; k < 2; k++) {
-                    const double *p = V + 3 * (size_t)(k ? all[j].b : all[j].a);
-                    fourth |= !same_point(p, pl[q].x) && !same_point(p, pl[q].y) && !same_point(p, pl[q].w) &&
-                              acd_orient3d_sign(pl[q].x, pl[q].y, pl[q].w, p) == 0;
-                }
+        int fourth = 0, spread = 0;
+        size_t nh = 0;
+        for (size_t j = 0; j < na; j++) {
+            if (!plane_resolves(m, &pl[q], &all[j], tol)) continue;
+            pl[q].count++, pl[q].len += all[j].len;
+            for (int k = 0; k < 2; k++) {
+                const double *p = V + 3 * (size_t)(k ? all[j].b : all[j].a);
+                fourth |= !same_point(p, pl[q].x) && !same_point(p, pl[q].y) && !same_point(p, pl[q].w) &&
+                          acd_orient3d_sign(pl[q].x, pl[q].y, pl[q].w, p) == 0;
             }
-        if (fourth) pl[kept++] = pl[q];
+            for (size_t h = 0; h < nh && !spread; h++) spread = apart(V, &all[held[h]], &all[j], tol);
+            held[nh++] = (uint32_t)j;
+        }
+        int loop = !fourth && spread && plane_loop(m, g, &em, &pl[q], all, held, nh, tol, &L);
+        if (fourth || loop) pl[kept++] = pl[q];
     }
     npl = kept;
     qsort(pl, npl, sizeof *pl, plane_rank_cmp);
     for (size_t q = 0; q < npl && n < max; q++) {
-        double u[3] = {pl[q].y[0] - pl[q].x[0], pl[q].y[1] - pl[q].x[1], pl[q].y[2] - pl[q].x[2]};
-        double v[3] = {pl[q].w[0] - pl[q].x[0], pl[q].w[1] - pl[q].x[1], pl[q].w[2] - pl[q].x[2]};
-        double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-        normalize(c);
-        memcpy(out[n].point, pl[q].x, sizeof(double[3]));
-        memcpy(out[n].normal, c, sizeof(double[3]));
+        double *nq = out[n].normal, sh = pl[q].shift;
+        plane_normal(&pl[q], nq);
+        const double *sp[3] = {pl[q].x, pl[q].y, pl[q].w};
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 3; j++) out[n].span[k][j] = sh == 0 ? sp[k][j] : sp[k][j] + sh * nq[j];
+        memcpy(out[n].point, out[n].span[0], sizeof(double[3]));
+        out[n].rounding = tol;
         out[n].kind = "edges";
         n++;
     }
 done:
+    loop_free(&L);
+    free(held);
     free(pl);
     free(all);
     acd_edge_map_free(&em);

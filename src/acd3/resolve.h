@@ -4,9 +4,11 @@
  * Candidates, tried in order until one splits the part into two or more solids:
  * E. The edge planes (ours; docs/acd3d.md "Planes through reflex edges"), only when the witness
  *    has a sharp reflex edge (its faces' normals turn by more than 30 degrees): the planes through
- *    it that hold and resolve other sharp reflex edges of the part, with a fourth endpoint of those
- *    edges exactly in them (orient3d), ranked by how many they hold, at most 3 (kind "edges"): a
- *    cube corner's face planes, a slot's floor. Not in the notch resolver.
+ *    it that hold and resolve other sharp reflex edges of the part (within the input's rounding),
+ *    with a fourth endpoint of those edges exactly in them (orient3d) or two of them crossing the
+ *    plane apart from each other, ranked by how many they hold, at most 3 (kind "edges"): a cube
+ *    corner's face planes, a slot's floor, also after rotation and rounding. Not in the notch
+ *    resolver.
  * 0. The global cut's plane (solid mode, default resolver; acd3/global_cut): the concavity-
  *    weighted best-fit plane of the minimum-weight cycle of pocket cuts through the witness's
  *    pocket (kind "global"), of the root pocket cut alone when no cycle closes ("pocket"), or of
@@ -40,6 +42,12 @@ typedef struct acd3_plane_candidate {
     double point[3];
     double normal[3]; /* unit */
     const char *kind; /* "edges", "global", "pocket", "cup", "valley", "notch", "face", "centroid", "axis" */
+    /* kind "edges" only (set by nothing else): the three points the plane was spanned by, which the
+     * cut goes through exactly (a plane made from point and normal misses two of them by rounding
+     * and leaves needles along the edge it holds), and the input's rounding at the part (distance;
+     * concavities closer than this are the same: a cut beats the edge plane only by more) */
+    double span[3][3];
+    double rounding;
 } acd3_plane_candidate;
 
 typedef struct acd3_resolve_opts {
