@@ -152,10 +152,12 @@ static int notch_plane(const acd_mesh *m, const acd3_measure *ms, int strict, ac
  * earlier plane are computed points). */
 #define EDGE_PLANE_COPLANAR_REL 1e-9
 /* The input's own rounding: a model as users have it was rotated and written in decimal or as
- * float32, which moves each coordinate by up to 5e-6 of its magnitude (6 significant digits, %g)
- * or 6e-8 (binary STL). A point is in a plane also when its distance to it is below this fraction
- * of the part's largest coordinate magnitude (2x the 6-digit rounding; measured deviations of a
- * fourth endpoint on the rotated CAD models of bench/bench_3d_tilt.py: up to 2.4e-6) ... */
+ * float32, which moves each coordinate by up to 5e-6 of its magnitude (6 significant digits, %g,
+ * as most of data/meshes, scans and CAD alike) or 6e-8 (binary STL). A point is in an edge plane
+ * also when its distance to it is below this fraction of the part's largest coordinate magnitude
+ * (2x the 6-digit rounding of one coordinate; on bench/bench_3d_tilt.py's rotated copies the held
+ * endpoints of accepted planes lie up to 0.14 of it off the plane on the star at 6 digits, up to
+ * 0.9 on rotor, whose own file has 6 digits) ... */
 #define EDGE_PLANE_ROUNDING_REL 1e-5
 /* ... and at most this fraction of the part's bounding-box diagonal (far from the origin the
  * coordinates' magnitude says nothing of the model's precision). */
@@ -302,11 +304,11 @@ static int on_line(const double *V, const sharp_edge *e, const double *p, double
     return cross_len(a, b, p) <= tol * e->len;
 }
 
-/* Whether two sharp reflex edges of a plane say it is a plane of the model: they lie in it without
- * meeting: neither's line passes (within tol) through an endpoint of the other. Two edges meeting
- * at a point always span a plane (two edges at a vertex, the two pieces of an edge split by a cut,
- * an edge and a piece of another that ended where it starts), two that do not are coplanar only by
- * design (a cube face's opposite edges, a slot's two rims) or by chance within tol. */
+/* Whether two sharp reflex edges of a plane lie apart: neither's line passes (within tol) through
+ * an endpoint of the other. Two edges meeting at a point always span a plane (two edges at a vertex,
+ * the two pieces of an edge split by a cut, an edge and a piece of another that ended where it
+ * starts); two that do not are coplanar by design (a cube face's opposite edges, a slot's two rims)
+ * or by chance within tol (mirror images on a symmetric scan: plane_loop tells them apart). */
 static int apart(const double *V, const sharp_edge *e, const sharp_edge *f, double tol) {
     return !on_line(V, e, V + 3 * (size_t)f->a, tol) && !on_line(V, e, V + 3 * (size_t)f->b, tol) &&
            !on_line(V, f, V + 3 * (size_t)e->a, tol) && !on_line(V, f, V + 3 * (size_t)e->b, tol);
@@ -518,12 +520,12 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
      * when something besides the three points that spanned it says it is a plane of the model:
      * - a fourth endpoint of those edges exactly in it (orient3d zero): a CAD face plane, a slot's
      *   floor, as written;
-     * - or two of those edges that cross it (neither has a face in it) and lie apart (apart()): a
-     *   CAD plane after rotation and rounding (bench/bench_3d_tilt.py).
-     * Any two edges at a vertex span a plane, and two sharp edges of one scan triangle cut by an
-     * earlier plane lie in the triangle's plane within rounding, with a face in it; neither says
-     * anything about the model, and a scan's witnesses give none (bunny.obj, camel, armadillo and
-     * elephant keep their output only so, docs/acd3d.md) */
+     * - or, two of those edges lying apart (apart()), a loop of the part's edges in it through one
+     *   of them (plane_loop): a CAD plane after rotation and rounding (bench/bench_3d_tilt.py).
+     * Any two edges at a vertex span a plane, and within tol so do a scan's mirror-image edges,
+     * three edges of a crease, and the sharp edges of a scan triangle cut by an earlier plane (with
+     * a face in it); none says anything about the model, and a scan's witnesses keep the
+     * candidates they had (ident's 21 runs bitwise unchanged, docs/acd3d.md) */
     size_t kept = 0;
     for (size_t q = 0; q < npl; q++) {
         int fourth = 0, spread = 0;
