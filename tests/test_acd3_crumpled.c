@@ -148,7 +148,11 @@ static void test_scaled_data(void **state) {
             assert_int_equal(acd3_decompose_screen(&m, &p, ACD3_VOLUME_SCREEN_REL, &st, &r, &err), ACD_OK);
             print_message("%s x %.17g%s: %zu parts, max concavity %g (tau %g), %zu halved\n", names[k], scale[k],
                           merge ? "" : " (no merge)", r.nparts, r.max_concavity, r.tau, st.halved);
-            assert_true(st.halved >= 1); /* the fallback was needed (else the input no longer tests it) */
+            /* the fallback was needed (else the input no longer tests it). Not on the rotor since the
+             * edge planes hold its rounded planes (acd3/resolve, docs/results/3d-edgepair.md): at
+             * 1e9 and at 3e9, 7e8, 1e-3, 123.456, 0.85126 no part needs the halving planes; it stays
+             * here for check_parts (every part within tau) */
+            if (k == 0) assert_true(st.halved >= 1);
             check_parts(&m, &r);
             acd3d_result_free(&r);
         }
