@@ -20,15 +20,6 @@ CAD = ["rotor.off", "rotor_small.off", "anchor.off", "fandisk.off", "double-toru
        "blade.off", "couplingdown.off", "cheese.off", "beam.off"]
 
 
-def write_off17(path, V, F):
-    with open(path, "w") as fh:
-        fh.write("OFF\n%d %d 0\n" % (len(V), len(F)))
-        for v in V:
-            fh.write("%.17g %.17g %.17g\n" % v)
-        for f in F:
-            fh.write("3 %d %d %d\n" % f)
-
-
 def shuffled(F, seed):
     r = random.Random(seed)
     G = list(F)
@@ -66,7 +57,7 @@ def run(a):
         V, F = A.read_mesh(os.path.join(A.MESHDIR, m))
         for tn, (fmt, TV, TF) in transforms(V, F, a.set).items():
             p = os.path.join(work, "%s.%s.%s" % (m.rsplit(".", 1)[0], tn, fmt))
-            {"off": write_off17, "obj": A.write_obj, "stl": A.write_stl_binary}[fmt](p, TV, TF)
+            {"off": A.write_off, "obj": A.write_obj, "stl": A.write_stl_binary}[fmt](p, TV, TF)
             rec = {"mesh": m, "t": tn}
             for key, extra in (("default", []), ("budget", ["--budget", "16", "--trim-coverage", "0.0008"])):
                 t0 = time.time()
