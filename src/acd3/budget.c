@@ -52,6 +52,13 @@
 #define BUDGET_P1_CUTS_PER_PART 32
 /* Candidate planes a phase-1 evaluation adds: the midplanes of the part's bounding box. */
 #define BUDGET_P1_MIDPLANES 3
+/* A part whose phase-1 evaluation found no cut with progress is evaluated once more with planes
+ * across its box's longest side at these fractions instead of the midplanes: the midplane can
+ * graze a feature and leave a speck the sliver rule refuses (cheese.off as an OBJ soup: a third
+ * piece of 6.4e-16 where it touched a hole's rim, the part left above the limit). Each leaves
+ * pieces in at most 0.6 of that side, a box diagonal of at most sqrt((0.36 + 2) / 3) = 0.887 of the
+ * part's, below BUDGET_P1_SHRINK. */
+static const double BUDGET_P1_OFFSETS[BUDGET_P1_MIDPLANES] = {0.45, 0.55, 0.4};
 
 typedef struct atom {
     acd_mesh mesh;   /* owned for pieces, a shallow copy for input parts */
@@ -72,6 +79,7 @@ typedef struct atom {
     int evaluated;   /* gain and cut computed (lazily: only when the atom may be the next cut) */
     int p1;          /* evaluated for phase 1: its cut makes progress (BUDGET_P1_SHRINK) or it has none */
     int progress;    /* its cut's pieces' box diagonals are each at most BUDGET_P1_SHRINK of its own */
+    int p1off;       /* evaluated for phase 1 again, with BUDGET_P1_OFFSETS (the first found none) */
     int p1gen;       /* phase-1 cuts between it and the last atom a budget-phase cut made */
     int tested;      /* leaf_test done: ok and bound hold */
     int use_kept;    /* its hull is `kept` */
@@ -788,8 +796,9 @@ static double box_diag(const acd_mesh *m, double lo[3], double hi[3]) {
 }
 
 /* The midplanes of m's bounding box, across its longest side first (a phase-1 evaluation's fallback
- * candidates: the first always makes progress), into out (room for BUDGET_P1_MIDPLANES); how many. */
-static int box_midplanes(const acd_mesh *m, acd3_plane_candidate *out) {
+ * candidates: the first always makes progress), into out (room for BUDGET_P1_MIDPLANES); how many.
+ * offsets: instead, the planes across the longest side at BUDGET_P1_OFFSETS. */
+static int box_midplanes(const acd_mesh *m, int offsets, acd3_plane_candidate *out) {
     double lo[3], hi[3];
     box_diag(m, lo, hi);
     int ord[3] = {0, 1, 2}, n = 0;
@@ -799,6 +808,16 @@ static int box_midplanes(const acd_mesh *m, acd3_plane_candidate *out) {
             ord[j] = ord[j - 1];
             ord[j - 1] = x;
         }
+    if (offsets) {
+        const int k = ord[0];
+        if (!(hi[k] > lo[k])) return 0;
+        for (int i = 0; i < BUDGET_P1_MIDPLANES; i++, n++) {
+            for (int c = 0; c < 3; c++) out[n].normal[c] = c == k, out[n].point[c] = 0.5 * (lo[c] + hi[c]);
+            out[n].point[k] = lo[k] + BUDGET_P1_OFFSETS[i] * (hi[k] - lo[k]);
+            out[n].kind = "volume";
+        }
+        return n;
+    }
     for (int i = 0; i < 3; i++) {
         int k = ord[i];
         if (!(hi[k] > lo[k])) continue;
@@ -1097,7 +1116,7 @@ static void evaluate_batch(const budget_state *S, const size_t *idx, int nb, int
         int lim = P[j].nd < BUDGET_REFINE_DIRS ? P[j].nd : BUDGET_REFINE_DIRS;
         sort_dirs(&P[j], lim);
         nc[j] = plan_planes(&P[j], S->nexact, BUDGET_REFINE_DIRS, cand[j]);
-        if (S->a[idx[j]].p1) nc[j] += box_midplanes(&S->a[idx[j]].mesh, cand[j] + nc[j]);
+        if (S->a[idx[j]].p1) nc[j] += box_midplanes(&S->a[idx[j]].mesh, S->a[idx[j]].p1off, cand[j] + nc[j]);
         for (int k = 0; k < nc[j]; k++) tj[ntask] = j, td[ntask] = k, ntask++;
     }
     for (int j = 0; j < nb; j++) plan_free(&P[j]);
@@ -1381,7 +1400,16 @@ static acd_status budget_split(const acd_mesh *parts, const acd_hull *const *hul
                  * (that cut among its candidates and the midplanes; none: it stays as it is) */
                 for (size_t i = 0; i < S.n; i++) {
                     atom *A = &S.a[i];
-                    if (!A->alive || A->ok || A->p1 || A->p1gen >= BUDGET_P1_MAX_GEN) continue;
+                    if (!A->alive || A->ok || A->p1gen >= BUDGET_P1_MAX_GEN) continue;
+                    if (A->p1) { /* evaluated for phase 1 without progress: once more, off the middle */
+                        if (A->evaluated && !A->progress && !A->p1off && A->st == ACD_OK) {
+                            atom_cut_free(A);
+                            A->evaluated = 0;
+                            A->gain = -INFINITY;
+                            A->p1off = 1;
+                        }
+                        continue;
+                    }
                     A->p1 = 1;
                     if (A->evaluated && !A->progress) {
                         atom_cut_free(A);
