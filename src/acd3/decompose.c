@@ -14,6 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <threads.h>
 #include <time.h>
 #ifdef _OPENMP
 #include <omp.h>
@@ -359,16 +360,15 @@ typedef struct cand_eval {
 } cand_eval;
 
 /* Cancellation within a batch of nodes: the progress callback is called by the calling thread
- * (the one whose poll_owner is this poll) between candidate evaluations, not only between
+ * (owner: the thread that called acd3d_decompose) between candidate evaluations, not only between
  * batches (the root's batch is most of a large mesh's run); once it asks to stop, every thread
  * stops claiming candidates and the batch ends ACD_ERR_CANCELLED. */
 typedef struct cancel_poll {
     acd_progress_fn fn;
     void *user;
+    thrd_t owner;
     int stop; /* read and written atomically */
 } cancel_poll;
-
-static _Thread_local const cancel_poll *poll_owner;
 
 static int poll_stop(cancel_poll *p) {
     if (!p) return 0;
@@ -377,7 +377,7 @@ static int poll_stop(cancel_poll *p) {
 #pragma omp atomic read
 #endif
     stop = p->stop;
-    if (!stop && poll_owner == p && p->fn(p->user, -1.0, "measuring and cutting")) {
+    if (!stop && thrd_equal(thrd_current(), p->owner) && p->fn(p->user, -1.0, "measuring and cutting")) {
         stop = 1;
 #ifdef _OPENMP
 #pragma omp atomic write
@@ -1861,8 +1861,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
     /* Nodes are processed in batches: every node waiting when a batch starts is measured and
      * split independently (in parallel), then the children are appended in node order. The
      * tree, and so the output, is the same for any number of threads. */
-    cancel_poll poll = {params->progress, params->progress_user, 0};
-    poll_owner = &poll;
+    cancel_poll poll = {params->progress, params->progress_user, thrd_current(), 0};
     for (size_t i = 0; i < t.n;) {
         if (params->progress && params->progress(params->progress_user, -1.0, "measuring and cutting")) {
             st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled after %zu parts", nleaves);
@@ -1955,7 +1954,6 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
         if (st != ACD_OK) goto fail;
         i = b1;
     }
-    poll_owner = NULL;
 
     /* max_hulls: merge the cheapest adjacent parts. Siblings are adjacent (they share their
      * parent's cut), and their union is their parent, whose concavity is known: collapse the
@@ -2095,7 +2093,6 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
     out->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     return ACD_OK;
 fail:
-    poll_owner = NULL;
     for (size_t i = 0; i < t.n; i++) {
         acd_mesh_free(&t.a[i].mesh);
         measured_free(&t.a[i].cache);
