@@ -47,6 +47,16 @@ static double face_normal(const acd_mesh *m, uint32_t f, double n[3]) {
     return l > FACE_MIN_SINE * e ? l : 0.0;
 }
 
+/* The unnormalized normal (b - a) x (c - a) of the triangle a, b, c into f; returns its length. */
+static double tri_cross(const double *a, const double *b, const double *c, double f[3]) {
+    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    f[0] = u[1] * v[2] - u[2] * v[1], f[1] = u[2] * v[0] - u[0] * v[2], f[2] = u[0] * v[1] - u[1] * v[0];
+    return sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+}
+
+/* The cosine of an angle in degrees. */
+static double cos_deg(double deg) { return cos(deg * (3.14159265358979323846 / 180.0)); }
+
 static int valley_plane(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, acd3_plane_candidate *c) {
     uint32_t x = ms->witness;
     double thr = VALLEY_FRACTION * ms->vconc[x];
@@ -174,9 +184,10 @@ typedef struct sharp_edge {
     double len;
 } sharp_edge;
 
-/* Whether the edge a -> b of the part (em: its closed edge map with twins) is a sharp reflex edge;
- * fills *e. Reflex is decided exactly (orient3d: the far vertex of the face across it lies
- * outside the plane of the face that holds a -> b); sharp by the turn of the face normals. */
+/* Whether the edge of half-edge h (corner h of its face: the edge a -> b) and its twin t is a
+ * sharp reflex edge; fills *e. Reflex is decided exactly (orient3d: the far vertex of the face
+ * across it lies outside the plane of the face that holds a -> b); sharp by the turn of the face
+ * normals (cosine below cos_max). */
 static int sharp_halves(const acd_mesh *m, uint32_t h, uint32_t t, double cos_max, sharp_edge *e) {
     uint32_t f = h / 3, g = t / 3;
     uint32_t a = m->triangles[h], b = m->triangles[3 * (size_t)f + (h % 3 + 1) % 3];
@@ -194,9 +205,8 @@ static int sharp_halves(const acd_mesh *m, uint32_t h, uint32_t t, double cos_ma
     return 1;
 }
 
-/* Whether the edge a -> b of the part (em: its closed edge map with twins) is a sharp reflex edge;
- * fills *e. Reflex is decided exactly (orient3d: the far vertex of the face across it lies
- * outside the plane of the face that holds a -> b); sharp by the turn of the face normals. */
+/* Whether the edge a -> b of the part (em: its closed edge map with twins) is a sharp reflex edge
+ * (sharp_halves); fills *e. */
 static int sharp_reflex(const acd_mesh *m, const acd_edge_map *em, uint32_t a, uint32_t b, double cos_max,
                         sharp_edge *e) {
     uint32_t h = acd_edge_map_find(em, a, b);
@@ -245,16 +255,22 @@ typedef struct edge_plane {
 
 /* The plane's unit normal, (y - x) x (w - x) normalised. */
 static void plane_normal(const edge_plane *P, double n[3]) {
-    double u[3] = {P->y[0] - P->x[0], P->y[1] - P->x[1], P->y[2] - P->x[2]};
-    double v[3] = {P->w[0] - P->x[0], P->w[1] - P->x[1], P->w[2] - P->x[2]};
-    n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
+    tri_cross(P->x, P->y, P->w, n);
     normalize(n);
 }
 
 static double cross_len(const double *x, const double *y, const double *w) {
-    double u[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]}, v[3] = {w[0] - x[0], w[1] - x[1], w[2] - x[2]};
-    double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    return sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    double c[3];
+    return tri_cross(x, y, w, c);
+}
+
+/* Whether the triangle a, b, c lies in the plane of unit normal n (its normal within
+ * EDGE_PLANE_FLAT_DEG of +-n, cmin that angle's cosine): +1 facing along n, -1 against, 0 not (or
+ * no normal: a needle). */
+static int tri_flat(const double *a, const double *b, const double *c, const double n[3], double cmin) {
+    double f[3], l = tri_cross(a, b, c, f), fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
+    if (!(l > 0) || !(fabs(fn) >= cmin * l)) return 0;
+    return fn > 0 ? 1 : -1;
 }
 
 /* The side of p: +1, -1, or 0 when it lies in the plane exactly or within tol of it. */
@@ -282,14 +298,9 @@ static int plane_resolves(const acd_mesh *m, const edge_plane *P, const sharp_ed
  * by an earlier cut has its far vertex within rounding of every plane through e.) */
 static int face_in_plane(const double *V, const sharp_edge *e, const double n[3]) {
     const double *a = V + 3 * (size_t)e->a, *b = V + 3 * (size_t)e->b;
-    double cmin = cos(EDGE_PLANE_FLAT_DEG * (3.14159265358979323846 / 180.0));
-    for (int k = 0; k < 2; k++) {
-        const double *c = V + 3 * (size_t)e->far[k];
-        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        double f[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        double l = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-        if (l > 0 && fabs(f[0] * n[0] + f[1] * n[1] + f[2] * n[2]) >= cmin * l) return 1;
-    }
+    double cmin = cos_deg(EDGE_PLANE_FLAT_DEG);
+    for (int k = 0; k < 2; k++)
+        if (tri_flat(a, b, V + 3 * (size_t)e->far[k], n, cmin)) return 1;
     return 0;
 }
 
@@ -419,17 +430,13 @@ static int plane_loop(const acd_mesh *m, const acd_edge_graph *g, const acd_edge
      * side they face, by twice the largest distance of a corner on that side. */
     P->shift = 0;
     int facing = 0;
-    double cmin = cos(EDGE_PLANE_FLAT_DEG * (3.14159265358979323846 / 180.0)), out = 0;
+    double cmin = cos_deg(EDGE_PLANE_FLAT_DEG), out = 0;
     for (size_t t = 0; t < m->ntriangles && found; t++) {
         const uint32_t *tr = m->triangles + 3 * t;
         if (!L->in[tr[0]] || !L->in[tr[1]] || !L->in[tr[2]]) continue;
-        const double *a = m->vertices + 3 * (size_t)tr[0], *b = m->vertices + 3 * (size_t)tr[1],
-                     *c = m->vertices + 3 * (size_t)tr[2];
-        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        double f[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        double fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2], fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-        if (!(fabs(fn) >= cmin * fl) || !(fl > 0)) continue; /* a needle along a line in the plane */
-        int s = fn > 0 ? 1 : -1;
+        int s = tri_flat(m->vertices + 3 * (size_t)tr[0], m->vertices + 3 * (size_t)tr[1],
+                         m->vertices + 3 * (size_t)tr[2], n, cmin);
+        if (s == 0) continue; /* not in the plane, or a needle along a line in it */
         if (facing && s != facing) found = 0; /* faces in it facing both ways: none is cut cleanly */
         facing = s;
         for (int k = 0; k < 3; k++) {
@@ -461,7 +468,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
                        acd3_plane_candidate *out) {
     uint32_t x = ms->witness;
     if (max <= 0 || g->nvertices != m->nvertices) return 0;
-    double cos_max = cos(EDGE_PLANE_MIN_TURN_DEG * (3.14159265358979323846 / 180.0));
+    double cos_max = cos_deg(EDGE_PLANE_MIN_TURN_DEG);
     if (!witness_sharp(m, x, cos_max)) return 0;
     acd_edge_map em;
     if (acd_edge_map_closed(m->triangles, m->ntriangles, &em, NULL) != ACD_OK) return 0;
