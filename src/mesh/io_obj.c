@@ -54,6 +54,10 @@ static int obj_keyword_find(const char *kw, size_t n) {
     return -1;
 }
 
+static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+static int is_eol(char c) { return c == '\n' || c == '\0' || c == '#'; }
+static int is_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+
 /* Moves past the statement at t->p and its continuation lines (a line whose last character before
  * a comment or the newline, blanks aside, is a backslash continues on the next line). */
 static void obj_skip_statement(acd_text *t) {
@@ -64,16 +68,12 @@ static void obj_skip_statement(acd_text *t) {
             p++;
         }
         const char *e = c ? c : p;
-        while (e > t->p && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\f' || e[-1] == '\v')) e--;
+        while (e > t->p && is_blank(e[-1])) e--;
         int more = e > t->p && e[-1] == '\\' && *p == '\n';
         acd_text_next_line(t);
         if (!more || t->p >= t->end) return;
     }
 }
-
-static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-static int is_eol(char c) { return c == '\n' || c == '\0' || c == '#'; }
-static int is_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
 
 int acd_obj_sniff(const char *buf, size_t len) {
     /* the first statement line begins with a known OBJ keyword */
