@@ -1,6 +1,7 @@
 /* Tests of geom3/dijkstra: distances against Bellman-Ford on random graphs, exact grid distances,
  * deterministic tie-breaks, barriers, regions, several sources, early stop; the mesh graph's
- * arrays equal, bit for bit, those of the triangles' sides given as explicit edges. */
+ * arrays equal, bit for bit, those of the triangles' sides given as explicit edges; the reusable
+ * workspace (bounded and targeted runs) against full searches. */
 #include "testutil.h"
 
 #include <math.h>
@@ -329,12 +330,202 @@ static void test_mesh_graph_as_edges(void **state) {
     check_mesh_graph(4, 4, 30, 0);     /* few vertices: nearly every side repeated */
 }
 
+/* (dist, id) order of the settling */
+static int key_le(double da, uint32_t a, double db, uint32_t b) { return da < db || (da == db && a <= b); }
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+/* One run of the workspace against the full acd_dijkstra tree ref from the same source (same
+ * weights and allowed vertices): the settled vertices are exactly those the limits ask for, with
+ * ref's distances (bit for bit) and predecessors, listed once each in (distance, id) order;
+ * below > 0: nothing else is reached; targets: each reachable one's path is ref's. */
+static void check_ws_run(const acd_edge_graph *g, const acd_sp_ws *w, const acd_sp_tree *ref, double below,
+                         const uint32_t *tg, size_t ntg) {
+    size_t nv = g->nvertices;
+    /* the last vertex the run must settle in (distance, id) order: the farthest target when all
+     * are reachable (and below the bound), else none (settle all within the bound) */
+    int capped = tg != NULL;
+    double kd = -INFINITY;
+    uint32_t kv = 0;
+    for (size_t i = 0; i < ntg && capped; i++) {
+        double d = ref->dist[tg[i]];
+        if (!isfinite(d) || (below > 0 && !(d < below))) capped = 0;
+        else if (!key_le(d, tg[i], kd, kv)) kd = d, kv = tg[i];
+    }
+    if (tg && ntg == 0) { /* targets given, none: nothing is run */
+        assert_int_equal(w->nvisited, 0);
+        for (size_t v = 0; v < nv; v++) assert_true(isinf(acd_sp_ws_dist(w, (uint32_t)v)));
+        return;
+    }
+    size_t want = 0;
+    for (size_t v = 0; v < nv; v++) {
+        double d = ref->dist[v];
+        int in = isfinite(d) && (!(below > 0) || d < below) && (!capped || key_le(d, (uint32_t)v, kd, kv));
+        want += in;
+        assert_int_equal(acd_sp_ws_settled(w, (uint32_t)v), in);
+        if (in) {
+            assert_true(same_bits(acd_sp_ws_dist(w, (uint32_t)v), d));
+            assert_int_equal(w->pred[v], ref->pred[v]);
+        } else if (!capped) {
+            assert_true(isinf(acd_sp_ws_dist(w, (uint32_t)v))); /* no early stop: nothing tentative */
+        }
+    }
+    assert_int_equal(w->nvisited, want);
+    for (size_t i = 1; i < w->nvisited; i++) {
+        uint32_t a = w->visited[i - 1], b = w->visited[i];
+        assert_true(a != b && key_le(ref->dist[a], a, ref->dist[b], b));
+    }
+    for (size_t i = 0; i < ntg; i++) { /* a reached target's path, through settled vertices */
+        if (!acd_sp_ws_settled(w, tg[i])) continue;
+        for (uint32_t v = tg[i]; v != ACD_NO_VERTEX; v = w->pred[v]) {
+            assert_true(acd_sp_ws_settled(w, v));
+            assert_int_equal(w->pred[v], ref->pred[v]);
+        }
+    }
+}
+
+/* Many sources through one workspace (never reinitialised, its run stamp wrapped around once),
+ * full, bounded, targeted and both, on meshes with exact ties (a flat unit grid, integer weights)
+ * and without (a jittered grid), with and without a region of allowed vertices. */
+static void check_ws_mesh(uint64_t seed, int n, int jitter, int int_weights, int region) {
+    acd_rng r;
+    acd_rng_seed(&r, seed);
+    double *verts;
+    uint32_t *tris;
+    size_t nv, nt;
+    grid_mesh(n, &verts, &tris, &nv, &nt);
+    if (jitter)
+        for (size_t v = 0; v < nv; v++) verts[3 * v + 2] = acd_rng_uniform(&r) * 0.7;
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(verts, nv, tris, nt, &g, &err), ACD_OK);
+    double *wt = NULL;
+    if (int_weights) {
+        wt = malloc(g.nedges * sizeof *wt);
+        assert_non_null(wt);
+        for (size_t e = 0; e < g.nedges; e++) wt[e] = (double)(1 + acd_rng_below(&r, 3));
+    }
+    uint8_t *allowed = NULL;
+    if (region) { /* a disc with a slit: paths bend around it */
+        allowed = malloc(nv);
+        assert_non_null(allowed);
+        for (size_t v = 0; v < nv; v++) {
+            double x = (double)(v % (size_t)(n + 1)) - n / 2.0, y = (double)(v / (size_t)(n + 1)) - n / 2.0;
+            allowed[v] = x * x + y * y < (n / 2.0) * (n / 2.0) && !(fabs(x) < 0.6 && y > -n / 4.0);
+        }
+    }
+    acd_sp_ws w;
+    assert_int_equal(acd_sp_ws_init(&w, nv, &err), ACD_OK);
+    acd_dijkstra_opts o;
+    memset(&o, 0, sizeof o);
+    o.weights = wt;
+    o.vertex_allowed = allowed;
+    o.target = ACD_NO_VERTEX;
+    const double *len = wt ? wt : g.length;
+    for (int run = 0; run < 160; run++) {
+        if (run == 102) { /* the next run (targeted) wraps the stamp around, over entries left by a run 1 */
+            w.run = UINT32_MAX;
+            for (size_t v = 0; v < nv; v++) w.stamp[v] = w.done[v] = w.tstamp[v] = 1, w.dist[v] = 0;
+        }
+        uint32_t src = (uint32_t)acd_rng_below(&r, nv);
+        acd_sp_tree ref;
+        assert_int_equal(acd_dijkstra(&g, &src, 1, &o, &ref, &err), ACD_OK);
+        check_tree_consistent(&g, &ref, len);
+        acd_sp_limits lim = {.weights = wt, .vertex_allowed = allowed};
+        int mode = run % 4;
+        uint32_t tg[5];
+        size_t ntg = 0;
+        if (mode & 1) { /* a bound: a vertex's distance (exact ties at the bound), or a fraction of the span */
+            uint32_t x = (uint32_t)acd_rng_below(&r, nv);
+            lim.below = isfinite(ref.dist[x]) && ref.dist[x] > 0 && run % 3 ? ref.dist[x] : 0.37 * n;
+        }
+        if (mode & 2) {
+            ntg = (size_t)acd_rng_below(&r, 6);
+            for (size_t i = 0; i < ntg; i++) tg[i] = (uint32_t)acd_rng_below(&r, nv);
+            if (ntg > 1 && run % 5 == 0) tg[1] = tg[0]; /* a repeated target */
+            lim.targets = tg;
+            lim.ntargets = ntg;
+        }
+        assert_int_equal(acd_sp_ws_run(&w, &g, src, &lim), 1);
+        check_ws_run(&g, &w, &ref, lim.below, lim.targets, ntg);
+        if (mode == 1) { /* the strict bound is acd_dijkstra's max_distance at the next double down */
+            acd_dijkstra_opts ob = o;
+            ob.max_distance = nextafter(lim.below, 0);
+            acd_sp_tree tb;
+            assert_int_equal(acd_dijkstra(&g, &src, 1, &ob, &tb, &err), ACD_OK);
+            for (size_t v = 0; v < nv; v++) assert_true(same_bits(acd_sp_ws_dist(&w, (uint32_t)v), tb.dist[v]));
+            acd_sp_tree_free(&tb);
+        }
+        acd_sp_tree_free(&ref);
+    }
+    assert_true(w.run < 100); /* it wrapped */
+    acd_sp_ws_free(&w);
+    acd_edge_graph_free(&g);
+    free(verts), free(tris), free(wt), free(allowed);
+}
+
+static void test_workspace_vs_full(void **state) {
+    (void)state;
+    check_ws_mesh(1, 12, 0, 0, 0); /* flat unit grid: many equal distances */
+    check_ws_mesh(2, 14, 1, 0, 0); /* jittered heights */
+    check_ws_mesh(3, 12, 0, 1, 0); /* integer weights: ties everywhere */
+    check_ws_mesh(4, 16, 1, 0, 1); /* a region with a slit */
+    check_ws_mesh(5, 12, 0, 1, 1);
+}
+
+/* A source outside the region or targets given but none: nothing is settled; a target that is the
+ * source stops at once. */
+static void test_workspace_edges(void **state) {
+    (void)state;
+    double *verts;
+    uint32_t *tris;
+    size_t nv, nt;
+    grid_mesh(4, &verts, &tris, &nv, &nt);
+    acd_edge_graph g;
+    acd_error err;
+    assert_int_equal(acd_edge_graph_from_mesh(verts, nv, tris, nt, &g, &err), ACD_OK);
+    acd_sp_ws w;
+    assert_int_equal(acd_sp_ws_init(&w, nv, &err), ACD_OK);
+    assert_int_equal(acd_sp_ws_run(&w, &g, 0, NULL), 1);
+    assert_int_equal(w.nvisited, nv);
+    assert_true(acd_sp_ws_dist(&w, 24) == 4 * sqrt(2.0)); /* the diagonal of the 4 x 4 grid */
+    uint8_t *allowed = calloc(nv, 1);
+    assert_non_null(allowed);
+    allowed[1] = allowed[2] = 1;
+    acd_sp_limits lim = {.vertex_allowed = allowed};
+    assert_int_equal(acd_sp_ws_run(&w, &g, 0, &lim), 1);
+    assert_int_equal(w.nvisited, 0);
+    assert_true(isinf(acd_sp_ws_dist(&w, 0)) && isinf(acd_sp_ws_dist(&w, 1)));
+    uint32_t tg[1] = {7};
+    lim = (acd_sp_limits){.targets = tg, .ntargets = 0};
+    assert_int_equal(acd_sp_ws_run(&w, &g, 0, &lim), 1);
+    assert_int_equal(w.nvisited, 0);
+    tg[0] = 7;
+    lim.ntargets = 1;
+    assert_int_equal(acd_sp_ws_run(&w, &g, 7, &lim), 1);
+    assert_int_equal(w.nvisited, 1);
+    assert_true(acd_sp_ws_settled(&w, 7) && acd_sp_ws_dist(&w, 7) == 0 && w.pred[7] == ACD_NO_VERTEX);
+    assert_false(acd_sp_ws_settled(&w, 6));
+    lim = (acd_sp_limits){.below = 1.0}; /* strict: the neighbours at exactly 1 are out */
+    assert_int_equal(acd_sp_ws_run(&w, &g, 12, &lim), 1);
+    assert_int_equal(w.nvisited, 1);
+    lim.below = nextafter(1.0, 2.0);
+    assert_int_equal(acd_sp_ws_run(&w, &g, 12, &lim), 1);
+    assert_int_equal(w.nvisited, 5);
+    acd_sp_ws_free(&w);
+    acd_sp_ws_free(&w); /* freeing twice is harmless */
+    acd_edge_graph_free(&g);
+    free(verts), free(tris), free(allowed);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_random_vs_bellman_ford),
         cmocka_unit_test(test_grid_distances_and_ties),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_mesh_graph_as_edges),
+        cmocka_unit_test(test_workspace_vs_full),
+        cmocka_unit_test(test_workspace_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

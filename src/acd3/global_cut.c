@@ -231,10 +231,10 @@ static int grow_cycle_dynamic(const acd_mesh *m, const acd_edge_graph *g, const 
     size_t nitems = 0, capitems = 0, npool = 0, cappool = 0;
     acd_minheap heap = {0};
     pairset closed = {0};
-    acd3_region_sp sp;
+    acd_sp_ws sp;
     memset(&sp, 0, sizeof sp);
     int res = -1;
-    if (!rrow || !crow || !krow || !rface || !rchain || !ckn || !wc || !allowed || !acd3_region_sp_init(&sp, nv)) goto done;
+    if (!rrow || !crow || !krow || !rface || !rchain || !ckn || !wc || !allowed || acd_sp_ws_init(&sp, nv, NULL) != ACD_OK) goto done;
     for (size_t f = 0; f < nf; f++) rrow[ms->face_region[f] + 1]++;
     for (size_t r = 0; r < nr; r++) rrow[r + 1] += rrow[r];
     for (size_t c = 0; c < nch; c++) crow[cg->chain_region[2 * c] + 1]++, crow[cg->chain_region[2 * c + 1] + 1]++;
@@ -303,7 +303,8 @@ static int grow_cycle_dynamic(const acd_mesh *m, const acd_edge_graph *g, const 
         runs++;
         for (size_t i = rrow[p]; i < rrow[p + 1]; i++)
             for (int k = 0; k < 3; k++) allowed[m->triangles[3 * (size_t)rface[i] + k]] = 1;
-        int run_ok = acd3_region_sp_run(&sp, g, wc, allowed, cur.v);
+        acd_sp_limits lim = {.weights = wc, .vertex_allowed = allowed};
+        int run_ok = acd_sp_ws_run(&sp, g, cur.v, &lim);
         for (size_t i = rrow[p]; i < rrow[p + 1]; i++)
             for (int k = 0; k < 3; k++) allowed[m->triangles[3 * (size_t)rface[i] + k]] = 0;
         if (!run_ok) goto done;
@@ -330,7 +331,7 @@ static int grow_cycle_dynamic(const acd_mesh *m, const acd_edge_graph *g, const 
                     uint32_t best = UINT32_MAX;
                     double bd = INFINITY;
                     for (size_t j = cg->chain_off[ch]; j < cg->chain_off[ch + 1]; j++) {
-                        double d = acd3_region_sp_dist(&sp, cg->chain_v[j]);
+                        double d = acd_sp_ws_dist(&sp, cg->chain_v[j]);
                         if (d < bd || (d == bd && best != UINT32_MAX && cg->chain_v[j] < best)) bd = d, best = cg->chain_v[j];
                     }
                     if (best == UINT32_MAX) continue;
@@ -339,7 +340,7 @@ static int grow_cycle_dynamic(const acd_mesh *m, const acd_edge_graph *g, const 
             }
             for (size_t t = 0; t < nt; t++) {
                 uint32_t tv = targets[t];
-                if (!isfinite(acd3_region_sp_dist(&sp, tv))) continue;
+                if (!isfinite(acd_sp_ws_dist(&sp, tv))) continue;
                 size_t n = 0;
                 for (uint32_t v = tv; v != ACD_NO_VERTEX; v = sp.pred[v]) n++;
                 if (npool + n > cappool) {
@@ -385,7 +386,7 @@ done:
     free(rrow), free(crow), free(krow), free(rface), free(rchain), free(ckn), free(pool), free(wc), free(allowed);
     free(it), free(closed.a);
     acd_minheap_free(&heap);
-    acd3_region_sp_free(&sp);
+    acd_sp_ws_free(&sp);
     return res;
 }
 

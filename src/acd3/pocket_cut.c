@@ -7,7 +7,6 @@
 
 #include "acd3/knots.h"
 #include "core/error.h"
-#include "core/minheap.h"
 #include "core/u32vec.h"
 
 /* Hungarian costs standing for "no path". */
@@ -259,86 +258,6 @@ static int find_all_knots(const acd_mesh *m, const acd3_measure *ms, const acd3_
     return ok;
 }
 
-int acd3_region_sp_init(acd3_region_sp *r, size_t nv) {
-    memset(r, 0, sizeof *r);
-    r->dist = malloc((nv ? nv : 1) * sizeof *r->dist);
-    r->pred = malloc((nv ? nv : 1) * sizeof *r->pred);
-    r->stamp = calloc(nv ? nv : 1, sizeof *r->stamp);
-    r->tstamp = calloc(nv ? nv : 1, sizeof *r->tstamp);
-    r->done = malloc(nv ? nv : 1);
-    if (r->dist && r->pred && r->stamp && r->tstamp && r->done) return 1;
-    acd3_region_sp_free(r);
-    return 0;
-}
-
-void acd3_region_sp_free(acd3_region_sp *r) {
-    free(r->dist), free(r->pred), free(r->stamp), free(r->tstamp), free(r->done);
-    acd_minheap_free(&r->heap);
-    memset(r, 0, sizeof *r);
-}
-
-double acd3_region_sp_dist(const acd3_region_sp *r, uint32_t v) { return r->stamp[v] == r->cur ? r->dist[v] : INFINITY; }
-
-/* targets NULL: every allowed vertex reachable from src is settled */
-static int region_sp(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src,
-                     const uint32_t *targets, size_t nt) {
-    if (++r->cur == 0) {
-        memset(r->stamp, 0, g->nvertices * sizeof *r->stamp);
-        memset(r->tstamp, 0, g->nvertices * sizeof *r->tstamp);
-        r->cur = 1;
-    }
-    uint32_t cur = r->cur;
-    r->heap.n = 0;
-    size_t pending = 0; /* targets not settled yet (each vertex once) */
-    if (targets) {
-        for (size_t i = 0; i < nt; i++)
-            if (r->tstamp[targets[i]] != cur) r->tstamp[targets[i]] = cur, pending++;
-        if (!pending) return 1;
-    }
-    if (!allowed[src]) return 1;
-    r->stamp[src] = cur;
-    r->dist[src] = 0;
-    r->pred[src] = ACD_NO_VERTEX;
-    r->done[src] = 0;
-    if (!acd_minheap_push(&r->heap, 0.0, src)) return 0;
-    while (r->heap.n) {
-        acd_minheap_item it = acd_minheap_pop(&r->heap);
-        uint32_t u = it.id;
-        if (r->done[u] || it.key != r->dist[u]) continue; /* stale */
-        r->done[u] = 1;
-        if (targets && r->tstamp[u] == cur && --pending == 0) break;
-        for (size_t k = g->row[u]; k < g->row[u + 1]; k++) {
-            uint32_t v = g->adj[k], e = g->adj_edge[k];
-            if (!allowed[v]) continue;
-            if (r->stamp[v] != cur) {
-                r->stamp[v] = cur;
-                r->dist[v] = INFINITY;
-                r->pred[v] = ACD_NO_VERTEX;
-                r->done[v] = 0;
-            }
-            if (r->done[v]) continue;
-            double nd = r->dist[u] + w[e];
-            if (nd < r->dist[v]) {
-                r->dist[v] = nd;
-                r->pred[v] = u;
-                if (!acd_minheap_push(&r->heap, nd, v)) return 0;
-            } else if (nd == r->dist[v] && u < r->pred[v]) {
-                r->pred[v] = u;
-            }
-        }
-    }
-    return 1;
-}
-
-int acd3_region_sp_run(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src) {
-    return region_sp(r, g, w, allowed, src, NULL, 0);
-}
-
-int acd3_region_sp_run_to(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed,
-                          uint32_t src, const uint32_t *targets, size_t nt) {
-    return region_sp(r, g, w, allowed, src, targets, nt);
-}
-
 /* Flood-fills the faces of region r (listed in rf[0..nrf)) without crossing the edges marked in
  * cut_edge; label[f] = component (faces outside r keep UINT32_MAX). */
 static void flood_split(const uint32_t *fe, const acd3_measure *ms, const acd3_cut_graph *cg,
@@ -411,7 +330,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     uint8_t *allowed = calloc(nv ? nv : 1, 1), *cut_edge = calloc(ne ? ne : 1, 1);
     uint8_t *on_cut = calloc(nv ? nv : 1, 1); /* the vertices of the kept cut being compared (below) */
     acd_u32vec pool = {0}, kept = {0};
-    acd3_region_sp sp;
+    acd_sp_ws sp; /* the knot-to-knot searches, reused across sources */
     memset(&sp, 0, sizeof sp);
     cand *cands = NULL;
     size_t ncand = 0, capcand = 0;
@@ -445,7 +364,7 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
     int weights_ok = 1; /* (acd_dijkstra's check, once) */
     for (size_t e = 0; e < ne; e++)
         if (!(wcost[e] >= 0) || !isfinite(wcost[e])) weights_ok = 0;
-    if (!acd3_region_sp_init(&sp, nv)) {
+    if (acd_sp_ws_init(&sp, nv, NULL) != ACD_OK) {
         ok = 0;
         goto build_done;
     }
@@ -485,14 +404,15 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
             for (size_t j = i + 1; j < K; j++)
                 if (out->knot_chain[kr[j].knot] != out->knot_chain[kr[i].knot] && out->knot_v[kr[j].knot] != src)
                     tgt[nt++] = out->knot_v[kr[j].knot];
-            if (!weights_ok || !acd3_region_sp_run_to(&sp, g, wcost, allowed, src, tgt, nt)) {
+            acd_sp_limits lim = {.weights = wcost, .vertex_allowed = allowed, .targets = tgt, .ntargets = nt};
+            if (!weights_ok || !acd_sp_ws_run(&sp, g, src, &lim)) {
                 ok = 0;
                 break;
             }
             for (size_t j = i + 1; j < K && ok; j++) {
                 if (out->knot_chain[kr[j].knot] == out->knot_chain[kr[i].knot]) continue;
                 uint32_t dst = out->knot_v[kr[j].knot];
-                if (dst == src || !isfinite(acd3_region_sp_dist(&sp, dst))) continue;
+                if (dst == src || !isfinite(acd_sp_ws_dist(&sp, dst))) continue;
                 size_t off = pool.n, n = 0;
                 for (uint32_t v = dst; v != ACD_NO_VERTEX; v = sp.pred[v]) {
                     ok = acd_u32vec_push(&pool, v);
@@ -674,7 +594,7 @@ build_done:
     free(rks), free(rrow), free(rface), free(label), free(queue), free(fe), free(wcost), free(allowed), free(cut_edge);
     free(on_cut);
     free(pool.a), free(kept.a), free(cands);
-    acd3_region_sp_free(&sp);
+    acd_sp_ws_free(&sp);
     out->cuts = cuts;
     out->ncuts = ncuts;
     if (!ok) goto nomem;

@@ -36,7 +36,6 @@
 #include "acd/acd3d.h"
 #include "acd/mesh.h"
 #include "acd3/measure.h"
-#include "core/minheap.h"
 #include "geom3/dijkstra.h"
 
 typedef struct acd3_gc_opts {
@@ -95,31 +94,5 @@ double acd3_valley_cost(const acd_edge_graph *g, const double *vconc, uint32_t e
 /* The pocket (region) in which vertex v has its concavity: the region of an incident face whose
  * patch plane v lies deepest below (lowest region id on ties); UINT32_MAX if none. */
 uint32_t acd3_vertex_region(const acd_mesh *m, const acd3_measure *ms, const acd3_cut_graph *cg, uint32_t v);
-
-/* Single-source shortest paths inside the allowed vertices, with work arrays reused across
- * sources (a visit stamp resets them): the same distances and predecessors as acd_dijkstra with
- * these weights and vertex_allowed (heap order (distance, vertex), equal distances keep the
- * smaller predecessor), without its O(vertices + edges) set-up per source. */
-typedef struct acd3_region_sp {
-    double *dist;
-    uint32_t *pred, *stamp;
-    uint32_t *tstamp; /* the targets of acd3_region_sp_run_to: stamp == cur */
-    uint8_t *done;
-    uint32_t cur;
-    acd_minheap heap; /* (distance, vertex) */
-} acd3_region_sp;
-
-/* 0 when out of memory. */
-int acd3_region_sp_init(acd3_region_sp *r, size_t nvertices);
-void acd3_region_sp_free(acd3_region_sp *r);
-/* Runs from src (nothing when src is not allowed); 0 when out of memory. */
-int acd3_region_sp_run(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed, uint32_t src);
-/* The same, stopped once every target (targets[0..nt)) is settled: their distances and the
- * predecessors along their paths are those of the full run (a settled vertex's are final, and its
- * predecessor was settled before it); other vertices' are not. nt = 0: nothing is run. */
-int acd3_region_sp_run_to(acd3_region_sp *r, const acd_edge_graph *g, const double *w, const uint8_t *allowed,
-                          uint32_t src, const uint32_t *targets, size_t nt);
-/* Distance of v from the last source (INFINITY when not reached); pred[v] its predecessor. */
-double acd3_region_sp_dist(const acd3_region_sp *r, uint32_t v);
 
 #endif

@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "core/error.h"
-#include "core/minheap.h"
 #include "corise/separator.h"
 #ifdef _OPENMP
 #include <omp.h>
@@ -52,77 +51,22 @@ static int grow(uint32_t **a, size_t *cap, size_t n) {
     return 1;
 }
 
-/* A thread's ball search: a vertex's distance is valid when stamp == run, it is settled when
- * done == run (so a ball costs its own vertices, not passes over the mesh); the heap; the
- * settled vertices. */
-typedef struct ball_search {
-    double *dist;
-    uint32_t *stamp, *done;
-    uint32_t run;
-    acd_minheap heap;
-    uint32_t *settled;
-    size_t nsettled, cap_settled;
-} ball_search;
-
-static void ball_search_free(ball_search *s) {
-    free(s->dist);
-    free(s->stamp);
-    free(s->done);
-    acd_minheap_free(&s->heap);
-    free(s->settled);
-    memset(s, 0, sizeof *s);
-}
-
 /* w->faces[0..w->nfaces) = the facets whose three vertices are at edge-graph distance < len from r
- * (len > 0), in no particular order (apply_claim's result does not depend on it). Dijkstra from r
- * that settles only the vertices below len: a vertex's distance is the smallest left-to-right
- * rounded sum of edge lengths over paths from r (rounding is monotone), so it has the same bits as
- * acd_dijkstra's (which this replaced, with its pass over every facet per ball).
- * by_first: the facets by their first vertex (row[v] .. row[v+1] of face). 0: out of memory. */
+ * (len > 0), in no particular order (apply_claim's result does not depend on it): the facets by
+ * their first vertex (first_row[v] .. first_row[v+1] of first_face) of the vertices a search of
+ * s bounded below len settles (geom3/dijkstra's workspace: a ball costs its own vertices, not a
+ * pass over the mesh; the same distances as acd_dijkstra's, which it replaced). 0: out of memory. */
 static int ball(const acd_mesh *m, const acd_edge_graph *g, const size_t *first_row, const uint32_t *first_face,
-                uint32_t r, double len, ball_search *s, ball_work *w) {
+                uint32_t r, double len, acd_sp_ws *s, ball_work *w) {
     w->nfaces = 0;
-    size_t nv = g->nvertices;
-    if (!s->dist) {
-        s->dist = malloc((nv ? nv : 1) * sizeof *s->dist);
-        s->stamp = calloc(nv ? nv : 1, sizeof *s->stamp);
-        s->done = calloc(nv ? nv : 1, sizeof *s->done);
-        if (!s->dist || !s->stamp || !s->done) return 0;
-    }
-    if (++s->run == 0) { /* stamp wrap-around */
-        memset(s->stamp, 0, nv * sizeof *s->stamp);
-        memset(s->done, 0, nv * sizeof *s->done);
-        s->run = 1;
-    }
-    uint32_t run = s->run;
-    s->heap.n = 0;
-    s->nsettled = 0;
-    s->stamp[r] = run;
-    s->dist[r] = 0;
-    if (!acd_minheap_push(&s->heap, 0, r)) return 0;
-    while (s->heap.n) {
-        acd_minheap_item it = acd_minheap_pop(&s->heap);
-        uint32_t u = it.id;
-        if (s->done[u] == run || it.key != s->dist[u]) continue; /* a stale item */
-        s->done[u] = run;
-        if (!grow(&s->settled, &s->cap_settled, s->nsettled)) return 0;
-        s->settled[s->nsettled++] = u;
-        for (size_t k = g->row[u]; k < g->row[u + 1]; k++) {
-            uint32_t v = g->adj[k];
-            double nd = it.key + g->length[g->adj_edge[k]];
-            if (!(nd < len)) continue; /* never settled: only distances below len count */
-            if (s->stamp[v] == run && (s->done[v] == run || !(nd < s->dist[v]))) continue;
-            s->stamp[v] = run;
-            s->dist[v] = nd;
-            if (!acd_minheap_push(&s->heap, nd, v)) return 0;
-        }
-    }
-    for (size_t i = 0; i < s->nsettled; i++) {
-        uint32_t u = s->settled[i];
+    acd_sp_limits lim = {.below = len};
+    if (!acd_sp_ws_run(s, g, r, &lim)) return 0;
+    for (size_t i = 0; i < s->nvisited; i++) {
+        uint32_t u = s->visited[i];
         for (size_t j = first_row[u]; j < first_row[u + 1]; j++) {
             uint32_t f = first_face[j];
             const uint32_t *T = m->triangles + 3 * (size_t)f;
-            if (s->done[T[1]] != run || s->done[T[2]] != run) continue;
+            if (!acd_sp_ws_settled(s, T[1]) || !acd_sp_ws_settled(s, T[2])) continue;
             if (!grow(&w->faces, &w->cap_faces, w->nfaces)) return 0;
             w->faces[w->nfaces++] = f;
         }
@@ -173,7 +117,7 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
         nt = nthreads < ACD_CORISE_MAX_THREADS ? nthreads : ACD_CORISE_MAX_THREADS;
 #endif
     size_t nbw = nt > 1 ? CLAIM_ROUND : 1;
-    ball_search *bs = NULL;
+    acd_sp_ws *bs = NULL;
     size_t *first_row = NULL;
     uint32_t *first_face = NULL;
     ball_work *bw = calloc(nbw, sizeof *bw);
@@ -243,6 +187,8 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
             st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for the regions of %zu facets", nf);
             goto done;
         }
+        for (int t = 0; t < nt; t++)
+            if ((st = acd_sp_ws_init(&bs[t], g->nvertices, err)) != ACD_OK) goto done;
         for (size_t f = 0; f < nf; f++) first_row[m->triangles[3 * f] + 1]++;
         for (size_t v = 0; v < nv; v++) first_row[v + 1] += first_row[v];
         for (size_t f = 0; f < nf; f++) first_face[first_row[m->triangles[3 * f]]++] = (uint32_t)f;
@@ -316,7 +262,7 @@ done:
         for (size_t t = 0; t < nbw; t++) free(bw[t].faces);
     free(bw);
     if (bs)
-        for (int t = 0; t < nt; t++) ball_search_free(&bs[t]);
+        for (int t = 0; t < nt; t++) acd_sp_ws_free(&bs[t]);
     free(bs);
     free(first_row);
     free(first_face);

@@ -400,3 +400,82 @@ acd_status acd_shortest_path(const acd_edge_graph *g, uint32_t s, uint32_t t, co
     acd_sp_tree_free(&tree);
     return st;
 }
+
+acd_status acd_sp_ws_init(acd_sp_ws *w, size_t nv, acd_error *err) {
+    memset(w, 0, sizeof *w);
+    size_t n = nv ? nv : 1;
+    w->nvertices = nv;
+    w->dist = malloc(n * sizeof *w->dist);
+    w->pred = malloc(n * sizeof *w->pred);
+    w->stamp = calloc(n, sizeof *w->stamp);
+    w->done = calloc(n, sizeof *w->done);
+    w->tstamp = calloc(n, sizeof *w->tstamp);
+    w->visited = malloc(n * sizeof *w->visited);
+    if (w->dist && w->pred && w->stamp && w->done && w->tstamp && w->visited) return ACD_OK;
+    acd_sp_ws_free(w);
+    return acd_fail(err, ACD_ERR_NOMEM, "out of memory for a shortest-path workspace of %zu vertices", nv);
+}
+
+void acd_sp_ws_free(acd_sp_ws *w) {
+    if (!w) return;
+    free(w->dist), free(w->pred), free(w->stamp), free(w->done), free(w->tstamp), free(w->visited);
+    acd_minheap_free(&w->heap);
+    memset(w, 0, sizeof *w);
+}
+
+int acd_sp_ws_run(acd_sp_ws *w, const acd_edge_graph *g, uint32_t src, const acd_sp_limits *lim) {
+    static const acd_sp_limits none = {0};
+    if (!lim) lim = &none;
+    if (++w->run == 0) { /* stamp wrap-around: every entry is old */
+        memset(w->stamp, 0, w->nvertices * sizeof *w->stamp);
+        memset(w->done, 0, w->nvertices * sizeof *w->done);
+        memset(w->tstamp, 0, w->nvertices * sizeof *w->tstamp);
+        w->run = 1;
+    }
+    const uint32_t run = w->run;
+    const double *wt = lim->weights ? lim->weights : g->length;
+    const uint8_t *allowed = lim->vertex_allowed;
+    const double below = lim->below > 0 ? lim->below : INFINITY;
+    double *dist = w->dist;
+    uint32_t *pred = w->pred, *stamp = w->stamp, *done = w->done;
+    w->heap.n = 0;
+    w->nvisited = 0;
+    size_t pending = 0; /* targets not settled yet (each vertex once) */
+    if (lim->targets) {
+        for (size_t i = 0; i < lim->ntargets; i++)
+            if (w->tstamp[lim->targets[i]] != run) w->tstamp[lim->targets[i]] = run, pending++;
+        if (!pending) return 1;
+    }
+    if (allowed && !allowed[src]) return 1;
+    stamp[src] = run;
+    dist[src] = 0;
+    pred[src] = ACD_NO_VERTEX;
+    if (!acd_minheap_push(&w->heap, 0.0, src)) return 0;
+    while (w->heap.n) {
+        acd_minheap_item it = acd_minheap_pop(&w->heap);
+        uint32_t u = it.id;
+        if (done[u] == run || it.key != dist[u]) continue; /* a stale item */
+        done[u] = run;
+        w->visited[w->nvisited++] = u;
+        if (pending && w->tstamp[u] == run && --pending == 0) break;
+        const double du = it.key;
+        for (size_t k = g->row[u], end = g->row[u + 1]; k < end; k++) {
+            uint32_t v = g->adj[k];
+            if (allowed && !allowed[v]) continue;
+            double nd = du + wt[g->adj_edge[k]];
+            if (!(nd < below)) continue; /* never settled: only distances below the bound count */
+            if (stamp[v] == run) {
+                if (done[v] == run) continue;
+                if (!(nd < dist[v])) {
+                    if (nd == dist[v] && u < pred[v]) pred[v] = u; /* tie: the smaller predecessor */
+                    continue;
+                }
+            }
+            stamp[v] = run;
+            dist[v] = nd;
+            pred[v] = u;
+            if (!acd_minheap_push(&w->heap, nd, v)) return 0;
+        }
+    }
+    return 1;
+}

@@ -7,10 +7,12 @@
 #ifndef ACD_GEOM3_DIJKSTRA_H
 #define ACD_GEOM3_DIJKSTRA_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "acd/base.h"
+#include "core/minheap.h"
 
 #define ACD_NO_VERTEX UINT32_MAX
 
@@ -74,5 +76,51 @@ acd_status acd_sp_path(const acd_sp_tree *t, uint32_t target, uint32_t **path, s
 /* Convenience: one shortest path from s to t (vertices, s first). */
 acd_status acd_shortest_path(const acd_edge_graph *g, uint32_t s, uint32_t t, const acd_dijkstra_opts *opts,
                              uint32_t **path, size_t *len, double *length, acd_error *err);
+
+/* A reusable, bounded single-source Dijkstra (the per-source searches of corise/regions' balls,
+ * acd3/pocket_cut's knot-to-knot cuts and acd3/global_cut's dynamic cuts). Its arrays are sized
+ * once for the graph; a run touches only the vertices it reaches (a run stamp tells this run's
+ * entries from older ones), so a run costs its own region, not a pass over the graph. Settles in
+ * (distance, vertex id) order with a lazy heap; at equal distance a vertex keeps the predecessor
+ * with the smaller id: the distances and predecessors of acd_dijkstra with the same weights and
+ * allowed vertices (a distance is the smallest left-to-right rounded sum of weights over the
+ * paths, and rounding is monotone, so any exact Dijkstra gives the same bits). */
+typedef struct acd_sp_ws {
+    size_t nvertices;
+    double *dist;      /* valid where stamp == run: final when settled, tentative otherwise */
+    uint32_t *pred;    /* predecessor (ACD_NO_VERTEX at the source), where stamp == run */
+    uint32_t *stamp;   /* == run: reached by this run */
+    uint32_t *done;    /* == run: settled by this run */
+    uint32_t *tstamp;  /* == run: a target of this run */
+    uint32_t run;
+    uint32_t *visited; /* visited[0..nvisited): the settled vertices, in settling order */
+    size_t nvisited;
+    acd_minheap heap;  /* (distance, vertex) */
+} acd_sp_ws;
+
+/* Limits of a run; zero-initialise and set what is needed. */
+typedef struct acd_sp_limits {
+    const double *weights;         /* per edge, finite and >= 0 (not checked); NULL: g->length */
+    const uint8_t *vertex_allowed; /* per vertex, zero: not entered (nor the source); NULL: all */
+    double below;                  /* > 0: settle only vertices at distance < below (strictly; for
+                                      "<= d" pass nextafter(d, INFINITY)); else no bound */
+    const uint32_t *targets;       /* non-NULL: stop once targets[0..ntargets) are all settled (their
+                                      distances and paths are the full run's); none given: no run */
+    size_t ntargets;
+} acd_sp_limits;
+
+/* Sizes the workspace for nvertices (ACD_ERR_NOMEM names the size). Free with acd_sp_ws_free. */
+acd_status acd_sp_ws_init(acd_sp_ws *w, size_t nvertices, acd_error *err);
+void acd_sp_ws_free(acd_sp_ws *w);
+/* Runs from src on g (g->nvertices == w->nvertices) within lim (NULL: none); the previous run's
+ * results are dropped. 0 when out of memory (the heap grows), else 1. */
+int acd_sp_ws_run(acd_sp_ws *w, const acd_edge_graph *g, uint32_t src, const acd_sp_limits *lim);
+/* Distance of v from the last run's source: final when settled, tentative when only reached (an
+ * early stop), INFINITY when not reached. */
+static inline double acd_sp_ws_dist(const acd_sp_ws *w, uint32_t v) {
+    return w->stamp[v] == w->run ? w->dist[v] : INFINITY;
+}
+/* Whether the last run settled v. */
+static inline int acd_sp_ws_settled(const acd_sp_ws *w, uint32_t v) { return w->done[v] == w->run; }
 
 #endif
