@@ -448,6 +448,21 @@ static void check_ws_mesh(uint64_t seed, int n, int jitter, int int_weights, int
         }
         assert_int_equal(acd_sp_ws_run(&w, &g, src, &lim), 1);
         check_ws_run(&g, &w, &ref, lim.below, lim.targets, ntg);
+        if (run % 8 == 1) { /* without predecessors: the same distances and visited list */
+            double *d0 = malloc(nv * sizeof *d0);
+            uint32_t *v0 = malloc(nv * sizeof *v0);
+            assert_true(d0 && v0);
+            size_t n0 = w.nvisited;
+            for (size_t v = 0; v < nv; v++) d0[v] = acd_sp_ws_dist(&w, (uint32_t)v);
+            memcpy(v0, w.visited, n0 * sizeof *v0);
+            acd_sp_limits lp = lim;
+            lp.no_pred = 1;
+            assert_int_equal(acd_sp_ws_run(&w, &g, src, &lp), 1);
+            assert_int_equal(w.nvisited, n0);
+            assert_memory_equal(w.visited, v0, n0 * sizeof *v0);
+            for (size_t v = 0; v < nv; v++) assert_true(same_bits(acd_sp_ws_dist(&w, (uint32_t)v), d0[v]));
+            free(d0), free(v0);
+        }
         if (mode == 1) { /* the strict bound is acd_dijkstra's max_distance at the next double down */
             acd_dijkstra_opts ob = o;
             ob.max_distance = nextafter(lim.below, 0);

@@ -59,7 +59,7 @@ static int grow(uint32_t **a, size_t *cap, size_t n) {
 static int ball(const acd_mesh *m, const acd_edge_graph *g, const size_t *first_row, const uint32_t *first_face,
                 uint32_t r, double len, acd_sp_ws *s, ball_work *w) {
     w->nfaces = 0;
-    acd_sp_limits lim = {.below = len};
+    acd_sp_limits lim = {.below = len, .no_pred = 1};
     if (!acd_sp_ws_run(s, g, r, &lim)) return 0;
     for (size_t i = 0; i < s->nvisited; i++) {
         uint32_t u = s->visited[i];

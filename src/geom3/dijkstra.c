@@ -423,6 +423,60 @@ void acd_sp_ws_free(acd_sp_ws *w) {
     memset(w, 0, sizeof *w);
 }
 
+/* The run's loop; use_allowed, use_below and keep_pred are constants at the calls for the two
+ * common kinds of run (always inlined: a ball has a bound but neither an allowed test nor
+ * predecessors; a region search the opposite), variables at the third. 0 when out of memory. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline int sp_ws_loop(acd_sp_ws *w, const acd_edge_graph *g, const double *wt, const uint8_t *allowed,
+                             const int use_allowed, const int use_below, const int keep_pred, double below,
+                             size_t pending) {
+    const uint32_t run = w->run;
+    const size_t *row = g->row;
+    const uint32_t *adj = g->adj, *adj_edge = g->adj_edge;
+    double *dist = w->dist;
+    uint32_t *pred = w->pred, *stamp = w->stamp, *done = w->done, *visited = w->visited;
+    const uint32_t *tstamp = w->tstamp;
+    acd_minheap *heap = &w->heap;
+    size_t nvisited = 0;
+    int ok = 1;
+    while (heap->n) {
+        acd_minheap_item it = acd_minheap_pop(heap);
+        uint32_t u = it.id;
+        if (done[u] == run || it.key != dist[u]) continue; /* a stale item */
+        done[u] = run;
+        visited[nvisited++] = u;
+        if (pending && tstamp[u] == run && --pending == 0) break;
+        const double du = it.key;
+        for (size_t k = row[u], end = row[u + 1]; k < end; k++) {
+            uint32_t v = adj[k];
+            if (use_allowed && !allowed[v]) continue;
+            double nd = du + wt[adj_edge[k]];
+            if (use_below && !(nd < below)) continue; /* never settled: only distances below the bound count */
+            /* a settled v is never improved (its distance <= du <= nd: settled in nondecreasing
+               order, weights >= 0), so only the tie rule needs to know it is settled */
+            if (stamp[v] == run) {
+                if (keep_pred && done[v] == run) continue;
+                if (!(nd < dist[v])) {
+                    if (keep_pred && nd == dist[v] && u < pred[v]) pred[v] = u; /* tie: the smaller predecessor */
+                    continue;
+                }
+            }
+            stamp[v] = run;
+            dist[v] = nd;
+            if (keep_pred) pred[v] = u;
+            if (!acd_minheap_push(heap, nd, v)) {
+                ok = 0;
+                goto out;
+            }
+        }
+    }
+out:
+    w->nvisited = nvisited;
+    return ok;
+}
+
 int acd_sp_ws_run(acd_sp_ws *w, const acd_edge_graph *g, uint32_t src, const acd_sp_limits *lim) {
     static const acd_sp_limits none = {0};
     if (!lim) lim = &none;
@@ -435,9 +489,8 @@ int acd_sp_ws_run(acd_sp_ws *w, const acd_edge_graph *g, uint32_t src, const acd
     const uint32_t run = w->run;
     const double *wt = lim->weights ? lim->weights : g->length;
     const uint8_t *allowed = lim->vertex_allowed;
-    const double below = lim->below > 0 ? lim->below : INFINITY;
-    double *dist = w->dist;
-    uint32_t *pred = w->pred, *stamp = w->stamp, *done = w->done;
+    const int bounded = lim->below > 0, keep_pred = !lim->no_pred;
+    const double below = bounded ? lim->below : INFINITY;
     w->heap.n = 0;
     w->nvisited = 0;
     size_t pending = 0; /* targets not settled yet (each vertex once) */
@@ -447,35 +500,11 @@ int acd_sp_ws_run(acd_sp_ws *w, const acd_edge_graph *g, uint32_t src, const acd
         if (!pending) return 1;
     }
     if (allowed && !allowed[src]) return 1;
-    stamp[src] = run;
-    dist[src] = 0;
-    pred[src] = ACD_NO_VERTEX;
+    w->stamp[src] = run;
+    w->dist[src] = 0;
+    w->pred[src] = ACD_NO_VERTEX;
     if (!acd_minheap_push(&w->heap, 0.0, src)) return 0;
-    while (w->heap.n) {
-        acd_minheap_item it = acd_minheap_pop(&w->heap);
-        uint32_t u = it.id;
-        if (done[u] == run || it.key != dist[u]) continue; /* a stale item */
-        done[u] = run;
-        w->visited[w->nvisited++] = u;
-        if (pending && w->tstamp[u] == run && --pending == 0) break;
-        const double du = it.key;
-        for (size_t k = g->row[u], end = g->row[u + 1]; k < end; k++) {
-            uint32_t v = g->adj[k];
-            if (allowed && !allowed[v]) continue;
-            double nd = du + wt[g->adj_edge[k]];
-            if (!(nd < below)) continue; /* never settled: only distances below the bound count */
-            if (stamp[v] == run) {
-                if (done[v] == run) continue;
-                if (!(nd < dist[v])) {
-                    if (nd == dist[v] && u < pred[v]) pred[v] = u; /* tie: the smaller predecessor */
-                    continue;
-                }
-            }
-            stamp[v] = run;
-            dist[v] = nd;
-            pred[v] = u;
-            if (!acd_minheap_push(&w->heap, nd, v)) return 0;
-        }
-    }
-    return 1;
+    if (!allowed && bounded && !keep_pred) return sp_ws_loop(w, g, wt, NULL, 0, 1, 0, below, pending);
+    if (allowed && !bounded && keep_pred) return sp_ws_loop(w, g, wt, allowed, 1, 0, 1, below, pending);
+    return sp_ws_loop(w, g, wt, allowed, allowed != NULL, bounded, keep_pred, below, pending);
 }

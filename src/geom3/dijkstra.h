@@ -88,7 +88,7 @@ acd_status acd_shortest_path(const acd_edge_graph *g, uint32_t s, uint32_t t, co
 typedef struct acd_sp_ws {
     size_t nvertices;
     double *dist;      /* valid where stamp == run: final when settled, tentative otherwise */
-    uint32_t *pred;    /* predecessor (ACD_NO_VERTEX at the source), where stamp == run */
+    uint32_t *pred;    /* predecessor (ACD_NO_VERTEX at the source), where stamp == run (unless no_pred) */
     uint32_t *stamp;   /* == run: reached by this run */
     uint32_t *done;    /* == run: settled by this run */
     uint32_t *tstamp;  /* == run: a target of this run */
@@ -107,6 +107,8 @@ typedef struct acd_sp_limits {
     const uint32_t *targets;       /* non-NULL: stop once targets[0..ntargets) are all settled (their
                                       distances and paths are the full run's); none given: no run */
     size_t ntargets;
+    int no_pred;                   /* non-zero: no predecessors kept (w->pred is left undefined), for
+                                      runs that want only distances or the visited set */
 } acd_sp_limits;
 
 /* Sizes the workspace for nvertices (ACD_ERR_NOMEM names the size). Free with acd_sp_ws_free. */
