@@ -284,7 +284,8 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
         for (int k = 0; k < n->nchildren; k++) cJSON_AddItemToArray(ch, cJSON_CreateNumber(n->first_child + k));
         cJSON_AddNumberToObject(q, "concavity", n->concavity);
         cJSON_AddNumberToObject(q, "volume", n->volume);
-        if (n->first_child >= 0) {
+        if (n->bodies) cJSON_AddTrueToObject(q, "bodies"); /* split into its bodies: no plane */
+        else if (n->first_child >= 0) {
             cJSON *pl = cJSON_AddArrayToObject(q, "cut_plane");
             for (int k = 0; k < 4; k++) cJSON_AddItemToArray(pl, cJSON_CreateNumber(n->cut_plane[k]));
         }

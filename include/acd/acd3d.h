@@ -212,6 +212,9 @@ typedef struct acd3d_node {
     double concavity;         /* of this node's part (model units) */
     double volume;            /* of the part (solid mode; 0 for surfaces) */
     double cut_plane[4];      /* plane n.x + d = 0 used to split it (solid mode), zero for leaves */
+    int bodies;               /* 1: the root of an input of several bodies, split into them (solid:
+                                 connected solids, each cavity with its shell; surface: edge-connected
+                                 patches) before any cut; cut_plane is zero */
     acd3d_leaf_reason leaf_reason;
     int part;                 /* index into parts for leaves, -1 otherwise */
     int merged_into;          /* -1, or the ACD3D_LEAF_JOINED node this part was joined into */

@@ -273,6 +273,7 @@ typedef struct split_choice {
     acd3_plane_candidate plane;
     double concavity; /* the largest over the pieces */
     double hullvol;   /* the sum of the pieces' hull volumes */
+    int bodies;       /* the root split into its bodies (no plane; split_bodies) */
 } split_choice;
 
 static void choice_free(split_choice *c) {
@@ -1196,6 +1197,7 @@ typedef struct run_ctx {
     size_t max_depth; /* params->max_depth + 2 x the input's genus */
     double screen_rel; /* the hull volume screen's margin (acd3_decompose_screen) */
     cancel_poll *poll; /* NULL without a progress callback */
+    int multi;         /* the input has more than one edge-connected component (acd3_topology_of) */
 } run_ctx;
 
 typedef struct node_work {
@@ -1217,6 +1219,33 @@ static int hull_leaf(const run_ctx *c, work_node *w, const acd3_measure *ms, nod
     return out->st == ACD_OK && ok;
 }
 
+/* The root of an input of several bodies is split into them before anything else, whatever its
+ * measure (docs/acd3d.md "Bodies"): solid mode, its connected solids (edge-connected shells, each
+ * cavity with the smallest shell around it: geom3/plane_cut's pieces of one side); surface mode, its
+ * edge-connected patches. A part is then always one body, as every cut's pieces are: the measure
+ * of a set of separate bodies is not the paper's (pockets between bodies are not projected), and a
+ * hull spanning separate bodies fills the space between them. Returns 1 when it split the root
+ * (out->choice holds the bodies, unmeasured), 0 for a root of one body, -status on failure. */
+static int split_bodies(const run_ctx *c, work_node *w, const measured *cur, node_work *out) {
+    acd_cut_result r;
+    acd_status st = c->solid ? acd_plane_cut_bodies(&w->mesh, NULL, &r, &out->err)
+                             : acd3_surface_components(&w->mesh, &cur->g, &r, &out->err);
+    if (st != ACD_OK) return -(int)st;
+    if (r.npieces < 2) {
+        acd_cut_result_free(&r);
+        return 0;
+    }
+    out->choice.pieces = calloc(r.npieces, sizeof *out->choice.pieces);
+    if (!out->choice.pieces) {
+        acd_cut_result_free(&r);
+        return -(int)acd_fail(&out->err, ACD_ERR_NOMEM, "out of memory splitting %zu bodies", r.npieces);
+    }
+    out->choice.cut = r;
+    out->choice.bodies = 1;
+    out->choice.concavity = cur->ms.concavity;
+    return 1;
+}
+
 /* Measures node w (unless its measure was kept) and chooses its split; touches only w and out. */
 static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     measured cur = w->cache;
@@ -1227,6 +1256,16 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         if (out->st != ACD_OK) return;
     }
     w->node.concavity = cur.ms.concavity;
+    if (c->multi && w->node.parent < 0) {
+        int b = split_bodies(c, w, &cur, out);
+        if (b != 0) {
+            if (b < 0) out->st = (acd_status)(-b);
+            measured_free(&cur);
+            out->reason = ACD3D_LEAF_NONE;
+            out->split = b > 0;
+            return;
+        }
+    }
     acd3d_leaf_reason reason = ACD3D_LEAF_NONE;
     if (cur.ms.hull.dim < 3) reason = ACD3D_LEAF_FLAT;
     else if (cur.ms.concavity <= c->tau + c->tol) reason = ACD3D_LEAF_TAU; /* tau = 0: up to rounding */
@@ -1837,11 +1876,13 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
      * open, spec §5.3 step 6; the spec's genus rounds are 2g + 2): the depth guard grows by
      * twice the input's genus */
     size_t max_depth = params->max_depth;
+    int multi = 0;
     {
         acd3_topology topo;
         st = acd3_topology_of(mesh, &topo, err);
         if (st != ACD_OK) return st;
         if (topo.genus > 0) max_depth += 2 * (size_t)topo.genus;
+        multi = topo.components > 1;
     }
     tree t = {0};
     acd_mesh root;
@@ -1878,7 +1919,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
          * (try_split): so a batch of fewer nodes than threads, the root's above all, still uses
          * every thread */
         const run_ctx ctx = {params, solid, tau, eps, sc.dist, sc.extent, full, nthreads - 1, max_depth, screen_rel,
-                             params->progress ? &poll : NULL};
+                             params->progress ? &poll : NULL, multi};
         /* the batch's nodes are taken largest first (most vertices; then in node order), so that a
          * large node taken last does not keep one thread busy while the others wait; each node's
          * work goes to its own record, so the order changes nothing else */
@@ -1930,11 +1971,17 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
             const acd3_plane_candidate *used = &choice->plane;
             /* plane n.x + d = 0 */
             double *cp = t.a[n].node.cut_plane;
-            memcpy(cp, used->normal, sizeof(double[3]));
-            cp[3] = -(used->normal[0] * used->point[0] + used->normal[1] * used->point[1] + used->normal[2] * used->point[2]);
+            if (choice->bodies) { /* no plane; the bodies are not a level of cuts */
+                memset(cp, 0, sizeof t.a[n].node.cut_plane);
+                t.a[n].node.bodies = 1;
+            } else {
+                memcpy(cp, used->normal, sizeof(double[3]));
+                cp[3] = -(used->normal[0] * used->point[0] + used->normal[1] * used->point[1] +
+                          used->normal[2] * used->point[2]);
+            }
             t.a[n].node.first_child = (int)t.n;
             t.a[n].node.nchildren = (int)cut->npieces;
-            size_t depth = t.a[n].depth + 1;
+            size_t depth = t.a[n].depth + !choice->bodies;
             for (size_t k = 0; k < cut->npieces; k++) {
                 acd_mesh piece = cut->pieces[k].mesh;
                 memset(&cut->pieces[k].mesh, 0, sizeof piece);

@@ -937,6 +937,30 @@ static acd_status make_pieces(cut_ctx *c, acd_cut_result *res) {
     return st;
 }
 
+acd_status acd_plane_cut_bodies(const acd_mesh *m, const acd_edge_map *map, acd_cut_result *out, acd_error *err) {
+    memset(out, 0, sizeof *out);
+    if (!m || m->nvertices == 0)
+        return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "bodies: %s", m ? "a mesh without vertices" : "NULL mesh");
+    /* the plane x = X with X the next double above the largest x (below the smallest when that
+     * overflows): every vertex lies exactly on its negative side (orient3d decides the sides), so
+     * the cut's last step alone runs: the side's components, cavities grouped */
+    double lo = m->vertices[0], hi = m->vertices[0];
+    for (size_t v = 1; v < m->nvertices; v++) {
+        double x = m->vertices[3 * v];
+        if (x < lo) lo = x;
+        if (x > hi) hi = x;
+    }
+    double X = nextafter(hi, INFINITY);
+    acd_cut_plane pl = {{X, 0, 0}, {X, 1, 0}, {X, 0, 1}, {1, 0, 0}};
+    if (!isfinite(X)) { /* x beyond the largest double: the plane below the smallest x instead */
+        X = nextafter(lo, -INFINITY);
+        pl = (acd_cut_plane){{X, 0, 0}, {X, 0, 1}, {X, 1, 0}, {-1, 0, 0}};
+        if (!isfinite(X))
+            return acd_fail(err, ACD_ERR_INVALID_INPUT, "bodies: x coordinates span every finite double");
+    }
+    return acd_plane_cut_map(m, map, &pl, 0, out, err);
+}
+
 acd_status acd_plane_cut(const acd_mesh *m, const acd_cut_plane *pl, acd_cut_result *out, acd_error *err) {
     return acd_plane_cut_flags(m, pl, 0, out, err);
 }

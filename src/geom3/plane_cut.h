@@ -73,6 +73,12 @@ acd_status acd_plane_cut_flags(const acd_mesh *m, const acd_cut_plane *pl, unsig
  * each cut computes them again. */
 acd_status acd_plane_cut_map(const acd_mesh *m, const acd_edge_map *map, const acd_cut_plane *pl, unsigned flags,
                              acd_cut_result *out, acd_error *err);
+/* The bodies of the closed mesh m, as pieces without a cut (no cap, nloops 0): its edge-connected
+ * shells, each shell of negative volume (a cavity) joined to the smallest shell of positive volume
+ * containing it, flat shells dropped, exactly as acd_plane_cut's pieces of one side (it is that cut
+ * by a plane beyond m's bounding box). A mesh of one body comes back as one piece. map: as for
+ * acd_plane_cut_map (NULL: built and checked here). */
+acd_status acd_plane_cut_bodies(const acd_mesh *m, const acd_edge_map *map, acd_cut_result *out, acd_error *err);
 void acd_cut_result_free(acd_cut_result *r);
 /* Whether every piece of r is closed and consistently oriented (acd_edge_map_check_closed; a
  * piece the cut already checked, closed = 1, is not checked again): ACD_OK, else the first failing
