@@ -843,8 +843,13 @@ int acd_cmd_3d(int argc, char **argv) {
             snprintf(what, sizeof what, "is inside out (signed volume %.6g)", inside_out_volume);
         else
             snprintf(what, sizeof what, "is not a closed, consistently oriented mesh");
-        char cav[96] = "";
-        if (rs.cavities) snprintf(cav, sizeof cav, " (%zu closed part(s) inside others kept as cavities)", rs.cavities);
+        char cav[224] = "";
+        int nc = 0;
+        if (rs.cavities) nc = snprintf(cav, sizeof cav, " (%zu closed part(s) inside others kept as cavities)", rs.cavities);
+        if (rs.vertices_split && nc >= 0 && (size_t)nc < sizeof cav)
+            snprintf(cav + nc, sizeof cav - (size_t)nc,
+                     ", %zu non-manifold edge(s) and vertices split into separate bodies (%zu vertex copies)",
+                     rs.nonmanifold_edges_split, rs.vertices_split);
         fprintf(stderr,
                 "acd 3d: the input %s; repaired for solid mode: %zu "
                 "vertices merged, %zu degenerate and %zu duplicate faces dropped, %zu faces flipped%s, %zu holes "
@@ -877,6 +882,7 @@ int acd_cmd_3d(int argc, char **argv) {
             ro.drop_degenerate = 0;
             ro.drop_duplicates = 0;
             ro.drop_unused_vertices = 0;
+            ro.split_nonmanifold = 0;
             acd_repair_stats rs;
             if (acd_mesh_repair(&c, &ro, &rs, &ce) == ACD_OK && rs.faces_flipped > 0)
                 fprintf(stderr,

@@ -46,6 +46,8 @@ static cJSON *report_json(const char *path, const acd_mesh_report *r, int list_c
             cJSON_AddNumberToObject(rp, "hole_vertices_added", (double)st->hole_vertices_added);
             cJSON_AddNumberToObject(rp, "unused_vertices_dropped", (double)st->unused_vertices_dropped);
             cJSON_AddNumberToObject(rp, "cavities", (double)st->cavities);
+            cJSON_AddNumberToObject(rp, "nonmanifold_edges_split", (double)st->nonmanifold_edges_split);
+            cJSON_AddNumberToObject(rp, "vertices_split", (double)st->vertices_split);
         }
     }
     cJSON_AddStringToObject(o, "file", path);
@@ -114,6 +116,10 @@ static void print_text(const char *path, const acd_mesh_report *r, int list_comp
     if (st && st->cavities)
         printf("repair                %zu closed part(s) inside an odd number of others: oriented inward (cavities)\n",
                st->cavities);
+    if (st && st->vertices_split)
+        printf("repair                %zu non-manifold edge(s) paired by angle, %zu vertex copies: bodies touching "
+               "along an edge or at a point separated\n",
+               st->nonmanifold_edges_split, st->vertices_split);
     printf("file                  %s\n", path);
     printf("vertices              %zu (%zu unused)\n", r->vertices, r->unused_vertices);
     printf("faces                 %zu\n", r->faces);

@@ -10,7 +10,9 @@
  *  3. a hollow box (an outer shell with a cavity shell) holding a small box in its cavity: two bodies;
  *     the cavity stays with its shell (volumes add up to the solid's), and no part mixes the small box
  *     with the hollow one;
- *  4. one body (one plate; a box with a cavity): no bodies split, the root is a leaf or cut by a plane. */
+ *  4. one body (one plate; a box with a cavity): no bodies split, the root is a leaf or cut by a plane;
+ *  5. two boxes touching along an edge: refused as non-manifold, then repaired (mesh/repair
+ *     split_nonmanifold) into two bodies, two parts. */
 // ctest: TIMEOUT 300
 #include "testutil.h"
 
@@ -175,12 +177,42 @@ static void test_one_body(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Two boxes touching along an edge, vertices shared (as CAD booleans write an assembly): not closed
+ * (the edge has four faces) until acd_mesh_repair pairs them into the boxes' wedges
+ * (split_nonmanifold); then two bodies, two convex parts, volumes adding up. */
+static void test_edge_touch_repaired(void **state) {
+    (void)state;
+    acd_mesh m = {0};
+    add_box(&m, (double[3]){0, 0, 0}, (double[3]){1, 1, 1}, 0);
+    add_box(&m, (double[3]){1, 1, 0}, (double[3]){2, 2, 1}, 0);
+    acd_error err;
+    assert_int_equal(acd_mesh_weld(&m, 0, NULL, &err), ACD_OK);
+    assert_int_equal(m.nvertices, 14);
+    acd3d_params p = acd3d_default_params();
+    acd3d_result r;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_NON_MANIFOLD);
+    acd_repair_options ro = acd_repair_default_options();
+    acd_repair_stats rs;
+    assert_int_equal(acd_mesh_repair(&m, &ro, &rs, &err), ACD_OK);
+    assert_int_equal(rs.nonmanifold_edges_split, 1);
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.nodes[0].bodies, 1);
+    assert_int_equal(r.nparts, 2);
+    for (size_t i = 0; i < r.nparts; i++) {
+        assert_true(fabs(r.parts[i].volume - 1) <= 1e-12);
+        assert_true(fabs(r.parts[i].hull_volume - 1) <= 1e-12);
+    }
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_plates_solid),
         cmocka_unit_test(test_plates_surface),
         cmocka_unit_test(test_nested),
         cmocka_unit_test(test_one_body),
+        cmocka_unit_test(test_edge_touch_repaired),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

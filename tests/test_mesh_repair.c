@@ -395,6 +395,87 @@ static void test_fill_pinched_holes(void **state) {
     acd_mesh_free(&m);
 }
 
+/* Two unit cubes (cube_v, cube_t) with shared vertices where their positions coincide: the second
+ * moved by (dx, dy, dz). */
+static void two_cubes(acd_mesh *m, double dx, double dy, double dz) {
+    double v[16][3];
+    uint32_t idx[16], nv = 0;
+    for (int c = 0; c < 2; c++)
+        for (int i = 0; i < 8; i++) {
+            double p[3] = {cube_v[i][0] + c * dx, cube_v[i][1] + c * dy, cube_v[i][2] + c * dz};
+            uint32_t k = 0;
+            while (k < nv && memcmp(v[k], p, sizeof p)) k++;
+            if (k == nv) memcpy(v[nv++], p, sizeof p);
+            idx[8 * c + i] = k;
+        }
+    m->nvertices = nv;
+    m->ntriangles = 24;
+    m->vertices = malloc(nv * 3 * sizeof(double));
+    m->triangles = malloc(24 * 3 * sizeof(uint32_t));
+    assert_non_null(m->vertices);
+    assert_non_null(m->triangles);
+    memcpy(m->vertices, v, nv * 3 * sizeof(double));
+    for (int c = 0; c < 2; c++)
+        for (int t = 0; t < 12; t++)
+            for (int k = 0; k < 3; k++) m->triangles[3 * (12 * c + t) + k] = idx[8 * c + cube_t[t][k]];
+}
+
+/* Bodies touching along an edge or at a point (split_nonmanifold): the edge's four faces are paired
+ * into the two cubes' wedges and its two vertices copied, so the mesh becomes two closed, manifold
+ * shells of volume 2 sharing positions (solid mode then decomposes it; before, "edge used in the
+ * same direction by two triangles"); a pinch vertex between two closed cubes is copied too; with the
+ * option off nothing changes. */
+static void test_split_nonmanifold(void **state) {
+    (void)state;
+    acd_mesh_report r;
+    acd_repair_stats st;
+    acd_error err;
+    acd_repair_options o = acd_repair_default_options();
+    for (int off = 0; off < 2; off++) {
+        acd_mesh m;
+        two_cubes(&m, 1, 1, 0); /* along the edge x = y = 1 */
+        assert_int_equal(m.nvertices, 14);
+        report(&m, &r);
+        assert_int_equal(r.nonmanifold_edges, 1);
+        acd_mesh_report_free(&r);
+        o.split_nonmanifold = !off;
+        assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+        report(&m, &r);
+        if (!off) {
+            assert_int_equal(st.nonmanifold_edges_split, 1);
+            assert_int_equal(st.vertices_split, 2);
+            assert_int_equal(m.nvertices, 16);
+            assert_int_equal(r.nonmanifold_edges, 0);
+            assert_int_equal(r.nonmanifold_vertices, 0);
+            assert_int_equal(r.components, 2);
+            assert_true(r.closed && r.oriented);
+            assert_true(fabs(r.volume - 2) < 1e-12);
+        } else {
+            assert_int_equal(st.vertices_split, 0);
+            assert_int_equal(m.nvertices, 14);
+            assert_int_equal(r.nonmanifold_edges, 1);
+        }
+        acd_mesh_report_free(&r);
+        acd_mesh_free(&m);
+    }
+    /* at a point: the corner (1, 1, 1) */
+    {
+        acd_mesh m;
+        two_cubes(&m, 1, 1, 1);
+        assert_int_equal(m.nvertices, 15);
+        o.split_nonmanifold = 1;
+        assert_int_equal(acd_mesh_repair(&m, &o, &st, &err), ACD_OK);
+        assert_int_equal(st.nonmanifold_edges_split, 0);
+        assert_int_equal(st.vertices_split, 1);
+        report(&m, &r);
+        assert_int_equal(r.nonmanifold_vertices, 0);
+        assert_true(r.closed && r.oriented);
+        assert_true(fabs(r.volume - 2) < 1e-12);
+        acd_mesh_report_free(&r);
+        acd_mesh_free(&m);
+    }
+}
+
 /* A real scan-like mesh with 171 holes of up to hundreds of edges: closing them all gives a
  * closed, edge-manifold, self-intersection-free mesh of the elephant's genus (3). */
 static void test_fill_real_holes(void **state) {
@@ -433,6 +514,7 @@ int main(void) {
         cmocka_unit_test(test_fill_real_holes),
         cmocka_unit_test(test_tolerance_weld),
         cmocka_unit_test(test_nonorientable_survives),
+        cmocka_unit_test(test_split_nonmanifold),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -195,6 +195,11 @@ typedef struct acd_repair_options {
     int orient;                  /* orient consistently, closed parts outward (default 1) */
     size_t fill_holes_max_edges; /* fill boundary loops of at most this many edges (default 0: none) */
     int drop_unused_vertices;    /* remove vertices no face uses (default 1) */
+    int split_nonmanifold;       /* after orienting: faces around an edge of more than two faces are
+                                    paired into the wedges of separate solids (by angle about the
+                                    edge), and every vertex whose faces form several fans gets a copy
+                                    per fan (default 1): bodies touching along an edge or at a point
+                                    become separate closed shells sharing positions */
 } acd_repair_options;
 
 acd_repair_options acd_repair_default_options(void);
@@ -210,6 +215,8 @@ typedef struct acd_repair_stats {
     size_t hole_vertices_added;    /* centroids of loops closed by a fan (long loops) */
     size_t unused_vertices_dropped;
     size_t cavities;               /* closed parts oriented inward: inside an odd number of other closed parts */
+    size_t nonmanifold_edges_split; /* edges of more than two faces whose faces were paired (split_nonmanifold) */
+    size_t vertices_split;         /* vertex copies made by split_nonmanifold */
 } acd_repair_stats;
 
 /* Repairs m in place, in this order: weld, drop degenerate faces, drop duplicate faces, orient,

@@ -126,6 +126,7 @@ static acd_status prepare(const acd_mesh *m, int on, acd_segment_result *out, ac
     ro.drop_duplicates = 0;
     ro.fill_holes_max_edges = 0;
     ro.drop_unused_vertices = 0;
+    ro.split_nonmanifold = 0;
     acd_repair_stats rs;
     if ((st = acd_mesh_repair(&out->mesh, &ro, &rs, err)) != ACD_OK) return st;
     out->faces_flipped = rs.faces_flipped;

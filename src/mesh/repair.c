@@ -11,6 +11,16 @@
  *     inside an odd number of other closed parts (by the winding number of sample vertices):
  *     then it bounds a cavity and faces inward; an open part is reversed if that flips fewer
  *     faces (majority orientation kept);
+ *  3b. split non-manifold edges and vertices (split_nonmanifold): around an edge of more than two
+ *     faces, consistently oriented, the faces are sorted by angle about the edge (ties, faces
+ *     exactly in one half-plane, decided by orient3d) and each face using the edge b -> a is paired
+ *     with the next one counterclockwise about a -> b, which uses it a -> b: the wedge between them
+ *     is inside one solid. Corners of faces are joined across manifold edges and paired seams; each
+ *     group of corners at a vertex beyond the first gets a copy of the vertex, unless the vertex is on
+ *     a boundary edge (an open pinch stays: the holes meeting there are filled one by one, step 4).
+ *     Bodies touching along
+ *     an edge or at a point (a CAD assembly, OpenSCAD's booleans) become separate closed shells
+ *     sharing positions; an edge whose faces do not alternate in direction is left as it is;
  *  4. fill holes: the boundary is walked along its half-edges and split into simple loops
  *     (a boundary through a pinch vertex gives one loop per side); a loop of at most
  *     fill_holes_max_edges edges is closed by the minimum-area triangulation over its own
@@ -40,6 +50,7 @@ acd_repair_options acd_repair_default_options(void) {
     o.orient = 1;
     o.fill_holes_max_edges = 0;
     o.drop_unused_vertices = 1;
+    o.split_nonmanifold = 1;
     return o;
 }
 
@@ -670,6 +681,184 @@ static acd_status drop_unused(acd_mesh *m, acd_repair_stats *st, acd_error *err)
     return ACD_OK;
 }
 
+/* Step 3b (the file's comment): split non-manifold edges and vertices. */
+typedef struct corner_edge {
+    uint32_t lo, hi; /* the edge's vertices, lo < hi */
+    uint32_t t;      /* the face */
+    uint8_t ab;      /* 1: the face runs lo -> hi */
+} corner_edge;
+
+static int cmp_corner_edge(const void *x, const void *y) {
+    const corner_edge *a = x, *b = y;
+    if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
+    if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
+    return a->t < b->t ? -1 : a->t > b->t;
+}
+
+static uint32_t corner_find(uint32_t *p, uint32_t x) {
+    while (p[x] != x) x = p[x] = p[p[x]];
+    return x;
+}
+
+static void corner_union(uint32_t *p, uint32_t a, uint32_t b) {
+    a = corner_find(p, a), b = corner_find(p, b);
+    if (a != b) p[a > b ? a : b] = a < b ? a : b; /* the lower corner is the root: deterministic */
+}
+
+/* the corner of face t at vertex v */
+static uint32_t corner_of(const acd_mesh *m, uint32_t t, uint32_t v) {
+    const uint32_t *f = m->triangles + 3 * (size_t)t;
+    return 3 * t + (f[0] == v ? 0 : f[1] == v ? 1 : 2);
+}
+
+typedef struct fan_face {
+    double angle; /* about the edge, from the group's first face: [0, 2 pi) */
+    uint32_t t, third;
+    uint8_t ab;
+} fan_face;
+
+/* a before b counterclockwise about lo -> hi; faces in one half-plane (exactly) are one angle,
+ * the face running lo -> hi first (it ends a solid's wedge, the other begins the next one) */
+static int fan_before(const acd_mesh *m, uint32_t lo, uint32_t hi, const fan_face *a, const fan_face *b) {
+    const double *V = m->vertices;
+    int same = acd_orient3d_sign(V + 3 * (size_t)lo, V + 3 * (size_t)hi, V + 3 * (size_t)a->third,
+                                 V + 3 * (size_t)b->third) == 0 &&
+               fabs(a->angle - b->angle) < 1.0; /* one plane, and on one side of the edge's line */
+    if (same && a->ab != b->ab) return a->ab;
+    if (!same && a->angle != b->angle) return a->angle < b->angle;
+    return a->t < b->t;
+}
+
+static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, acd_error *err) {
+    size_t nt = m->ntriangles;
+    if (nt == 0) return ACD_OK;
+    if (nt > UINT32_MAX / 3) return acd_fail(err, ACD_ERR_INVALID_INPUT, "mesh too large to repair (%zu faces)", nt);
+    corner_edge *ce = malloc(3 * nt * sizeof *ce);
+    uint32_t *par = malloc(3 * nt * sizeof *par);
+    uint8_t *open = calloc(m->nvertices ? m->nvertices : 1, 1); /* on a boundary edge: kept whole */
+    fan_face *fan = NULL;
+    size_t fancap = 0;
+    acd_status s = ACD_OK;
+    if (!ce || !par || !open) {
+        s = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting non-manifold edges");
+        goto done;
+    }
+    for (size_t t = 0; t < nt; t++)
+        for (int i = 0; i < 3; i++) {
+            uint32_t u = m->triangles[3 * t + i], w = m->triangles[3 * t + (i + 1) % 3];
+            ce[3 * t + i] = (corner_edge){u < w ? u : w, u < w ? w : u, (uint32_t)t, (uint8_t)(u < w)};
+            par[3 * t + i] = (uint32_t)(3 * t + i);
+        }
+    qsort(ce, 3 * nt, sizeof *ce, cmp_corner_edge);
+    const double PI2 = 2.0 * acos(-1.0);
+    for (size_t i = 0, j; i < 3 * nt; i = j) {
+        for (j = i + 1; j < 3 * nt && ce[j].lo == ce[i].lo && ce[j].hi == ce[i].hi;) j++;
+        uint32_t lo = ce[i].lo, hi = ce[i].hi;
+        size_t n = j - i;
+        int paired = 0;
+        if (n == 1) open[lo] = open[hi] = 1;
+        if (n > 2 && n % 2 == 0) {
+            if (n > fancap) {
+                fan_face *nf = realloc(fan, n * sizeof *nf);
+                if (!nf) {
+                    s = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting non-manifold edges");
+                    goto done;
+                }
+                fan = nf, fancap = n;
+            }
+            /* angles about d = hi - lo, in the frame (u, d x u) of the first face's third vertex */
+            const double *a = m->vertices + 3 * (size_t)lo, *b = m->vertices + 3 * (size_t)hi;
+            double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            double u[3] = {0}, w[3];
+            for (size_t k = 0; k < n; k++) {
+                const uint32_t *f = m->triangles + 3 * (size_t)ce[i + k].t;
+                uint32_t c = f[0] != lo && f[0] != hi ? f[0] : f[1] != lo && f[1] != hi ? f[1] : f[2];
+                const double *pc = m->vertices + 3 * (size_t)c;
+                double p[3] = {pc[0] - a[0], pc[1] - a[1], pc[2] - a[2]};
+                double pd = dd > 0 ? (p[0] * d[0] + p[1] * d[1] + p[2] * d[2]) / dd : 0;
+                for (int q = 0; q < 3; q++) p[q] -= pd * d[q]; /* the part across the edge */
+                if (k == 0) {
+                    memcpy(u, p, sizeof u);
+                    w[0] = d[1] * u[2] - d[2] * u[1], w[1] = d[2] * u[0] - d[0] * u[2], w[2] = d[0] * u[1] - d[1] * u[0];
+                }
+                double x = p[0] * u[0] + p[1] * u[1] + p[2] * u[2], y = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+                double ang = k == 0 ? 0 : atan2(y, x);
+                if (ang < 0) ang += PI2;
+                /* exactly in the first face's plane: on its side of the edge (0) or across (pi), not
+                 * a rounding away from it (a face at 2 pi - 1e-16 would sort last) */
+                if (k > 0 && acd_orient3d_sign(a, b, m->vertices + 3 * (size_t)fan[0].third, pc) == 0)
+                    ang = x > 0 ? 0 : PI2 / 2;
+                fan[k] = (fan_face){ang, ce[i + k].t, c, ce[i + k].ab};
+            }
+            for (size_t k = 1; k < n; k++) /* insertion sort: a handful of faces */
+                for (size_t q = k; q > 0 && fan_before(m, lo, hi, &fan[q], &fan[q - 1]); q--) {
+                    fan_face x = fan[q];
+                    fan[q] = fan[q - 1], fan[q - 1] = x;
+                }
+            paired = 1;
+            for (size_t k = 0; k < n && paired; k++) paired = fan[k].ab != fan[(k + 1) % n].ab;
+            /* the wedge inside a solid runs counterclockwise from a face using hi -> lo (its
+             * interior is on that side) to the next face, which uses lo -> hi */
+            for (size_t k = 0; k < n && paired; k++)
+                if (!fan[k].ab) {
+                    const fan_face *g = &fan[(k + 1) % n];
+                    corner_union(par, corner_of(m, fan[k].t, lo), corner_of(m, g->t, lo));
+                    corner_union(par, corner_of(m, fan[k].t, hi), corner_of(m, g->t, hi));
+                }
+            if (paired) st->nonmanifold_edges_split++;
+        }
+        if (!paired) /* manifold, a boundary, or left as it is */
+            for (size_t k = i + 1; k < j; k++) {
+                corner_union(par, corner_of(m, ce[i].t, lo), corner_of(m, ce[k].t, lo));
+                corner_union(par, corner_of(m, ce[i].t, hi), corner_of(m, ce[k].t, hi));
+            }
+    }
+    /* each group of corners at a vertex beyond the first (in corner order) gets a copy of it */
+    {
+        size_t nv = m->nvertices, nnew = 0;
+        uint32_t *root_of = malloc((nv ? nv : 1) * sizeof *root_of);
+        uint32_t *copy = malloc(3 * nt * sizeof *copy); /* per root corner: its vertex */
+        if (!root_of || !copy) {
+            free(root_of), free(copy);
+            s = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting non-manifold vertices");
+            goto done;
+        }
+        for (size_t v = 0; v < nv; v++) root_of[v] = UINT32_MAX;
+        for (size_t c = 0; c < 3 * nt; c++) {
+            uint32_t v = m->triangles[c], r = corner_find(par, (uint32_t)c);
+            if (r != c) continue; /* roots are the lowest corners: met before their members */
+            if (root_of[v] == UINT32_MAX || open[v]) root_of[v] = r, copy[r] = v;
+            else copy[r] = (uint32_t)(nv + nnew++);
+        }
+        if (nnew > 0) {
+            if (nv + nnew >= UINT32_MAX) {
+                free(root_of), free(copy);
+                s = acd_fail(err, ACD_ERR_INVALID_INPUT, "mesh too large to repair (%zu vertices)", nv + nnew);
+                goto done;
+            }
+            double *nvx = realloc(m->vertices, 3 * (nv + nnew) * sizeof *nvx);
+            if (!nvx) {
+                free(root_of), free(copy);
+                s = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting non-manifold vertices");
+                goto done;
+            }
+            m->vertices = nvx;
+            for (size_t c = 0; c < 3 * nt; c++) {
+                uint32_t r = corner_find(par, (uint32_t)c), v = m->triangles[c];
+                uint32_t nvid = copy[r];
+                if (nvid != v && nvid >= nv) memcpy(m->vertices + 3 * (size_t)nvid, m->vertices + 3 * (size_t)v, 3 * sizeof(double));
+                m->triangles[c] = nvid;
+            }
+            m->nvertices = nv + nnew;
+            st->vertices_split = nnew;
+        }
+        free(root_of), free(copy);
+    }
+done:
+    free(ce), free(par), free(open), free(fan);
+    return s;
+}
+
 acd_status acd_mesh_repair(acd_mesh *m, const acd_repair_options *opt, acd_repair_stats *stats, acd_error *err) {
     acd_repair_stats local;
     acd_repair_stats *st = stats ? stats : &local;
@@ -687,6 +876,14 @@ acd_status acd_mesh_repair(acd_mesh *m, const acd_repair_options *opt, acd_repai
         (s = drop_faces(m, opt->drop_degenerate, opt->drop_duplicates, st, err)) != ACD_OK)
         return s;
     if (opt->orient && (s = orient(m, st, opt->fill_holes_max_edges == 0, err)) != ACD_OK) return s;
+    if (opt->split_nonmanifold) {
+        if ((s = split_nonmanifold(m, st, err)) != ACD_OK) return s;
+        /* shells closed by the split face outward now (cavities inward) */
+        if (st->vertices_split && opt->orient && !opt->fill_holes_max_edges) {
+            st->nonorientable_parts = 0; /* counted again */
+            if ((s = orient(m, st, 1, err)) != ACD_OK) return s;
+        }
+    }
     if (opt->fill_holes_max_edges) {
         if ((s = fill_holes(m, opt->fill_holes_max_edges, st, err)) != ACD_OK) return s;
         if (opt->orient && (s = orient(m, st, 1, err)) != ACD_OK) return s;
