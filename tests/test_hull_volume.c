@@ -192,6 +192,20 @@ static int sweep_round(int kind, const double dir[3], unsigned long long *seed) 
     memset(&w, 0, sizeof w);
     double vol[NQ];
     assert_int_equal(acd_hull_volume_sweep(pts, N, dir, cnt, xs, xb, xe, NQ, vol, &w), 0);
+    /* some queries only (acd_hull_volume_sweep_some): those asked for get the whole sweep's bits
+     * (a skipped query's points are not added, so the hull the next one grows from is the same),
+     * the others -4; masks: every other query (either phase), the first, the last, scattered */
+    for (int mk = 0; mk < 5; mk++) {
+        unsigned char need[NQ];
+        for (int q = 0; q < NQ; q++)
+            need[q] = mk < 2 ? (q + mk) % 2 == 0 : mk == 2 ? q == 0 : mk == 3 ? q == NQ - 1 : (q * 7 + 3) % 5 < 2;
+        double some[NQ];
+        assert_int_equal(acd_hull_volume_sweep_some(pts, N, dir, cnt, xs, xb, xe, NQ, need, some, &w), 0);
+        for (int q = 0; q < NQ; q++) {
+            if (need[q]) assert_memory_equal(&some[q], &vol[q], sizeof(double));
+            else assert_true(some[q] == -4);
+        }
+    }
     int done = 0;
     for (int q = 0; q < NQ; q++) {
         memcpy(set, pts, 3 * cnt[q] * sizeof *set);
@@ -229,6 +243,51 @@ static void test_sweep(void **state) {
     assert_int_equal(acd_hull_volume_sweep(p, 6, d, cnt, x, xb, xe, 1, vol, &w), 0);
     assert_true(vol[0] == -3);
     acd_hull_volume_ws_free(&w);
+}
+
+/* The hull's vertices as the own Quickhull finds them (acd_hull_volume_vertices): on random sets
+ * (in a ball, in a box, with points inside) the flagged points' hull is the whole set's (qhull's
+ * volumes within 1e-9), every vertex of qhull's hull is flagged and no point well inside is; a flat
+ * set has none. */
+static void test_vertices(void **state) {
+    (void)state;
+    unsigned long long seed = 77;
+    enum { N = 400 };
+    double *pts = malloc(3 * N * sizeof *pts), *sub = malloc(3 * N * sizeof *sub);
+    unsigned char flag[N];
+    acd_hull_volume_ws w;
+    memset(&w, 0, sizeof w);
+    for (int kind = 0; kind < 3; kind++) {
+        for (int i = 0; i < N; i++) {
+            double *p = pts + 3 * i;
+            do {
+                for (int k = 0; k < 3; k++) p[k] = 2 * lcg01(&seed) - 1;
+            } while (kind == 0 && p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > 1);
+            if (kind == 2 && i % 2) /* half the points well inside */
+                for (int k = 0; k < 3; k++) p[k] *= 0.3;
+        }
+        size_t nh = 0;
+        assert_int_equal(acd_hull_volume_vertices(pts, N, &w, flag, &nh), 1);
+        size_t ns = 0, nf = 0;
+        for (int i = 0; i < N; i++)
+            if (flag[i]) memcpy(sub + 3 * ns++, pts + 3 * i, sizeof(double[3]));
+        for (int i = 0; i < N; i++) nf += flag[i];
+        assert_true(nf == nh && nh >= 4 && nh < N);
+        double all = qhull_volume(pts, N), part = qhull_volume(sub, ns);
+        assert_true(fabs(all - part) <= 1e-9 * all);
+        acd_hull H;
+        memset(&H, 0, sizeof H);
+        assert_int_equal(acd_hull_compute(pts, N, &H, NULL), ACD_OK);
+        for (size_t k = 0; k < H.nvertices; k++) assert_true(flag[H.source[k]]);
+        acd_hull_free(&H);
+        if (kind == 2)
+            for (int i = 1; i < N; i += 2) assert_false(flag[i]);
+    }
+    for (int i = 0; i < N; i++) pts[3 * i + 2] = 0.5; /* flat */
+    size_t nh = 0;
+    assert_int_equal(acd_hull_volume_vertices(pts, N, &w, flag, &nh), 0);
+    acd_hull_volume_ws_free(&w);
+    free(pts), free(sub);
 }
 
 /* Coordinates at any scale: fuzz_hull_volume's nine points (a sliver at 2e84, a cluster at 1e-42)
@@ -610,6 +669,7 @@ int main(void) {
         cmocka_unit_test(test_hull_volume),
         cmocka_unit_test(test_workspace_reuse),
         cmocka_unit_test(test_sweep),
+        cmocka_unit_test(test_vertices),
         cmocka_unit_test(test_extreme_scales),
         cmocka_unit_test(test_sweep_thin_prefix),
         cmocka_unit_test(test_sweep_fold),

@@ -817,6 +817,23 @@ double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, 
     return v == -2 ? hull_volume_pts(pts, n) : v;
 }
 
+int acd_hull_volume_vertices(const double *pts, size_t n, acd_hull_volume_ws *w, unsigned char *flag, size_t *nflag) {
+    double v = hull_volume_qh(pts, n, w);
+    if (v == -1) return -1;
+    if (!(v > 0)) return 0; /* flat, fewer than 4 points, or left to qhull */
+    for (size_t i = 0; i < n; i++) flag[i] = 0;
+    size_t k = 0;
+    for (size_t t = 0; t < w->nf; t++)
+        if (w->alive[t])
+            for (int j = 0; j < 3; j++) {
+                unsigned char *x = &flag[w->f[t].v[j]];
+                k += !*x;
+                *x = 1;
+            }
+    *nflag = k;
+    return 1;
+}
+
 /* a before b: (u, v, index) in lexicographic order */
 static int hv_uv_less(const double *a, const double *b) {
     return a[0] < b[0] || (a[0] == b[0] && (a[1] < b[1] || (a[1] == b[1] && a[2] < b[2])));
@@ -980,7 +997,16 @@ static int hv_chain_start(acd_hull_volume_ws *w, const double *P, size_t n, doub
 
 int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
                           const size_t *xb, const size_t *xe, int nq, double *vol, acd_hull_volume_ws *w) {
-    for (int q = 0; q < nq; q++) vol[q] = -3;
+    return acd_hull_volume_sweep_some(pts, n, dir, cnt, xs, xb, xe, nq, NULL, vol, w);
+}
+
+int acd_hull_volume_sweep_some(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
+                               const size_t *xb, const size_t *xe, int nq, const unsigned char *need, double *vol,
+                               acd_hull_volume_ws *w) {
+    int qend = nq; /* after the last query asked for, the sweep stops */
+    if (need)
+        while (qend > 0 && !need[qend - 1]) qend--;
+    for (int q = 0; q < nq; q++) vol[q] = need && !need[q] ? -4 : -3;
     size_t maxx = 0;
     double big = 0; /* the largest coordinate of every point the sweep may add: beyond the range, none
                      * is computed here (hv_simplex checks only the first prefix) */
@@ -1031,7 +1057,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
     int q0 = 0, centred = 0;
     double eps = 0, V = 0, c[3] = {0, 0, 0};
     size_t top = 0;
-    for (; q0 < nq; q0++) {
+    for (; q0 < qend; q0++) {
         if (cnt[q0] < 4) continue;
         int r = hv_chain_start(w, P, cnt[q0], whole, &eps, &V);
         if (r == -1) {
@@ -1046,9 +1072,9 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
         }
         if (r == 1) break;
     }
-    if (q0 == nq) goto out;
+    if (q0 == qend) goto out;
     int last = w->lastf;
-    for (int q = q0; q < nq; q++) {
+    for (int q = q0; q < qend; q++) {
         if (q > q0) { /* the points up to this query's prefix: outside sets, then the Quickhull loop, then
                        * the points near the hull above a facet made since (hv_near_retest), again */
             top = 0;
@@ -1096,6 +1122,7 @@ int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], cons
                 fm = f1;
             }
         }
+        if (need && !need[q]) continue; /* (its corners would be undone: the hull is as if it had run) */
         /* the query: the corners of its extra points' planar hull added, the volume, then undone */
         size_t nx = xe[q] - xb[q];
         if (nx == 0) {

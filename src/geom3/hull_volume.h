@@ -49,6 +49,13 @@ void acd_hull_volume_ws_free(acd_hull_volume_ws *w);
  * set, -1 when out of memory. *fallback (if not NULL) is set to 1 when qhull computed it. */
 double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, int *fallback);
 
+/* The vertices of the hull of n points (3 doubles each) as this Quickhull finds them (a point within
+ * its tolerance of the hull is not one): flag[i] = 1 for each (n flags), their count in *nflag.
+ * Returns 1; 0 when it has none (fewer than 4 points, a flat set, or a set it leaves to qhull); -1
+ * when out of memory. Not qhull's vertex set near rounding: for uses where any subset of the points
+ * serves (acd3/budget's directions' bound: a subset's hull lies in the set's). */
+int acd_hull_volume_vertices(const double *pts, size_t n, acd_hull_volume_ws *w, unsigned char *flag, size_t *nflag);
+
 /* The hull volumes of nested sets swept along the unit direction dir, for scores that cut one
  * point set by parallel planes: query q's set is the first cnt[q] of the n points pts (sorted along
  * dir, cnt not decreasing) and the points xs[xb[q]..xe[q]) (3 doubles each), which lie on
@@ -62,5 +69,12 @@ double acd_hull_volume_fast(const double *pts, size_t n, acd_hull_volume_ws *w, 
  * -1 when out of memory. */
 int acd_hull_volume_sweep(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
                           const size_t *xb, const size_t *xe, int nq, double *vol, acd_hull_volume_ws *w);
+
+/* The same sweep computing only the queries q with need[q] (need NULL: all), each the same bits as
+ * the whole sweep gives it (a query's extra points are undone, so the hull each later query grows
+ * from is the same); the others' vol[q] is -4, and the sweep stops after the last query asked for. */
+int acd_hull_volume_sweep_some(const double *pts, size_t n, const double dir[3], const size_t *cnt, const double *xs,
+                               const size_t *xb, const size_t *xe, int nq, const unsigned char *need, double *vol,
+                               acd_hull_volume_ws *w);
 
 #endif
