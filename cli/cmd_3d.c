@@ -437,8 +437,9 @@ static void verify_one(const acd3d_result *r, const verify_frame *vf, size_t i, 
         if (d > q->worst) q->worst = d;
     }
     /* trimmed hulls: the part's volume outside its hull, exactly (the part cut by the distinct
-     * planes of the facets it sticks out of, the pieces beyond them summed); where the cuts fail
-     * (a part the rounding left pinched, or one crossing itself, or out of memory), an upper bound
+     * planes of the facets it sticks out of, the pieces beyond them summed; on a part the rounding
+     * back to model coordinates left pinched, or one crossing itself, tetrahedron by tetrahedron:
+     * acd_hull_volume_outside); where that fails (a part not closed, out of memory), an upper bound
      * (the part beyond each of those planes, summed; NaN: out of memory) */
     if (trim > 0 && q->worst > vf->stick) {
         q->xst = acd_hull_volume_outside(&h, m, vf->stick, r->scale, &q->outside, &q->xerr);

@@ -246,6 +246,57 @@ static void test_rounded(void **state) {
     acd_mesh_free(&near);
 }
 
+/* The budget pipeline with trimmed hulls on a rounded far mesh (the spindle + 1e6 extents, every
+ * coordinate rounded): valid as --verify reads it (check_valid: the parts' volume outside their
+ * trimmed hulls, acd_hull_volume_outside in a local frame, within the coverage). And the check can
+ * fail: every hull's planes moved inward (its vertices 2% of the way to their centroid, then back
+ * far from the origin) puts more than the coverage outside. */
+static void test_rounded_trim_corrupt(void **state) {
+    (void)state;
+    acd_mesh m;
+    spindle(&m);
+    const double E = far_extent(&m);
+    far_translate_rounded(&m, 1e6 * E);
+    acd3d_params prm = acd3d_budget_params(6);
+    prm.trim_coverage = 0.0008;
+    acd3d_result r;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &prm, &r, &err), ACD_OK);
+    double o[3];
+    for (int k = 0; k < 3; k++) o[k] = m.vertices[k];
+    check_valid(&m, &r, o, 1, prm.trim_coverage);
+    double outside = 0;
+    const double vin = far_volume_about(&m, o, NULL);
+    for (size_t i = 0; i < r.nparts; i++) {
+        const acd3d_part *p = &r.parts[i];
+        double c[3] = {0, 0, 0};
+        double *hv = malloc(3 * p->hull.nvertices * sizeof *hv), *pv = malloc(3 * p->mesh.nvertices * sizeof *pv);
+        assert_true(hv && pv);
+        for (size_t k = 0; k < 3 * p->hull.nvertices; k++) c[k % 3] += (p->hull.vertices[k] - o[k % 3]) / (double)p->hull.nvertices;
+        for (size_t k = 0; k < 3 * p->hull.nvertices; k++) {
+            const double x = p->hull.vertices[k] - o[k % 3];
+            hv[k] = (x + 0.02 * (c[k % 3] - x)) + o[k % 3]; /* inward, back in model coordinates */
+            hv[k] -= o[k % 3];
+        }
+        for (size_t k = 0; k < 3 * p->mesh.nvertices; k++) pv[k] = p->mesh.vertices[k] - o[k % 3];
+        acd_hull h;
+        assert_int_equal(acd_hull_compute(hv, p->hull.nvertices, &h, &err), ACD_OK);
+        acd_mesh lp = p->mesh;
+        lp.vertices = pv;
+        double out;
+        assert_int_equal(acd_hull_volume_outside(&h, &lp, 1e-9 * r.scale, r.scale, &out, &err), ACD_OK);
+        outside += out;
+        acd_hull_free(&h);
+        free(hv);
+        free(pv);
+    }
+    print_message("spindle + 1e6 extents, budget 6, trim 0.0008: hulls moved 2%% inward leave %.3g of the volume "
+                  "outside\n", outside / vin);
+    assert_true(outside > 4 * prm.trim_coverage * vin);
+    acd3d_result_free(&r);
+    acd_mesh_free(&m);
+}
+
 /* Coordinates that cannot resolve the extent (far.off of the defect: a cube of side 1e-3 at 1e12,
  * 8 spacings a side): refused as bad input naming a vertex, in both modes, never a result. */
 static void test_unresolved_refused(void **state) {
@@ -273,6 +324,7 @@ int main(void) {
         cmocka_unit_test(test_exact_budget_trim),
         cmocka_unit_test(test_exact_surface),
         cmocka_unit_test(test_rounded),
+        cmocka_unit_test(test_rounded_trim_corrupt),
         cmocka_unit_test(test_unresolved_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

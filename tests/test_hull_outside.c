@@ -289,11 +289,72 @@ static void test_wrong_input(void **state) {
     acd_hull_free(&h);
 }
 
+/* Two unit cubes sharing an edge (welded: the edge's two vertices are one in both cubes), closed as
+ * a chain of triangles but not a manifold (the shared edge is used twice in each direction), as a
+ * part the rounding back to model coordinates pinched: the plane cut refuses it (ACD_ERR_NON_MANIFOLD
+ * before the tetrahedra's fallback: --verify then fell back to the bound, dino 1e6 extents away).
+ * Outside the box [0, 1.75] x [0, 2] x [0, 0.75]: the tops z > 0.75 of both (0.5), the slab
+ * x > 1.75 of the second (0.25), their overlap once (0.0625): 0.6875, the bound 0.75. Near the
+ * origin and 1e6 extents away (the local frame). */
+static void test_pinched(void **state) {
+    (void)state;
+    const double place[3][4] = {{1, 0, 0, 0}, {0.5, 3e6, -2e6, 1e6}, {2, -1e7, 0.25, 2e7}};
+    for (int pi = 0; pi < 3; pi++) {
+        const double s = place[pi][0], *o = place[pi] + 1, s3 = s * s * s;
+        const double o0[3] = {0, 0, 0}, o1[3] = {1, 1, 0};
+        acd_mesh a, b, m;
+        cube(&a, 1, o0);
+        cube(&b, 1, o1);
+        /* b's vertices 0 (1, 1, 0) and 4 (1, 1, 1) are a's 3 and 7; its others follow a's 8 */
+        uint32_t map[8];
+        m.nvertices = 14, m.ntriangles = 24;
+        m.vertices = malloc(3 * m.nvertices * sizeof *m.vertices);
+        m.triangles = malloc(3 * m.ntriangles * sizeof *m.triangles);
+        assert_true(m.vertices && m.triangles);
+        memcpy(m.vertices, a.vertices, 24 * sizeof *m.vertices);
+        for (uint32_t i = 0, n = 8; i < 8; i++) {
+            map[i] = i == 0 ? 3 : i == 4 ? 7 : n++;
+            if (map[i] >= 8) memcpy(m.vertices + 3 * map[i], b.vertices + 3 * i, 3 * sizeof *m.vertices);
+        }
+        memcpy(m.triangles, a.triangles, 36 * sizeof *m.triangles);
+        for (int k = 0; k < 36; k++) m.triangles[36 + k] = map[b.triangles[k]];
+        map_mesh(&m, s, o);
+        assert_float_equal(mg_volume(&m) / s3, 2, 1e-9);
+        double pl[4 * 6], bound;
+        acd_hull h;
+        polytope_hull(pl, box_planes(pl, 1.75, 2, 0.75, NULL, 0), s, o, &h);
+        const double out = outside_of(&h, &m, 2 * s, &bound);
+        print_message("pinched cubes (s %g at %g): outside %.15g (0.6875), bound %.15g\n", s, o[0], out / s3, bound / s3);
+        assert_float_equal(out / s3, 0.6875, 1e-9);
+        assert_float_equal(bound / s3, 0.75, 1e-9);
+        /* a hull plane moved inward (the box's top at z = 0.5): the volume outside grows by the
+         * layer between (2 x 0.25, less the overlap with the slab: 0.0625) */
+        acd_hull_free(&h);
+        polytope_hull(pl, box_planes(pl, 1.75, 2, 0.5, NULL, 0), s, o, &h);
+        const double out2 = outside_of(&h, &m, 2 * s, &bound);
+        assert_float_equal(out2 / s3, 0.6875 + 0.5 - 0.0625, 1e-9);
+        acd_hull_free(&h);
+        /* a triangle of b flipped: not closed as a chain (its edges used twice one way), refused as
+         * before (no number that depends on where the tetrahedra start) */
+        uint32_t t = m.triangles[37];
+        m.triangles[37] = m.triangles[38], m.triangles[38] = t;
+        polytope_hull(pl, box_planes(pl, 1.75, 2, 0.75, NULL, 0), s, o, &h);
+        acd_error err;
+        double bad = 0;
+        assert_int_equal(acd_hull_volume_outside(&h, &m, 1e-9 * s, s, &bad, &err), ACD_ERR_NON_MANIFOLD);
+        assert_true(isnan(bad));
+        acd_hull_free(&h);
+        acd_mesh_free(&a);
+        acd_mesh_free(&b);
+        acd_mesh_free(&m);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cube_caps),       cmocka_unit_test(test_u_pieces),
         cmocka_unit_test(test_l_integral),      cmocka_unit_test(test_inside_and_flat),
-        cmocka_unit_test(test_wrong_input),
+        cmocka_unit_test(test_wrong_input),     cmocka_unit_test(test_pinched),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

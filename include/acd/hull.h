@@ -73,11 +73,17 @@ double acd_hull_volume_outside_bound(const acd_hull *h, const acd_mesh *m, doubl
  * closed). h of dim < 3 (no interior): the whole solid's volume. Specks of volume within rounding
  * and flat shells are dropped by the cuts (acd_plane_cut_flags with ACD_PLANE_CUT_DROP_SPECKS).
  * On a solid that crosses itself the volumes are signed (winding numbers), as every volume here.
+ * Where a cut fails on a solid that is closed as a chain of triangles (every edge used as often
+ * in each direction) but not a manifold the cut takes (a part the rounding back to model
+ * coordinates pinched, one crossing itself), the volume is taken tetrahedron by tetrahedron
+ * instead: each triangle's tetrahedron from the centroid of h's vertices, signed by its
+ * orientation, is split by the same planes in turn and the pieces beyond each summed (convex
+ * pieces, no topology: winding numbers again), ACD_OK.
  * Returns ACD_OK; ACD_ERR_NOMEM when out of memory (also inside a cut); ACD_ERR_INVALID_ARGUMENT
  * for NULL pointers or a tol or tol_scale that is not finite; any other status is a plane cut that
- * failed, its own status with the plane named in err (ACD_ERR_NON_MANIFOLD: m, or a piece the
- * rounding left pinched, is not closed and consistently oriented; a solid crossing itself can also
- * fail a cut so). On failure *outside is NaN: a caller may fall back to the bound. Serial and
+ * failed on a solid not closed as a chain (open, or a triangle flipped), its own status with the
+ * plane named in err (ACD_ERR_NON_MANIFOLD), or where a tetrahedron would be split into more than
+ * 65536 pieces. On failure *outside is NaN: a caller may fall back to the bound. Serial and
  * deterministic. */
 acd_status acd_hull_volume_outside(const acd_hull *h, const acd_mesh *m, double tol, double tol_scale,
                                    double *outside, acd_error *err);

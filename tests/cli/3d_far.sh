@@ -7,6 +7,8 @@
 #  - the hulls are written where the input is (model coordinates), input volume as near (1e-6);
 #  - acd segment --verify: the input's volume as near (1e-6; before: summed about the origin,
 #    fandisk 1e6 extents away reported hull/mesh 0.00013), and acd info's;
+#  - dino and bones (data/meshes, when present) 1e6 extents away: --budget 16 --trim-coverage
+#    0.0008 --verify passes, the volume outside the trimmed hulls exact (below);
 #  - coordinates that cannot resolve the extent (a cube of side 1e-3 at 1e12, 8 doubles a side):
 #    refused, exit 2, naming a vertex.
 . "$(dirname "$0")/lib.sh"
@@ -44,6 +46,35 @@ for ratio in 1e4 1e6 1e8; do
   close_to "$S" "$S0" 1e-6 || fail "$ratio extents: segment's mesh volume $S, near $S0"
   I=$("$ACD" info "$T/far.off" | awk '$1 == "volume" { print $2 }')
   close_to "$I" "$S0" 1e-6 || fail "$ratio extents: acd info volume $I, near $S0"
+done
+
+# The budget + trim runs that failed --verify 1e6 extents away (docs/results/3d-far.md): a part the
+# rounding back to model coordinates pinched made the exact cut of --verify's volume outside a
+# trimmed hull fail, and the bound replacing it counts a region beyond two planes twice (dino: exit
+# 3, "up to 0.00234" against 0.0008 x 2.457; bones, a mesh crossing itself: exit 2 where near it
+# only warned). Now the volume is taken tetrahedron by tetrahedron there (geom3/hull_outside):
+# exit 0, the exact value within the limit. On the data meshes when present.
+move_data() { # FILE RATIO OUT: every coordinate + RATIO x the largest side of the box
+  awk -v r="$2" '
+    /^[[:space:]]*#/ || NF == 0 { next }
+    n == 0 { n = 1; next }
+    n == 1 { nv = $1; n = 2; next }
+    n == 2 && nv > 0 { for (k = 1; k <= 3; k++) { x = $k + 0; if (!(k in lo) || x < lo[k]) lo[k] = x; if (!(k in hi) || x > hi[k]) hi[k] = x }; nv-- }
+    END { e = 0; for (k = 1; k <= 3; k++) if (hi[k] - lo[k] > e) e = hi[k] - lo[k]; printf "%.17g\n", r * e }' "$1" > "$T/d"
+  awk -v d="$(cat "$T/d")" '
+    /^[[:space:]]*#/ || NF == 0 { next }
+    n == 0 { print "OFF"; n = 1; next }
+    n == 1 { print; nv = $1; n = 2; next }
+    nv > 0 { printf "%.17g %.17g %.17g\n", $1 + d, $2 + d, $3 + d; nv--; next }
+    { print }' "$1" > "$3" # (COFF's colours dropped)
+}
+for name in dino bones; do
+  F="$SRC/data/meshes/$name.off"
+  [ -f "$F" ] || { echo "note: $F missing, its far budget + trim run skipped"; continue; }
+  move_data "$F" 1e6 "$T/$name.far.off"
+  "$ACD" 3d "$T/$name.far.off" --budget 16 --trim-coverage 0.0008 --verify -v -o "$T/$name.obj" > /dev/null 2> "$T/err" ||
+    fail "$name 1e6 extents: --budget 16 --trim-coverage 0.0008 --verify exit $?: $(grep -v '(.*s)$' "$T/err" | tail -1)"
+  grep -q "outside the trimmed hulls (exact; limit 0.0008)" "$T/err" || fail "$name: $(grep verified "$T/err")"
 done
 
 # a cube of side 1e-3 at 1e12: 8 doubles a side
