@@ -40,7 +40,7 @@ static void analyse_opts(const acd_mesh *m, double tau, acd3d_weight w, int dyna
     a->o.tau = tau;
     a->o.delta = 0.1 * tau;
     a->o.weight = w;
-    assert_int_equal(acd3_cut_graph_build(m, &a->g, &a->ms, &a->o, &a->cg, &err), ACD_OK);
+    assert_int_equal(acd3_cut_graph_build(m, &a->g, &a->ms, &a->o, NULL, &a->cg, &err), ACD_OK);
     assert_int_equal(acd3_global_cut_find(m, &a->g, &a->ms, &a->cg, &a->o, &a->gc, &err), ACD_OK);
     a->has_plane = acd3_global_cut_plane(m, &a->ms, &a->cg, &a->gc, &a->o, a->point, a->normal, NULL);
 }

@@ -5,7 +5,9 @@
  * the budget pipeline: each stage reports (fractions in [0, 1] and not decreasing within a stage,
  * or -1), a callback that returns non-zero in a stage makes the call return ACD_ERR_CANCELLED with a
  * message and no result (the ASan build checks nothing leaks), and a callback that never cancels
- * leaves the output bit for bit as without one. */
+ * leaves the output bit for bit as without one. The tree's callback is also called within a node's
+ * work (acd3/poll): the measure (acd3/measure), the global cut's graph (acd3/pocket_cut) and the
+ * checks of the input, so a large root part does not keep it silent. */
 #include "testutil.h"
 
 #include <math.h>
@@ -14,11 +16,14 @@
 #include <string.h>
 
 #include "acd/acd3d.h"
+#include "acd3/measure.h"
+#include "acd3/pocket_cut.h"
+#include "acd3/poll.h"
 #include "shapes.h"
 
 typedef struct seen {
     const char *cancel_prefix; /* cancel at the first stage starting with it (NULL: never) */
-    int tree, budget, join, refine, surface, other;
+    int check, tree, budget, join, refine, surface, other;
     double last_fraction;
     char last_stage[64];
 } seen;
@@ -32,7 +37,8 @@ static int on_progress(void *user, double fraction, const char *stage) {
         assert_true(fraction >= S->last_fraction); /* not decreasing within a stage */
     S->last_fraction = fraction;
     snprintf(S->last_stage, sizeof S->last_stage, "%s", stage);
-    if (starts(stage, "measuring")) S->tree++;
+    if (starts(stage, "checking the input")) S->check++;
+    else if (starts(stage, "measuring")) S->tree++;
     else if (starts(stage, "budget")) S->budget++;
     else if (starts(stage, "merge: joining surface")) S->surface++;
     else if (starts(stage, "merge: joining")) S->join++;
@@ -41,11 +47,23 @@ static int on_progress(void *user, double fraction, const char *stage) {
     return S->cancel_prefix && starts(stage, S->cancel_prefix);
 }
 
-/* Counts as on_progress does, and cancels at the second call. */
+/* Counts as on_progress does, and cancels at the second call of the tree. */
 static int cancel_second(void *user, double fraction, const char *stage) {
     seen *S = user;
     on_progress(user, fraction, stage);
     return S->tree + S->budget + S->join + S->refine + S->surface + S->other >= 2;
+}
+
+/* Counts every call; cancels at call number stop_at (0: never). */
+typedef struct counter {
+    int calls, stop_at;
+} counter;
+
+static int count_calls(void *user, double fraction, const char *stage) {
+    (void)fraction, (void)stage;
+    counter *c = user;
+    c->calls++;
+    return c->stop_at && c->calls >= c->stop_at;
 }
 
 /* The budget pipeline (docs/acd3d.md "Excess-driven budget") at 8 parts, refined. */
@@ -146,6 +164,105 @@ static void test_cancel_within_batch(void **state) {
     assert_non_null(strstr(err.message, "cancelled"));
     assert_int_equal(C.tree, 2);
     assert_int_equal(C.other + C.budget + C.join + C.refine, 0);
+    assert_true(C.check >= 1); /* the checks of the input call it too */
+    acd_mesh_free(&m);
+}
+
+/* A bumpy sphere of 57,600 triangles whose root part is a leaf (tau above its concavity): the tree
+ * does nothing but the root's measure after the batch's first call. The measure calls the callback
+ * (between its phases and every few projected hull edges): a callback that cancels at the tree's
+ * second call (inside the measure) gets ACD_ERR_CANCELLED (without the poll in the measure there is
+ * no second call: the run ends ACD_OK); not cancelled, the output is the same as without a
+ * callback. With two threads too (the calling thread takes the root: it is the one that calls). */
+static void test_cancel_in_root_measure(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 240, 120, mg_bumpy_r, NULL));
+    for (int threads = 1; threads <= 2; threads++) {
+        acd3d_params p = acd3d_default_params();
+        p.tau = 10; /* the root is within tau */
+        p.threads = threads;
+        seen S = {.last_fraction = -1};
+        p.progress = on_progress;
+        p.progress_user = &S;
+        acd3d_result r, q;
+        acd_error err = {0};
+        assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+        print_message("%d thread(s): %d checks, %d tree calls (1 before the root's measure), %zu parts\n", threads,
+                      S.check, S.tree, r.nparts);
+        assert_int_equal(r.nparts, 1);
+        assert_true(S.tree >= 5);
+        p.progress = NULL;
+        assert_int_equal(acd3d_decompose(&m, &p, &q, &err), ACD_OK);
+        assert_int_equal(q.parts[0].hull.nvertices, r.parts[0].hull.nvertices);
+        assert_memory_equal(q.parts[0].hull.vertices, r.parts[0].hull.vertices,
+                            3 * q.parts[0].hull.nvertices * sizeof(double));
+        assert_true(q.parts[0].concavity == r.parts[0].concavity);
+        acd3d_result_free(&r);
+        acd3d_result_free(&q);
+        seen C = {.last_fraction = -1};
+        p.progress = cancel_second;
+        p.progress_user = &C;
+        assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_CANCELLED);
+        assert_non_null(strstr(err.message, "cancelled"));
+        assert_int_equal(C.tree, 2);
+    }
+    acd_mesh_free(&m);
+}
+
+/* acd3_measure_compute_hull and acd3_cut_graph_build with a poll: the same measure and cut graph as
+ * without one when it never says stop; cancelled at every call in turn, ACD_ERR_CANCELLED and
+ * nothing kept (each exit frees what it made: the ASan build checks). Fails without the polls (no
+ * poll argument; in the tree, no call within the measure). */
+static void test_measure_and_cut_graph_polls(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 96, 64, mg_bumpy_r, NULL));
+    acd_edge_graph g;
+    acd_error err = {0};
+    assert_int_equal(acd_edge_graph_from_mesh(m.vertices, m.nvertices, m.triangles, m.ntriangles, &g, &err), ACD_OK);
+    const double eps = 0.01, tol = 1e-9;
+    acd3_measure ref, ms;
+    assert_int_equal(acd3_measure_compute(&m, &g, eps, tol, &ref, &err), ACD_OK);
+    counter c = {0, 0};
+    acd3_poll poll = acd3_poll_make(count_calls, &c, "measuring and cutting");
+    assert_int_equal(acd3_measure_compute_hull(&m, &g, NULL, eps, tol, &poll, &ms, &err), ACD_OK);
+    const int ncalls = c.calls;
+    print_message("measure: %d calls (%zu projected hull edges)\n", ncalls, ms.nprojected);
+    assert_true(ncalls >= 5);
+    assert_true(ms.concavity == ref.concavity);
+    assert_int_equal(ms.witness, ref.witness);
+    assert_memory_equal(ms.vconc, ref.vconc, m.nvertices * sizeof *ms.vconc);
+    acd3_measure_free(&ms);
+    for (int k = 1; k <= ncalls; k++) {
+        c = (counter){0, k};
+        poll = acd3_poll_make(count_calls, &c, "measuring and cutting");
+        assert_int_equal(acd3_measure_compute_hull(&m, &g, NULL, eps, tol, &poll, &ms, &err), ACD_ERR_CANCELLED);
+        assert_int_equal(c.calls, k);
+        assert_null(ms.vconc);
+    }
+    /* the cut graph: polled per knot source */
+    const acd3_gc_opts o = {2 * eps, 0.2 * eps, ACD3D_WEIGHT_RATIO, 0, 0};
+    acd3_cut_graph cg0, cg;
+    assert_int_equal(acd3_cut_graph_build(&m, &g, &ref, &o, NULL, &cg0, &err), ACD_OK);
+    c = (counter){0, 0};
+    poll = acd3_poll_make(count_calls, &c, "measuring and cutting");
+    assert_int_equal(acd3_cut_graph_build(&m, &g, &ref, &o, &poll, &cg, &err), ACD_OK);
+    const int ncg = c.calls;
+    print_message("cut graph: %d calls, %zu cuts\n", ncg, cg.ncuts);
+    assert_true(ncg >= 1);
+    assert_int_equal(cg.ncuts, cg0.ncuts);
+    acd3_cut_graph_free(&cg);
+    acd3_cut_graph_free(&cg0);
+    /* (cancelled at the first calls, then at a few spread over the rest: the calls are many) */
+    for (int k = 1; k <= ncg; k = k < 4 ? k + 1 : k + ncg / 5 + 1) {
+        c = (counter){0, k};
+        poll = acd3_poll_make(count_calls, &c, "measuring and cutting");
+        assert_int_equal(acd3_cut_graph_build(&m, &g, &ref, &o, &poll, &cg, &err), ACD_ERR_CANCELLED);
+        assert_int_equal(c.calls, k);
+    }
+    acd3_measure_free(&ref);
+    acd_edge_graph_free(&g);
     acd_mesh_free(&m);
 }
 
@@ -180,6 +297,8 @@ int main(void) {
         cmocka_unit_test(test_stages_reported),
         cmocka_unit_test(test_cancel_in_each_stage),
         cmocka_unit_test(test_cancel_within_batch),
+        cmocka_unit_test(test_cancel_in_root_measure),
+        cmocka_unit_test(test_measure_and_cut_graph_polls),
         cmocka_unit_test(test_surface_merge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

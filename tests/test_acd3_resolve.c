@@ -47,7 +47,7 @@ static void test_notch_candidates(void **state) {
     memset(&ro, 0, sizeof ro);
     ro.notch = 1;
     acd3_plane_candidate c[ACD3_MAX_CANDIDATES];
-    int n = acd3_cut_candidates(&m, &g, &ms, &ro, c);
+    int n = acd3_cut_candidates(&m, &g, &ms, &ro, NULL, c);
     assert_true(n >= 2 && n <= 4);
     assert_string_equal(c[0].kind, "notch");
     /* a bisector of the right angle between +x and +y, through the edge */
@@ -61,7 +61,7 @@ static void test_notch_candidates(void **state) {
 
     /* the witness resolver proposes more kinds (valley, notch, face, centroid, axis) */
     ro.notch = 0;
-    int n2 = acd3_cut_candidates(&m, &g, &ms, &ro, c);
+    int n2 = acd3_cut_candidates(&m, &g, &ms, &ro, NULL, c);
     assert_true(n2 > n);
     int faces = 0;
     for (int i = 0; i < n2; i++) faces += !strcmp(c[i].kind, "face");
@@ -214,7 +214,7 @@ static void test_star_edge_candidates(void **state) {
     acd3_resolve_opts ro;
     memset(&ro, 0, sizeof ro);
     acd3_plane_candidate c[ACD3_MAX_CANDIDATES];
-    int n = acd3_cut_candidates(&m, &g, &ms, &ro, c), edges = 0;
+    int n = acd3_cut_candidates(&m, &g, &ms, &ro, NULL, c), edges = 0;
     assert_true(n > 3);
     uint8_t axis_seen[3] = {0, 0, 0};
     for (int i = 0; i < n; i++) {
@@ -233,7 +233,7 @@ static void test_star_edge_candidates(void **state) {
     ro.gc.tau = 0.01;
     ro.gc.delta = 0.001;
     ro.gc.weight = ACD3D_WEIGHT_RATIO;
-    n = acd3_cut_candidates(&m, &g, &ms, &ro, c);
+    n = acd3_cut_candidates(&m, &g, &ms, &ro, NULL, c);
     assert_true(n > 3);
     assert_string_equal(c[0].kind, "edges");
     acd3_measure_free(&ms);
@@ -326,7 +326,7 @@ static void test_smooth_no_edge_planes(void **state) {
     acd3_resolve_opts ro;
     memset(&ro, 0, sizeof ro);
     acd3_plane_candidate c[ACD3_MAX_CANDIDATES];
-    int n = acd3_cut_candidates(&m, &g, &ms, &ro, c);
+    int n = acd3_cut_candidates(&m, &g, &ms, &ro, NULL, c);
     assert_true(n > 0);
     for (int i = 0; i < n; i++) assert_string_not_equal(c[i].kind, "edges");
     acd3_measure_free(&ms);
@@ -434,7 +434,7 @@ static int edge_candidates(const acd_mesh *m) {
     acd3_resolve_opts ro;
     memset(&ro, 0, sizeof ro);
     acd3_plane_candidate c[ACD3_MAX_CANDIDATES];
-    int n = acd3_cut_candidates(m, &g, &ms, &ro, c), edges = 0;
+    int n = acd3_cut_candidates(m, &g, &ms, &ro, NULL, c), edges = 0;
     for (int i = 0; i < n; i++) edges += !strcmp(c[i].kind, "edges");
     acd3_measure_free(&ms);
     acd_edge_graph_free(&g);

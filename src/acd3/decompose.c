@@ -14,7 +14,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <threads.h>
 #include <time.h>
 #ifdef _OPENMP
 #include <omp.h>
@@ -27,6 +26,7 @@
 #include "acd3/leaf_test.h"
 #include "acd3/measure.h"
 #include "acd3/merge.h"
+#include "acd3/poll.h"
 #include "acd3/region_cut.h"
 #include "acd3/resolve.h"
 #include "acd3/surface_cut.h"
@@ -116,16 +116,21 @@ static void measured_free(measured *x) {
     x->valid = 0;
 }
 
-/* hull: m's hull when already computed (taken over, also on failure), else NULL */
-static acd_status measure_mesh(const acd_mesh *m, double eps, double tol, acd_hull *hull, measured *out,
-                               acd_error *err) {
+/* hull: m's hull when already computed (taken over, also on failure), else NULL; poll: the run's
+ * (NULL: none), polled by the measure (ACD_ERR_CANCELLED once it says stop) */
+static acd_status measure_mesh(const acd_mesh *m, double eps, double tol, acd_hull *hull, acd3_poll *poll,
+                               measured *out, acd_error *err) {
     out->valid = 0;
     acd_status st = acd_edge_graph_from_mesh(m->vertices, m->nvertices, m->triangles, m->ntriangles, &out->g, err);
+    if (st == ACD_OK && acd3_poll_stop(poll)) {
+        acd_edge_graph_free(&out->g);
+        st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled measuring a part of %zu triangles", m->ntriangles);
+    }
     if (st != ACD_OK) {
         if (hull) acd_hull_free(hull);
         return st;
     }
-    st = acd3_measure_compute_hull(m, &out->g, hull, eps, tol, &out->ms, err);
+    st = acd3_measure_compute_hull(m, &out->g, hull, eps, tol, poll, &out->ms, err);
     if (st != ACD_OK) {
         acd_edge_graph_free(&out->g);
         return st;
@@ -360,36 +365,8 @@ typedef struct cand_eval {
     int screened; /* dropped by the screen (screen_decide): its replay drops it */
 } cand_eval;
 
-/* Cancellation within a batch of nodes: the progress callback is called by the calling thread
- * (owner: the thread that called acd3d_decompose) between candidate evaluations, not only between
- * batches (the root's batch is most of a large mesh's run); once it asks to stop, every thread
- * stops claiming candidates and the batch ends ACD_ERR_CANCELLED. */
-typedef struct cancel_poll {
-    acd_progress_fn fn;
-    void *user;
-    thrd_t owner;
-    int stop; /* read and written atomically */
-} cancel_poll;
-
-static int poll_stop(cancel_poll *p) {
-    if (!p) return 0;
-    int stop;
-#ifdef _OPENMP
-#pragma omp atomic read
-#endif
-    stop = p->stop;
-    if (!stop && thrd_equal(thrd_current(), p->owner) && p->fn(p->user, -1.0, "measuring and cutting")) {
-        stop = 1;
-#ifdef _OPENMP
-#pragma omp atomic write
-#endif
-        p->stop = 1;
-    }
-    return stop;
-}
-
 typedef struct split_state {
-    cancel_poll *poll; /* NULL: no progress callback */
+    acd3_poll *poll; /* NULL: no progress callback */
     const acd_mesh *m;
     const acd_edge_graph *g;
     const acd3_measure *ms;
@@ -799,6 +776,7 @@ static void split_evaluate(split_state *S, int i) {
         e->st = ACD_ERR_NOMEM;
         return;
     }
+    if (acd3_poll_stop(S->poll)) return; /* cancelled: the batch is dropped (the cut is freed with it) */
     /* two or more pieces; in surface mode also one piece cut open along a loop that does not
      * separate it (around a handle: its genus drops) */
     int ok = trial->cut.npieces >= 2 ||
@@ -852,7 +830,7 @@ static void split_evaluate(split_state *S, int i) {
         if (split_abandoned(S, i, conc, &lost) || lost) return;
         size_t k = e->ord[i2];
         acd_hull *hk = e->hulls && e->hulls[k].dim >= 0 ? &e->hulls[k] : NULL;
-        acd_status st = measure_mesh(&trial->cut.pieces[k].mesh, S->eps, S->tol, hk, &trial->pieces[k], &e->err);
+        acd_status st = measure_mesh(&trial->cut.pieces[k].mesh, S->eps, S->tol, hk, S->poll, &trial->pieces[k], &e->err);
         if (st != ACD_OK) {
             e->st = st;
             e->failed_at = i2;
@@ -867,7 +845,7 @@ static void split_evaluate(split_state *S, int i) {
  * them until the replay is over. */
 static void split_work(split_state *S) {
     for (;;) {
-        if (poll_stop(S->poll)) return;
+        if (acd3_poll_stop(S->poll)) return;
         int id = -1;
 #ifdef _OPENMP
 #pragma omp critical(acd3_split)
@@ -906,18 +884,18 @@ static int same_candidate(const acd3_plane_candidate *a, const acd3_plane_candid
  * part and makes progress (surface_progress), *cyc is that cut with its pieces measured and
  * *have = 1; it then competes with the planes as the first compared candidate. */
 static int surface_cycle_cut(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                             const acd3_resolve_opts *ro, double eps, double tol, acd3_plane_candidate *cand,
-                             split_choice *cyc, int *have, acd_error *err) {
+                             const acd3_resolve_opts *ro, double eps, double tol, acd3_poll *poll,
+                             acd3_plane_candidate *cand, split_choice *cyc, int *have, acd_error *err) {
     *have = 0;
     if (ms->witness == UINT32_MAX) return 0;
     acd3_global_cut gc;
     int hp = 0, nc = 0;
-    acd_status st = acd3_global_cut_at_witness(m, g, ms, &ro->gc, &gc, cand[0].point, cand[0].normal, &hp, err);
+    acd_status st = acd3_global_cut_at_witness(m, g, ms, &ro->gc, poll, &gc, cand[0].point, cand[0].normal, &hp, err);
     if (st != ACD_OK) return -(int)st;
     if (hp) cand[0].kind = gc.cup ? "cup" : gc.closed && !gc.dynamic ? "global" : "pocket", nc = 1;
     acd3_resolve_opts r2 = *ro;
     r2.global = 0;
-    nc += acd3_cut_candidates(m, g, ms, &r2, cand + nc);
+    nc += acd3_cut_candidates(m, g, ms, &r2, poll, cand + nc);
     if (!gc.closed || gc.n < 4) {
         acd3_global_cut_free(&gc);
         return nc;
@@ -931,7 +909,7 @@ static int surface_cycle_cut(const acd_mesh *m, const acd_edge_graph *g, const a
         trial.pieces = calloc(trial.cut.npieces, sizeof *trial.pieces);
         if (!trial.pieces) st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
         for (size_t k = 0; st == ACD_OK && k < trial.cut.npieces; k++) {
-            st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, NULL, &trial.pieces[k], err);
+            st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, NULL, poll, &trial.pieces[k], err);
             if (st == ACD_OK && trial.pieces[k].ms.concavity > trial.concavity) trial.concavity = trial.pieces[k].ms.concavity;
         }
         for (size_t k = 0; st == ACD_OK && k < trial.cut.npieces; k++) trial.hullvol += trial.pieces[k].ms.hull.volume;
@@ -1008,7 +986,7 @@ static int halving_planes(const acd_mesh *m, acd3_plane_candidate out[ACD3_HALVI
 static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, double extent, double eps,
                      double tau, double tol, int solid, int restrict_cut, double min_piece_volume,
                      unsigned cut_flags, const acd3_resolve_opts *ro, acd3d_cut_choice choice, int helpers,
-                     const acd_edge_map *em, double screen_rel, cancel_poll *poll,
+                     const acd_edge_map *em, double screen_rel, acd3_poll *poll,
                      const acd3_plane_candidate *fixed, int nfixed, acd3_decompose_stats *stats, split_choice *best,
                      acd_error *err) {
     /* slots: [0, npre) the planes evaluated ahead (if any), then the candidates in order */
@@ -1042,7 +1020,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     if (ahead) {
         acd3_resolve_opts r2 = *ro;
         r2.global = r2.notch = 0;
-        npre = acd3_cut_candidates(m, g, ms, &r2, slot);
+        npre = acd3_cut_candidates(m, g, ms, &r2, poll, slot);
         S.pre_end = npre;
 #ifdef _OPENMP
         int nh = helpers < npre ? helpers : npre;
@@ -1070,7 +1048,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
     memset(&cyc, 0, sizeof cyc);
     int nc, have_cyc = 0;
     if (!solid && ro && ro->global && ro->gc.dynamic) {
-        nc = surface_cycle_cut(m, g, ms, ro, eps, tol, cand, &cyc, &have_cyc, err);
+        nc = surface_cycle_cut(m, g, ms, ro, eps, tol, poll, cand, &cyc, &have_cyc, err);
         if (nc < 0) return nc;
         if (have_cyc && (cyc.concavity <= tau + tol || cyc.concavity <= 0.5 * ms->concavity)) {
             *best = cyc;
@@ -1080,7 +1058,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
         nc = nfixed;
         memcpy(cand, fixed, (size_t)nfixed * sizeof *cand);
     } else {
-        nc = acd3_cut_candidates(m, g, ms, ro, cand);
+        nc = acd3_cut_candidates(m, g, ms, ro, poll, cand);
     }
     if (vplanes && nc > 0 && !fixed) { /* the volume planes after the first candidate */
         if (!ahead) nvp = split_volume_planes(m, vp);
@@ -1167,7 +1145,7 @@ static int try_split(const acd_mesh *m, const acd_edge_graph *g, const acd3_meas
                 return -(int)ACD_ERR_NOMEM;
             }
             for (size_t k = 0; k < trial.cut.npieces; k++) {
-                acd_status st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, NULL, &trial.pieces[k], err);
+                acd_status st = measure_mesh(&trial.cut.pieces[k].mesh, eps, tol, NULL, poll, &trial.pieces[k], err);
                 if (st != ACD_OK) {
                     choice_free(&trial);
                     if (found) choice_free(best);
@@ -1196,8 +1174,8 @@ typedef struct run_ctx {
     int helpers;   /* threads that may join the evaluation of a split's candidates */
     size_t max_depth; /* params->max_depth + 2 x the input's genus */
     double screen_rel; /* the hull volume screen's margin (acd3_decompose_screen) */
-    cancel_poll *poll; /* NULL without a progress callback */
-    int multi;         /* the input has more than one edge-connected component (acd3_topology_of) */
+    acd3_poll *poll; /* NULL without a progress callback */
+    int multi;       /* the input has more than one edge-connected component (acd3_topology_of) */
 } run_ctx;
 
 typedef struct node_work {
@@ -1252,7 +1230,7 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
     w->cache.valid = 0;
     out->st = ACD_OK;
     if (!cur.valid) {
-        out->st = measure_mesh(&w->mesh, c->eps, c->tol, NULL, &cur, &out->err);
+        out->st = measure_mesh(&w->mesh, c->eps, c->tol, NULL, c->poll, &cur, &out->err);
         if (out->st != ACD_OK) return;
     }
     w->node.concavity = cur.ms.concavity;
@@ -1293,15 +1271,15 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         acd_edge_map em;
         const int have_em = c->solid && cur.ms.witness != UINT32_MAX && part_edge_map(&w->mesh, &em);
         const acd_edge_map *emp = have_em ? &em : NULL;
-        if ((c->params->region_cuts || !c->solid) && !poll_stop(c->poll))
+        if ((c->params->region_cuts || !c->solid) && !acd3_poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 1,
                               ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
                               c->screen_rel, c->poll, NULL, 0, &out->stats, &out->choice, &out->err);
-        if (split == 0 && c->solid && !poll_stop(c->poll))
+        if (split == 0 && c->solid && !acd3_poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                               ACD3_MIN_PIECE_FRACTION * vol, 0, &ro, c->params->cut_choice, c->helpers, emp,
                               c->screen_rel, c->poll, NULL, 0, &out->stats, &out->choice, &out->err);
-        if (split == 0 && c->solid && !poll_stop(c->poll))
+        if (split == 0 && c->solid && !acd3_poll_stop(c->poll))
             split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                               ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume, ACD_PLANE_CUT_DROP_SPECKS, &ro,
                               c->params->cut_choice, c->helpers, emp, c->screen_rel, c->poll, NULL, 0, &out->stats,
@@ -1319,7 +1297,7 @@ static void process_node(const run_ctx *c, work_node *w, node_work *out) {
         if (!split && out->st == ACD_OK && reason == ACD3D_LEAF_NO_CUT && c->solid) {
             acd3_plane_candidate hv[ACD3_HALVING_PLANES];
             const int nh = halving_planes(&w->mesh, hv);
-            for (int retry = 0; nh > 0 && split == 0 && retry < 2 && !poll_stop(c->poll); retry++)
+            for (int retry = 0; nh > 0 && split == 0 && retry < 2 && !acd3_poll_stop(c->poll); retry++)
                 split = try_split(&w->mesh, &cur.g, &cur.ms, c->extent, c->eps, c->tau, c->tol, c->solid, 0,
                                   retry ? ACD3_MIN_PIECE_FRACTION_RETRY * cur.ms.hull.volume : ACD3_MIN_PIECE_FRACTION * vol,
                                   retry ? ACD_PLANE_CUT_DROP_SPECKS : 0, &ro, ACD3D_CHOICE_CONCAVITY, c->helpers, emp,
@@ -1824,6 +1802,10 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
      * rounding back to them would break */
     st = acd_geom3_frame_check(frame, model->vertices, solid ? "solid decomposition" : "surface decomposition", err);
     if (st != ACD_OK) return st;
+    /* the checks of a large input take a while too: the callback between them (this thread's) */
+    acd3_poll check = acd3_poll_make(params->progress, params->progress_user, "checking the input");
+    acd3_poll *checkp = params->progress ? &check : NULL;
+    if (acd3_poll_stop(checkp)) return acd_fail(err, ACD_ERR_CANCELLED, "cancelled checking the input");
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
 
@@ -1844,11 +1826,13 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
         if (!(vol > 0))
             return acd_fail(err, ACD_ERR_DEGENERATE,
                             "the mesh encloses no positive volume (%g): it is flat or oriented inward", vol);
+        if (acd3_poll_stop(checkp)) return acd_fail(err, ACD_ERR_CANCELLED, "cancelled checking the input");
     }
 
     acd_sphere sph;
     st = acd_min_sphere(mesh->vertices, mesh->nvertices, &sph, err);
     if (st != ACD_OK) return st;
+    if (acd3_poll_stop(checkp)) return acd_fail(err, ACD_ERR_CANCELLED, "cancelled checking the input");
     acd_scale sc = acd_scale_of_points(mesh->vertices, mesh->nvertices, 3);
     out->scale = sph.radius;
     out->tau = params->tau_absolute ? params->tau : params->tau * sph.radius;
@@ -1884,6 +1868,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
         if (topo.genus > 0) max_depth += 2 * (size_t)topo.genus;
         multi = topo.components > 1;
     }
+    if (acd3_poll_stop(checkp)) return acd_fail(err, ACD_ERR_CANCELLED, "cancelled checking the input");
     tree t = {0};
     acd_mesh root;
     st = acd_mesh_copy(&root, mesh, err);
@@ -1902,7 +1887,10 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
     /* Nodes are processed in batches: every node waiting when a batch starts is measured and
      * split independently (in parallel), then the children are appended in node order. The
      * tree, and so the output, is the same for any number of threads. */
-    cancel_poll poll = {params->progress, params->progress_user, thrd_current(), 0};
+    /* the poll within a batch (acd3/poll): the callback is called by this thread (between candidate
+     * cuts, within the measure and the global cut: the root's batch is most of a large mesh's run);
+     * once it asks to stop, every thread stops claiming work and the batch ends ACD_ERR_CANCELLED */
+    acd3_poll poll = acd3_poll_make(params->progress, params->progress_user, "measuring and cutting");
     for (size_t i = 0; i < t.n;) {
         if (params->progress && params->progress(params->progress_user, -1.0, "measuring and cutting")) {
             st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled after %zu parts", nleaves);
@@ -1937,17 +1925,32 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
             }
             bord[q] = j;
         }
+        /* the first (largest) node is this thread's (the team's thread 0, the poll's owner), so that
+         * the callback keeps being called while it is worked on (a root of a large mesh: its measure
+         * and global cut); the other threads claim the rest in order, then so does this one */
+        const long nb = (long)(b1 - b0);
+        long next = 1;
 #ifdef _OPENMP
 #pragma omp parallel num_threads(nthreads) if (nthreads > 1)
 #endif
-        { /* (the end of the loop is a barrier where the threads without a node run helper tasks) */
+        { /* (the region's end is a barrier where the threads without a node run helper tasks) */
+            long j = 0;
 #ifdef _OPENMP
-#pragma omp for schedule(dynamic, 1)
+            if (omp_get_thread_num() != 0) {
+#pragma omp atomic capture
+                j = next++;
+            }
 #endif
-            for (long j = 0; j < (long)(b1 - b0); j++) process_node(&ctx, &t.a[b0 + bord[j]], &wk[bord[j]]);
+            while (j < nb) {
+                process_node(&ctx, &t.a[b0 + bord[j]], &wk[bord[j]]);
+#ifdef _OPENMP
+#pragma omp atomic capture
+#endif
+                j = next++;
+            }
         }
         free(bord);
-        if (poll.stop) /* the callback asked to stop during the batch: its nodes' work is dropped */
+        if (acd3_poll_stopped(&poll)) /* the callback asked to stop during the batch: its nodes' work is dropped */
             st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled after %zu parts", nleaves);
         /* the first failure in node order is reported */
         for (size_t j = 0; j < b1 - b0; j++) {

@@ -673,12 +673,12 @@ done:
 }
 
 acd_status acd3_global_cut_at_witness(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                                      const acd3_gc_opts *o, acd3_global_cut *gc, double point[3], double normal[3],
-                                      int *has_plane, acd_error *err) {
+                                      const acd3_gc_opts *o, acd3_poll *poll, acd3_global_cut *gc, double point[3],
+                                      double normal[3], int *has_plane, acd_error *err) {
     memset(gc, 0, sizeof *gc);
     *has_plane = 0;
     acd3_cut_graph cg;
-    acd_status st = acd3_cut_graph_build(m, g, ms, o, &cg, err);
+    acd_status st = acd3_cut_graph_build(m, g, ms, o, poll, &cg, err);
     if (st != ACD_OK) return st;
     st = acd3_global_cut_find(m, g, ms, &cg, o, gc, err);
     if (st == ACD_OK && gc->n >= 2) *has_plane = acd3_global_cut_plane(m, ms, &cg, gc, o, point, normal, NULL);

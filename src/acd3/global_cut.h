@@ -63,10 +63,11 @@ int acd3_global_cut_plane(const acd_mesh *m, const acd3_measure *ms, const acd3_
                           const acd3_global_cut *gc, const acd3_gc_opts *o, double point[3], double normal[3],
                           double fitted[3]);
 
-/* acd3_cut_graph_build, acd3_global_cut_find and acd3_global_cut_plane in one call (the cut graph
- * is freed): *has_plane = 1 when point and normal were set. ACD_ERR_NOMEM only. */
+/* acd3_cut_graph_build (polling poll, NULL: none), acd3_global_cut_find and acd3_global_cut_plane
+ * in one call (the cut graph is freed): *has_plane = 1 when point and normal were set.
+ * ACD_ERR_NOMEM, or ACD_ERR_CANCELLED once poll says stop. */
 acd_status acd3_global_cut_at_witness(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                                      const acd3_gc_opts *o, acd3_global_cut *gc, double point[3], double normal[3],
-                                      int *has_plane, acd_error *err);
+                                      const acd3_gc_opts *o, acd3_poll *poll, acd3_global_cut *gc, double point[3],
+                                      double normal[3], int *has_plane, acd_error *err);
 
 #endif

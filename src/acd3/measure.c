@@ -175,11 +175,16 @@ static size_t flood_regions(const acd_mesh *m, const uint32_t *fe, const uint32_
 
 acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, double eps, double tol,
                                 acd3_measure *out, acd_error *err) {
-    return acd3_measure_compute_hull(m, g, NULL, eps, tol, out, err);
+    return acd3_measure_compute_hull(m, g, NULL, eps, tol, NULL, out, err);
 }
 
+/* The projection polls every this many hull edges (each a shortest path over the part: some 2 ms
+ * each at the root of an 832k-triangle mesh, docs/results/3d-large.md "Progress and cancellation"),
+ * the open surfaces' bound every ACD3_MEASURE_POLL_VERTICES vertices (each against every patch). */
+enum { ACD3_MEASURE_POLL_PATHS = 8, ACD3_MEASURE_POLL_VERTICES = 4096 };
+
 acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g, acd_hull *hull, double eps,
-                                     double tol, acd3_measure *out, acd_error *err) {
+                                     double tol, acd3_poll *poll, acd3_measure *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     out->witness = UINT32_MAX;
     size_t nv = m->nvertices, nf = m->ntriangles;
@@ -204,6 +209,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
         st = acd_hull_compute(m->vertices, nv, &out->hull, err);
         if (st != ACD_OK) goto fail;
     }
+    if (acd3_poll_stop(poll)) goto cancelled;
     if (out->hull.dim < 3) { /* flat: convex by definition (a planar patch or a degenerate solid) */
         for (size_t f = 0; f < nf; f++) out->face_region[f] = 0;
         out->nregions = nf ? 1 : 0;
@@ -211,6 +217,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
     }
     st = acd3_patches_build(&out->hull, eps, tol, &out->patches, err);
     if (st != ACD_OK) goto fail;
+    if (acd3_poll_stop(poll)) goto cancelled;
     fe = malloc((nf ? 3 * nf : 1) * sizeof *fe);
     if (!fe) {
         st = acd_fail(err, ACD_ERR_NOMEM, "out of memory measuring a mesh of %zu faces", nf);
@@ -227,15 +234,21 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
     const acd_hull *h = &out->hull;
     st = open_surface_rule(m, g, face_of, h, &os, err);
     if (st != ACD_OK) goto fail;
+    if (acd3_poll_stop(poll)) goto cancelled;
 
     /* project the patch-boundary hull edges; collect votes (face, patch, weight) */
     const uint32_t *fp = out->patches.facet_patch;
     size_t nvote = 0, capvote = 0;
     acd3_claim *vl = NULL;
+    size_t nsearched = 0;
     for (size_t t = 0; t < h->ntriangles; t++)
         for (int i = 0; i < 3; i++) {
             uint32_t nb = h->neighbors[3 * t + i];
             if (nb == ACD_HULL_NO_NEIGHBOR || fp[nb] == fp[t] || nb < t) continue;
+            if (++nsearched % ACD3_MEASURE_POLL_PATHS == 0 && acd3_poll_stop(poll)) {
+                free(vl);
+                goto cancelled;
+            }
             uint32_t ia = h->triangles[3 * t + i], ib = h->triangles[3 * t + (i + 1) % 3];
             uint32_t a = h->source[ia], b = h->source[ib];
             int ca = os.concave && os.concave[ia], cb = os.concave && os.concave[ib];
@@ -296,6 +309,10 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
         goto fail;
     }
     out->nregions = flood_regions(m, fe, face_of, out->edge_barrier, out->face_region, queue);
+    if (acd3_poll_stop(poll)) {
+        free(vl);
+        goto cancelled;
+    }
     size_t np = out->patches.npatches, nr = out->nregions;
     out->region_patch = malloc((nr ? nr : 1) * sizeof *out->region_patch);
     if (!out->region_patch) {
@@ -345,6 +362,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
         acd3_handle_result_free(&hr);
     }
     free(vl);
+    if (acd3_poll_stop(poll)) goto cancelled;
     /* regions without a projected path around them (open surfaces): the patch whose plane
      * they lie least deep below; one pass over those faces per patch */
     {
@@ -361,6 +379,11 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
             /* voted regions are marked -INFINITY and left alone */
             for (size_t r = 0; r < nr; r++) bestd[r] = out->region_patch[r] == UINT32_MAX ? INFINITY : -INFINITY;
             for (size_t p = 0; p < np; p++) {
+                if (acd3_poll_stop(poll)) {
+                    free(bestd);
+                    free(worst);
+                    goto cancelled;
+                }
                 for (size_t r = 0; r < nr; r++) worst[r] = 0;
                 for (size_t f = 0; f < nf; f++) {
                     uint32_t r = out->face_region[f];
@@ -397,6 +420,7 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
      * surface patch, Chazelle et al.) at concavity 0, up to eps. */
     if (os.concave)
         for (size_t v = 0; v < nv; v++) {
+            if ((v + 1) % ACD3_MEASURE_POLL_VERTICES == 0 && acd3_poll_stop(poll)) goto cancelled;
             double mn = INFINITY;
             for (size_t p = 0; p < out->patches.npatches && mn > 0; p++) {
                 double d = acd3_patch_depth(&out->patches, p, m->vertices + 3 * v);
@@ -417,6 +441,8 @@ acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g,
     open_rule_free(&os);
     free(face_patch);
     return ACD_OK;
+cancelled:
+    st = acd_fail(err, ACD_ERR_CANCELLED, "cancelled measuring a part of %zu triangles", nf);
 fail:
     free(face_of);
     free(fe);

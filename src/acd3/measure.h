@@ -28,6 +28,7 @@
 #include "acd/mesh.h"
 #include "acd3/handles.h"
 #include "acd3/patches.h"
+#include "acd3/poll.h"
 #include "geom3/dijkstra.h"
 
 typedef struct acd3_measure {
@@ -55,9 +56,11 @@ typedef struct acd3_measure {
 acd_status acd3_measure_compute(const acd_mesh *m, const acd_edge_graph *g, double eps, double tol,
                                 acd3_measure *out, acd_error *err);
 /* The same with m's hull already computed (acd_hull_compute of m's vertices): *hull is taken over
- * (left empty, also on failure); NULL computes it. */
+ * (left empty, also on failure); NULL computes it. poll (acd3/poll; NULL: none) is polled between
+ * the phases and every ACD3_MEASURE_POLL_PATHS projected hull edges (each a shortest path over the
+ * part): once it says stop, ACD_ERR_CANCELLED with nothing kept. */
 acd_status acd3_measure_compute_hull(const acd_mesh *m, const acd_edge_graph *g, acd_hull *hull, double eps,
-                                     double tol, acd3_measure *out, acd_error *err);
+                                     double tol, acd3_poll *poll, acd3_measure *out, acd_error *err);
 void acd3_measure_free(acd3_measure *ms);
 
 /* Per graph edge, the faces on its two sides: face_of[2e] has the half-edge lower->upper

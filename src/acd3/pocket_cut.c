@@ -289,10 +289,11 @@ static void flood_split(const uint32_t *fe, const acd3_measure *ms, const acd3_c
 }
 
 acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                                const acd3_gc_opts *o, acd3_cut_graph *out, acd_error *err) {
+                                const acd3_gc_opts *o, acd3_poll *poll, acd3_cut_graph *out, acd_error *err) {
     memset(out, 0, sizeof *out);
     size_t nv = m->nvertices, nf = m->ntriangles, ne = g->nedges, nr = ms->nregions;
     acd_status st = ACD_OK;
+    int cancelled = 0; /* poll said stop (ok = 0 too) */
     if (ms->face_of) { /* the measure's (the same graph and mesh) */
         out->face_of = malloc((2 * ne + 1) * sizeof *out->face_of);
         if (!out->face_of) return acd_fail(err, ACD_ERR_NOMEM, "out of memory for %zu edges", ne);
@@ -398,6 +399,10 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
         }
         for (size_t i = 0; i < K * K; i++) wm[i] = NO_PATH_COST, cid[i] = SIZE_MAX;
         for (size_t i = 0; i < K && ok; i++) {
+            if (acd3_poll_stop(poll)) {
+                cancelled = 1, ok = 0;
+                break;
+            }
             uint32_t src = out->knot_v[kr[i].knot];
             /* the search stops once the knots it pairs with (below) are settled */
             size_t nt = 0;
@@ -497,6 +502,10 @@ acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, cons
         }
         /* (one kept cut crosses no other: no flood) */
         for (size_t i = 0; i < nk && nk > 1; i++) {
+            if (acd3_poll_stop(poll)) { /* each flood covers the region */
+                cancelled = 1, ok = 0;
+                break;
+            }
             const cand *ci = &cands[kept.a[i]];
             const uint32_t *p = pool.a + ci->off;
             for (size_t k = 0; k + 1 < ci->n; k++) {
@@ -615,5 +624,6 @@ build_done:
     return ACD_OK;
 nomem:
     acd3_cut_graph_free(out);
+    if (cancelled) return acd_fail(err, ACD_ERR_CANCELLED, "cancelled building the cut graph (%zu vertices)", nv);
     return acd_fail(err, ACD_ERR_NOMEM, "out of memory building the cut graph (%zu vertices)", nv);
 }

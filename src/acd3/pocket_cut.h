@@ -80,8 +80,10 @@ typedef struct acd3_cut_graph {
     uint32_t *vf;
 } acd3_cut_graph;
 
+/* poll (acd3/poll; NULL: none) is polled per knot source (each a shortest-path search over its
+ * pocket): once it says stop, ACD_ERR_CANCELLED with nothing kept. */
 acd_status acd3_cut_graph_build(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                                const acd3_gc_opts *o, acd3_cut_graph *out, acd_error *err);
+                                const acd3_gc_opts *o, acd3_poll *poll, acd3_cut_graph *out, acd_error *err);
 void acd3_cut_graph_free(acd3_cut_graph *cg);
 
 /* W of the path p[0..n) (see above); face_of from acd3_edge_faces. */

@@ -463,8 +463,8 @@ static double edge_plane_tol(const acd_mesh *m) {
  * both its edges), ranked by how many sharp reflex edges they hold and resolve, then their length;
  * at most max, kind "edges", each with the three points it was spanned by (the cut goes through
  * them exactly). 0 when the witness has no sharp reflex edge (a scan's shallow valleys: no plane
- * added), or on allocation failure. */
-static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, int max,
+ * added), on allocation failure, or once poll says stop (polled between its passes over the part). */
+static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, int max, acd3_poll *poll,
                        acd3_plane_candidate *out) {
     uint32_t x = ms->witness;
     if (max <= 0 || g->nvertices != m->nvertices) return 0;
@@ -472,7 +472,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
     if (!witness_sharp(m, x, cos_max)) return 0;
     acd_edge_map em;
     if (acd_edge_map_closed(m->triangles, m->ntriangles, &em, NULL) != ACD_OK) return 0;
-    int n = 0;
+    int n = 0, stop = acd3_poll_stop(poll);
     sharp_edge *all = NULL;
     edge_plane *pl = NULL;
     uint32_t *held = NULL;
@@ -483,7 +483,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
         sharp_edge e;
         if (sharp_reflex(m, &em, x, g->adj[k], cos_max, &e)) nw++;
     }
-    if (nw == 0) goto done;
+    if (nw == 0 || stop) goto done;
     all = malloc(g->nedges * sizeof *all);
     if (!all) goto done;
     for (size_t k = g->row[x]; k < g->row[x + 1]; k++)
@@ -493,7 +493,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
         if (a == x || b == x) continue;
         if (sharp_reflex(m, &em, a, b, cos_max, &all[na])) na++;
     }
-    if (na < 2) goto done;
+    if (na < 2 || acd3_poll_stop(poll)) goto done;
     /* the planes: for each witness edge e and each other sharp reflex edge f, the plane through e and
      * f's endpoint farther from e's line, when f lies in it and it resolves both; a plane found
      * again (from another f or another witness edge) counts nothing new */
@@ -503,6 +503,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
     if (!pl || !held || !loop_init(&L, m->nvertices)) goto done;
     const double *V = m->vertices;
     for (size_t i = 0; i < nw; i++) {
+        if (acd3_poll_stop(poll)) goto done;
         const sharp_edge *e = &all[i];
         const double *ex = V + 3 * (size_t)e->a, *ey = V + 3 * (size_t)e->b;
         double elen = e->len;
@@ -535,6 +536,7 @@ static int edge_planes(const acd_mesh *m, const acd_edge_graph *g, const acd3_me
      * candidates they had (ident's 21 runs bitwise unchanged, docs/acd3d.md) */
     size_t kept = 0;
     for (size_t q = 0; q < npl; q++) {
+        if (acd3_poll_stop(poll)) goto done;
         int fourth = 0, spread = 0;
         size_t nh = 0;
         for (size_t j = 0; j < na; j++) {
@@ -573,11 +575,11 @@ done:
     return n;
 }
 
-/* The global cut's plane (acd3/global_cut); 1 if found. */
+/* The global cut's plane (acd3/global_cut); 1 if found (0 too once poll says stop). */
 static int global_plane(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms, const acd3_gc_opts *o,
-                        acd3_plane_candidate *c) {
+                        acd3_poll *poll, acd3_plane_candidate *c) {
     acd3_cut_graph cg;
-    if (acd3_cut_graph_build(m, g, ms, o, &cg, NULL) != ACD_OK) return 0;
+    if (acd3_cut_graph_build(m, g, ms, o, poll, &cg, NULL) != ACD_OK) return 0;
     acd3_global_cut gc;
     int ok = 0;
     if (acd3_global_cut_find(m, g, ms, &cg, o, &gc, NULL) == ACD_OK) {
@@ -606,13 +608,13 @@ static int axis_planes(const acd_mesh *m, const acd3_measure *ms, int max, acd3_
 }
 
 int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                        const acd3_resolve_opts *ro, acd3_plane_candidate *out) {
+                        const acd3_resolve_opts *ro, acd3_poll *poll, acd3_plane_candidate *out) {
     if (ms->witness == UINT32_MAX) return 0;
     int n = 0;
     /* the planes through sharp reflex edges first (none at a scan's witness: its candidates are
      * unchanged) */
-    if (!(ro && ro->notch && !ro->global)) n += edge_planes(m, g, ms, EDGE_PLANES_MAX, out);
-    if (ro && ro->global) n += global_plane(m, g, ms, &ro->gc, &out[n]);
+    if (!(ro && ro->notch && !ro->global)) n += edge_planes(m, g, ms, EDGE_PLANES_MAX, poll, out);
+    if (ro && ro->global) n += global_plane(m, g, ms, &ro->gc, poll, &out[n]);
     else if (ro && ro->notch) {
         /* notch cutting (spec §5.4, A14): the bisector, then only the axis planes (progress when
          * the bisector cannot split the part: a notch whose bisector runs along an earlier cap,

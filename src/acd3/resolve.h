@@ -60,8 +60,9 @@ typedef struct acd3_resolve_opts {
 
 /* Fills up to ACD3_MAX_CANDIDATES candidate planes for the measured part; returns their count
  * (0 only when the part has no witness or an allocation failed). ro may be NULL (no global
- * cut). */
+ * cut). poll (acd3/poll; NULL: none) is polled within the edge planes and the global cut's graph;
+ * once it says stop, the candidates are cut short (the caller tells by acd3_poll_stopped). */
 int acd3_cut_candidates(const acd_mesh *m, const acd_edge_graph *g, const acd3_measure *ms,
-                        const acd3_resolve_opts *ro, acd3_plane_candidate *out);
+                        const acd3_resolve_opts *ro, acd3_poll *poll, acd3_plane_candidate *out);
 
 #endif
