@@ -311,11 +311,20 @@ static void normalise(const acd_mesh *m, acd_mesh *w, double *scale) {
     }
 }
 
+/* The progress callback between the phases of a step, when it is a wave's only part (caller
+ * non-zero: the root's above all; run on the calling thread, and so for any number of threads);
+ * the fraction is the wave's. ACD_ERR_CANCELLED when it asks to stop. */
+static acd_status step_progress(const acd_corise_params *prm, int caller, double fraction, acd_error *err) {
+    if (caller && prm->progress && prm->progress(prm->progress_user, fraction, "corise"))
+        return acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback within a part's step");
+    return ACD_OK;
+}
+
 /* One CoRiSe step on the submesh s: *nparts = 0 when s is final (no deep valley or flat hull),
  * else part[] holds the cut result. *maxc: the largest valley concavity of s (0 when its hull is
- * flat), as max_valley_concavity computes it. */
-static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t *part, size_t *nparts, double *maxc,
-                       acd_corise_stats *stats, acd_error *err) {
+ * flat), as max_valley_concavity computes it. caller, fraction: step_progress's. */
+static acd_status step(const acd_mesh *s, const acd_corise_params *prm, int caller, double fraction, uint32_t *part,
+                       size_t *nparts, double *maxc, acd_corise_stats *stats, acd_error *err) {
     *nparts = 0;
     *maxc = 0;
     acd_edge_graph g;
@@ -326,7 +335,9 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t
     memset(&r, 0, sizeof r);
     uint32_t *ml = NULL;
     acd_status st = acd_edge_graph_from_mesh(s->vertices, s->nvertices, s->triangles, s->ntriangles, &g, err);
+    if (st == ACD_OK) st = step_progress(prm, caller, fraction, err);
     if (st == ACD_OK) st = acd_corise_bridges_compute_mt(s, &g, prm->clamp_hull_depth, prm->threads, &b, err);
+    if (st == ACD_OK) st = step_progress(prm, caller, fraction, err);
     if (st != ACD_OK) goto done;
     stats->fallbacks += b.fallbacks;
     stats->unreachable += b.unreachable;
@@ -339,12 +350,14 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, uint32_t
         }
     if (!deep) goto done;
     if ((st = acd_corise_ridges_compute(&b, prm->tau, &r, err)) != ACD_OK) goto done;
+    if ((st = step_progress(prm, caller, fraction, err)) != ACD_OK) goto done;
     ml = malloc(s->ntriangles * sizeof *ml);
     if (!ml) {
         st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu facets", s->ntriangles);
         goto done;
     }
     if ((st = acd_corise_regions_mt(s, &g, &b, &r, prm->tau, prm->threads, ml, NULL, err)) != ACD_OK) goto done;
+    if ((st = step_progress(prm, caller, fraction, err)) != ACD_OK) goto done;
     st = acd_corise_cut(s, &b, &r, ml, &prm->cut, part, nparts, err);
 done:
     free(ml);
@@ -371,7 +384,8 @@ static void free_work(part_work *wk, size_t n) {
 }
 
 static void process_part(const acd_mesh *w, const part *cur, const edge_count *ge, size_t nge,
-                         const acd_corise_params *prm, uint32_t *map, uint32_t *l2g, part_work *out) {
+                         const acd_corise_params *prm, int caller, double fraction, uint32_t *map, uint32_t *l2g,
+                         part_work *out) {
     acd_mesh sub, aug;
     out->st = ACD_OK;
     if (!extract(w, cur->faces, cur->n, map, l2g, &sub)) {
@@ -388,7 +402,7 @@ static void process_part(const acd_mesh *w, const part *cur, const edge_count *g
     }
     acd_corise_stats st;
     memset(&st, 0, sizeof st);
-    out->st = step(&aug, prm, out->cutpart, &out->np, &out->maxc, &st, &out->err);
+    out->st = step(&aug, prm, caller, fraction, out->cutpart, &out->np, &out->maxc, &st, &out->err);
     out->fallbacks = st.fallbacks;
     out->unreachable = st.unreachable;
     acd_mesh_free(&aug);
@@ -470,8 +484,15 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
     /* Parts are processed in waves: every part waiting when a wave starts is extracted, capped and
        stepped independently (in parallel when there are several), then the results are taken in
        queue order exactly as one part at a time would: the same pieces pushed in the same order,
-       the same final parts, statistics and progress calls, for any number of threads. */
+       the same final parts, statistics and progress calls, for any number of threads. The callback
+       is called from the calling thread only: after each final part, at the start of each wave and,
+       in a wave of one part (the root's above all), between the phases of its step. */
     while (q.head < q.n) {
+        if (prm.progress && prm.progress(prm.progress_user, (double)done_faces / (double)m->ntriangles, "corise")) {
+            st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback after %zu of %zu facets",
+                          done_faces, m->ntriangles);
+            goto done;
+        }
         size_t b0 = q.head, b1 = q.n, nw = b1 - b0;
         work = calloc(nw, sizeof *work);
         if (!work) goto nomem;
@@ -491,7 +512,8 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
 #ifdef _OPENMP
             t = omp_get_thread_num();
 #endif
-            process_part(&w, &q.p[b0 + (size_t)j], ge, nge, &prm, maps[t], l2gs[t], &work[j]);
+            process_part(&w, &q.p[b0 + (size_t)j], ge, nge, &prm, nw == 1, (double)done_faces / (double)m->ntriangles,
+                         maps[t], l2gs[t], &work[j]);
         }
         for (size_t j = 0; j < nw; j++) {
             part cur = q.p[b0 + j];
