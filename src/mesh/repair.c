@@ -37,6 +37,7 @@
 #include "core/error.h"
 #include "core/predicates.h"
 #include "core/tolerance.h"
+#include "core/union_find.h"
 #include "mesh/halfedge.h"
 #include "mesh/weld.h"
 #include "geom3/spatial.h"
@@ -695,16 +696,6 @@ static int cmp_corner_edge(const void *x, const void *y) {
     return a->t < b->t ? -1 : a->t > b->t;
 }
 
-static uint32_t corner_find(uint32_t *p, uint32_t x) {
-    while (p[x] != x) x = p[x] = p[p[x]];
-    return x;
-}
-
-static void corner_union(uint32_t *p, uint32_t a, uint32_t b) {
-    a = corner_find(p, a), b = corner_find(p, b);
-    if (a != b) p[a > b ? a : b] = a < b ? a : b; /* the lower corner is the root: deterministic */
-}
-
 /* the corner of face t at vertex v */
 static uint32_t corner_of(const acd_mesh *m, uint32_t t, uint32_t v) {
     const uint32_t *f = m->triangles + 3 * (size_t)t;
@@ -802,15 +793,15 @@ static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, acd_error
             for (size_t k = 0; k < n && paired; k++)
                 if (!fan[k].ab) {
                     const fan_face *g = &fan[(k + 1) % n];
-                    corner_union(par, corner_of(m, fan[k].t, lo), corner_of(m, g->t, lo));
-                    corner_union(par, corner_of(m, fan[k].t, hi), corner_of(m, g->t, hi));
+                    acd_uf_union(par, corner_of(m, fan[k].t, lo), corner_of(m, g->t, lo));
+                    acd_uf_union(par, corner_of(m, fan[k].t, hi), corner_of(m, g->t, hi));
                 }
             if (paired) st->nonmanifold_edges_split++;
         }
         if (!paired) /* manifold, a boundary, or left as it is */
             for (size_t k = i + 1; k < j; k++) {
-                corner_union(par, corner_of(m, ce[i].t, lo), corner_of(m, ce[k].t, lo));
-                corner_union(par, corner_of(m, ce[i].t, hi), corner_of(m, ce[k].t, hi));
+                acd_uf_union(par, corner_of(m, ce[i].t, lo), corner_of(m, ce[k].t, lo));
+                acd_uf_union(par, corner_of(m, ce[i].t, hi), corner_of(m, ce[k].t, hi));
             }
     }
     /* each group of corners at a vertex beyond the first (in corner order) gets a copy of it */
@@ -825,7 +816,7 @@ static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, acd_error
         }
         for (size_t v = 0; v < nv; v++) root_of[v] = UINT32_MAX;
         for (size_t c = 0; c < 3 * nt; c++) {
-            uint32_t v = m->triangles[c], r = corner_find(par, (uint32_t)c);
+            uint32_t v = m->triangles[c], r = acd_uf_find(par, (uint32_t)c);
             if (r != c) continue; /* roots are the lowest corners: met before their members */
             if (root_of[v] == UINT32_MAX || open[v]) root_of[v] = r, copy[r] = v;
             else copy[r] = (uint32_t)(nv + nnew++);
@@ -844,7 +835,7 @@ static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, acd_error
             }
             m->vertices = nvx;
             for (size_t c = 0; c < 3 * nt; c++) {
-                uint32_t r = corner_find(par, (uint32_t)c), v = m->triangles[c];
+                uint32_t r = acd_uf_find(par, (uint32_t)c), v = m->triangles[c];
                 uint32_t nvid = copy[r];
                 if (nvid != v && nvid >= nv) memcpy(m->vertices + 3 * (size_t)nvid, m->vertices + 3 * (size_t)v, 3 * sizeof(double));
                 m->triangles[c] = nvid;
