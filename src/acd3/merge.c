@@ -1573,6 +1573,8 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
                 break;
             }
     }
+    /* the set-up's steps tell the callback too (each a pass over every part: seconds on a large mesh) */
+    if (st == ACD_OK) st = merge_progress(opts, -1.0, "merge: preparing the parts' surfaces", err);
     if (st == ACD_OK) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && nparts > 1)
@@ -1599,6 +1601,7 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
     free(gst);
     free(gerr);
     for (size_t i = 0; i < nparts; i++) in_vol += at.vol[i];
+    if (st == ACD_OK) st = merge_progress(opts, -1.0, "merge: preparing the adjacent pairs", err);
     if (st == ACD_OK) {
         uint32_t *pr;
         size_t npr;
