@@ -807,43 +807,44 @@ static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, acd_error
     /* each group of corners at a vertex beyond the first (in corner order) gets a copy of it */
     {
         size_t nv = m->nvertices, nnew = 0;
-        uint32_t *root_of = malloc((nv ? nv : 1) * sizeof *root_of);
+        uint8_t *kept = calloc(nv ? nv : 1, 1); /* the vertex went to a group already */
         uint32_t *copy = malloc(3 * nt * sizeof *copy); /* per root corner: its vertex */
-        if (!root_of || !copy) {
-            free(root_of), free(copy);
+        if (!kept || !copy) {
+            free(kept), free(copy);
             s = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting non-manifold vertices");
             goto done;
         }
-        for (size_t v = 0; v < nv; v++) root_of[v] = UINT32_MAX;
         for (size_t c = 0; c < 3 * nt; c++) {
-            uint32_t v = m->triangles[c], r = acd_uf_find(par, (uint32_t)c);
-            if (r != c) continue; /* roots are the lowest corners: met before their members */
-            if (root_of[v] == UINT32_MAX || open[v]) root_of[v] = r, copy[r] = v;
-            else copy[r] = (uint32_t)(nv + nnew++);
+            uint32_t v = m->triangles[c];
+            if (acd_uf_find(par, (uint32_t)c) != c) continue; /* roots are the lowest corners: met first */
+            if (!kept[v] || open[v]) kept[v] = 1, copy[c] = v;
+            else copy[c] = (uint32_t)(nv + nnew++);
         }
         if (nnew > 0) {
             if (nv + nnew >= UINT32_MAX) {
-                free(root_of), free(copy);
+                free(kept), free(copy);
                 s = acd_fail(err, ACD_ERR_INVALID_INPUT, "mesh too large to repair (%zu vertices)", nv + nnew);
                 goto done;
             }
             double *nvx = realloc(m->vertices, 3 * (nv + nnew) * sizeof *nvx);
             if (!nvx) {
-                free(root_of), free(copy);
+                free(kept), free(copy);
                 s = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting non-manifold vertices");
                 goto done;
             }
             m->vertices = nvx;
+            /* in corner order a group's root comes first, its vertex still the original: the copy's
+             * coordinates are written once, there */
             for (size_t c = 0; c < 3 * nt; c++) {
-                uint32_t r = acd_uf_find(par, (uint32_t)c), v = m->triangles[c];
-                uint32_t nvid = copy[r];
-                if (nvid != v && nvid >= nv) memcpy(m->vertices + 3 * (size_t)nvid, m->vertices + 3 * (size_t)v, 3 * sizeof(double));
+                uint32_t r = acd_uf_find(par, (uint32_t)c), nvid = copy[r];
+                if (r == c && nvid >= nv)
+                    memcpy(m->vertices + 3 * (size_t)nvid, m->vertices + 3 * (size_t)m->triangles[c], 3 * sizeof(double));
                 m->triangles[c] = nvid;
             }
             m->nvertices = nv + nnew;
             st->vertices_split = nnew;
         }
-        free(root_of), free(copy);
+        free(kept), free(copy);
     }
 done:
     free(ce), free(par), free(open), free(fan);
