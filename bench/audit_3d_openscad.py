@@ -7,7 +7,10 @@ equal coordinates) and `acd eval`'s IoU and concavity_max, as a markdown table o
 usage: bench/audit_3d_openscad.py ACD [--dir data/meshes/openscad] [--base ACD_BASE] [--timeout S]
 With --base, every run is repeated with that binary and its figures are shown beside.
 """
-import argparse, glob, os, subprocess, sys, tempfile, time
+import argparse, glob, os, subprocess, sys, tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import audit_3d_transforms as A  # noqa: E402
 
 
 def bodies_per_part(obj):
@@ -53,28 +56,18 @@ def run(acd, stl, args, tmp, timeout):
     for p in (hulls, parts):
         if os.path.exists(p):
             os.remove(p)
-    t0 = time.time()
-    try:
-        r = subprocess.run([acd, '3d', stl] + args + ['--verify', '-o', hulls, '--parts', parts],
-                           capture_output=True, text=True, timeout=timeout)
-        rc = r.returncode
-    except subprocess.TimeoutExpired:
-        return {'rc': 'timeout', 'sec': timeout}
-    sec = time.time() - t0
+    rc, out, err, sec, msg = A.run([acd, '3d', stl] + args + ['--verify', '-o', hulls, '--parts', parts], timeout)
     res = {'rc': rc, 'sec': sec, 'parts': '', 'multi': '', 'iou': '', 'cmax': ''}
     if rc == 0 and os.path.exists(parts):
         bp = bodies_per_part(parts)
         res['parts'] = len(bp)
         res['multi'] = sum(1 for c in bp if c > 1)
-        e = subprocess.run([acd, 'eval', stl, hulls], capture_output=True, text=True, timeout=timeout)
-        for line in e.stdout.splitlines():
-            s = line.split()
-            if s[:1] == ['iou']:
-                res['iou'] = s[1]
-            if s[:2] == ['concavity', 'max']:
-                res['cmax'] = s[2]
+        e = A.eval_hulls(acd, stl, hulls, None, timeout)
+        if e and e['rc'] == 0:
+            res['iou'] = '%.6f' % e['iou']
+            res['cmax'] = '%.6g' % e['concavity_max']
     elif rc != 0:
-        res['err'] = (r.stderr.strip().splitlines() or [''])[-1][:120]
+        res['err'] = (err.strip().splitlines() or [''])[-1][:120]  # the error itself: the last line
     return res
 
 

@@ -247,10 +247,11 @@ def run(cmd, timeout):
 
 
 def eval_hulls(acd, mesh, hulls, samples, timeout):
+    """acd eval's figures of hulls against mesh; samples None: acd eval's default sample counts."""
     if not os.path.exists(hulls):
         return None
-    rc, out, err, dt, msg = run([acd, "eval", mesh, hulls, "--json", "--samples", str(samples),
-                                 "--surface-samples", str(samples // 4)], timeout)
+    counts = [] if samples is None else ["--samples", str(samples), "--surface-samples", str(samples // 4)]
+    rc, out, err, dt, msg = run([acd, "eval", mesh, hulls, "--json"] + counts, timeout)
     if rc != 0:
         return {"rc": rc, "msg": msg}
     d = json.loads(out)
