@@ -1,5 +1,5 @@
 /* Tests of the decomposition's hull volume screen (the cut choice by volume, solid mode; docs/acd3d.md
- * "Cut choice by volume", screen_decide in src/acd3/decompose.c): a candidate whose pieces' hull
+ * "Cut choice by volume", screen_decide in src/acd3/split.c): a candidate whose pieces' hull
  * volume estimates are above the final best's hull volume by ACD3_VOLUME_SCREEN_REL is dropped before
  * its pieces' qhull hulls, as their sum would drop it. Through acd3_decompose_screen (acd3/decompose.h)
  * the screen is turned off: the same tree, parts and hulls, bit for bit, at 1 and 4 threads, on meshes

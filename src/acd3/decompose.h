@@ -2,7 +2,7 @@
  * decomposition with the hull volume screen's margin given, for the screen's tests
  * (tests/test_acd3_screen.c; docs/acd3d.md "Cut choice by volume").
  *
- * The screen (by volume, ACD3D_CHOICE_VOLUME in solid mode; screen_decide in decompose.c): once the
+ * The screen (by volume, ACD3D_CHOICE_VOLUME in solid mode; screen_decide in acd3/split.c): once the
  * best cut a candidate is compared with is final and makes progress, the candidate's pieces' hull
  * volumes are first estimated (geom3/hull_volume, not above the qhull hulls' up to rounding); a sum
  * above the best's hull volume by more than the margin (relative) drops the candidate before its
