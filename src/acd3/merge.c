@@ -11,6 +11,7 @@
 #include "acd/hull.h"
 #include "core/error.h"
 #include "core/u32vec.h"
+#include "core/union_find.h"
 #include "acd3/volume_plane.h"
 #include "geom3/bvh.h"
 #include "geom3/plane_cut.h"
@@ -1065,6 +1066,38 @@ static int side_group(group *S, const atoms *at, const uint32_t *mem, size_t n, 
     return 1;
 }
 
+/* The connected components of the atoms mem[0..n) through adjacency (adjacent_pairs: three
+ * non-collinear shared vertex positions, as the greedy joins ask of two groups), appended to *out
+ * (each component's atoms in mem's order, the components in the order of their first atom in mem),
+ * their ends in out's order appended to *ends. A side of a refinement cut is made one group per
+ * component: one group holding pieces that do not touch would be one part whose hull spans the gap
+ * between them (issue 4; the greedy joins keep groups connected, only a cut's side can break it).
+ * Returns 0, or -1 out of memory (err set). */
+static int side_components(const atoms *at, const uint32_t *mem, size_t n, double tol, acd_u32vec *out,
+                           acd_u32vec *ends, acd_error *err) {
+    uint32_t *pr = NULL, *uf = malloc((n ? n : 1) * sizeof *uf);
+    size_t npr = 0;
+    if (!uf) return -1;
+    if (n > 1 && adjacent_pairs(at->mesh, mem, n, tol, &pr, &npr, err) != ACD_OK) {
+        free(uf);
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++) uf[i] = (uint32_t)i;
+    for (size_t k = 0; k < npr; k++) acd_uf_union(uf, pr[2 * k], pr[2 * k + 1]);
+    free(pr);
+    int ok = 1;
+    /* a root is its component's first atom (acd_uf_union: the smaller root wins) */
+    for (size_t i = 0; i < n && ok; i++) {
+        if (acd_uf_find(uf, (uint32_t)i) != i) continue;
+        for (size_t j = i; j < n && ok; j++)
+            if (acd_uf_find(uf, (uint32_t)j) == i) ok = acd_u32vec_push(out, mem[j]);
+        if (ok) ok = acd_u32vec_push(ends, (uint32_t)out->n);
+    }
+    free(uf);
+    if (!ok) acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory cutting a part");
+    return ok ? 0 : -1;
+}
+
 /* One member of the group try_cut cuts: the side it lies on (0: +, 1: -) when it does not cross the
  * plane, else (-1) its cut and the statuses of the cut and of the pieces' closedness check. */
 typedef struct cut_member {
@@ -1074,13 +1107,15 @@ typedef struct cut_member {
 } cut_member;
 
 /* Cuts group X by its volume plane: its members crossing the plane are cut (the pieces appended to
- * the atoms, owner unset), the two sides' groups made in S. Returns 1 (both sides within tau;
- * *gain: X's hull volume minus theirs), 0 refused (the atoms as before), or -(status). The members'
- * cuts, the pieces' surface vertices and trees, and the two sides' groups are made in parallel
- * (threads); the result is the sequential one: the members in order, the first failure deciding, the
- * second side refused when the first is. */
+ * the atoms, owner unset), each side's connected components made groups, in *Sp (*nsp of them, >= 2;
+ * allocated). Returns 1 (every component within tau; *gain: X's hull volume minus theirs), 0 refused
+ * (the atoms as before), or -(status). The members' cuts, the pieces' surface vertices and trees,
+ * and the components' groups are made in parallel (threads); the result is the sequential one: the
+ * members in order, the first failure deciding. */
 static int try_cut(const group *X, atoms *at, size_t nparts, const in_surface *in_bvh, double on_tol, double diag,
-                   double tau, int threads, group S[2], double *gain, acd_error *err) {
+                   double tol, double tau, int threads, group **Sp, size_t *nsp, double *gain, acd_error *err) {
+    *Sp = NULL;
+    *nsp = 0;
     acd_cut_plane cp;
     if (acd_cut_plane_from_normal(X->est_plane.point, X->est_plane.normal, diag, &cp, NULL) != ACD_OK) return 0;
     double d = -(cp.normal[0] * cp.a[0] + cp.normal[1] * cp.a[1] + cp.normal[2] * cp.a[2]);
@@ -1179,21 +1214,40 @@ static int try_cut(const group *X, atoms *at, size_t nparts, const in_surface *i
         if (cm[k].side < 0 && cm[k].cs == ACD_OK) acd_cut_result_free(&cm[k].cr);
     free(cm);
     if (ret == 1 && (!mem[0].n || !mem[1].n)) ret = 0;
+    /* each side's connected components (side_components), the + side's first: one group each */
+    acd_u32vec cm_all = {0}, cend = {0};
+    for (int s = 0; s < 2 && ret == 1; s++)
+        if (side_components(at, mem[s].a, mem[s].n, tol, &cm_all, &cend, err) < 0) ret = -(int)ACD_ERR_NOMEM;
+    const size_t ns = cend.n;
+    group *S = ret == 1 ? calloc(ns, sizeof *S) : NULL;
+    int *rs = ret == 1 ? calloc(ns, sizeof *rs) : NULL;
+    if (ret == 1 && (!S || !rs)) ret = -(int)ACD_ERR_NOMEM;
     if (ret == 1) {
-        /* both sides at once; the second counts only when the first is within tau */
-        int r[2];
+        /* every component at once; the first refused (in order) decides */
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && ns > 1)
 #endif
-        for (int s = 0; s < 2; s++) r[s] = side_group(&S[s], at, mem[s].a, mem[s].n, tau);
-        if (r[0] != 1) {
-            if (r[1] == 1) group_free(&S[1]);
-            r[1] = 0;
+        for (long c = 0; c < (long)ns; c++) {
+            size_t c0 = c ? cend.a[c - 1] : 0;
+            rs[c] = side_group(&S[c], at, cm_all.a + c0, cend.a[c] - c0, tau);
         }
-        if (r[0] == 1 && r[1] != 1) group_free(&S[0]);
-        ret = r[0] < 0 || r[1] < 0 ? -(int)ACD_ERR_NOMEM : r[0] == 1 && r[1] == 1;
+        for (size_t c = 0; c < ns && ret == 1; c++)
+            if (rs[c] != 1) ret = rs[c] < 0 ? -(int)ACD_ERR_NOMEM : 0;
+        for (size_t c = 0; c < ns && ret != 1; c++)
+            if (rs[c] == 1) group_free(&S[c]);
     }
-    if (ret == 1) *gain = X->hvol - S[0].hvol - S[1].hvol;
+    if (ret == 1) {
+        double g = X->hvol;
+        for (size_t c = 0; c < ns; c++) g -= S[c].hvol;
+        *gain = g;
+        *Sp = S;
+        *nsp = ns;
+    } else {
+        free(S);
+    }
+    free(rs);
+    free(cm_all.a);
+    free(cend.a);
     if (ret != 1) {
         for (size_t i = n0; i < at->n; i++) atom_clear(at, i, nparts);
         at->n = n0;
@@ -1310,20 +1364,21 @@ static int cmp_u32(const void *x, const void *y) {
 }
 
 /* Makes the cut of the group(s) x (and y, unless UINT32_MAX: a pair cut as one; try_cut: pieces
- * from n0 on, sides S) real: the sides become groups, the pieces get their adjacency, x and y die;
- * the sides' pairs are pushed and scored. */
+ * from n0 on, the sides' components S[0..ns)) real: the components become groups (S's records moved
+ * there), the pieces get their adjacency, x and y die; the new groups' pairs are pushed and scored. */
 static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, uint32_t y, atoms *at, size_t n0,
-                             group S[2], double tol, pair **P, size_t *np, size_t *capp, double tau, int by_volume,
+                             group *S, size_t ns, double tol, pair **P, size_t *np, size_t *capp, double tau, int by_volume,
                              int threads, acd_error *err) {
-    if (!grow_groups(Gp, capg, *ng + 2)) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for groups");
+    if (!grow_groups(Gp, capg, *ng + ns)) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for groups");
     group *G = *Gp;
-    uint32_t s[2] = {(uint32_t)*ng, (uint32_t)*ng + 1}, dy[2] = {x, y};
+    const uint32_t s0 = (uint32_t)*ng; /* the new groups: s0 .. s0 + ns - 1 */
+    uint32_t dy[2] = {x, y};
     const int ndy = y == UINT32_MAX ? 1 : 2;
-    *ng += 2;
-    G[s[0]] = S[0];
-    G[s[1]] = S[1];
-    for (int j = 0; j < 2; j++)
-        for (size_t k = 0; k < G[s[j]].nmembers; k++) at->owner[G[s[j]].members[k]] = s[j];
+    *ng += ns;
+    for (size_t j = 0; j < ns; j++) {
+        G[s0 + j] = S[j];
+        for (size_t k = 0; k < G[s0 + j].nmembers; k++) at->owner[G[s0 + j].members[k]] = s0 + (uint32_t)j;
+    }
     /* the atoms whose adjacency may change: the pieces, the cut groups' members and their neighbours */
     acd_u32vec sel = {0};
     int ok = 1;
@@ -1362,21 +1417,24 @@ static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, u
     /* group adjacency */
     for (int e = 0; e < ndy; e++)
         for (size_t k = 0; k < G[dy[e]].nadj; k++) remove_adj(&G[G[dy[e]].adj[k]], dy[e]);
-    for (int j = 0; j < 2 && st == ACD_OK; j++)
-        for (size_t k = 0; k < G[s[j]].nmembers && st == ACD_OK; k++) {
-            uint32_t a = G[s[j]].members[k];
+    for (size_t j = 0; j < ns && st == ACD_OK; j++)
+        for (size_t k = 0; k < G[s0 + j].nmembers && st == ACD_OK; k++) {
+            const uint32_t sj = s0 + (uint32_t)j, a = G[sj].members[k];
             for (size_t i = 0; i < at->nadj[a] && st == ACD_OK; i++) {
                 uint32_t o = at->owner[at->adj[a][i]];
-                if (o == UINT32_MAX || o == s[j]) continue;
-                if (!add_adj(&G[s[j]], o) || !add_adj(&G[o], s[j]))
+                if (o == UINT32_MAX || o == sj) continue;
+                if (!add_adj(&G[sj], o) || !add_adj(&G[o], sj))
                     st = acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for adjacency");
             }
         }
     for (int e = 0; e < ndy; e++) group_free(&G[dy[e]]);
     size_t p0 = *np;
-    for (int j = 0; j < 2 && st == ACD_OK; j++)
-        for (size_t k = 0; k < G[s[j]].nadj && st == ACD_OK; k++)
-            if (!(j == 1 && G[s[1]].adj[k] == s[0])) st = push_pair(P, np, capp, G[s[j]].adj[k], s[j], err);
+    /* each pair once: a pair of two new groups from the earlier one's list */
+    for (size_t j = 0; j < ns && st == ACD_OK; j++) {
+        const uint32_t sj = s0 + (uint32_t)j;
+        for (size_t k = 0; k < G[sj].nadj && st == ACD_OK; k++)
+            if (!(G[sj].adj[k] >= s0 && G[sj].adj[k] < sj)) st = push_pair(P, np, capp, G[sj].adj[k], sj, err);
+    }
     if (st == ACD_OK) score_pairs(G, *P, p0, *np, tau, INFINITY, by_volume, threads);
     return st;
 }
@@ -1714,7 +1772,8 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
         for (size_t i = 0; i < np; i++)
             if (P[i].est == 1 && P[i].est_gain > bestv) bestv = P[i].est_gain, q = i, x = SIZE_MAX;
         if (x == SIZE_MAX && q == SIZE_MAX) break;
-        group S[2], U;
+        group *S = NULL, U;
+        size_t ns = 0;
         double gain = 0;
         size_t n0 = at.n;
         int r;
@@ -1724,10 +1783,10 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
                 break;
             }
             U.est_plane = P[q].est_plane;
-            r = try_cut(&U, &at, nparts, &in_bvh, on_tol, diag, tau, threads, S, &gain, err);
+            r = try_cut(&U, &at, nparts, &in_bvh, on_tol, diag, tol, tau, threads, &S, &ns, &gain, err);
             free(U.members);
         } else {
-            r = try_cut(&G[x], &at, nparts, &in_bvh, on_tol, diag, tau, threads, S, &gain, err);
+            r = try_cut(&G[x], &at, nparts, &in_bvh, on_tol, diag, tol, tau, threads, &S, &ns, &gain, err);
             gain -= c0x;
         }
         if (r < 0) {
@@ -1735,8 +1794,9 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
             break;
         }
         if (r == 1 && !(gain > min_gain)) {
-            group_free(&S[0]);
-            group_free(&S[1]);
+            for (size_t j = 0; j < ns; j++) group_free(&S[j]);
+            free(S);
+            S = NULL;
             for (size_t i = n0; i < at.n; i++) atom_clear(&at, i, nparts);
             at.n = n0;
             r = 0;
@@ -1747,15 +1807,23 @@ acd_status acd3_merge_adjacent_kept(const acd_mesh *input, const acd_mesh *parts
             fails++;
             continue;
         }
-        if (q != SIZE_MAX) {
-            st = commit_cut(&G, &ng, &capg, P[q].a, P[q].b, &at, n0, S, tol, &P, &np, &capp, tau, by_volume, threads, err);
-        } else {
-            st = commit_cut(&G, &ng, &capg, (uint32_t)x, UINT32_MAX, &at, n0, S, tol, &P, &np, &capp, tau, by_volume,
-                            threads, err);
-            size_t best = st == ACD_OK ? best_pair(G, P, &np, tau, threads) : 0;
-            if (st == ACD_OK && best == SIZE_MAX) /* cannot happen: the pair of cost c0x is still there */
-                st = acd_fail(err, ACD_ERR_INTERNAL, "merge: no join after a refinement cut");
-            if (st == ACD_OK) st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
+        if (q != SIZE_MAX) st = commit_cut(&G, &ng, &capg, P[q].a, P[q].b, &at, n0, S, ns, tol, &P, &np, &capp, tau,
+                                           by_volume, threads, err);
+        else st = commit_cut(&G, &ng, &capg, (uint32_t)x, UINT32_MAX, &at, n0, S, ns, tol, &P, &np, &capp, tau,
+                             by_volume, threads, err);
+        free(S);
+        /* the count back: a trade joins the cheapest pair, and a side of several components (ns > 2)
+         * costs one more join per extra component, the cheapest joinable pairs then (none: the count
+         * stays above; their added hull volume is not in the step's gain) */
+        const size_t need = ns - (q != SIZE_MAX ? 2 : 1);
+        for (size_t e = 0; e < need && st == ACD_OK; e++) {
+            size_t best = best_pair(G, P, &np, tau, threads);
+            if (best == SIZE_MAX) {
+                if (e == 0 && q == SIZE_MAX) /* cannot happen: the pair of cost c0x is still there */
+                    st = acd_fail(err, ACD_ERR_INTERNAL, "merge: no join after a refinement cut");
+                break;
+            }
+            st = join_best(&G, &ng, &capg, &at, &P, &np, &capp, best, tau, din_refuse, by_volume, threads, err);
         }
         out->trades++;
     }

@@ -71,7 +71,10 @@ typedef struct acd3_merge_opts {
                        none). A step cuts the group whose best volume plane (acd3/volume_plane)
                        lowers the sum of hull volumes the most, both sides within tau under the
                        bound above, and joins the cheapest joinable pair; taken only when the cut
-                       saves more hull volume than the join adds (docs/acd3d.md "Hull tightness") */
+                       saves more hull volume than the join adds (docs/acd3d.md "Hull tightness").
+                       A side is made one group per connected component (adjacency among its
+                       atoms), each within tau, and one more cheapest pair joined per extra
+                       component (none joinable: one group more): every group stays connected */
     acd_progress_fn progress; /* optional (NULL: none): called between steps, from the calling
                                  thread only; non-zero cancels (ACD_ERR_CANCELLED) */
     void *progress_user;
