@@ -607,7 +607,7 @@ static void test_trim_beyond_bitwise(void **state) {
         }
         const size_t k_lo = (size_t)it % 4;
         double got[ACD3_TRIM_NDEPTHS] = {0}, want[ACD3_TRIM_NDEPTHS] = {0}, all[ACD3_TRIM_NDEPTHS] = {0};
-        acd3_trim_tree_beyond(&tree, n, &L, k_lo, got);
+        acd3_trim_tree_beyond(&tree, n, &L, k_lo, got, NULL);
         beyond_ref ref = {&m, n, &L, k_lo, want};
         acd_bvh_query_halfspace(&bvh, n, L.off[ACD3_TRIM_NDEPTHS - 1], beyond_ref_tri, &ref);
         assert_memory_equal(got, want, sizeof got);

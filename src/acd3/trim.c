@@ -44,6 +44,9 @@ typedef struct trim_plane {
                                         no smaller than the current one (choose) */
     int best_k;                      /* -1: no cap fits */
     double best_r;
+    double top;                      /* the largest n.x of the part's vertices (with the losses) */
+    size_t lim;                      /* the caps at depths >= lim are refused: each would leave some of
+                                        the part farther than maxdist from the hull (far_check) */
 } trim_plane;
 
 /* A convex polytope as outward triangles (a hull cut by planes: its triangles clipped, the section
@@ -87,6 +90,16 @@ typedef struct trim_hull {
     int have;         /* best cut found */
     double plane[3], off, gain, loss, full, ratio, depth; /* the best cut: loss its charge, full the
                                                              part volume beyond its plane */
+    size_t bj, bk;    /* the best cut's plane and depth */
+    double reach;     /* how far the part reaches beyond the best cut's plane (>= 0) */
+    unsigned char *tkind; /* per part triangle (wall_check, allocated at the first check): 0 not known,
+                             1 an internal wall (off the input's surface), 2 on the surface */
+    double maxdist;   /* a cut may leave no vertex of the part farther than this from the hull */
+    unsigned char *outside; /* per part vertex (far_check, allocated at the first check): outside the hull */
+    double *closest;  /* 3 per part vertex: an outside vertex's closest point of the hull */
+    uint32_t *pend;   /* far_check's scratch: the vertices measured, their closest points in pendq */
+    double *pendq;
+    size_t refused;   /* cuts refused by far_check */
 } trim_hull;
 
 /* T's polytope replaced by hull h (3D), its arrays taken over (h's set to NULL: acd_hull_free then
@@ -176,7 +189,13 @@ static void plane_measure(trim_hull *T, trim_plane *P, double min_gain, trim_adj
     /* only the depths whose cap can be cut: gains only fall, so a cap under min_gain stays under */
     size_t k_lo = 0;
     while (!(P->gain[k_lo] >= min_gain)) k_lo++;
-    acd3_trim_tree_beyond(&T->tree, P->n, &L, k_lo, P->loss);
+    double top;
+    acd3_trim_tree_beyond(&T->tree, P->n, &L, k_lo, P->loss, &top);
+    /* a vertex x of the part beyond a level lies at least n.x - off from the hull cut there (the
+     * rest of the hull is on the other side of the plane): the depths where the part's top vertex is
+     * farther than maxdist are refused without a cut (the levels deepen: so are all deeper ones) */
+    while (P->lim > 0 && top - L.off[P->lim - 1] > T->maxdist) P->lim--;
+    P->top = top;
     for (size_t k = 0; k < NDEPTHS; k++) {
         P->loss[k] = fmax(P->loss[k], 0.0);
         P->chg[k] = fmax(P->loss[k] - P->base, 0.0);
@@ -197,6 +216,7 @@ static int add_plane(trim_hull *T, const double n[3], double off0) {
     memset(P, 0, sizeof *P);
     memcpy(P->n, n, sizeof P->n);
     P->off0 = off0;
+    P->lim = NDEPTHS;
     return 1;
 }
 
@@ -260,7 +280,7 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
              * them; the first plane of largest best ratio is then the scan's first cap of largest ratio */
             if (!P->best_ok || (P->best_k >= 0 && !(P->chg[P->best_k] <= room))) {
                 P->best_k = -1;
-                for (size_t k = 0; k < NDEPTHS; k++) {
+                for (size_t k = 0; k < P->lim; k++) {
                     if (!(P->gain[k] >= min_gain) || !(P->chg[k] <= room)) continue;
                     double r = P->gain[k] / P->den[k];
                     if (!(r > ratio_floor) || (P->best_k >= 0 && !(r > P->best_r))) continue;
@@ -289,6 +309,8 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
             T->loss = P->chg[bk];
             T->full = P->loss[bk];
             T->depth = ACD3_TRIM_DEPTHS[bk] * T->unit;
+            T->bj = bj, T->bk = bk;
+            T->reach = fmax(P->top - T->off, 0.0);
             return;
         }
         T->pl[bj].dirty = 0;
@@ -363,11 +385,163 @@ static int sect_cmp(const void *a, const void *b) {
     return x->ang < y->ang ? -1 : x->ang > y->ang ? 1 : (x->v > y->v) - (x->v < y->v);
 }
 
+/* The squared distance from x to the convex polytope P (0 inside), its closest point in q: the
+ * nearest of the triangles whose planes x lies beyond (the closest point of the boundary lies on
+ * a facet that x is beyond: x minus it is in the point's normal cone, a combination of the normals
+ * of the facets there with weights >= 0, so it has a positive dot with one of them); a triangle
+ * whose plane is already as far as the best is skipped. */
+static double poly_dist2(const trim_poly *P, const double x[3], double q[3]) {
+    double best = INFINITY;
+    for (size_t t = 0; t < P->nt; t++) {
+        const double *pl = P->pl + 4 * t;
+        const double s = acd_dot3(pl, x) + pl[3];
+        if (!(s > 0) || !(s * s < best)) continue;
+        const uint32_t *tr = P->t + 3 * t;
+        double c[3];
+        const double d2 = acd_closest_point_triangle(x, P->v + 3 * (size_t)tr[0], P->v + 3 * (size_t)tr[1],
+                                                     P->v + 3 * (size_t)tr[2], c);
+        if (d2 < best) best = d2, memcpy(q, c, sizeof c);
+    }
+    if (best == INFINITY) best = 0, memcpy(q, x, 3 * sizeof(double)); /* beyond none: inside */
+    return best;
+}
+
+/* Whether cutting T's hull by n.x = off into P leaves every vertex of the part within T->maxdist of
+ * P (the thin-feature bound, docs/acd3d.md "Trimmed hulls"). The part's surface is its triangles,
+ * and the distance to a convex set is convex, so on a triangle it is largest at a corner: the
+ * vertices bound the whole surface. Measured: the vertices beyond the plane, and those outside the
+ * hull already whose closest point of it lies beyond the plane (the others keep their distance: P
+ * lies in the hull and holds that point). 1 within (the closest points then recorded), 0 not, -1
+ * out of memory. */
+static int far_check(trim_hull *T, const trim_poly *P, const double n[3], double off) {
+    if (T->maxdist == INFINITY) return 1;
+    const acd_mesh *m = T->part;
+    const size_t nv = m->nvertices;
+    if (!T->outside) {
+        T->outside = calloc(nv ? nv : 1, 1);
+        T->closest = malloc(3 * (nv ? nv : 1) * sizeof *T->closest);
+        T->pend = malloc((nv ? nv : 1) * sizeof *T->pend);
+        T->pendq = malloc(3 * (nv ? nv : 1) * sizeof *T->pendq);
+        if (!T->outside || !T->closest || !T->pend || !T->pendq) {
+            free(T->outside), free(T->closest), free(T->pend), free(T->pendq);
+            T->outside = NULL, T->closest = NULL, T->pend = NULL, T->pendq = NULL;
+            return -1;
+        }
+    }
+    const double lim2 = T->maxdist * T->maxdist;
+    size_t np = 0;
+    for (size_t v = 0; v < nv; v++) {
+        const double *x = m->vertices + 3 * v;
+        if (!(acd_dot3(n, x) > off) && !(T->outside[v] && acd_dot3(n, T->closest + 3 * v) > off)) continue;
+        double *q = T->pendq + 3 * np;
+        if (!(poly_dist2(P, x, q) <= lim2)) return 0;
+        T->pend[np++] = (uint32_t)v;
+    }
+    for (size_t i = 0; i < np; i++) {
+        const uint32_t v = T->pend[i];
+        memcpy(T->closest + 3 * (size_t)v, T->pendq + 3 * i, 3 * sizeof(double));
+        T->outside[v] = 1; /* (a vertex measured inside keeps itself as its closest point: harmless) */
+    }
+    return 1;
+}
+
+/* Whether the part's internal walls beyond the plane n.x = off lie within T->maxdist - T->reach of
+ * the input's surface (the bound on the union's new boundary, docs/acd3d.md "Trimmed hulls"). A cut
+ * exposes the section of the part on its plane: from a point y of it, the part is left along n
+ * within reach (the part's vertices reach no farther beyond the plane), at a point z of its surface
+ * beyond the plane: the input's surface (y then within reach of it), or an internal wall, whose
+ * neighbour part lies beyond and is not covered by this hull: y is then within reach + dist(z,
+ * surface). The walls beyond the plane are their triangles (those off the input's surface: the
+ * centroid farther than ACD3_TRIM_WALL_REL x the depth unit from it) clipped to the side beyond,
+ * sampled on a grid of spacing at most h = maxdist / 8 (every point within h of a sample: the
+ * distance moves by at most the step), each sample within maxdist - reach - h of the input's
+ * triangles. A cap that slices a wedge along a wall (text_on_cube: a slab 0.49 thick along a cut
+ * face, the union's boundary then 16 units inside the solid) is refused. 1 within, 0 not, -1 out of
+ * memory. */
+typedef struct wall_check_q {
+    trim_hull *T;
+    const double *n;
+    double off, h, lim2;
+    int fail;
+} wall_check_q;
+
+static int wall_sample(const wall_check_q *q, const double a[3], const double b[3], const double c[3]) {
+    double e = 0;
+    for (int k = 0; k < 3; k++) {
+        const double *u = k == 0 ? a : k == 1 ? b : a, *w = k == 0 ? b : c;
+        const double d[3] = {w[0] - u[0], w[1] - u[1], w[2] - u[2]};
+        e = fmax(e, sqrt(acd_dot3(d, d)));
+    }
+    const double mm = ceil(e / q->h);
+    const int m = mm < 1 ? 1 : mm > 4096 ? 4096 : (int)mm;
+    for (int i = 0; i <= m; i++)
+        for (int j = 0; i + j <= m; j++) {
+            double p[3];
+            for (int k = 0; k < 3; k++) p[k] = a[k] + (b[k] - a[k]) * i / m + (c[k] - a[k]) * j / m;
+            acd_bvh_closest_result r;
+            if (!acd_bvh_closest(q->T->input_bvh, p, q->lim2, &r)) return 0;
+        }
+    return 1;
+}
+
+static int wall_check_tri(void *user, uint32_t t) {
+    wall_check_q *q = user;
+    trim_hull *T = q->T;
+    const acd_mesh *m = T->part;
+    const double *p[3];
+    double s[3];
+    int nb = 0;
+    for (int k = 0; k < 3; k++) {
+        p[k] = m->vertices + 3 * (size_t)m->triangles[3 * (size_t)t + k];
+        s[k] = acd_dot3(q->n, p[k]) - q->off;
+        nb += s[k] > 0;
+    }
+    if (nb == 0) return 0;
+    if (!T->tkind[t]) {
+        double g[3];
+        for (int k = 0; k < 3; k++) g[k] = (p[0][k] + p[1][k] + p[2][k]) / 3;
+        const double tol = ACD3_TRIM_WALL_REL * T->unit;
+        acd_bvh_closest_result r;
+        T->tkind[t] = acd_bvh_closest(T->input_bvh, g, tol * tol, &r) ? 2 : 1;
+    }
+    if (T->tkind[t] == 2) return 0;
+    if (!(q->lim2 > 0)) return q->fail = 1; /* no room: no wall may reach beyond */
+    double poly[4][3]; /* the triangle's part beyond the plane */
+    int np = 0;
+    for (int k = 0; k < 3; k++) {
+        const int k1 = k == 2 ? 0 : k + 1;
+        if (s[k] > 0) memcpy(poly[np++], p[k], sizeof poly[0]);
+        if ((s[k] > 0) != (s[k1] > 0) && s[k] != s[k1]) {
+            const double x = s[k] / (s[k] - s[k1]);
+            for (int c = 0; c < 3; c++) poly[np][c] = p[k][c] + x * (p[k1][c] - p[k][c]);
+            np++;
+        }
+    }
+    for (int i = 1; i + 1 < np; i++)
+        if (!wall_sample(q, poly[0], poly[i], poly[i + 1])) return q->fail = 1;
+    if (np == 1 && !wall_sample(q, poly[0], poly[0], poly[0])) return q->fail = 1;
+    return 0;
+}
+
+static int wall_check(trim_hull *T, const double n[3], double off) {
+    if (!T->input_bvh || T->maxdist == INFINITY) return 1;
+    if (!T->tkind) {
+        T->tkind = calloc(T->part->ntriangles ? T->part->ntriangles : 1, 1);
+        if (!T->tkind) return -1;
+    }
+    const double h = T->maxdist / 8, lim = T->maxdist - T->reach - h;
+    wall_check_q q = {T, n, off, h, lim > 0 ? lim * lim : 0, 0};
+    acd_bvh_query_halfspace(T->bvh, n, off, wall_check_tri, &q);
+    return !q.fail;
+}
+
 /* The hull cut by the plane n.x = off (T->plane, T->off), by clipping its triangles: those below
  * kept, those crossing clipped (the crossing of an edge computed once, from its lower vertex
  * index), the section (the crossings and the vertices on the plane, in convex position) fanned in
  * angular order; the removed cap's corners kept in T->corner.
- * 1 done, 0 refused (more than max_vertices, or nothing removed), -1 out of memory. */
+ * 1 done, 0 refused (more than max_vertices, or nothing removed), 2 refused by far_check (the hull
+ * kept; the cap's depth and the deeper ones of its plane then refused: the hull only shrinks, so
+ * the distances only grow), -1 out of memory. */
 static int cut_hull(trim_hull *T, size_t max_vertices) {
     const trim_poly *h = &T->h;
     const double *n = T->plane;
@@ -485,6 +659,19 @@ static int cut_hull(trim_hull *T, size_t max_vertices) {
         }
     }
     if (out.nt < 4 || (max_vertices >= 4 && out.nv > max_vertices)) goto done; /* refused */
+    int near = wall_check(T, n, T->off);
+    if (near == 1) near = far_check(T, &out, n, T->off);
+    if (near <= 0) {
+        if (near == 0) {
+            trim_plane *B = &T->pl[T->bj];
+            B->lim = T->bk;
+            B->best_ok = 0;
+            T->refused++;
+            ret = 2;
+        } else
+            ret = -1;
+        goto done;
+    }
     poly_free(&T->h);
     T->h = out;
     /* the polytope's triangles pile up where cuts cross earlier sections (a section is fanned over
@@ -541,6 +728,16 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
      * removes exceeds 1 + |M u U| / |M n U|; the hulls' sum over the input's volume bounds that */
     const double ratio_floor = 1.0 + hull_sum / input_volume;
     const double loss_floor = ACD3_TRIM_LOSS_FLOOR * min_gain;
+    /* the distance bound (far_check): the largest concavity of the solid parts, the run's own measure
+     * of how far a part's surface may lie from its hull (a merged run's joined parts are within the
+     * merge tolerance, a split part within tau); a cut leaving a vertex of a part farther than that
+     * from its trimmed hull is refused, so a thin feature (a fin, embossed letters) is not cut off
+     * whole for its small volume (docs/acd3d.md "Trimmed hulls") */
+    double maxdist = 0;
+    for (size_t i = 0; i < nparts; i++)
+        if (parts[i].volume > 0 && parts[i].concavity > maxdist) maxdist = parts[i].concavity;
+    stats->max_distance = maxdist;
+    for (size_t i = 0; i < nparts; i++) T[i].maxdist = maxdist;
     int input_crossings = 0;
     acd_status input_st = ACD_OK;
     /* the input's tree (its self-crossing test, then the walls': is_wall): the caller's, else built
@@ -714,6 +911,7 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
                 H->active = 0;
                 continue;
             }
+            if (res[b] == 2) continue; /* too far (far_check): its next best cut chosen next round */
             spent += H->loss;
             parts[i].trimmed_volume += H->loss;
             stats->cuts++;
@@ -746,12 +944,14 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
     for (size_t i = 0; i < nparts && st == ACD_OK; i++)
         if (pst[i] != ACD_OK) st = acd_fail(err, pst[i], "trim: a trimmed hull could not be computed");
     for (size_t i = 0; i < nparts; i++) {
+        stats->refused_far += T[i].refused;
         poly_free(&T[i].h);
         free(T[i].vdot);
         acd3_trim_tree_free(&T[i].tree);
         acd_bvh_free(&T[i].own_bvh);
         free(T[i].pl);
         free(T[i].corner);
+        free(T[i].outside), free(T[i].closest), free(T[i].pend), free(T[i].pendq), free(T[i].tkind);
     }
     acd_bvh_free(&own_input);
     free(T);

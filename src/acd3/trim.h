@@ -50,6 +50,9 @@ typedef struct acd3_trim_stats {
                              union of hulls leaves uncovered) */
     double max_depth;     /* deepest cut, model units (how far below its old facet a plane went) */
     size_t skipped;       /* solid parts left whole because they intersect themselves */
+    double max_distance;  /* the distance bound: no part vertex farther than this from its trimmed hull */
+    size_t refused_far;   /* cuts refused by it after being made (others are refused by a lower bound
+                             before: the part's reach beyond the plane) */
 } acd3_trim_stats;
 
 /* Trees the caller built already (acd3d_decompose: the merge's and the budget pass's), used instead

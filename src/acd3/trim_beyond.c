@@ -59,7 +59,8 @@ int acd3_trim_tree_build(acd3_trim_tree *R, const acd_bvh *b) {
  * n.x is rounded from products no smaller than each corner's, term by term, so it is no smaller
  * than the corner's n.x. The triangles it drops add nothing here.) */
 void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd3_trim_levels *L, size_t k_lo,
-                           double *v) {
+                           double *v, double *top) {
+    double hi = -INFINITY;
     const double deepest = L->off[ACD3_TRIM_NDEPTHS - 1];
     double acc[ACD3_TRIM_NDEPTHS]; /* (v's sums, kept apart from the tree for the compiler) */
     memcpy(acc, v, sizeof acc);
@@ -81,9 +82,14 @@ void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd
             const double *c = R->corner + 9 * ((size_t)nd->first + q);
             const double *const p[3] = {c, c + 3, c + 6};
             const double d[3] = {acd_dot3(n, p[0]), acd_dot3(n, p[1]), acd_dot3(n, p[2])};
-            if (acd3_trim_top(d) > deepest) acd3_trim_tri_beyond(p, d, L, k_lo, acc);
+            const double dt = acd3_trim_top(d);
+            if (dt > deepest) {
+                acd3_trim_tri_beyond(p, d, L, k_lo, acc);
+                hi = dt > hi ? dt : hi;
+            }
         }
         i++;
     }
     memcpy(v, acc, sizeof acc);
+    if (top) *top = hi;
 }

@@ -185,8 +185,10 @@ void acd3_trim_tree_free(acd3_trim_tree *R);
 
 /* The volumes beyond the levels k >= k_lo of the triangles reaching beyond the deepest level, added
  * to v: the triangles acd_bvh_query_halfspace(b, n, L->off[ACD3_TRIM_NDEPTHS - 1]) visits, in its
- * order, each through acd3_trim_tri_beyond. */
+ * order, each through acd3_trim_tri_beyond. top: NULL, or set to the largest n.x of those triangles'
+ * corners (-INFINITY when none reaches beyond the deepest level): how far the part reaches beyond
+ * each level (acd3/trim's distance bound). */
 void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd3_trim_levels *L, size_t k_lo,
-                           double *v);
+                           double *v, double *top);
 
 #endif
