@@ -12,6 +12,7 @@
  * - a part that intersects itself is not trimmed (its signed volumes bound nothing), and it is counted;
  * - an internal wall on a part's hull (a face a cut made) is not cut under, which the same pass does
  *   without the input (a U prism cut across its arms);
+ * - a thin fin on a box stays within the distance bound of the trimmed hull (fails without it);
  * - acd3/trim_beyond's volumes beyond a plane's levels, in one pass, are bitwise the sums of
  *   acd_geom3_triangle_volume_beyond per level over the triangles of acd_bvh_query_halfspace in its
  *   order (what the trimmed hulls were chosen by before it), with levels through vertices. */
@@ -351,8 +352,9 @@ static void test_trim_accounts_exact(void **state) {
     acd_hull_free(&h);
     const double vol = part.volume, F = 0.004;
     acd3_trim_stats st;
-    assert_int_equal(acd3_trim_hulls(&part, 1, vol, F * vol, ACD3_TRIM_MIN_GAIN_REL * vol, 0, &m, NULL, 1, NULL, NULL, &st,
-                                     &err),
+    /* (no distance bound: the accounts are the point here) */
+    assert_int_equal(acd3_trim_hulls_within(&part, 1, vol, F * vol, ACD3_TRIM_MIN_GAIN_REL * vol, 0, INFINITY, &m, NULL,
+                                            1, NULL, NULL, &st, &err),
                      ACD_OK);
     assert_true(st.cuts > 0);
     assert_float_equal(st.removed_part, part.trimmed_volume, 1e-12 * vol);
@@ -690,8 +692,8 @@ static double trim_pieces_max_y(const acd_cut_result *cr, size_t low, const acd_
         acd_hull_free(&h);
     }
     acd3_trim_stats st;
-    assert_int_equal(acd3_trim_hulls(parts, n, vol, 0.005 * vol, ACD3_TRIM_MIN_GAIN_REL * vol, 0, input, NULL, 2, NULL,
-                                     NULL, &st, &err),
+    assert_int_equal(acd3_trim_hulls_within(parts, n, vol, 0.005 * vol, ACD3_TRIM_MIN_GAIN_REL * vol, 0, INFINITY, input,
+                                            NULL, 2, NULL, NULL, &st, &err),
                      ACD_OK);
     *cuts = st.cuts;
     double ymax = -INFINITY;
@@ -735,6 +737,100 @@ static void test_trim_internal_wall(void **state) {
     acd_mesh_free(&m);
 }
 
+/* A box 10 x 10 x 10 with a fin 0.1 thick and 5 high along its top (the profile in x, z extruded
+ * along y): closed, outward. */
+static void box_fin(acd_mesh *m) {
+    static const double P[8][2] = {{0, 0}, {10, 0}, {10, 10}, {5.05, 10}, {5.05, 15}, {4.95, 15}, {4.95, 10}, {0, 10}};
+    static const uint32_t C[6][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 6}, {0, 6, 7}, {6, 3, 4}, {6, 4, 5}}; /* the profile */
+    m->nvertices = 16;
+    m->ntriangles = 2 * 6 + 2 * 8;
+    m->vertices = malloc(3 * m->nvertices * sizeof *m->vertices);
+    m->triangles = malloc(3 * m->ntriangles * sizeof *m->triangles);
+    for (int y = 0; y < 2; y++)
+        for (int i = 0; i < 8; i++) {
+            double *v = m->vertices + 3 * (8 * y + i);
+            v[0] = P[i][0], v[1] = 10.0 * y, v[2] = P[i][1];
+        }
+    uint32_t *t = m->triangles;
+    for (int k = 0; k < 6; k++) { /* the profile (ccw in x, z) faces -y at y = 0, +y at y = 10 */
+        const uint32_t a[6] = {C[k][0], C[k][1], C[k][2], C[k][0] + 8, C[k][2] + 8, C[k][1] + 8};
+        memcpy(t, a, sizeof a);
+        t += 6;
+    }
+    for (uint32_t a = 0; a < 8; a++) {
+        const uint32_t b = (a + 1) % 8, q[6] = {a, a + 8, b + 8, a, b + 8, b};
+        memcpy(t, q, sizeof q);
+        t += 6;
+    }
+    if (closed_volume(m) < 0)
+        for (size_t i = 0; i < m->ntriangles; i++) {
+            uint32_t x = m->triangles[3 * i + 1];
+            m->triangles[3 * i + 1] = m->triangles[3 * i + 2], m->triangles[3 * i + 2] = x;
+        }
+}
+
+/* The distance from p to the convex hull h (0 inside): the nearest of its triangles when outside. */
+static double hull_distance(const acd_hull *h, const double p[3]) {
+    if (!(acd_hull_plane_distance(h, p) > 0)) return 0;
+    double best = INFINITY;
+    for (size_t t = 0; t < h->ntriangles; t++) {
+        const uint32_t *tr = h->triangles + 3 * t;
+        double q[3];
+        best = fmin(best, acd_closest_point_triangle(p, h->vertices + 3 * (size_t)tr[0], h->vertices + 3 * (size_t)tr[1],
+                                                     h->vertices + 3 * (size_t)tr[2], q));
+    }
+    return sqrt(best);
+}
+
+/* A thin fin on a box, as one part of concavity 0.5, at the largest coverage allowed: the fin holds
+ * 0.5% of the volume, so within the budget of 1% the hull's roof over it (250 of air) could be cut
+ * down through the fin, leaving its top outside the hull (before the bound: 119 cuts, its tip 0.86
+ * from the hull, every cut within the volume budget). The bound: no vertex of the part farther than its concavity
+ * from its trimmed hull (the distance to a convex set is largest at a corner of a triangle, so none
+ * of its surface), while the roof is still trimmed. At 1, 2 and 4 threads the same. */
+static void test_trim_thin_fin(void **state) {
+    (void)state;
+    acd_mesh m;
+    box_fin(&m);
+    acd_error err;
+    const double vol = closed_volume(&m), F = 0.01, bound = 0.5;
+    assert_float_equal(vol, 1005, 1e-9);
+    acd3d_part part[3];
+    const int threads[3] = {1, 2, 4};
+    for (int r = 0; r < 3; r++) {
+        acd_hull h;
+        assert_int_equal(acd_hull_compute(m.vertices, m.nvertices, &h, &err), ACD_OK);
+        memset(&part[r], 0, sizeof part[r]);
+        part[r].mesh = m; /* (read only) */
+        part[r].hull = (acd_mesh){h.vertices, h.nvertices, h.triangles, h.ntriangles};
+        part[r].hull_volume = h.volume;
+        part[r].volume = vol;
+        part[r].concavity = bound;
+        h.vertices = NULL, h.triangles = NULL;
+        acd_hull_free(&h);
+        acd3_trim_stats st;
+        assert_int_equal(acd3_trim_hulls(&part[r], 1, vol, F * vol, ACD3_TRIM_MIN_GAIN_REL * vol, 0, &m, NULL,
+                                         threads[r], NULL, NULL, &st, &err),
+                         ACD_OK);
+        acd_hull th;
+        assert_int_equal(acd_hull_compute(part[r].hull.vertices, part[r].hull.nvertices, &th, &err), ACD_OK);
+        double far = 0;
+        for (size_t v = 0; v < m.nvertices; v++) far = fmax(far, hull_distance(&th, m.vertices + 3 * v));
+        print_message("thin fin: %zu cuts (%zu refused after the cut), hull %.4f -> %.4f, part outside %.4g, farthest "
+                      "vertex %.4f from the hull (bound %.2f)\n",
+                      st.cuts, st.refused_far, 1250.0 + 0.5, th.volume, part[r].trimmed_volume, far, bound);
+        assert_true(far <= bound * (1 + 1e-9));
+        assert_true(st.cuts > 0 && th.volume < 1250.5 - 1);
+        acd_hull_free(&th);
+    }
+    for (int r = 1; r < 3; r++) {
+        assert_int_equal(part[0].hull.nvertices, part[r].hull.nvertices);
+        assert_memory_equal(part[0].hull.vertices, part[r].hull.vertices, 3 * part[0].hull.nvertices * sizeof(double));
+    }
+    for (int r = 0; r < 3; r++) acd_mesh_free(&part[r].hull);
+    acd_mesh_free(&m);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_volume_beyond_cube),   cmocka_unit_test(test_volume_beyond_sphere),
@@ -742,7 +838,7 @@ int main(void) {
         cmocka_unit_test(test_trim_refused),         cmocka_unit_test(test_trim_self_crossing),
         cmocka_unit_test(test_trim_beyond_bitwise),  cmocka_unit_test(test_trim_given_trees),
         cmocka_unit_test(test_trim_clip_cone_bitwise), cmocka_unit_test(test_trim_accounts_exact),
-        cmocka_unit_test(test_trim_internal_wall),
+        cmocka_unit_test(test_trim_internal_wall),   cmocka_unit_test(test_trim_thin_fin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

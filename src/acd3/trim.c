@@ -712,6 +712,19 @@ static int part_order_cmp(const void *a, const void *b) {
 acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
                            size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
                            acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats, acd_error *err) {
+    /* the run's own measure of how far a part's surface may lie from its hull: the joined parts of a
+     * merged run are within the merge tolerance, a split part within tau */
+    double maxdist = 0;
+    for (size_t i = 0; i < nparts; i++)
+        if (parts[i].volume > 0 && parts[i].concavity > maxdist) maxdist = parts[i].concavity;
+    return acd3_trim_hulls_within(parts, nparts, input_volume, budget, min_gain, max_vertices, maxdist, input, trees,
+                                  threads, progress, progress_user, stats, err);
+}
+
+acd_status acd3_trim_hulls_within(acd3d_part *parts, size_t nparts, double input_volume, double budget,
+                                  double min_gain, size_t max_vertices, double max_distance, const acd_mesh *input,
+                                  const acd3_trim_trees *trees, int threads, acd_progress_fn progress,
+                                  void *progress_user, acd3_trim_stats *stats, acd_error *err) {
     memset(stats, 0, sizeof *stats);
     for (size_t i = 0; i < nparts; i++) parts[i].trimmed_volume = 0;
     if (!(budget > 0) || nparts == 0 || !(input_volume > 0)) return ACD_OK;
@@ -728,14 +741,9 @@ acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume
      * removes exceeds 1 + |M u U| / |M n U|; the hulls' sum over the input's volume bounds that */
     const double ratio_floor = 1.0 + hull_sum / input_volume;
     const double loss_floor = ACD3_TRIM_LOSS_FLOOR * min_gain;
-    /* the distance bound (far_check): the largest concavity of the solid parts, the run's own measure
-     * of how far a part's surface may lie from its hull (a merged run's joined parts are within the
-     * merge tolerance, a split part within tau); a cut leaving a vertex of a part farther than that
-     * from its trimmed hull is refused, so a thin feature (a fin, embossed letters) is not cut off
-     * whole for its small volume (docs/acd3d.md "Trimmed hulls") */
-    double maxdist = 0;
-    for (size_t i = 0; i < nparts; i++)
-        if (parts[i].volume > 0 && parts[i].concavity > maxdist) maxdist = parts[i].concavity;
+    /* the distance bound (far_check, wall_check): a thin feature (a fin, embossed letters) is not cut
+     * off whole for its small volume, nor a slab along a cut face (docs/acd3d.md "Trimmed hulls") */
+    const double maxdist = max_distance >= 0 ? max_distance : 0; /* (NaN: 0) */
     stats->max_distance = maxdist;
     for (size_t i = 0; i < nparts; i++) T[i].maxdist = maxdist;
     int input_crossings = 0;

@@ -65,13 +65,29 @@ typedef struct acd3_trim_trees {
                                     triangles near a plane asked to be a wall) */
 } acd3_trim_trees;
 
+/* Trims parts[i].hull (and hull_volume) of solid parts in place, setting parts[i].trimmed_volume,
+ * as acd3_trim_hulls_within with max_distance the largest concavity of the solid parts (the run's
+ * own bound on how far a part's surface lies from its hull: the merge tolerance for joined parts,
+ * tau for split ones; docs/acd3d.md "Trimmed hulls"). */
+acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
+                           size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
+                           acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats, acd_error *err);
+
 /* Trims parts[i].hull (and hull_volume) of solid parts in place, setting parts[i].trimmed_volume.
  * budget, min_gain: model volume units; budget <= 0 does nothing. progress: NULL or called from the
  * calling thread between rounds (fraction of the budget spent); non-zero cancels
  * (ACD_ERR_CANCELLED, the parts' hulls then partly trimmed: the caller discards the result). trees:
- * NULL or the trees the caller has (acd3_trim_trees), read only. */
-acd_status acd3_trim_hulls(acd3d_part *parts, size_t nparts, double input_volume, double budget, double min_gain,
-                           size_t max_vertices, const acd_mesh *input, const acd3_trim_trees *trees, int threads,
-                           acd_progress_fn progress, void *progress_user, acd3_trim_stats *stats, acd_error *err);
+ * NULL or the trees the caller has (acd3_trim_trees), read only. max_distance (model units;
+ * INFINITY: no bound): a cut is refused when it would leave a vertex of the part farther than this
+ * from the trimmed hull (so the part's surface: the distance to a convex set is largest at a
+ * triangle's corner), or, with the input given, a point of the part's internal walls (triangles off
+ * the input's surface) beyond its plane farther than this less the part's reach beyond the plane
+ * from the input's surface (so the section the cut exposes stays within max_distance of the input's
+ * surface; sampled, the sampling step taken off the bound). Refused depths of a plane stay refused
+ * (the hull only shrinks). */
+acd_status acd3_trim_hulls_within(acd3d_part *parts, size_t nparts, double input_volume, double budget,
+                                  double min_gain, size_t max_vertices, double max_distance, const acd_mesh *input,
+                                  const acd3_trim_trees *trees, int threads, acd_progress_fn progress,
+                                  void *progress_user, acd3_trim_stats *stats, acd_error *err);
 
 #endif
