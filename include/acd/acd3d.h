@@ -213,6 +213,10 @@ typedef enum acd3d_leaf_reason {
                                  <= merge_tau (one no cut could split is ACD3D_LEAF_NO_CUT) */
 } acd3d_leaf_reason;
 
+/* Static name of a leaf reason, as `acd 3d --json` writes it ("split", "tau", "flat", "no_cut",
+ * "depth", "merged", "joined", "hull_distance", "refined", "budget"; "unknown" otherwise). */
+const char *acd3d_leaf_reason_name(acd3d_leaf_reason r);
+
 typedef struct acd3d_node {
     int parent;               /* -1 for the root */
     int first_child;          /* -1 for a leaf; children are nodes first_child .. first_child+nchildren-1 */

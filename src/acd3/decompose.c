@@ -75,6 +75,22 @@ acd3d_params acd3d_default_params(void) {
     return p;
 }
 
+const char *acd3d_leaf_reason_name(acd3d_leaf_reason r) {
+    switch (r) {
+    case ACD3D_LEAF_NONE: return "split";
+    case ACD3D_LEAF_TAU: return "tau";
+    case ACD3D_LEAF_FLAT: return "flat";
+    case ACD3D_LEAF_NO_CUT: return "no_cut";
+    case ACD3D_LEAF_DEPTH: return "depth";
+    case ACD3D_LEAF_MERGED: return "merged";
+    case ACD3D_LEAF_JOINED: return "joined";
+    case ACD3D_LEAF_HULL: return "hull_distance";
+    case ACD3D_LEAF_REFINED: return "refined";
+    case ACD3D_LEAF_BUDGET: return "budget";
+    }
+    return "unknown";
+}
+
 acd3d_params acd3d_budget_params(size_t parts) {
     acd3d_params p = acd3d_default_params();
     if (parts == 0) return p;
