@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "acd/cage.h"
 #include "acd/mesh.h"
@@ -42,8 +43,22 @@ static void usage(FILE *f) {
             "  -v, --verbose        progress and details on stderr\n");
 }
 
+typedef struct progress_state {
+    int verbose;
+    double last; /* seconds of the last line */
+} progress_state;
+
+/* -v: the loop's milestones (stage "corise": each wave, each final part) as they come, the polls
+ * within its steps and the preparation (tens of thousands on a large mesh) at most once a second */
 static int on_progress(void *user, double fraction, const char *stage) {
-    if (*(int *)user) fprintf(stderr, "acd segment: %s %.0f%%\n", stage, 100 * fraction);
+    progress_state *ps = user;
+    if (!ps->verbose) return 0;
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    double now = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    if (strcmp(stage, "corise") && now - ps->last < 1.0) return 0;
+    ps->last = now;
+    fprintf(stderr, "acd segment: %s %.0f%%\n", stage, 100 * fraction);
     return 0;
 }
 
@@ -310,8 +325,14 @@ int acd_cmd_segment(int argc, char **argv) {
             return ec;
         }
     }
+    progress_state ps = {verbose, 0};
+    {
+        struct timespec ts;
+        clock_gettime(CLOCK_MONOTONIC, &ts);
+        ps.last = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec; /* the first poll line after a second */
+    }
     p.progress = on_progress;
-    p.progress_user = &verbose;
+    p.progress_user = &ps;
     acd_segment_result r;
     acd_status st = acd_segment(&mesh, &p, &r, &err);
     acd_mesh_free(&mesh);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "acd3/poll.h"
 #include "core/error.h"
 #include "core/union_find.h"
 #include "corise/edgesort.h"
@@ -177,23 +178,36 @@ static int cmp_edge_count(const void *x, const void *y) {
     return (p->hi > q->hi) - (p->hi < q->hi);
 }
 
+/* The distinct edges sorted by (lo, hi), with their counts: one order and one array whatever the
+ * sort (the records of an edge are counted, not kept), sorted by corise/edgesort's radix sort
+ * (qsort of 2.5 M records took 0.5 s at 832k facets). */
 static edge_count *global_edges(const acd_mesh *m, size_t *n) {
     size_t ne = 3 * m->ntriangles;
+    ef *r = malloc((ne ? ne : 1) * sizeof *r);
     edge_count *e = malloc((ne ? ne : 1) * sizeof *e);
-    if (!e) return NULL;
+    if (!r || !e) {
+        free(r);
+        free(e);
+        return NULL;
+    }
     for (size_t t = 0; t < m->ntriangles; t++)
         for (int k = 0; k < 3; k++) {
             uint32_t u = m->triangles[3 * t + k], v = m->triangles[3 * t + (k + 1) % 3];
-            e[3 * t + k] = (edge_count){u < v ? u : v, u < v ? v : u, 1};
+            r[3 * t + k] = (ef){u < v ? u : v, u < v ? v : u, (uint32_t)t};
         }
-    qsort(e, ne, sizeof *e, cmp_edge_count);
+    if (!acd_corise_ef_sort(r, ne)) {
+        free(r);
+        free(e);
+        return NULL;
+    }
     size_t k = 0;
     for (size_t i = 0; i < ne; i++) {
-        if (k && e[k - 1].lo == e[i].lo && e[k - 1].hi == e[i].hi)
+        if (k && e[k - 1].lo == r[i].lo && e[k - 1].hi == r[i].hi)
             e[k - 1].count++;
         else
-            e[k++] = e[i];
+            e[k++] = (edge_count){r[i].lo, r[i].hi, 1};
     }
+    free(r);
     *n = k;
     return e;
 }
@@ -320,11 +334,35 @@ static acd_status step_progress(const acd_corise_params *prm, int caller, double
     return ACD_OK;
 }
 
+acd3_poll *acd_corise_poll_init(acd3_poll *p, acd_corise_poll_ctx *ctx, acd_progress_fn fn, void *user, double fraction,
+                                const char *stage) {
+    ctx->fn = fn;
+    ctx->user = user;
+    ctx->fraction = fraction;
+    if (!fn) return NULL;
+    *p = acd3_poll_make(acd_corise_poll_call, ctx, stage);
+    return p;
+}
+
+int acd_corise_poll_call(void *user, double fraction, const char *stage) {
+    (void)fraction;
+    const acd_corise_poll_ctx *c = user;
+    return c->fn(c->user, c->fraction, stage);
+}
+
+void acd_corise_poll_stage(acd3_poll *p, const char *stage) {
+    if (p && thrd_equal(thrd_current(), p->owner)) p->stage = stage;
+}
+
+static acd_status poll_cancelled(acd_error *err, const char *where) {
+    return acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback %s", where);
+}
+
 /* One CoRiSe step on the submesh s: *nparts = 0 when s is final (no deep valley or flat hull),
  * else part[] holds the cut result. *maxc: the largest valley concavity of s (0 when its hull is
  * flat), as max_valley_concavity computes it. caller, fraction: step_progress's. */
-static acd_status step(const acd_mesh *s, const acd_corise_params *prm, int caller, double fraction, uint32_t *part,
-                       size_t *nparts, double *maxc, acd_corise_stats *stats, acd_error *err) {
+static acd_status step(const acd_mesh *s, const acd_corise_params *prm, int caller, double fraction, acd3_poll *poll,
+                       uint32_t *part, size_t *nparts, double *maxc, acd_corise_stats *stats, acd_error *err) {
     *nparts = 0;
     *maxc = 0;
     acd_edge_graph g;
@@ -336,7 +374,9 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, int call
     uint32_t *ml = NULL;
     acd_status st = acd_edge_graph_from_mesh(s->vertices, s->nvertices, s->triangles, s->ntriangles, &g, err);
     if (st == ACD_OK) st = step_progress(prm, caller, fraction, err);
-    if (st == ACD_OK) st = acd_corise_bridges_compute_mt(s, &g, prm->clamp_hull_depth, prm->threads, &b, err);
+    if (st == ACD_OK && !caller && acd3_poll_stop(poll)) st = poll_cancelled(err, "before a part's valleys");
+    acd_corise_poll_stage(poll, "corise: bridges");
+    if (st == ACD_OK) st = acd_corise_bridges_compute_mt(s, &g, prm->clamp_hull_depth, prm->threads, poll, &b, err);
     if (st == ACD_OK) st = step_progress(prm, caller, fraction, err);
     if (st != ACD_OK) goto done;
     stats->fallbacks += b.fallbacks;
@@ -351,14 +391,16 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, int call
     if (!deep) goto done;
     if ((st = acd_corise_ridges_compute(&b, prm->tau, &r, err)) != ACD_OK) goto done;
     if ((st = step_progress(prm, caller, fraction, err)) != ACD_OK) goto done;
+    acd_corise_poll_stage(poll, "corise: regions");
     ml = malloc(s->ntriangles * sizeof *ml);
     if (!ml) {
         st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu facets", s->ntriangles);
         goto done;
     }
-    if ((st = acd_corise_regions_mt(s, &g, &b, &r, prm->tau, prm->threads, ml, NULL, err)) != ACD_OK) goto done;
+    if ((st = acd_corise_regions_mt(s, &g, &b, &r, prm->tau, prm->threads, poll, ml, NULL, err)) != ACD_OK) goto done;
     if ((st = step_progress(prm, caller, fraction, err)) != ACD_OK) goto done;
-    st = acd_corise_cut(s, &b, &r, ml, &prm->cut, part, nparts, err);
+    acd_corise_poll_stage(poll, "corise: cut");
+    st = acd_corise_cut_poll(s, &b, &r, ml, &prm->cut, poll, part, nparts, err);
 done:
     free(ml);
     acd_corise_ridges_free(&r);
@@ -384,16 +426,26 @@ static void free_work(part_work *wk, size_t n) {
 }
 
 static void process_part(const acd_mesh *w, const part *cur, const edge_count *ge, size_t nge,
-                         const acd_corise_params *prm, int caller, double fraction, uint32_t *map, uint32_t *l2g,
-                         part_work *out) {
+                         const acd_corise_params *prm, int caller, double fraction, acd3_poll *poll, uint32_t *map,
+                         uint32_t *l2g, part_work *out) {
     acd_mesh sub, aug;
     out->st = ACD_OK;
+    acd_corise_poll_stage(poll, "corise: extracting");
+    if (acd3_poll_stop(poll)) {
+        out->st = poll_cancelled(&out->err, "before a part");
+        return;
+    }
     if (!extract(w, cur->faces, cur->n, map, l2g, &sub)) {
         out->st = acd_fail(&out->err, ACD_ERR_NOMEM, "corise: out of memory extracting a part of %zu facets", cur->n);
         return;
     }
-    int capped = cap_cut_holes(&sub, l2g, ge, nge, &aug);
+    int capped = !acd3_poll_stop(poll) && cap_cut_holes(&sub, l2g, ge, nge, &aug);
     acd_mesh_free(&sub);
+    if (acd3_poll_stopped(poll)) {
+        if (capped) acd_mesh_free(&aug);
+        out->st = poll_cancelled(&out->err, "capping a part");
+        return;
+    }
     out->cutpart = capped ? malloc((aug.ntriangles ? aug.ntriangles : 1) * sizeof *out->cutpart) : NULL;
     if (!out->cutpart) {
         acd_mesh_free(&aug);
@@ -402,7 +454,9 @@ static void process_part(const acd_mesh *w, const part *cur, const edge_count *g
     }
     acd_corise_stats st;
     memset(&st, 0, sizeof st);
-    out->st = step(&aug, prm, caller, fraction, out->cutpart, &out->np, &out->maxc, &st, &out->err);
+    out->st = !acd3_poll_stop(poll) ? step(&aug, prm, caller, fraction, poll, out->cutpart, &out->np, &out->maxc, &st,
+                                           &out->err)
+                                    : poll_cancelled(&out->err, "before a part's step");
     out->fallbacks = st.fallbacks;
     out->unreachable = st.unreachable;
     acd_mesh_free(&aug);
@@ -465,6 +519,9 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
     edge_count *ge = NULL;
     acd_status st = ACD_OK;
     size_t done_faces = 0;
+    acd_corise_poll_ctx pctx;
+    acd3_poll poll_obj;
+    acd3_poll *poll = acd_corise_poll_init(&poll_obj, &pctx, prm.progress, prm.progress_user, 0.0, "corise: preparing");
     if (!w.vertices || !all || !maps || !l2gs) goto nomem;
     for (int t = 0; t < nthreads; t++) {
         maps[t] = malloc((m->nvertices ? m->nvertices : 1) * sizeof **maps);
@@ -475,7 +532,9 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
     memcpy(w.vertices, m->vertices, 3 * m->nvertices * sizeof *w.vertices);
     S->scale = 1.0;
     if (prm.normalize) normalise(m, &w, &S->scale);
+    if (acd3_poll_stop(poll)) goto cancelled;
     if (!(ge = global_edges(&w, &nge))) goto nomem;
+    if (acd3_poll_stop(poll)) goto cancelled;
     for (size_t f = 0; f < m->ntriangles; f++) all[f] = (uint32_t)f;
     uint32_t *first = malloc(m->ntriangles * sizeof *first);
     if (!first) goto nomem;
@@ -494,6 +553,7 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
             goto done;
         }
         size_t b0 = q.head, b1 = q.n, nw = b1 - b0;
+        pctx.fraction = (double)done_faces / (double)m->ntriangles;
         work = calloc(nw, sizeof *work);
         if (!work) goto nomem;
         nwork = nw;
@@ -513,8 +573,10 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
             t = omp_get_thread_num();
 #endif
             process_part(&w, &q.p[b0 + (size_t)j], ge, nge, &prm, nw == 1, (double)done_faces / (double)m->ntriangles,
-                         maps[t], l2gs[t], &work[j]);
+                         poll, maps[t], l2gs[t], &work[j]);
         }
+        /* cancelled within the wave: no part of it is taken (and the callback is not called again) */
+        if (acd3_poll_stopped(poll)) goto cancelled;
         for (size_t j = 0; j < nw; j++) {
             part cur = q.p[b0 + j];
             q.p[b0 + j].faces = NULL;
@@ -545,6 +607,7 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
                 }
                 fin.p[fin.n - 1].conc = pw->maxc;
                 done_faces += cur.n;
+                pctx.fraction = (double)done_faces / (double)m->ntriangles;
                 if (prm.progress &&
                     prm.progress(prm.progress_user, (double)done_faces / (double)m->ntriangles, "corise")) {
                     st = acd_fail(err, ACD_ERR_CANCELLED,
@@ -557,7 +620,12 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
             S->cuts++;
             if (cur.depth + 1 > S->depth) S->depth = cur.depth + 1;
             int ok = 1;
+            acd_corise_poll_stage(poll, "corise: pieces");
             for (uint32_t k = 0; k < np && ok; k++) {
+                if (acd3_poll_stop(poll)) {
+                    free(cur.faces);
+                    goto cancelled;
+                }
                 size_t cnt = 0;
                 for (size_t i = 0; i < cur.n; i++) cnt += cutpart[i] == k;
                 if (!cnt) continue;
@@ -601,6 +669,10 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
     if (part_conc) *part_conc = pc;
     free(fp);
     S->parts = fin.n;
+    goto done;
+cancelled:
+    st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback after %zu of %zu facets",
+                  done_faces, m->ntriangles);
     goto done;
 nomem:
     st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory segmenting %zu facets", m->ntriangles);

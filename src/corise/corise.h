@@ -17,6 +17,7 @@
 
 #include "acd/base.h"
 #include "acd/mesh.h"
+#include "acd3/poll.h"
 #include "corise/cut.h"
 
 typedef struct acd_corise_params {
@@ -35,6 +36,29 @@ typedef struct acd_corise_params {
 } acd_corise_params;
 
 acd_corise_params acd_corise_default_params(void);
+
+/* The cancellation poll of the loop and of acd_segment (acd3/poll; docs/corise.md "Progress and
+ * cancellation"): one per call, made by the calling thread, passed down explicitly to the long
+ * loops (the valley searches, the regions' splits and balls, the cuts' max-flows, the input's
+ * preparation, the parts' hulls). Its callback, called by the calling thread only, calls
+ * ctx->fn(ctx->user, ctx->fraction, stage): the caller's callback with the fraction of the last
+ * milestone (ctx->fraction, written by the calling thread) and the poll's stage. */
+typedef struct acd_corise_poll_ctx {
+    acd_progress_fn fn;
+    void *user;
+    double fraction;
+} acd_corise_poll_ctx;
+
+/* Makes *p calling fn through ctx, from the calling thread; returns p, or NULL (no poll: every
+ * poll a no-op) when fn is NULL. */
+acd3_poll *acd_corise_poll_init(acd3_poll *p, acd_corise_poll_ctx *ctx, acd_progress_fn fn, void *user, double fraction,
+                                const char *stage);
+int acd_corise_poll_call(void *user, double fraction, const char *stage);
+
+/* Sets the stage p tells (a static string), from the calling thread only (the only one that reads
+ * it): elsewhere, or for p NULL, nothing. In a wave of several parts on several threads it is the
+ * stage of the calling thread's own part. */
+void acd_corise_poll_stage(acd3_poll *p, const char *stage);
 
 typedef struct acd_corise_stats {
     size_t parts;        /* final parts */

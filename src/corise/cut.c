@@ -36,7 +36,9 @@ static uint32_t opposite(const acd_mesh *m, uint32_t t, uint32_t lo, uint32_t hi
     return m->triangles[3 * (size_t)t];
 }
 
-static acd_status build_dual(const acd_mesh *m, dual_edge **out, size_t *nout, acd_error *err) {
+/* The dual edges; polls poll after the sort and every ACD_CORISE_POLL_DUAL edges (0 on a stop). */
+#define ACD_CORISE_POLL_DUAL 65536
+static acd_status build_dual(const acd_mesh *m, acd3_poll *poll, dual_edge **out, size_t *nout, acd_error *err) {
     size_t ne = 3 * m->ntriangles;
     ef *e = malloc((ne ? ne : 1) * sizeof *e);
     dual_edge *d = malloc((ne ? ne : 1) * sizeof *d);
@@ -56,7 +58,13 @@ static acd_status build_dual(const acd_mesh *m, dual_edge **out, size_t *nout, a
         return acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for the dual graph of %zu facets", m->ntriangles);
     }
     size_t nd = 0;
-    for (size_t i = 0; i < ne;) {
+    for (size_t i = 0, groups = 0; i < ne; groups++) {
+        if (poll && groups % ACD_CORISE_POLL_DUAL == 0 && acd3_poll_stop(poll)) {
+            free(e);
+            free(d);
+            return acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback cutting %zu facets",
+                            m->ntriangles);
+        }
         size_t j = i + 1;
         while (j < ne && e[j].lo == e[i].lo && e[j].hi == e[i].hi) j++;
         /* consecutive facets around the edge are linked (two for a manifold edge) */
@@ -84,6 +92,12 @@ static acd_status build_dual(const acd_mesh *m, dual_edge **out, size_t *nout, a
 acd_status acd_corise_cut(const acd_mesh *m, const acd_corise_bridges *b, const acd_corise_ridges *r,
                           const uint32_t *must_link, const acd_corise_cut_params *params, uint32_t *part,
                           size_t *nparts, acd_error *err) {
+    return acd_corise_cut_poll(m, b, r, must_link, params, NULL, part, nparts, err);
+}
+
+acd_status acd_corise_cut_poll(const acd_mesh *m, const acd_corise_bridges *b, const acd_corise_ridges *r,
+                               const uint32_t *must_link, const acd_corise_cut_params *params, acd3_poll *poll,
+                               uint32_t *part, size_t *nparts, acd_error *err) {
     if (!m || !b || !r || !must_link || !part || !nparts)
         return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
     acd_corise_cut_params prm = params ? *params : acd_corise_cut_default_params();
@@ -100,8 +114,12 @@ acd_status acd_corise_cut(const acd_mesh *m, const acd_corise_bridges *b, const 
     }
     dual_edge *d = NULL;
     size_t nd = 0;
-    acd_status st = build_dual(m, &d, &nd, err);
+    acd_status st = build_dual(m, poll, &d, &nd, err);
     if (st != ACD_OK) return st;
+    if (acd3_poll_stop(poll)) {
+        free(d);
+        return acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback cutting %zu facets", nf);
+    }
     /* Eq. 8 weights */
     double *w = malloc((nd ? nd : 1) * sizeof *w);
     double *diag = calloc(nr ? nr : 1, sizeof *diag), *box = malloc((nr ? nr : 1) * 6 * sizeof *box);
@@ -157,6 +175,10 @@ acd_status acd_corise_cut(const acd_mesh *m, const acd_corise_bridges *b, const 
     uint32_t next_part = 0;
     for (size_t t = 0; t + 1 < nr; t++) {
         size_t k = order[t];
+        if (acd3_poll_stop(poll)) {
+            st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback cutting %zu facets", nf);
+            goto done;
+        }
         acd_maxflow_reset(g);
         size_t nn = 0, nsrc = 0;
         for (size_t f = 0; f < nf; f++) node[f] = part[f] == UINT32_MAX ? (uint32_t)nn++ : UINT32_MAX;
@@ -179,7 +201,11 @@ acd_status acd_corise_cut(const acd_mesh *m, const acd_corise_bridges *b, const 
             if ((st = acd_maxflow_add_edge(g, a, c, w[i], w[i], err)) != ACD_OK) goto done;
         }
         double flow;
-        if ((st = acd_maxflow_solve(g, &flow, err)) != ACD_OK) goto done;
+        if ((st = acd_maxflow_solve_poll(g, &flow, poll, err)) != ACD_OK) {
+            if (st == ACD_ERR_CANCELLED)
+                st = acd_fail(err, st, "corise: cancelled by the progress callback cutting %zu facets", nf);
+            goto done;
+        }
         size_t taken = 0;
         for (size_t f = 0; f < nf; f++)
             if (node[f] != UINT32_MAX && acd_maxflow_is_source(g, node[f])) {

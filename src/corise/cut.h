@@ -20,6 +20,7 @@
 
 #include "acd/base.h"
 #include "acd/mesh.h"
+#include "acd3/poll.h"
 #include "corise/ridge.h"
 #include "corise/valley.h"
 
@@ -35,5 +36,12 @@ acd_corise_cut_params acd_corise_cut_default_params(void);
 acd_status acd_corise_cut(const acd_mesh *m, const acd_corise_bridges *b, const acd_corise_ridges *r,
                           const uint32_t *must_link, const acd_corise_cut_params *params, uint32_t *part,
                           size_t *nparts, acd_error *err);
+
+/* The same, polling poll (may be NULL; acd3/poll) after the dual graph, before each ridge's cut
+ * and within its max-flow (acd_maxflow_solve_poll): when it says stop, ACD_ERR_CANCELLED (part
+ * is then undefined). The parts are the same with or without a poll. */
+acd_status acd_corise_cut_poll(const acd_mesh *m, const acd_corise_bridges *b, const acd_corise_ridges *r,
+                               const uint32_t *must_link, const acd_corise_cut_params *params, acd3_poll *poll,
+                               uint32_t *part, size_t *nparts, acd_error *err);
 
 #endif

@@ -373,6 +373,10 @@ static uint32_t grow(acd_maxflow *g, uint32_t i) {
 }
 
 acd_status acd_maxflow_solve(acd_maxflow *g, double *flow, acd_error *err) {
+    return acd_maxflow_solve_poll(g, flow, NULL, err);
+}
+
+acd_status acd_maxflow_solve_poll(acd_maxflow *g, double *flow, acd3_poll *poll, acd_error *err) {
     if (!g) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "maxflow: NULL graph");
     if (g->solved) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "maxflow: graph already solved; reset it first");
     size_t n = g->nnodes;
@@ -406,7 +410,9 @@ acd_status acd_maxflow_solve(acd_maxflow *g, double *flow, acd_error *err) {
     }
 
     uint32_t current = MF_NIL;
-    for (;;) {
+    for (size_t steps = 1;; steps++) {
+        if (poll && steps % ACD_MAXFLOW_POLL_STEPS == 0 && acd3_poll_stop(poll))
+            return acd_fail(err, ACD_ERR_CANCELLED, "maxflow: cancelled by the progress callback (%zu nodes)", n);
         uint32_t i;
         if (current != MF_NIL && g->nodes[current].parent != MF_FREE)
             i = current;

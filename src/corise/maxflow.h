@@ -30,6 +30,7 @@
 #include <stddef.h>
 
 #include "acd/base.h"
+#include "acd3/poll.h"
 
 typedef struct acd_maxflow acd_maxflow;
 
@@ -61,6 +62,12 @@ acd_status acd_maxflow_add_edge(acd_maxflow *g, size_t i, size_t j, double cap, 
 /* Computes a maximum flow; *flow receives its value (the minimum cut capacity). Can be called
  * once per graph; a second call without reset fails with ACD_ERR_INVALID_ARGUMENT. */
 acd_status acd_maxflow_solve(acd_maxflow *g, double *flow, acd_error *err);
+
+/* The same, polling poll (may be NULL; acd3/poll) every ACD_MAXFLOW_POLL_STEPS growth steps:
+ * when it says stop, ACD_ERR_CANCELLED (the graph is then neither solved nor usable: reset or free
+ * it). The flow and the cut are the same with or without a poll. */
+#define ACD_MAXFLOW_POLL_STEPS 4096
+acd_status acd_maxflow_solve_poll(acd_maxflow *g, double *flow, acd3_poll *poll, acd_error *err);
 
 /* After solve: 1 if node i is on the source side of the minimal minimum cut, else 0. */
 int acd_maxflow_is_source(const acd_maxflow *g, size_t i);

@@ -89,12 +89,12 @@ static void apply_claim(const ball_work *w, uint32_t k, uint32_t *owner) {
 acd_status acd_corise_regions(const acd_mesh *m, const acd_edge_graph *g, const acd_corise_bridges *b,
                               const acd_corise_ridges *r, double tau, uint32_t *must_link, size_t *nsub,
                               acd_error *err) {
-    return acd_corise_regions_mt(m, g, b, r, tau, 1, must_link, nsub, err);
+    return acd_corise_regions_mt(m, g, b, r, tau, 1, NULL, must_link, nsub, err);
 }
 
 acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, const acd_corise_bridges *b,
-                                 const acd_corise_ridges *r, double tau, int nthreads, uint32_t *must_link,
-                                 size_t *nsub, acd_error *err) {
+                                 const acd_corise_ridges *r, double tau, int nthreads, acd3_poll *poll,
+                                 uint32_t *must_link, size_t *nsub, acd_error *err) {
     if (!m || !g || !b || !r || !must_link) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
     if (nsub) *nsub = 0;
     size_t nf = m->ntriangles;
@@ -136,8 +136,10 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
     for (long d = 0; d < (long)ndeep; d++) {
         const acd_corise_bridge *br = &b->bridge[deep[d]];
         acd_error e;
-        sst[d] = acd_corise_valley_split(m->vertices, b->path + br->first, br->count, tau, &sp[d], &e);
+        sst[d] = acd3_poll_stop(poll) ? ACD_ERR_CANCELLED
+                                      : acd_corise_valley_split(m->vertices, b->path + br->first, br->count, tau, &sp[d], &e);
     }
+    if (acd3_poll_stopped(poll)) goto cancelled;
     size_t ncl = 0;
     for (size_t d = 0; d < ndeep; d++) {
         const acd_corise_bridge *br = &b->bridge[deep[d]];
@@ -197,6 +199,7 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
         if (nt == 1) {
             for (size_t c = 0; c < ncl && ok; c++) {
                 if (!(cl[c].len > 0)) continue;
+                if (acd3_poll_stop(poll)) goto cancelled;
                 ok = ball(m, g, first_row, first_face, cl[c].r, cl[c].len, &bs[0], &bw[0]);
                 if (ok) apply_claim(&bw[0], cl[c].ridge, must_link);
             }
@@ -212,9 +215,11 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
                     ball_work *w = &bw[c - (long)c0]; /* one workspace per claim of the round */
                     w->nfaces = 0;
                     rok[c - (long)c0] =
-                        cl[c].len > 0 ? ball(m, g, first_row, first_face, cl[c].r, cl[c].len, &bs[omp_get_thread_num()], w)
-                                      : 1;
+                        cl[c].len > 0 && !acd3_poll_stop(poll)
+                            ? ball(m, g, first_row, first_face, cl[c].r, cl[c].len, &bs[omp_get_thread_num()], w)
+                            : 1;
                 }
+                if (acd3_poll_stopped(poll)) goto cancelled;
                 for (size_t c = c0; c < c1; c++) {
                     ok &= rok[c - c0];
                     if (ok && cl[c].len > 0) apply_claim(&bw[c - c0], cl[c].ridge, must_link);
@@ -253,6 +258,9 @@ acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, con
     }
     free(has);
     if (nsub) *nsub = count;
+    goto done;
+cancelled:
+    st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback growing the regions of %zu facets", nf);
 done:
     free(deep);
     free(sp);

@@ -15,6 +15,7 @@
 
 #include "acd/base.h"
 #include "acd/mesh.h"
+#include "acd3/poll.h"
 #include "corise/ridge.h"
 #include "corise/valley.h"
 #include "geom3/dijkstra.h"
@@ -30,10 +31,12 @@ acd_status acd_corise_regions(const acd_mesh *m, const acd_edge_graph *g, const 
 /* Same, with the valley splits and the balls shared among nthreads OpenMP threads (when the
  * caller is not already in a parallel region and the mesh has at least
  * ACD_CORISE_PARALLEL_MIN_FACES facets: below, a parallel region costs more than it saves; at most
- * ACD_CORISE_MAX_THREADS); the result is the same for any nthreads. */
+ * ACD_CORISE_MAX_THREADS); the result is the same for any nthreads. poll (may be NULL; acd3/poll)
+ * is polled before each valley split and each ball (the calling thread calls the callback, the
+ * others read its flag); when it says stop, ACD_ERR_CANCELLED. It decides nothing else. */
 #define ACD_CORISE_MAX_THREADS 256
 acd_status acd_corise_regions_mt(const acd_mesh *m, const acd_edge_graph *g, const acd_corise_bridges *b,
-                                 const acd_corise_ridges *r, double tau, int nthreads, uint32_t *must_link,
-                                 size_t *nsub, acd_error *err);
+                                 const acd_corise_ridges *r, double tau, int nthreads, acd3_poll *poll,
+                                 uint32_t *must_link, size_t *nsub, acd_error *err);
 
 #endif

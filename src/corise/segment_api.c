@@ -79,11 +79,17 @@ static acd_status part_hull(const acd_mesh *m, const uint32_t *face, size_t n, d
     return ACD_OK;
 }
 
+/* ACD_ERR_CANCELLED when the poll says stop (acd3/poll: the callback from the calling thread). */
+static acd_status poll_stop(acd3_poll *poll, acd_error *err) {
+    if (acd3_poll_stop(poll)) return acd_fail(err, ACD_ERR_CANCELLED, "segment: cancelled by the progress callback");
+    return ACD_OK;
+}
+
 /* The mesh to segment (docs/corise.md, "Input preparation") into out->mesh: a copy of m, welded
  * and oriented when on. Faces keep their order and count, so the labels are the input's faces'.
  * A mesh the loop refuses (no faces, an index out of range) is copied as is, for the loop's own
  * message. */
-static acd_status prepare(const acd_mesh *m, int on, acd_segment_result *out, acd_error *err) {
+static acd_status prepare(const acd_mesh *m, int on, acd3_poll *poll, acd_segment_result *out, acd_error *err) {
     acd_status st;
     int usable = on && m->ntriangles > 0 && m->ntriangles <= UINT32_MAX / 3;
     for (size_t t = 0; usable && t < 3 * m->ntriangles; t++) usable = m->triangles[t] < m->nvertices;
@@ -96,7 +102,7 @@ static acd_status prepare(const acd_mesh *m, int on, acd_segment_result *out, ac
     acd_mesh w;
     size_t merged = 0;
     if ((st = acd_mesh_copy(&w, m, err)) != ACD_OK) return st;
-    if ((st = acd_mesh_weld(&w, 0, &merged, err)) != ACD_OK) {
+    if ((st = acd_mesh_weld(&w, 0, &merged, err)) != ACD_OK || (st = poll_stop(poll, err)) != ACD_OK) {
         acd_mesh_free(&w);
         return st;
     }
@@ -116,6 +122,7 @@ static acd_status prepare(const acd_mesh *m, int on, acd_segment_result *out, ac
         acd_mesh_free(&w);
         if ((st = acd_mesh_copy(&out->mesh, m, err)) != ACD_OK) return st;
     }
+    if ((st = poll_stop(poll, err)) != ACD_OK) return st;
     /* faces oriented against their neighbours, or a closed mesh inside out: valleys and ridges
      * swap (mpi_triang with all faces reversed: 3 parts, one unresolved; half of them: a valley
      * 2.3 tau left). Faces are flipped to agree, closed parts outward (cavities inward), open
@@ -129,6 +136,7 @@ static acd_status prepare(const acd_mesh *m, int on, acd_segment_result *out, ac
     ro.split_nonmanifold = 0;
     acd_repair_stats rs;
     if ((st = acd_mesh_repair(&out->mesh, &ro, &rs, err)) != ACD_OK) return st;
+    if ((st = poll_stop(poll, err)) != ACD_OK) return st;
     out->faces_flipped = rs.faces_flipped;
     out->nonorientable_parts = rs.nonorientable_parts;
     return ACD_OK;
@@ -164,7 +172,13 @@ acd_status acd_segment(const acd_mesh *input, const acd_segment_params *params, 
             return acd_fail(err, ACD_ERR_INVALID_INPUT, "segment: %s", ce.message);
     }
     double t0 = now_seconds();
-    acd_status st = prepare(input, params->prepare, out, err);
+    /* the poll of the preparation and of the parts' hulls (the loop has its own) */
+    acd_corise_poll_ctx pctx;
+    acd3_poll poll_obj;
+    acd3_poll *poll =
+        acd_corise_poll_init(&poll_obj, &pctx, params->progress, params->progress_user, 0.0, "segment: preparing");
+    acd_status st = poll_stop(poll, err);
+    if (st == ACD_OK) st = prepare(input, params->prepare, poll, out, err);
     if (st != ACD_OK) {
         acd_segment_result_free(out);
         return st;
@@ -189,6 +203,8 @@ acd_status acd_segment(const acd_mesh *input, const acd_segment_params *params, 
     if (!out->labels) goto nomem;
     st = acd_corise_segment_ex(mesh, &c, out->labels, &conc, &stats, err);
     if (st != ACD_OK) goto fail;
+    pctx.fraction = 1.0;
+    acd_corise_poll_stage(poll, "segment: hulls");
     out->nfaces = mesh->ntriangles;
     out->tau = params->tau;
     out->scale = stats.scale > 0 ? 1.0 / stats.scale : 1.0;
@@ -245,7 +261,13 @@ acd_status acd_segment(const acd_mesh *input, const acd_segment_params *params, 
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1 && np > 1 && mesh->ntriangles >= ACD_CORISE_PARALLEL_MIN_FACES)
 #endif
     for (long k = 0; k < (long)np; k++)
-        hst[k] = part_hull(mesh, byface + start[k], start[k + 1] - start[k], pts + 9 * start[k], &out->parts[k], &herr[k]);
+        hst[k] = acd3_poll_stop(poll) ? ACD_ERR_CANCELLED
+                                      : part_hull(mesh, byface + start[k], start[k + 1] - start[k], pts + 9 * start[k],
+                                                  &out->parts[k], &herr[k]);
+    if (acd3_poll_stopped(poll)) {
+        st = acd_fail(err, ACD_ERR_CANCELLED, "segment: cancelled by the progress callback computing the parts' hulls");
+        goto fail;
+    }
     for (size_t k = 0; k < np; k++) {
         acd_segment_part *p = &out->parts[k];
         if (hst[k] != ACD_OK) {

@@ -212,6 +212,7 @@ typedef struct valley_search {
     size_t nheap, cap;
     uint32_t *path;
     size_t cap_path;
+    size_t pops; /* heap pops of all the searches, to poll every ACD_CORISE_POLL_POPS */
 } valley_search;
 
 static void vs_free(valley_search *s) {
@@ -275,9 +276,9 @@ static double seg_dist(const double *p, const double *a, const double *u, double
 }
 
 /* Valley from a to b into s->path (*len vertices, a first) and its Euclidean *length.
- * Returns 1 when found, 0 when b is unreachable, -1 when out of memory. */
+ * Returns 1 when found, 0 when b is unreachable, -1 when out of memory, -2 when poll said stop. */
 static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V, uint32_t a, uint32_t b, size_t *len,
-                     double *length) {
+                     double *length, acd3_poll *poll) {
     if (++s->run >= UINT32_C(1) << 31) { /* mark wrap-around: clear */
         memset(s->node, 0, s->nv * sizeof *s->node);
         s->run = 1;
@@ -297,6 +298,7 @@ static int vs_valley(valley_search *s, const acd_edge_graph *g, const double *V,
     if (!vs_push(s, L, 0, a)) return -1;
     int found = 0;
     while (s->nheap) {
+        if (poll && ++s->pops % ACD_CORISE_POLL_POPS == 0 && acd3_poll_stop(poll)) return -2;
         vs_item it = vs_pop(s);
         uint32_t x = it.v;
         if ((N[x].mark & 1) || it.g > N[x].cost) continue; /* x was touched in this run */
@@ -381,7 +383,7 @@ acd_status acd_corise_bridges_compute(const acd_mesh *m, const acd_edge_graph *g
 
 acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth,
                                          acd_corise_bridges *out, acd_error *err) {
-    return acd_corise_bridges_compute_mt(m, g, clamp_depth, 1, out, err);
+    return acd_corise_bridges_compute_mt(m, g, clamp_depth, 1, NULL, out, err);
 }
 
 /* Per-thread workspace of the bridge loop. */
@@ -395,10 +397,11 @@ typedef struct bridge_worker {
 /* The valley of br (a, b set) and its concavity: br->count, length (INFINITY when b is
  * unreachable), concavity, deepest, kind; *path (malloc'd) the valley's vertices. */
 static acd_status one_bridge(bridge_worker *w, const acd_mesh *m, const acd_edge_graph *g, const acd_hull *h,
-                             int clamp_depth, acd_corise_bridge *br, uint32_t **path) {
+                             int clamp_depth, acd3_poll *poll, acd_corise_bridge *br, uint32_t **path) {
     size_t len = 0;
     double length = 0;
-    int r = vs_valley(&w->vs, g, m->vertices, br->a, br->b, &len, &length);
+    int r = vs_valley(&w->vs, g, m->vertices, br->a, br->b, &len, &length, poll);
+    if (r == -2) return ACD_ERR_CANCELLED;
     if (r < 0) return ACD_ERR_NOMEM;
     if (r == 0) {
         br->length = INFINITY;
@@ -435,7 +438,7 @@ static acd_status one_bridge(bridge_worker *w, const acd_mesh *m, const acd_edge
 }
 
 acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth, int nthreads,
-                                         acd_corise_bridges *out, acd_error *err) {
+                                         acd3_poll *poll, acd_corise_bridges *out, acd_error *err) {
     if (!m || !g || !out) return acd_fail(err, ACD_ERR_INVALID_ARGUMENT, "corise: NULL argument");
     memset(out, 0, sizeof *out);
     out->hull_dim = -1;
@@ -471,6 +474,7 @@ acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph
             np++;
         }
     if ((st = acd_hull_compute(pts, np, &h, err)) != ACD_OK) goto done;
+    if (acd3_poll_stop(poll)) goto cancelled;
     out->hull_dim = h.dim;
     if (h.dim < 2 || h.ntriangles == 0) goto done;
     out->hull_vertex = malloc(h.nvertices * sizeof *out->hull_vertex);
@@ -522,8 +526,11 @@ acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph
 #endif
         out->bridge[i].a = pairs[i].a;
         out->bridge[i].b = pairs[i].b;
-        bst[i] = one_bridge(&wk[t], m, g, &h, clamp_depth, &out->bridge[i], &bpath[i]);
+        /* once the poll said stop, the other bridges are skipped (the flag, no callback) */
+        bst[i] = acd3_poll_stopped(poll) ? ACD_ERR_CANCELLED
+                                         : one_bridge(&wk[t], m, g, &h, clamp_depth, poll, &out->bridge[i], &bpath[i]);
     }
+    if (acd3_poll_stopped(poll)) goto cancelled;
     size_t cap_path = 0;
     for (size_t i = 0; i < nb; i++) {
         acd_corise_bridge *br = &out->bridge[i];
@@ -551,6 +558,10 @@ acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph
         if (br->kind == ACD_CORISE_CONC_FALLBACK) out->fallbacks++;
     }
     out->nbridges = nb;
+    goto done;
+cancelled:
+    st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback computing the valleys of a %zu-vertex mesh",
+                  m->nvertices);
     goto done;
 nomem:
     st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory computing bridges of a %zu-vertex mesh", m->nvertices);

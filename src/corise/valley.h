@@ -22,6 +22,7 @@
 
 #include "acd/base.h"
 #include "acd/mesh.h"
+#include "acd3/poll.h"
 #include "geom3/dijkstra.h"
 
 /* Relative weight of the tie-break: an edge uv costs |uv| (1 + k (dev(u) + dev(v)) / (2 |ab|)),
@@ -95,10 +96,15 @@ acd_status acd_corise_bridges_compute_ex(const acd_mesh *m, const acd_edge_graph
  * ACD_CORISE_PARALLEL_MIN_BRIDGES of them, the mesh has at least ACD_CORISE_PARALLEL_MIN_FACES
  * facets and the caller is not already in a parallel region; the result is the same for any
  * nthreads. Below these sizes a parallel region (fork, join, and idle threads spinning between
- * regions) costs more than the work it shares. */
+ * regions) costs more than the work it shares.
+ * poll (may be NULL; acd3/poll): polled after the hull and every ACD_CORISE_POLL_POPS heap pops
+ * of the valley searches (the calling thread calls the callback, the others read its flag); when
+ * it says stop, ACD_ERR_CANCELLED. It decides nothing else: the bridges are the same with or
+ * without it. */
 #define ACD_CORISE_PARALLEL_MIN_BRIDGES 32
 #define ACD_CORISE_PARALLEL_MIN_FACES 4000
+#define ACD_CORISE_POLL_POPS 8192
 acd_status acd_corise_bridges_compute_mt(const acd_mesh *m, const acd_edge_graph *g, int clamp_depth, int nthreads,
-                                         acd_corise_bridges *out, acd_error *err);
+                                         acd3_poll *poll, acd_corise_bridges *out, acd_error *err);
 
 #endif
