@@ -13,7 +13,10 @@
  * bound), and the hulls stay convex (each is the hull of its old vertices below the
  * plane and of its edges' crossings). A cut is taken only when it raises the IoU of input and union:
  * removing hull volume g holding part volume l does when g / l > 1 + U / V (U the hulls' volume
- * sum, V the input's), the floor used here.
+ * sum, V the input's), the floor used here. A cut is also refused when it would leave the part's
+ * surface, or the section it exposes, farther than a distance bound from the hull or from the input's
+ * surface (acd3_trim_hulls_within: a thin feature holds little volume, but cut off whole it is far
+ * from the hulls; docs/acd3d.md "The distance bound").
  *
  * Candidates: every hull facet's plane moved inward by ACD3_TRIM_DEPTHS depths (fractions of the
  * cube root of the part's initial hull volume), and each cut's own plane moved inward likewise; a cut
