@@ -106,7 +106,10 @@ typedef struct acd_segment_params {
                                  (vertices_merged, faces_flipped). 0: segmented as given (concave
                                  edges decided from the given orientation: an inward-facing closed
                                  mesh is segmented as the space around it) */
-    acd_progress_fn progress; /* optional; may cancel */
+    acd_progress_fn progress; /* optional; may cancel. Called from the calling thread only: at
+                                 milestones (stage "corise") and polled within the steps (stages
+                                 "segment: ...", "corise: ..."; docs/corise.md "Progress and
+                                 cancellation") */
     void *progress_user;
 } acd_segment_params;
 

@@ -30,8 +30,9 @@ typedef struct acd_corise_params {
     int threads;                /* OpenMP threads (parts of a wave, then the bridges of a lone
                                    part); <= 0: all cores; default 1. The output is the same
                                    for any count */
-    acd_progress_fn progress;   /* optional: called after each part; fraction = facets in final
-                                   parts / all facets; non-zero return cancels */
+    acd_progress_fn progress;   /* optional: called after each part, at each wave and polled
+                                   within the steps (acd_corise_poll_init); fraction = facets in
+                                   final parts / all facets; non-zero return cancels */
     void *progress_user;
 } acd_corise_params;
 
