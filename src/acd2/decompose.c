@@ -448,7 +448,7 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
                 nd->is_hole_merge = 1;
                 nd->concavity = delta + val;
                 nd->acceptable = 0;
-                if (acd2_cuts_push(&cl, seg)) { st = acd_fail(err, ACD_ERR_NOMEM, "out of memory"); goto fail; }
+                if (acd2_cuts_push(&cl, seg[0], seg[1])) { st = acd_fail(err, ACD_ERR_NOMEM, "out of memory"); goto fail; }
                 int nx = new_node(&c, cur);
                 if (nx < 0) { st = acd_fail(err, ACD_ERR_NOMEM, "out of memory"); goto fail; }
                 c.nodes[cur].child[0] = nx;
@@ -632,7 +632,7 @@ acd_status acd2d_decompose(const acd_polygon *poly, const acd2d_params *prm, acd
         }
         acd_vec2 seg[2] = {r->p[wit], hit.z};
         acd2_ring_free(r);
-        if (acd2_cuts_push(&cl, seg) || push(&c, &b, -1, node, 1) || push(&c, &a, -1, node, 0)) {
+        if (acd2_cuts_push(&cl, seg[0], seg[1]) || push(&c, &b, -1, node, 1) || push(&c, &a, -1, node, 0)) {
             acd2_ring_free(&a); acd2_ring_free(&b);
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
             goto fail;

@@ -18,7 +18,7 @@
 #include "core/tolerance.h"
 #include "geom2/hull2d.h"
 
-int acd2_cuts_push(acd2_cuts_list *l, const acd_vec2 seg[2]) {
+int acd2_cuts_push(acd2_cuts_list *l, acd_vec2 a, acd_vec2 b) {
     if (l->n == l->cap) {
         size_t nc = l->cap ? 2 * l->cap : 32;
         acd_vec2(*q)[2] = realloc(l->v, nc * sizeof *q);
@@ -26,8 +26,8 @@ int acd2_cuts_push(acd2_cuts_list *l, const acd_vec2 seg[2]) {
         l->v = q;
         l->cap = nc;
     }
-    l->v[l->n][0] = seg[0];
-    l->v[l->n][1] = seg[1];
+    l->v[l->n][0] = a;
+    l->v[l->n][1] = b;
     l->n++;
     return 0;
 }
@@ -201,7 +201,7 @@ acd_status acd2d_result_at_tau(const acd2d_result *res, double tau2, acd2d_resul
             continue;
         }
         int zero = nd->cut[0].x == nd->cut[1].x && nd->cut[0].y == nd->cut[1].y;
-        if (!zero && acd2_cuts_push(&cl, nd->cut)) {
+        if (!zero && acd2_cuts_push(&cl, nd->cut[0], nd->cut[1])) {
             st = acd_fail(err, ACD_ERR_NOMEM, "out of memory");
             break;
         }

@@ -12,7 +12,9 @@ typedef struct acd2_cuts_list {
     size_t n, cap;
 } acd2_cuts_list;
 
-/* 0, or -1 when out of memory. */
-int acd2_cuts_push(acd2_cuts_list *l, const acd_vec2 seg[2]);
+/* Appends the cut a-b; 0, or -1 when out of memory. (The ends by value: GCC 12 with ASan at -O2
+ * took a node's cut[2] passed as an array parameter for an 8-byte region and failed the build with
+ * -Werror=stringop-overread.) */
+int acd2_cuts_push(acd2_cuts_list *l, acd_vec2 a, acd_vec2 b);
 
 #endif
