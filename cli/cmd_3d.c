@@ -232,6 +232,8 @@ static cJSON *result_json(const char *input, const acd3d_result *r, const acd3d_
         cJSON_AddNumberToObject(t, "trimmed_volume", r->trimmed_volume);
         cJSON_AddNumberToObject(t, "depth_max", r->trim_depth_max);
         cJSON_AddNumberToObject(t, "parts_left_whole", (double)r->trim_skipped);
+        cJSON_AddNumberToObject(t, "distance_bound", r->trim_distance_bound);
+        cJSON_AddNumberToObject(t, "refused_by_distance", (double)r->trim_refused_far);
     }
     if (p->budget_parts > 0) { /* only with --budget: other runs' JSON unchanged */
         cJSON *b = cJSON_AddObjectToObject(o, "budget");
@@ -653,9 +655,11 @@ int acd_cmd_3d(int argc, char **argv) {
                 r.trim_skipped, repaired ? "repaired " : "");
     if (p.trim_coverage > 0)
         printf("trimmed hulls: %zu caps cut off, at most %.3g of the input's volume outside the hulls (limit %g), "
-               "deepest cut %.3g (%.3g of the radius)\n",
+               "deepest cut %.3g (%.3g of the radius); every part within %.3g of its trimmed hull (%zu cap(s) refused "
+               "by that bound)\n",
                r.trim_cuts, r.input_volume > 0 ? r.trimmed_volume / r.input_volume : 0.0, p.trim_coverage,
-               r.trim_depth_max, r.scale > 0 ? r.trim_depth_max / r.scale : 0.0);
+               r.trim_depth_max, r.scale > 0 ? r.trim_depth_max / r.scale : 0.0, r.trim_distance_bound,
+               r.trim_refused_far);
     {
         size_t handled = 0;
         long gmax = 0;

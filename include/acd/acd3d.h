@@ -274,6 +274,11 @@ typedef struct acd3d_result {
     size_t trim_skipped;      /* with trim_coverage: parts whose hulls were left whole because the part
                                  intersects itself (the budget is accounted in signed volumes, which
                                  are not the volume inside a solid that crosses itself) */
+    double trim_distance_bound; /* with trim_coverage: no cut left a part vertex farther than this from
+                                 its trimmed hull (the parts' largest concavity: the run's own statement
+                                 of how far a part's surface may lie from its hull; docs/acd3d.md
+                                 "Trimmed hulls"), model units */
+    size_t trim_refused_far;  /* with trim_coverage: caps refused by that bound (thin features kept) */
     /* The part budget pass (budget_parts > 0; all 0 / NULL otherwise). It cuts best first until
      * budget_parts parts exist, then (phase 1) keeps cutting parts above the merge tolerance, by cuts
      * that make progress, within caps (docs/acd3d.md "Excess-driven budget"). */

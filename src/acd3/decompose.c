@@ -1167,6 +1167,8 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
         out->trim_cuts = ts.cuts;
         out->trim_depth_max = ts.max_depth;
         out->trim_skipped = ts.skipped;
+        out->trim_distance_bound = ts.max_distance;
+        out->trim_refused_far = ts.refused_far;
     }
     for (size_t i = 0; i < t.n; i++) {
         acd_hull_free(&t.a[i].hull);

@@ -65,15 +65,23 @@ hp = sum(q["hull_volume"] for q in p["parts"]); ht = sum(q["hull_volume"] for q 
 assert ht < hp, (ht, hp)
 for a, b in zip(p["parts"], t["parts"]):
     assert a["volume"] == b["volume"] and b["hull_volume"] <= a["hull_volume"] * (1 + 1e-12), (a, b)
+# the distance bound (no part vertex farther from its trimmed hull): the parts' largest concavity
+assert tr["refused_by_distance"] >= 0
+assert abs(tr["distance_bound"] - max(q["concavity"] for q in t["parts"])) <= 1e-12 * t["scale"], tr
 PY
+grep -q "; every part within [0-9.e-]* of its trimmed hull ([0-9]* cap(s) refused by that bound)" "$T/t.txt" ||
+  fail "trim line's distance bound: $(cat "$T/t.txt")"
 "$ACD" eval "$M" "$T/p.obj" --json -o "$T/pe.json" > /dev/null 2>&1 || fail "eval untrimmed"
 "$ACD" eval "$M" "$T/t.obj" --json -o "$T/te.json" > /dev/null 2>&1 || fail "eval trimmed"
-python3 - "$T/pe.json" "$T/te.json" <<'PY' || fail "eval: trimmed union"
+python3 - "$T/pe.json" "$T/te.json" "$T/t.json" <<'PY' || fail "eval: trimmed union"
 import json, sys
-p, t = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+p, t, r = (json.load(open(a)) for a in sys.argv[1:4])
 assert p["coverage"] > 0.9999, p["coverage"]
 assert t["coverage"] >= 1 - 0.002 - 5e-4, t["coverage"]
 assert t["iou"] > p["iou"], (t["iou"], p["iou"])
+# acd eval (independent, sampled): the input's surface lies within the distance bound of the hulls
+d = t["distance"]["mesh_to_hulls_max"] * t["diagonal"]
+assert d <= r["trim"]["distance_bound"] * (1 + 1e-9), (d, r["trim"]["distance_bound"])
 PY
 for v in -0.001 0.02 abc nan; do
   "$ACD" 3d "$M" --budget 6 --trim-coverage "$v" > /dev/null 2> "$T/e.err"; rc=$?
