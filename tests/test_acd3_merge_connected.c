@@ -22,6 +22,7 @@
 #include "acd/hull.h"
 #include "acd3/merge.h"
 #include "core/union_find.h"
+#include "merge_check.h"
 #include "shapes.h"
 
 enum { NX = 9, NY = 4 };
@@ -32,10 +33,6 @@ static void voxels(acd_mesh *m, const int *xs, const int *ys, int n) {
     memset(occ, 0, sizeof occ);
     for (int i = 0; i < n; i++) occ[ys[i] * NX + xs[i]] = 1;
     assert_true(mg_voxels(m, occ, NX, NY, 1));
-}
-
-static const acd_mesh *atom(const acd_mesh *parts, size_t nparts, const acd3_merge_result *r, size_t k) {
-    return k < nparts ? &parts[k] : &r->new_parts[k - nparts];
 }
 
 typedef struct wpos {
@@ -96,32 +93,10 @@ static size_t group_components(const acd_mesh *parts, size_t nparts, const acd3_
     const acd_mesh **ms = malloc(na * sizeof *ms);
     assert_non_null(ms);
     for (size_t k = 0; k < na; k++)
-        if (r->group_of[k] == g) ms[n++] = atom(parts, nparts, r, k);
+        if (r->group_of[k] == g) ms[n++] = mck_atom(parts, nparts, r, k);
     size_t nc = components(ms, n);
     free(ms);
     return nc;
-}
-
-/* Volume of the hull of group g's atoms. */
-static double group_hull_volume(const acd_mesh *parts, size_t nparts, const acd3_merge_result *r, size_t g) {
-    size_t na = nparts + r->nnew, nv = 0;
-    for (size_t k = 0; k < na; k++)
-        if (r->group_of[k] == g) nv += atom(parts, nparts, r, k)->nvertices;
-    double *pts = malloc(3 * nv * sizeof *pts);
-    assert_non_null(pts);
-    size_t w = 0;
-    for (size_t k = 0; k < na; k++)
-        if (r->group_of[k] == g) {
-            const acd_mesh *m = atom(parts, nparts, r, k);
-            memcpy(pts + 3 * w, m->vertices, 3 * m->nvertices * sizeof *pts);
-            w += m->nvertices;
-        }
-    acd_hull h;
-    assert_int_equal(acd_hull_compute(pts, nv, &h, NULL), ACD_OK);
-    double v = h.volume;
-    acd_hull_free(&h);
-    free(pts);
-    return v;
 }
 
 static void test_refine_side_connected(void **state) {
@@ -151,7 +126,7 @@ static void test_refine_side_connected(void **state) {
     assert_int_equal(acd3_merge_adjacent(&in, parts, 3, tau, tol, &mo, 1, &plain, &err), ACD_OK);
     assert_int_equal(plain.ngroups, 3);
     double h0 = 0;
-    for (size_t g = 0; g < plain.ngroups; g++) h0 += group_hull_volume(parts, 3, &plain, g);
+    for (size_t g = 0; g < plain.ngroups; g++) h0 += mck_group_hull_volume(parts, 3, &plain, g);
     assert_true(fabs(h0 - 24) <= 1e-9); /* the table's hull 22, the cells 1 each */
     /* one step (the old code's first: the legs one group), then up to five */
     for (size_t steps = 1; steps <= 5; steps += 4) {
@@ -167,14 +142,14 @@ static void test_refine_side_connected(void **state) {
         assert_int_equal(r->ngroups, 3);
         for (size_t g = 0; g < r->ngroups; g++) {
             size_t nc = group_components(parts, 3, r, g);
-            double hv = group_hull_volume(parts, 3, r, g);
+            double hv = mck_group_hull_volume(parts, 3, r, g);
             print_message("group %zu: %zu component(s), hull volume %.9g, bound %.9g\n", g, nc, hv, r->bound[g]);
             assert_int_equal(nc, 1);
             assert_true(r->bound[g] <= tau);
             hs += hv;
         }
         for (size_t k = 0; k < na; k++)
-            if (r->group_of[k] != UINT32_MAX) sum += mg_volume(atom(parts, 3, r, k));
+            if (r->group_of[k] != UINT32_MAX) sum += mg_volume(mck_atom(parts, 3, r, k));
         assert_true(fabs(sum - vin) <= 1e-9 * vin);
         /* the optimum: the bar with the cells (9) and the legs (3 each), 15 = the input's volume (the
          * volume plane is searched at sampled offsets: within 0.1 of it); the legs side as one group

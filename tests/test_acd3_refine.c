@@ -18,6 +18,7 @@
 #include "acd3/merge.h"
 #include "acd3/volume_plane.h"
 #include "acd3d_check.h"
+#include "merge_check.h"
 #include "geom3/bvh.h"
 #include "geom3/edge_map.h"
 #include "geom3/plane_cut.h"
@@ -31,37 +32,6 @@ static void voxels(acd_mesh *m, const int *xs, const int *ys, int n) {
     memset(occ, 0, sizeof occ);
     for (int i = 0; i < n; i++) occ[ys[i] * NX + xs[i]] = 1;
     assert_true(mg_voxels(m, occ, NX, NY, NZ));
-}
-
-/* The atom k of r (an input part below nparts, else a piece). */
-static const acd_mesh *atom(const acd_mesh *parts, size_t nparts, const acd3_merge_result *r, size_t k) {
-    return k < nparts ? &parts[k] : &r->new_parts[k - nparts];
-}
-
-/* Sum over r's groups of the volume of the hull of its atoms. */
-static double hull_sum(const acd_mesh *parts, size_t nparts, const acd3_merge_result *r) {
-    size_t na = nparts + r->nnew;
-    double s = 0;
-    for (size_t g = 0; g < r->ngroups; g++) {
-        size_t nv = 0;
-        for (size_t k = 0; k < na; k++)
-            if (r->group_of[k] == g) nv += atom(parts, nparts, r, k)->nvertices;
-        double *pts = malloc(3 * nv * sizeof *pts);
-        assert_non_null(pts);
-        size_t w = 0;
-        for (size_t k = 0; k < na; k++)
-            if (r->group_of[k] == g) {
-                const acd_mesh *m = atom(parts, nparts, r, k);
-                memcpy(pts + 3 * w, m->vertices, 3 * m->nvertices * sizeof *pts);
-                w += m->nvertices;
-            }
-        acd_hull h;
-        assert_int_equal(acd_hull_compute(pts, nv, &h, NULL), ACD_OK);
-        s += h.volume;
-        acd_hull_free(&h);
-        free(pts);
-    }
-    return s;
 }
 
 /* An inverted T (a bar of 5 cells, one cell on its middle) and two cells continuing the bar; input =
@@ -85,7 +55,7 @@ static void test_trade_on_voxels(void **state) {
     /* no refinement: nothing joined (already at 3), no piece */
     assert_int_equal(plain.ngroups, 3);
     assert_int_equal(plain.nnew, 0);
-    assert_true(fabs(hull_sum(parts, 3, &plain) - 10) <= 1e-9);
+    assert_true(fabs(mck_hull_sum(parts, 3, &plain) - 10) <= 1e-9);
     mo.refine = 5;
     const int threads[3] = {1, 2, 4};
     for (int t = 0; t < 3; t++)
@@ -94,14 +64,14 @@ static void test_trade_on_voxels(void **state) {
     assert_int_equal(r->ngroups, 3);
     assert_true(r->trades >= 1);
     assert_true(r->nnew >= 2);
-    print_message("refined: %zu steps, %zu pieces, hull volume %.9g\n", r->trades, r->nnew, hull_sum(parts, 3, r));
+    print_message("refined: %zu steps, %zu pieces, hull volume %.9g\n", r->trades, r->nnew, mck_hull_sum(parts, 3, r));
     /* near the optimum 8 (the volume plane is searched at sampled offsets: within 0.1 of it) */
-    assert_true(hull_sum(parts, 3, r) >= 8 - 1e-9 && hull_sum(parts, 3, r) <= 8.1);
+    assert_true(mck_hull_sum(parts, 3, r) >= 8 - 1e-9 && mck_hull_sum(parts, 3, r) <= 8.1);
     /* the groups tile the input: the atoms not cut add up to its volume; every group within tau */
     size_t na = 3 + r->nnew;
     double sum = 0;
     for (size_t k = 0; k < na; k++) {
-        const acd_mesh *m = atom(parts, 3, r, k);
+        const acd_mesh *m = mck_atom(parts, 3, r, k);
         if (k >= 3) {
             assert_true(r->new_parent[k - 3] < k);
             assert_true(fabs(mg_volume(m) - r->new_volume[k - 3]) <= 1e-12 * vin);
