@@ -155,6 +155,53 @@ static void test_cancel_within_steps(void **state) {
     acd_mesh_free(&m);
 }
 
+/* A wave of several parts at 2 threads: once the calling thread has no part left to claim, it polls
+ * ("corise: wave") until the other thread has finished its part. Whether it waits at all depends on
+ * which thread finishes last (timing), so the test cannot force it; it runs the two bulbs (a wave of
+ * two parts) several times and checks, whenever a "corise: wave" call came, that a stop at it returns
+ * ACD_ERR_CANCELLED at once (no call after it, nothing leaks under ASan), and that a callback that
+ * never stops leaves the result as with 1 thread. */
+static void test_wave_wait(void **state) {
+    (void)state;
+    acd_mesh m;
+    bulbs(&m);
+    static rec all;
+    acd_segment_result ref, r;
+    memset(&all, 0, sizeof all);
+    run(&m, 1, &all, &ref, ACD_OK);
+    assert_int_equal(count_stage(&all, "corise: wave"), 0); /* 1 thread: never waits */
+    size_t waits = 0, stops = 0;
+    for (int k = 0; k < 6; k++) {
+        static rec c;
+        memset(&c, 0, sizeof c);
+        run(&m, 2, &c, &r, ACD_OK);
+        waits += count_stage(&c, "corise: wave");
+        assert_int_equal(r.nparts, ref.nparts);
+        assert_memory_equal(r.labels, ref.labels, m.ntriangles * sizeof *r.labels);
+        acd_segment_result_free(&r);
+        memset(&c, 0, sizeof c);
+        c.stop_stage = "corise: wave";
+        acd_segment_params p = acd_segment_default_params();
+        p.threads = 2;
+        p.progress = on_progress;
+        p.progress_user = &c;
+        acd_error err;
+        acd_status st = acd_segment(&m, &p, &r, &err);
+        if (c.stopped) {
+            stops++;
+            assert_int_equal(st, ACD_ERR_CANCELLED);
+            assert_int_equal(c.after_stop, 0);
+            assert_null(r.labels);
+        } else {
+            assert_int_equal(st, ACD_OK);
+            acd_segment_result_free(&r);
+        }
+    }
+    print_message("2 threads: %zu \"corise: wave\" calls in 6 runs, %zu of 6 runs stopped at one\n", waits, stops);
+    acd_segment_result_free(&ref);
+    acd_mesh_free(&m);
+}
+
 /* A poll for the steps' own functions: stops at call number stop_at (0: never). */
 typedef struct counter {
     int calls, stop_at;
@@ -302,6 +349,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cancel_within_steps),
         cmocka_unit_test(test_steps_cancel),
+        cmocka_unit_test(test_wave_wait),
         cmocka_unit_test(test_maxflow_poll),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

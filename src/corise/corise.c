@@ -409,6 +409,12 @@ done:
     return st;
 }
 
+/* The calling thread, waiting for the other threads' parts of a wave, sleeps ACD_CORISE_WAVE_POLL_MS
+   ms at a time and calls the callback at once and then every ACD_CORISE_WAVE_POLL_EVERY sleeps (about
+   every 8 ms). */
+#define ACD_CORISE_WAVE_POLL_MS 1
+#define ACD_CORISE_WAVE_POLL_EVERY 8
+
 /* One part of a wave, processed on its own (any thread): extracted, capped, stepped. */
 typedef struct part_work {
     acd_status st;
@@ -564,16 +570,47 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
         if (nthreads > 1 && nw > 1 && wave_faces >= ACD_CORISE_PARALLEL_MIN_FACES)
             nt = nthreads < (int)nw ? nthreads : (int)nw;
 #endif
+        /* The parts are claimed one at a time from a counter by the team's threads (the calling
+           thread among them); each part's result goes to its own slot, whoever processed it. Once
+           none is left to claim, the calling thread keeps polling (ACD_CORISE_WAVE_POLL_MS sleeps,
+           stage "corise: wave") until the other threads have finished theirs, so a long part on
+           another thread does not leave the callback silent; a stop reaches them by the flag. */
+        size_t next = 0, finished = 0;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) if (nt > 1)
+#pragma omp parallel num_threads(nt) if (nt > 1)
 #endif
-        for (long j = 0; j < (long)nw; j++) {
+        {
             int t = 0;
 #ifdef _OPENMP
             t = omp_get_thread_num();
 #endif
-            process_part(&w, &q.p[b0 + (size_t)j], ge, nge, &prm, nw == 1, (double)done_faces / (double)m->ntriangles,
-                         poll, maps[t], l2gs[t], &work[j]);
+            for (;;) {
+                size_t j;
+#ifdef _OPENMP
+#pragma omp atomic capture
+#endif
+                j = next++;
+                if (j >= nw) break;
+                process_part(&w, &q.p[b0 + j], ge, nge, &prm, nw == 1, (double)done_faces / (double)m->ntriangles,
+                             poll, maps[t], l2gs[t], &work[j]);
+#ifdef _OPENMP
+#pragma omp atomic update
+#endif
+                finished++;
+            }
+            if (t == 0 && nt > 1 && poll) {
+                acd_corise_poll_stage(poll, "corise: wave");
+                for (unsigned k = 1;; k++) {
+                    size_t f;
+#ifdef _OPENMP
+#pragma omp atomic read
+#endif
+                    f = finished;
+                    if (f >= nw) break;
+                    if ((k - 1) % ACD_CORISE_WAVE_POLL_EVERY == 0) acd3_poll_stop(poll);
+                    thrd_sleep(&(struct timespec){.tv_nsec = ACD_CORISE_WAVE_POLL_MS * 1000000L}, NULL);
+                }
+            }
         }
         /* cancelled within the wave: no part of it is taken (and the callback is not called again) */
         if (acd3_poll_stopped(poll)) goto cancelled;
