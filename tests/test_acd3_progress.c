@@ -54,18 +54,6 @@ static int cancel_second(void *user, double fraction, const char *stage) {
     return S->tree + S->budget + S->join + S->refine + S->surface + S->other >= 2;
 }
 
-/* Counts every call; cancels at call number stop_at (0: never). */
-typedef struct counter {
-    int calls, stop_at;
-} counter;
-
-static int count_calls(void *user, double fraction, const char *stage) {
-    (void)fraction, (void)stage;
-    counter *c = user;
-    c->calls++;
-    return c->stop_at && c->calls >= c->stop_at;
-}
-
 /* The budget pipeline (docs/acd3d.md "Excess-driven budget") at 8 parts, refined. */
 static acd3d_params budget_params(void) {
     acd3d_params p = acd3d_default_params();
@@ -224,8 +212,8 @@ static void test_measure_and_cut_graph_polls(void **state) {
     const double eps = 0.01, tol = 1e-9;
     acd3_measure ref, ms;
     assert_int_equal(acd3_measure_compute(&m, &g, eps, tol, &ref, &err), ACD_OK);
-    counter c = {0, 0};
-    acd3_poll poll = acd3_poll_make(count_calls, &c, "measuring and cutting");
+    tu_counter c = {0, 0};
+    acd3_poll poll = acd3_poll_make(tu_count_calls, &c, "measuring and cutting");
     assert_int_equal(acd3_measure_compute_hull(&m, &g, NULL, eps, tol, &poll, &ms, &err), ACD_OK);
     const int ncalls = c.calls;
     print_message("measure: %d calls (%zu projected hull edges)\n", ncalls, ms.nprojected);
@@ -237,8 +225,8 @@ static void test_measure_and_cut_graph_polls(void **state) {
     /* every exit: the first calls (after the hull, the patches, the open surfaces' rule), a few
      * within the projection, the last two (after the pockets' flood and the handle cuts) */
     for (int k = 1; k <= ncalls; k = k < 4 || k >= ncalls - 2 ? k + 1 : k + ncalls / 4 > ncalls - 2 ? ncalls - 1 : k + ncalls / 4) {
-        c = (counter){0, k};
-        poll = acd3_poll_make(count_calls, &c, "measuring and cutting");
+        c = (tu_counter){0, k};
+        poll = acd3_poll_make(tu_count_calls, &c, "measuring and cutting");
         assert_int_equal(acd3_measure_compute_hull(&m, &g, NULL, eps, tol, &poll, &ms, &err), ACD_ERR_CANCELLED);
         assert_int_equal(c.calls, k);
         assert_null(ms.vconc);
@@ -247,8 +235,8 @@ static void test_measure_and_cut_graph_polls(void **state) {
     const acd3_gc_opts o = {2 * eps, 0.2 * eps, ACD3D_WEIGHT_RATIO, 0, 0};
     acd3_cut_graph cg0, cg;
     assert_int_equal(acd3_cut_graph_build(&m, &g, &ref, &o, NULL, &cg0, &err), ACD_OK);
-    c = (counter){0, 0};
-    poll = acd3_poll_make(count_calls, &c, "measuring and cutting");
+    c = (tu_counter){0, 0};
+    poll = acd3_poll_make(tu_count_calls, &c, "measuring and cutting");
     assert_int_equal(acd3_cut_graph_build(&m, &g, &ref, &o, &poll, &cg, &err), ACD_OK);
     const int ncg = c.calls;
     print_message("cut graph: %d calls, %zu cuts\n", ncg, cg.ncuts);
@@ -258,8 +246,8 @@ static void test_measure_and_cut_graph_polls(void **state) {
     acd3_cut_graph_free(&cg0);
     /* (cancelled at the first calls, then at a few spread over the rest: the calls are many) */
     for (int k = 1; k <= ncg; k = k < 4 ? k + 1 : k + ncg / 5 + 1) {
-        c = (counter){0, k};
-        poll = acd3_poll_make(count_calls, &c, "measuring and cutting");
+        c = (tu_counter){0, k};
+        poll = acd3_poll_make(tu_count_calls, &c, "measuring and cutting");
         assert_int_equal(acd3_cut_graph_build(&m, &g, &ref, &o, &poll, &cg, &err), ACD_ERR_CANCELLED);
         assert_int_equal(c.calls, k);
     }

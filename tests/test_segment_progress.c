@@ -202,18 +202,6 @@ static void test_wave_wait(void **state) {
     acd_mesh_free(&m);
 }
 
-/* A poll for the steps' own functions: stops at call number stop_at (0: never). */
-typedef struct counter {
-    int calls, stop_at;
-} counter;
-
-static int count_calls(void *user, double fraction, const char *stage) {
-    (void)fraction, (void)stage;
-    counter *c = user;
-    c->calls++;
-    return c->stop_at && c->calls >= c->stop_at;
-}
-
 static void test_steps_cancel(void **state) {
     (void)state;
     acd_mesh m;
@@ -223,8 +211,8 @@ static void test_steps_cancel(void **state) {
     assert_int_equal(acd_edge_graph_from_mesh(m.vertices, m.nvertices, m.triangles, m.ntriangles, &g, &err), ACD_OK);
     /* bridges: without a poll, with one that never stops (the same bits), with one that stops */
     acd_corise_bridges b0, b1;
-    counter c = {0, 0};
-    acd3_poll poll = acd3_poll_make(count_calls, &c, "test");
+    tu_counter c = {0, 0};
+    acd3_poll poll = acd3_poll_make(tu_count_calls, &c, "test");
     assert_int_equal(acd_corise_bridges_compute_mt(&m, &g, 1, 1, NULL, &b0, &err), ACD_OK);
     assert_int_equal(acd_corise_bridges_compute_mt(&m, &g, 1, 1, &poll, &b1, &err), ACD_OK);
     int bridge_calls = c.calls;
@@ -238,8 +226,8 @@ static void test_steps_cancel(void **state) {
     /* 2 threads: the calling thread polls within its own share of the bridges only (fewer calls) */
     for (int stop = 1; stop <= bridge_calls; stop++)
         for (int threads = 1; threads <= (stop <= 2 ? 2 : 1); threads++) {
-            c = (counter){0, stop};
-            poll = acd3_poll_make(count_calls, &c, "test");
+            c = (tu_counter){0, stop};
+            poll = acd3_poll_make(tu_count_calls, &c, "test");
             assert_int_equal(acd_corise_bridges_compute_mt(&m, &g, 1, threads, &poll, &b1, &err), ACD_ERR_CANCELLED);
             assert_int_equal(c.calls, stop);
             assert_null(b1.bridge);
@@ -257,24 +245,24 @@ static void test_steps_cancel(void **state) {
     assert_non_null(part0);
     assert_non_null(part1);
     assert_int_equal(acd_corise_regions_mt(&m, &g, &b0, &rg, tau, 1, NULL, ml0, NULL, &err), ACD_OK);
-    c = (counter){0, 0};
-    poll = acd3_poll_make(count_calls, &c, "test");
+    c = (tu_counter){0, 0};
+    poll = acd3_poll_make(tu_count_calls, &c, "test");
     assert_int_equal(acd_corise_regions_mt(&m, &g, &b0, &rg, tau, 1, &poll, ml1, NULL, &err), ACD_OK);
     assert_memory_equal(ml1, ml0, m.ntriangles * sizeof *ml0);
     int region_calls = c.calls;
     print_message("regions: polled %d times\n", region_calls);
     assert_true(region_calls >= 2);
     for (int stop = 1; stop <= region_calls; stop++) {
-        c = (counter){0, stop};
-        poll = acd3_poll_make(count_calls, &c, "test");
+        c = (tu_counter){0, stop};
+        poll = acd3_poll_make(tu_count_calls, &c, "test");
         assert_int_equal(acd_corise_regions_mt(&m, &g, &b0, &rg, tau, 1, &poll, ml1, NULL, &err), ACD_ERR_CANCELLED);
         assert_int_equal(c.calls, stop);
     }
     /* the cut */
     size_t np0, np1;
     assert_int_equal(acd_corise_cut_poll(&m, &b0, &rg, ml0, NULL, NULL, part0, &np0, &err), ACD_OK);
-    c = (counter){0, 0};
-    poll = acd3_poll_make(count_calls, &c, "test");
+    c = (tu_counter){0, 0};
+    poll = acd3_poll_make(tu_count_calls, &c, "test");
     assert_int_equal(acd_corise_cut_poll(&m, &b0, &rg, ml0, NULL, &poll, part1, &np1, &err), ACD_OK);
     assert_int_equal(np1, np0);
     assert_memory_equal(part1, part0, m.ntriangles * sizeof *part0);
@@ -282,8 +270,8 @@ static void test_steps_cancel(void **state) {
     print_message("cut: %zu parts, polled %d times\n", np0, cut_calls);
     assert_true(cut_calls >= 2);
     for (int stop = 1; stop <= cut_calls; stop++) {
-        c = (counter){0, stop};
-        poll = acd3_poll_make(count_calls, &c, "test");
+        c = (tu_counter){0, stop};
+        poll = acd3_poll_make(tu_count_calls, &c, "test");
         assert_int_equal(acd_corise_cut_poll(&m, &b0, &rg, ml0, NULL, &poll, part1, &np1, &err), ACD_ERR_CANCELLED);
         assert_int_equal(c.calls, stop);
         assert_non_null(strstr(err.message, "cancelled"));
@@ -320,8 +308,8 @@ static void test_maxflow_poll(void **state) {
     }
     double f0, f1;
     assert_int_equal(acd_maxflow_solve(g[0], &f0, &err), ACD_OK);
-    counter c = {0, 0};
-    acd3_poll poll = acd3_poll_make(count_calls, &c, "test");
+    tu_counter c = {0, 0};
+    acd3_poll poll = acd3_poll_make(tu_count_calls, &c, "test");
     assert_int_equal(acd_maxflow_solve_poll(g[1], &f1, &poll, &err), ACD_OK);
     print_message("max-flow: polled %d times\n", c.calls);
     assert_true(c.calls >= 2);
@@ -337,8 +325,8 @@ static void test_maxflow_poll(void **state) {
         for (size_t x = 0; x + 1 < W; x++)
             assert_int_equal(acd_maxflow_add_edge(g[1], y * W + x, y * W + x + 1, 1, 1, &err), ACD_OK);
     }
-    c = (counter){0, 2};
-    poll = acd3_poll_make(count_calls, &c, "test");
+    c = (tu_counter){0, 2};
+    poll = acd3_poll_make(tu_count_calls, &c, "test");
     assert_int_equal(acd_maxflow_solve_poll(g[1], &f1, &poll, &err), ACD_ERR_CANCELLED);
     assert_int_equal(c.calls, 2);
     acd_maxflow_free(g[0]);

@@ -24,3 +24,10 @@ char *tu_read_file(const char *path, size_t *len) {
     if (b) { b[n] = 0; if (len) *len = (size_t)n; }
     return b;
 }
+
+int tu_count_calls(void *user, double fraction, const char *stage) {
+    (void)fraction, (void)stage;
+    tu_counter *c = user;
+    c->calls++;
+    return c->stop_at && c->calls >= c->stop_at;
+}

@@ -22,6 +22,13 @@ const char *tu_mesh_data(char *buf, size_t size, const char *rel);
         skip();                                       \
     } while (0)
 
+/* A progress callback (acd_progress_fn) for the cancellation tests: counts its calls in a tu_counter
+ * (user) and asks to stop at call number stop_at (0: never). */
+typedef struct tu_counter {
+    int calls, stop_at;
+} tu_counter;
+int tu_count_calls(void *user, double fraction, const char *stage);
+
 /* Reads a whole file into a NUL-terminated malloc'd buffer; NULL on failure. */
 char *tu_read_file(const char *path, size_t *len);
 
