@@ -28,3 +28,7 @@ int acd3_poll_stop(acd3_poll *p) {
     }
     return stop;
 }
+
+void acd3_poll_set_stage(acd3_poll *p, const char *stage) {
+    if (p && thrd_equal(thrd_current(), p->owner)) p->stage = stage;
+}

@@ -33,4 +33,9 @@ int acd3_poll_stop(acd3_poll *p);
 /* Whether the flag is set (the callback is not called): after a step, whether it was cut short. */
 int acd3_poll_stopped(const acd3_poll *p);
 
+/* Sets the stage p tells (a static string), from p's owner only (the only thread that reads it):
+ * from another thread, or for p NULL, nothing. With several threads working, it is the stage of the
+ * owner's own work. */
+void acd3_poll_set_stage(acd3_poll *p, const char *stage);
+
 #endif

@@ -334,25 +334,23 @@ static acd_status step_progress(const acd_corise_params *prm, int caller, double
     return ACD_OK;
 }
 
+/* acd3/poll's callback for acd_corise_poll_init: the caller's, told the last milestone's fraction. */
+static int poll_call(void *user, double fraction, const char *stage) {
+    (void)fraction;
+    const acd_corise_poll_ctx *c = user;
+    return c->fn(c->user, c->fraction, stage);
+}
+
 acd3_poll *acd_corise_poll_init(acd3_poll *p, acd_corise_poll_ctx *ctx, acd_progress_fn fn, void *user, double fraction,
                                 const char *stage) {
     ctx->fn = fn;
     ctx->user = user;
     ctx->fraction = fraction;
     if (!fn) return NULL;
-    *p = acd3_poll_make(acd_corise_poll_call, ctx, stage);
+    *p = acd3_poll_make(poll_call, ctx, stage);
     return p;
 }
 
-int acd_corise_poll_call(void *user, double fraction, const char *stage) {
-    (void)fraction;
-    const acd_corise_poll_ctx *c = user;
-    return c->fn(c->user, c->fraction, stage);
-}
-
-void acd_corise_poll_stage(acd3_poll *p, const char *stage) {
-    if (p && thrd_equal(thrd_current(), p->owner)) p->stage = stage;
-}
 
 static acd_status poll_cancelled(acd_error *err, const char *where) {
     return acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback %s", where);
@@ -375,7 +373,7 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, int call
     acd_status st = acd_edge_graph_from_mesh(s->vertices, s->nvertices, s->triangles, s->ntriangles, &g, err);
     if (st == ACD_OK) st = step_progress(prm, caller, fraction, err);
     if (st == ACD_OK && !caller && acd3_poll_stop(poll)) st = poll_cancelled(err, "before a part's valleys");
-    acd_corise_poll_stage(poll, "corise: bridges");
+    acd3_poll_set_stage(poll, "corise: bridges");
     if (st == ACD_OK) st = acd_corise_bridges_compute_mt(s, &g, prm->clamp_hull_depth, prm->threads, poll, &b, err);
     if (st == ACD_OK) st = step_progress(prm, caller, fraction, err);
     if (st != ACD_OK) goto done;
@@ -391,7 +389,7 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, int call
     if (!deep) goto done;
     if ((st = acd_corise_ridges_compute(&b, prm->tau, &r, err)) != ACD_OK) goto done;
     if ((st = step_progress(prm, caller, fraction, err)) != ACD_OK) goto done;
-    acd_corise_poll_stage(poll, "corise: regions");
+    acd3_poll_set_stage(poll, "corise: regions");
     ml = malloc(s->ntriangles * sizeof *ml);
     if (!ml) {
         st = acd_fail(err, ACD_ERR_NOMEM, "corise: out of memory for %zu facets", s->ntriangles);
@@ -399,7 +397,7 @@ static acd_status step(const acd_mesh *s, const acd_corise_params *prm, int call
     }
     if ((st = acd_corise_regions_mt(s, &g, &b, &r, prm->tau, prm->threads, poll, ml, NULL, err)) != ACD_OK) goto done;
     if ((st = step_progress(prm, caller, fraction, err)) != ACD_OK) goto done;
-    acd_corise_poll_stage(poll, "corise: cut");
+    acd3_poll_set_stage(poll, "corise: cut");
     st = acd_corise_cut_poll(s, &b, &r, ml, &prm->cut, poll, part, nparts, err);
 done:
     free(ml);
@@ -436,7 +434,7 @@ static void process_part(const acd_mesh *w, const part *cur, const edge_count *g
                          uint32_t *l2g, part_work *out) {
     acd_mesh sub, aug;
     out->st = ACD_OK;
-    acd_corise_poll_stage(poll, "corise: extracting");
+    acd3_poll_set_stage(poll, "corise: extracting");
     if (acd3_poll_stop(poll)) {
         out->st = poll_cancelled(&out->err, "before a part");
         return;
@@ -599,7 +597,7 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
                 finished++;
             }
             if (t == 0 && nt > 1 && poll) {
-                acd_corise_poll_stage(poll, "corise: wave");
+                acd3_poll_set_stage(poll, "corise: wave");
                 for (unsigned k = 1;; k++) {
                     size_t f;
 #ifdef _OPENMP
@@ -657,7 +655,7 @@ acd_status acd_corise_segment_ex(const acd_mesh *m, const acd_corise_params *par
             S->cuts++;
             if (cur.depth + 1 > S->depth) S->depth = cur.depth + 1;
             int ok = 1;
-            acd_corise_poll_stage(poll, "corise: pieces");
+            acd3_poll_set_stage(poll, "corise: pieces");
             for (uint32_t k = 0; k < np && ok; k++) {
                 if (acd3_poll_stop(poll)) {
                     free(cur.faces);

@@ -51,15 +51,9 @@ typedef struct acd_corise_poll_ctx {
 } acd_corise_poll_ctx;
 
 /* Makes *p calling fn through ctx, from the calling thread; returns p, or NULL (no poll: every
- * poll a no-op) when fn is NULL. */
+ * poll a no-op) when fn is NULL. The steps name their stage by acd3_poll_set_stage. */
 acd3_poll *acd_corise_poll_init(acd3_poll *p, acd_corise_poll_ctx *ctx, acd_progress_fn fn, void *user, double fraction,
                                 const char *stage);
-int acd_corise_poll_call(void *user, double fraction, const char *stage);
-
-/* Sets the stage p tells (a static string), from the calling thread only (the only one that reads
- * it): elsewhere, or for p NULL, nothing. In a wave of several parts on several threads it is the
- * stage of the calling thread's own part. */
-void acd_corise_poll_stage(acd3_poll *p, const char *stage);
 
 typedef struct acd_corise_stats {
     size_t parts;        /* final parts */

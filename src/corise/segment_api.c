@@ -204,7 +204,7 @@ acd_status acd_segment(const acd_mesh *input, const acd_segment_params *params, 
     st = acd_corise_segment_ex(mesh, &c, out->labels, &conc, &stats, err);
     if (st != ACD_OK) goto fail;
     pctx.fraction = 1.0;
-    acd_corise_poll_stage(poll, "segment: hulls");
+    acd3_poll_set_stage(poll, "segment: hulls");
     out->nfaces = mesh->ntriangles;
     out->tau = params->tau;
     out->scale = stats.scale > 0 ? 1.0 / stats.scale : 1.0;
