@@ -167,6 +167,7 @@ static void atom_cut_free(atom *A) { cut_with_hulls_free(&A->cut, &A->cut_hulls)
  * armadillo's trimmed run 3.1% fewer instructions than the 32 of the scoring (the bound looser: 839
  * directions scored instead of 612; 16: 2.7%, 20: 1.8%; docs/results/3d-speed.md). */
 #define BUDGET_BOUND_SECTION_DIRS 12
+_Static_assert(BUDGET_BOUND_SECTION_DIRS <= BUDGET_SECTION_DIRS, "the bound's section directions are at most the scoring's");
 /* Offsets one sweep scores at most. */
 #define BUDGET_MAX_QUERIES 32
 #define BUDGET_REFINE 3
@@ -812,7 +813,6 @@ static void top_add(plan *P, double sc) {
  * each from the best offset so far: c0 or one scored before), computed as the rounds compute them,
  * increasing and each once, into out (room for BUDGET_MAX_QUERIES); how many. All of them fit
  * (3^BUDGET_REFINE - 1), so every offset the refinement tries is among them. */
-_Static_assert(BUDGET_BOUND_SECTION_DIRS <= BUDGET_SECTION_DIRS, "the bound's section directions are at most the scoring's");
 _Static_assert(BUDGET_REFINE <= 3 && BUDGET_MAX_QUERIES >= 26, "a refinement's offsets must fit BUDGET_MAX_QUERIES");
 static int refine_offsets(double c0, double st, double *out) {
     double reach[BUDGET_MAX_QUERIES + 1];

@@ -1369,7 +1369,10 @@ static int cmp_u32(const void *x, const void *y) {
 static acd_status commit_cut(group **Gp, size_t *ng, size_t *capg, uint32_t x, uint32_t y, atoms *at, size_t n0,
                              group *S, size_t ns, double tol, pair **P, size_t *np, size_t *capp, double tau, int by_volume,
                              int threads, acd_error *err) {
-    if (!grow_groups(Gp, capg, *ng + ns)) return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for groups");
+    if (!grow_groups(Gp, capg, *ng + ns)) {
+        for (size_t j = 0; j < ns; j++) group_free(&S[j]); /* not moved into G: the caller frees only S */
+        return acd_fail(err, ACD_ERR_NOMEM, "merge: out of memory for groups");
+    }
     group *G = *Gp;
     const uint32_t s0 = (uint32_t)*ng; /* the new groups: s0 .. s0 + ns - 1 */
     uint32_t dy[2] = {x, y};
