@@ -4,6 +4,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -415,6 +418,37 @@ static void plan_init(const acd_mesh *m, int ndir, int bound, plan *P) {
 
 
 
+/* The first l of the m points (u[l], v[l]) maximising cu u[l] + sn v[l] (0 when none is above
+ * -INFINITY: NaN or -INFINITY everywhere), each value computed as cu * u + sn * v (a product, a
+ * product, their sum: the same bits two at a time where SSE2 is there; each lane keeps its first
+ * maximum, the lanes' are then joined by value, then the lower index). */
+static size_t argmax_first(const double *u, const double *v, size_t m, double cu, double sn) {
+    size_t l = 0, arg = 0;
+    double best = -INFINITY;
+#ifdef __SSE2__
+    if (m >= 2) {
+        const __m128d c = _mm_set1_pd(cu), s = _mm_set1_pd(sn), two = _mm_set1_pd(2);
+        __m128d b = _mm_set1_pd(-INFINITY), at = _mm_set_pd(1, 0), ix = at; /* (index as a double: exact) */
+        for (; l + 1 < m; l += 2) {
+            __m128d y = _mm_add_pd(_mm_mul_pd(c, _mm_loadu_pd(u + l)), _mm_mul_pd(s, _mm_loadu_pd(v + l)));
+            __m128d gt = _mm_cmpgt_pd(y, b);
+            b = _mm_or_pd(_mm_and_pd(gt, y), _mm_andnot_pd(gt, b));
+            at = _mm_or_pd(_mm_and_pd(gt, ix), _mm_andnot_pd(gt, at));
+            ix = _mm_add_pd(ix, two);
+        }
+        double bb[2], aa[2];
+        _mm_storeu_pd(bb, b), _mm_storeu_pd(aa, at);
+        int one = bb[1] > bb[0] || (bb[1] == bb[0] && aa[1] < aa[0]);
+        best = bb[one], arg = (size_t)aa[one];
+    }
+#endif
+    for (; l < m; l++) {
+        double y = cu * u[l] + sn * v[l];
+        if (y > best) best = y, arg = l;
+    }
+    return arg;
+}
+
 /* The cosines and sines of K directions of a section's plane evenly spread (section_hull's:
  * BUDGET_SECTION_DIRS), into cssn (2 each). */
 static void section_dirs(double *cssn, int K) {
@@ -443,23 +477,15 @@ static size_t section_extremes(const double *x, size_t n, const double nrm[3], c
         memcpy(out, x, 3 * n * sizeof *out);
         return n;
     }
-    double e1[3], e2[3], uv[2 * BUDGET_SECTION_DIRS];
+    double e1[3], e2[3], uu[BUDGET_SECTION_DIRS], vv[BUDGET_SECTION_DIRS];
     unsigned char mark[BUDGET_SECTION_DIRS] = {0};
     section_frame(nrm, e1, e2);
     for (size_t l = 0; l < n; l++) {
         const double *q = x + 3 * l;
-        uv[2 * l] = e1[0] * q[0] + e1[1] * q[1] + e1[2] * q[2];
-        uv[2 * l + 1] = e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2];
+        uu[l] = e1[0] * q[0] + e1[1] * q[1] + e1[2] * q[2];
+        vv[l] = e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2];
     }
-    for (int j = 0; j < K; j++) {
-        double cu = cssn[2 * j], sn = cssn[2 * j + 1], best = -INFINITY;
-        size_t arg = 0;
-        for (size_t l = 0; l < n; l++) {
-            double y = cu * uv[2 * l] + sn * uv[2 * l + 1];
-            if (y > best) best = y, arg = l;
-        }
-        mark[arg] = 1;
-    }
+    for (int j = 0; j < K; j++) mark[argmax_first(uu, vv, n, cssn[2 * j], cssn[2 * j + 1])] = 1;
     size_t m = 0;
     for (size_t l = 0; l < n; l++)
         if (mark[l]) memcpy(out + 3 * m++, x + 3 * l, sizeof(double[3]));
@@ -502,19 +528,15 @@ static size_t section_hull(double *pts, size_t n, const double nrm[3], const dou
     if (m < 3) return n; /* degenerate (collinear): all kept */
     const int K = BUDGET_SECTION_DIRS;
     if (m > (size_t)K) { /* the extreme vertex in each of K directions of the plane (the first on ties) */
-        for (size_t l = 0; l < m; l++) p[l].i = 0; /* p: marks now */
-        for (int j = 0; j < K; j++) {
-            double cu = cssn[2 * j], sn = cssn[2 * j + 1], best = -INFINITY;
-            size_t arg = 0;
-            for (size_t l = 0; l < m; l++) {
-                double x = cu * h[l].u + sn * h[l].v;
-                if (x > best) best = x, arg = l;
-            }
-            p[arg].i = 1;
-        }
+        /* p (free now): the chain's coordinates apart (m of each, m <= n) and its marks */
+        double *hu = (double *)p, *hv = hu + m;
+        unsigned char *mk = (unsigned char *)(hv + m);
+        _Static_assert(sizeof(xpt) >= 2 * sizeof(double) + 1, "a section point's room holds its two coordinates and a mark");
+        for (size_t l = 0; l < m; l++) hu[l] = h[l].u, hv[l] = h[l].v, mk[l] = 0;
+        for (int j = 0; j < K; j++) mk[argmax_first(hu, hv, m, cssn[2 * j], cssn[2 * j + 1])] = 1;
         size_t keep = 0;
         for (size_t l = 0; l < m; l++)
-            if (p[l].i) h[keep++] = h[l];
+            if (mk[l]) h[keep++] = h[l];
         m = keep;
     }
     /* in increasing index order, in place */
@@ -542,15 +564,19 @@ static int section_crossings(const acd_mesh *m, const uint32_t *edges, size_t ne
         return 0;
     }
     _Static_assert(BUDGET_MAX_QUERIES < 256, "a vertex's offset count must fit a byte");
-    /* le[v]: the count of cs[i] <= dall[v] (cs increasing), by a binary search of fixed steps (the
-     * same counts as comparing every offset, which took 19% of this function on the armadillo) */
-    int top = 1;
-    while (2 * top <= nq) top *= 2;
+    /* le[v]: the count of cs[i] <= dall[v] (cs increasing): guessed from where dall[v] falls between
+     * the first and the last offset (exact for evenly spread ones up to rounding), then moved up while
+     * the next offset is at or below it and down while the previous one is above it, the only count
+     * that satisfies both (the same counts as comparing every offset, which took 19% of this
+     * function on the armadillo; a binary search of fixed steps mispredicted its branches) */
+    const double c0 = nq > 0 ? cs[0] : 0, span = nq > 1 ? cs[nq - 1] - cs[0] : 0;
+    double sc = nq > 1 && span > 0 ? (nq - 1) / span : 0;
+    if (!(sc < INFINITY)) sc = 0;
     for (size_t v = 0; v < m->nvertices; v++) {
-        const double x = dall[v];
-        int c = 0;
-        for (int s = top; s > 0; s >>= 1)
-            if (c + s <= nq && cs[c + s - 1] <= x) c += s;
+        const double x = dall[v], t = (x - c0) * sc;
+        int c = t >= 0 ? (t < nq ? (int)t + 1 : nq) : 0; /* (NaN: 0, as no offset is at or below it) */
+        while (c < nq && cs[c] <= x) c++;
+        while (c > 0 && cs[c - 1] > x) c--;
         le[v] = (uint8_t)c;
     }
     for (size_t k = 0; k < ne; k++) {

@@ -9,6 +9,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "core/error.h"
 #include "geom3/vec3.h"
@@ -46,11 +49,20 @@ static void box_empty(double lo[3], double hi[3]) {
 
 /* (stored unconditionally: a conditional store was a branch, mispredicted about half the time; the
  * same selection, min/max instructions) */
-static void box_grow(double lo[3], double hi[3], const double l2[3], const double h2[3]) {
+static inline void box_grow(double lo[3], double hi[3], const double l2[3], const double h2[3]) {
+#ifdef __SSE2__
+    /* two coordinates at a time: minpd / maxpd return their second operand unless the first is
+     * less / greater (NaN, equal or signed zeros alike), as the expressions below (the same bits) */
+    _mm_storeu_pd(lo, _mm_min_pd(_mm_loadu_pd(l2), _mm_loadu_pd(lo)));
+    _mm_store_sd(lo + 2, _mm_min_sd(_mm_load_sd(l2 + 2), _mm_load_sd(lo + 2)));
+    _mm_storeu_pd(hi, _mm_max_pd(_mm_loadu_pd(h2), _mm_loadu_pd(hi)));
+    _mm_store_sd(hi + 2, _mm_max_sd(_mm_load_sd(h2 + 2), _mm_load_sd(hi + 2)));
+#else
     for (int k = 0; k < 3; k++) {
         lo[k] = l2[k] < lo[k] ? l2[k] : lo[k];
         hi[k] = h2[k] > hi[k] ? h2[k] : hi[k];
     }
+#endif
 }
 
 static const double *tbox_sorted(const acd_bvh *b, size_t i) { return b->boxes + 6 * i; }
