@@ -27,6 +27,11 @@ typedef struct dual_edge {
     int concave;
 } dual_edge;
 
+/* The error of a cut the poll stopped (the dual graph, a ridge's cut, its max-flow), nf facets. */
+static acd_status cut_cancelled(acd_error *err, size_t nf) {
+    return acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback cutting %zu facets", nf);
+}
+
 /* Vertex of triangle t not on edge (lo, hi). */
 static uint32_t opposite(const acd_mesh *m, uint32_t t, uint32_t lo, uint32_t hi) {
     for (int k = 0; k < 3; k++) {
@@ -62,8 +67,7 @@ static acd_status build_dual(const acd_mesh *m, acd3_poll *poll, dual_edge **out
         if (poll && groups % ACD_CORISE_POLL_DUAL == 0 && acd3_poll_stop(poll)) {
             free(e);
             free(d);
-            return acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback cutting %zu facets",
-                            m->ntriangles);
+            return cut_cancelled(err, m->ntriangles);
         }
         size_t j = i + 1;
         while (j < ne && e[j].lo == e[i].lo && e[j].hi == e[i].hi) j++;
@@ -118,7 +122,7 @@ acd_status acd_corise_cut_poll(const acd_mesh *m, const acd_corise_bridges *b, c
     if (st != ACD_OK) return st;
     if (acd3_poll_stop(poll)) {
         free(d);
-        return acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback cutting %zu facets", nf);
+        return cut_cancelled(err, nf);
     }
     /* Eq. 8 weights */
     double *w = malloc((nd ? nd : 1) * sizeof *w);
@@ -176,7 +180,7 @@ acd_status acd_corise_cut_poll(const acd_mesh *m, const acd_corise_bridges *b, c
     for (size_t t = 0; t + 1 < nr; t++) {
         size_t k = order[t];
         if (acd3_poll_stop(poll)) {
-            st = acd_fail(err, ACD_ERR_CANCELLED, "corise: cancelled by the progress callback cutting %zu facets", nf);
+            st = cut_cancelled(err, nf);
             goto done;
         }
         acd_maxflow_reset(g);
@@ -202,8 +206,7 @@ acd_status acd_corise_cut_poll(const acd_mesh *m, const acd_corise_bridges *b, c
         }
         double flow;
         if ((st = acd_maxflow_solve_poll(g, &flow, poll, err)) != ACD_OK) {
-            if (st == ACD_ERR_CANCELLED)
-                st = acd_fail(err, st, "corise: cancelled by the progress callback cutting %zu facets", nf);
+            if (st == ACD_ERR_CANCELLED) st = cut_cancelled(err, nf); /* the cut's message, not the max-flow's */
             goto done;
         }
         size_t taken = 0;
