@@ -1,9 +1,10 @@
 /* bench_progress_gap: the longest silence of the progress callback (issue 4 item 7: "progress on
  * stderr for runs over a second; cancellable through the API") and the latency of a cancel.
  *
- *   bench_progress_gap 3d|segment MESH [--threads N] [--cancel-after S] [--budget N] [--trace]
+ *   bench_progress_gap 3d|segment|repair MESH [--threads N] [--cancel-after S] [--budget N] [--trace]
  *
- * Runs acd3d_decompose (default parameters) or acd_segment on MESH with a callback that records the
+ * Runs acd3d_decompose (default parameters), acd_segment or acd_mesh_repair (default options, holes
+ * of any size filled: acd 3d's repair of an open mesh) on MESH with a callback that records the
  * time of every call (CLOCK_MONOTONIC from just before the call) and prints the calls, the longest
  * gap between two calls (or between the start and the first call, or the last call and the end)
  * with the stages at its two ends, and, with --cancel-after S, the time from the first call after S
@@ -11,6 +12,7 @@
  * the largest process CPU time between two calls (with --threads 1, the silence without the load of
  * other jobs on the machine).
  * --trace: every call on stderr (seconds from the start, since the previous call, stage, fraction). */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -64,11 +66,12 @@ static int on_progress(void *user, double fraction, const char *stage) {
 }
 
 int main(int argc, char **argv) {
-    if (argc < 3 || (strcmp(argv[1], "3d") && strcmp(argv[1], "segment"))) {
-        fprintf(stderr, "usage: %s 3d|segment MESH [--threads N] [--cancel-after S] [--budget N] [--trace]\n", argv[0]);
+    if (argc < 3 || (strcmp(argv[1], "3d") && strcmp(argv[1], "segment") && strcmp(argv[1], "repair"))) {
+        fprintf(stderr, "usage: %s 3d|segment|repair MESH [--threads N] [--cancel-after S] [--budget N] [--trace]\n",
+                argv[0]);
         return 2;
     }
-    int seg = !strcmp(argv[1], "segment"), threads = 0;
+    int seg = !strcmp(argv[1], "segment"), rep = !strcmp(argv[1], "repair"), threads = 0;
     size_t budget = 0;
     gap_log L;
     memset(&L, 0, sizeof L);
@@ -104,7 +107,14 @@ int main(int argc, char **argv) {
     if (L.trace) fprintf(stderr, "start %.3f\n", L.t0);
     acd_status st;
     size_t nparts = 0;
-    if (seg) {
+    if (rep) {
+        acd_repair_options o = acd_repair_default_options();
+        o.fill_holes_max_edges = SIZE_MAX;
+        o.progress = on_progress;
+        o.progress_user = &L;
+        st = acd_mesh_repair(&m, &o, NULL, &err);
+        nparts = m.ntriangles;
+    } else if (seg) {
         acd_segment_params p = acd_segment_default_params();
         p.threads = threads;
         p.progress = on_progress;
@@ -133,8 +143,8 @@ int main(int argc, char **argv) {
     }
     double end = bench_wall();
     note(&L, end, "(end)");
-    printf("%s %s: %s, %zu parts, %.2f s wall, %.2f s CPU, %ld calls\n", argv[1], argv[2], acd_status_string(st),
-           nparts, end - L.t0, bench_cpu() - c0, L.calls);
+    printf("%s %s: %s, %zu %s, %.2f s wall, %.2f s CPU, %ld calls\n", argv[1], argv[2], acd_status_string(st),
+           nparts, rep ? "faces" : "parts", end - L.t0, bench_cpu() - c0, L.calls);
     printf("longest silence: %.3f s (%.2f -> %.2f s, '%s' -> '%s')\n", L.max_gap, L.gap_from, L.gap_to,
            L.gap_stage_from, L.gap_stage_to);
     printf("longest CPU time between calls: %.3f s (the call at %.2f s)\n", L.max_cpu_gap, L.cpu_gap_at);

@@ -576,6 +576,8 @@ int acd_cmd_3d(int argc, char **argv) {
         acd_error first = err;
         acd_repair_options ro = acd_repair_default_options();
         ro.fill_holes_max_edges = SIZE_MAX;
+        ro.progress = on_progress; /* the repair's steps on stderr too (a second at 832k faces) */
+        ro.progress_user = &ps;
         acd_repair_stats rs;
         acd_error_clear(&err);
         if (acd_mesh_repair(&mesh, &ro, &rs, &err) != ACD_OK) {
@@ -628,6 +630,8 @@ int acd_cmd_3d(int argc, char **argv) {
             ro.drop_duplicates = 0;
             ro.drop_unused_vertices = 0;
             ro.split_nonmanifold = 0;
+            ro.progress = on_progress;
+            ro.progress_user = &ps;
             acd_repair_stats rs;
             if (acd_mesh_repair(&c, &ro, &rs, &ce) == ACD_OK && rs.faces_flipped > 0)
                 fprintf(stderr,

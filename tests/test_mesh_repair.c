@@ -9,6 +9,7 @@
 
 #include "acd/mesh.h"
 #include "core/rng.h"
+#include "shapes.h"
 
 static const double cube_v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                     {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
@@ -502,6 +503,109 @@ static void test_fill_real_holes(void **state) {
     acd_mesh_free(&m);
 }
 
+/* The stages of the progress calls (static strings of the library). */
+typedef struct stage_log {
+    const char *stage[256];
+    size_t n;
+} stage_log;
+
+static int log_stage(void *user, double fraction, const char *stage) {
+    stage_log *l = user;
+    assert_true(fraction == -1.0);
+    if (l->n < 256) l->stage[l->n] = stage;
+    l->n++;
+    return 0;
+}
+
+static size_t stage_calls(const stage_log *l, const char *stage) {
+    size_t c = 0;
+    for (size_t i = 0; i < l->n && i < 256; i++) c += !strcmp(l->stage[i], stage);
+    return c;
+}
+
+static void copy_mesh(acd_mesh *dst, const acd_mesh *src) {
+    acd_error err;
+    assert_int_equal(acd_mesh_copy(dst, src, &err), ACD_OK);
+}
+
+/* Progress and cancellation of the repair (issue 4 item 7; 0.7-0.8 CPU-s without a poll at 832k
+ * faces before, in acd_segment's preparation and acd 3d's checks): on a bumpy sphere of 71,600 faces
+ * (more than ACD_REPAIR_POLL_ITEMS) with a third of its faces reversed, 18 holes and 10 duplicate
+ * faces, every step of the full repair calls the callback, the passes of orient more than once each
+ * (so within the step); a callback that never stops leaves the result as without one, bit for bit;
+ * one that stops at call N, for every N, gets ACD_ERR_CANCELLED with no call after it and a mesh
+ * whose indices are in range (the ASan build checks nothing leaks). */
+static void test_progress_and_cancel(void **state) {
+    (void)state;
+    acd_mesh in;
+    assert_true(mg_radial(&in, 200, 180, mg_bumpy_r, NULL));
+    size_t nt = 0;
+    for (size_t t = 0; t < in.ntriangles; t++) {
+        if (t % 4000 == 1000) continue; /* a hole */
+        uint32_t *f = in.triangles + 3 * t;
+        uint32_t a = f[0], b = f[1], c = f[2];
+        if (t % 3 == 0) b = f[2], c = f[1];
+        in.triangles[3 * nt] = a, in.triangles[3 * nt + 1] = b, in.triangles[3 * nt + 2] = c;
+        nt++;
+    }
+    in.ntriangles = nt;
+    for (uint32_t t = 0; t < 10; t++) push_face(&in, in.triangles[3 * t], in.triangles[3 * t + 1], in.triangles[3 * t + 2]);
+    print_message("%zu faces\n", in.ntriangles);
+    assert_true(in.ntriangles > ACD_REPAIR_POLL_ITEMS);
+    acd_repair_options o = acd_repair_default_options();
+    o.fill_holes_max_edges = SIZE_MAX;
+    acd_repair_stats st0, st1;
+    acd_error err;
+    acd_mesh ref, m;
+    copy_mesh(&ref, &in);
+    assert_int_equal(acd_mesh_repair(&ref, &o, &st0, &err), ACD_OK);
+    assert_int_equal(st0.holes_filled, 18);
+    assert_int_equal(st0.duplicates_dropped, 10);
+    assert_true(st0.faces_flipped > 0);
+    /* never stopped: every step told, the same mesh */
+    static stage_log log;
+    memset(&log, 0, sizeof log);
+    o.progress = log_stage;
+    o.progress_user = &log;
+    copy_mesh(&m, &in);
+    assert_int_equal(acd_mesh_repair(&m, &o, &st1, &err), ACD_OK);
+    assert_int_equal(m.nvertices, ref.nvertices);
+    assert_int_equal(m.ntriangles, ref.ntriangles);
+    assert_memory_equal(m.vertices, ref.vertices, 3 * m.nvertices * sizeof *m.vertices);
+    assert_memory_equal(m.triangles, ref.triangles, 3 * m.ntriangles * sizeof *m.triangles);
+    assert_memory_equal(&st1, &st0, sizeof st0);
+    acd_mesh_free(&m);
+    const char *steps[] = {"repair: welding", "repair: dropping degenerate and duplicate faces", "repair: orienting",
+                           "repair: splitting non-manifold edges", "repair: filling holes",
+                           "repair: dropping unused vertices"};
+    for (size_t k = 0; k < sizeof steps / sizeof *steps; k++) {
+        print_message("%s: %zu calls\n", steps[k], stage_calls(&log, steps[k]));
+        assert_true(stage_calls(&log, steps[k]) >= 1);
+    }
+    print_message("%zu calls\n", log.n);
+    assert_true(log.n < 256);
+    /* two orient passes, each: the step, its half-edges' two passes, its search (faces 0 and 65536) */
+    assert_true(stage_calls(&log, "repair: orienting") >= 2 * 5);
+    assert_true(stage_calls(&log, "repair: dropping degenerate and duplicate faces") >= 3);
+    assert_true(stage_calls(&log, "repair: splitting non-manifold edges") >= 4);
+    assert_true(stage_calls(&log, "repair: filling holes") >= 4);
+    /* stopped at every call in turn */
+    for (int stop = 1; stop <= (int)log.n; stop++) {
+        tu_counter c = {0, stop};
+        o.progress = tu_count_calls;
+        o.progress_user = &c;
+        copy_mesh(&m, &in);
+        assert_int_equal(acd_mesh_repair(&m, &o, &st1, &err), ACD_ERR_CANCELLED);
+        assert_int_equal(c.calls, stop);
+        assert_non_null(strstr(err.message, "cancelled"));
+        assert_non_null(strstr(err.message, log.stage[stop - 1]));
+        for (size_t i = 0; i < 3 * m.ntriangles; i++) assert_true(m.triangles[i] < m.nvertices);
+        acd_mesh_free(&m);
+    }
+    acd_mesh_free(&ref);
+    acd_mesh_free(&in);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_soup_to_closed_cube),
@@ -515,6 +619,7 @@ int main(void) {
         cmocka_unit_test(test_tolerance_weld),
         cmocka_unit_test(test_nonorientable_survives),
         cmocka_unit_test(test_split_nonmanifold),
+        cmocka_unit_test(test_progress_and_cancel),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

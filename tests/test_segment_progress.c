@@ -155,6 +155,56 @@ static void test_cancel_within_steps(void **state) {
     acd_mesh_free(&m);
 }
 
+/* The input's orientation repair (acd_mesh_repair in the preparation: 0.7-0.8 CPU-s without a call
+ * at 832k facets before) polls the callback, its stage "repair: orienting", in its passes over the
+ * faces; a stop at any of those calls returns ACD_ERR_CANCELLED at once, with 1 and 2 threads; after
+ * the repair the stage is the preparation's again. On the two bulbs with a third of the faces
+ * reversed (the repair flips them back): the same labels as the bulbs as made. */
+static void test_cancel_in_repair(void **state) {
+    (void)state;
+    acd_mesh m;
+    bulbs(&m);
+    for (size_t t = 0; t < m.ntriangles; t += 3) {
+        uint32_t *f = m.triangles + 3 * t, x = f[1];
+        f[1] = f[2], f[2] = x;
+    }
+    static rec all;
+    memset(&all, 0, sizeof all);
+    acd_segment_result ref, r;
+    run(&m, 1, &all, &ref, ACD_OK);
+    const char *orienting = "repair: orienting";
+    size_t n = count_stage(&all, orienting);
+    print_message("%zu of %zu calls in the repair\n", n, all.n);
+    assert_true(n >= 3); /* the step, its half-edges, its search */
+    size_t last = 0;
+    for (size_t i = 1; i <= all.n && i <= MAXCALLS; i++) {
+        if (strcmp(all.stage[i - 1], orienting)) continue;
+        last = i;
+        static rec c;
+        for (int threads = 1; threads <= 2; threads++) {
+            memset(&c, 0, sizeof c);
+            c.stop_at = i;
+            run(&m, threads, &c, &r, ACD_ERR_CANCELLED);
+            assert_int_equal(c.n, i);
+            assert_string_equal(c.stage[i - 1], orienting);
+        }
+    }
+    assert_true(last < all.n);
+    assert_string_equal(all.stage[last], "segment: preparing");
+    /* the same parts as the bulbs oriented as made */
+    acd_mesh o;
+    bulbs(&o);
+    acd_segment_params p = acd_segment_default_params();
+    acd_error err;
+    assert_int_equal(acd_segment(&o, &p, &r, &err), ACD_OK);
+    assert_int_equal(r.nparts, ref.nparts);
+    assert_memory_equal(r.labels, ref.labels, m.ntriangles * sizeof *r.labels);
+    acd_segment_result_free(&r);
+    acd_segment_result_free(&ref);
+    acd_mesh_free(&o);
+    acd_mesh_free(&m);
+}
+
 /* A wave of several parts at 2 threads: once the calling thread has no part left to claim, it polls
  * ("corise: wave") until the other thread has finished its part. Whether it waits at all depends on
  * which thread finishes last (timing), so the test cannot force it; it runs the two bulbs (a wave of
@@ -336,6 +386,7 @@ static void test_maxflow_poll(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cancel_within_steps),
+        cmocka_unit_test(test_cancel_in_repair),
         cmocka_unit_test(test_steps_cancel),
         cmocka_unit_test(test_wave_wait),
         cmocka_unit_test(test_maxflow_poll),

@@ -200,7 +200,18 @@ typedef struct acd_repair_options {
                                     edge), and every vertex whose faces form several fans gets a copy
                                     per fan (default 1): bodies touching along an edge or at a point
                                     become separate closed shells sharing positions */
+    acd_progress_fn progress;    /* optional (default NULL): called from the calling thread with fraction -1
+                                    and the step as stage ("repair: orienting", ...) between the steps
+                                    and every ACD_REPAIR_POLL_ITEMS faces (half-edges, vertices) of
+                                    their passes; non-zero stops the repair: ACD_ERR_CANCELLED, the mesh
+                                    then valid (indices in range) but partly repaired. The repair is
+                                    the same with or without a callback */
+    void *progress_user;
 } acd_repair_options;
+
+/* Faces (half-edges, vertices) between two calls of acd_repair_options.progress within a step's
+ * pass: some 0.03-0.1 s on this project's VM (docs/results/3d-large.md). */
+#define ACD_REPAIR_POLL_ITEMS ((size_t)1 << 16)
 
 acd_repair_options acd_repair_default_options(void);
 

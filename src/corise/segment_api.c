@@ -85,6 +85,14 @@ static acd_status poll_stop(acd3_poll *poll, acd_error *err) {
     return ACD_OK;
 }
 
+/* acd_mesh_repair's progress callback in prepare: the segment's poll, telling the repair's step */
+static int repair_progress(void *user, double fraction, const char *stage) {
+    (void)fraction;
+    acd3_poll *poll = user;
+    acd3_poll_set_stage(poll, stage);
+    return acd3_poll_stop(poll);
+}
+
 /* The mesh to segment (docs/corise.md, "Input preparation") into out->mesh: a copy of m, welded
  * and oriented when on. Faces keep their order and count, so the labels are the input's faces'.
  * A mesh the loop refuses (no faces, an index out of range) is copied as is, for the loop's own
@@ -134,8 +142,13 @@ static acd_status prepare(const acd_mesh *m, int on, acd3_poll *poll, acd_segmen
     ro.fill_holes_max_edges = 0;
     ro.drop_unused_vertices = 0;
     ro.split_nonmanifold = 0;
+    ro.progress = poll ? repair_progress : NULL; /* 0.7-0.8 CPU-s at 832k faces */
+    ro.progress_user = poll;
     acd_repair_stats rs;
-    if ((st = acd_mesh_repair(&out->mesh, &ro, &rs, err)) != ACD_OK) return st;
+    const char *stage = poll ? poll->stage : NULL;
+    st = acd_mesh_repair(&out->mesh, &ro, &rs, err);
+    acd3_poll_set_stage(poll, stage);
+    if (st != ACD_OK) return st;
     if ((st = poll_stop(poll, err)) != ACD_OK) return st;
     out->faces_flipped = rs.faces_flipped;
     out->nonorientable_parts = rs.nonorientable_parts;

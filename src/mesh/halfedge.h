@@ -41,6 +41,16 @@ static inline uint32_t acd_edge_valence(const acd_halfedges *he, uint32_t e) {
 /* Builds the view. Indices must be < nvertices (ACD_ERR_INVALID_INPUT naming the triangle
  * otherwise); more than 2^32 / 3 - 1 triangles is ACD_ERR_UNSUPPORTED. */
 acd_status acd_halfedges_build(const acd_mesh *m, acd_halfedges *he, acd_error *err);
+
+/* Half-edges between two calls of acd_halfedges_build_poll's stop (2^18: some 0.1 s on this
+ * project's VM at 2.5 M half-edges, the 832k-triangle armadillo of docs/results/3d-large.md). */
+#define ACD_HE_POLL_HALFEDGES ((size_t)1 << 18)
+
+/* The same, calling stop(user) (may be NULL: never) every ACD_HE_POLL_HALFEDGES half-edges of its
+ * passes over them: when it returns non-zero, ACD_ERR_CANCELLED with he empty (the caller's message
+ * says who asked; this one is generic). The view is the same with or without stop. */
+acd_status acd_halfedges_build_poll(const acd_mesh *m, acd_halfedges *he, int (*stop)(void *), void *user,
+                                    acd_error *err);
 void acd_halfedges_free(acd_halfedges *he);
 
 #endif

@@ -28,7 +28,12 @@
  *     FILL_DP_MAX_EDGES edges), else by a fan around a new vertex at its centroid, so the
  *     result stays edge-manifold; the new faces run against the loop (they agree with their
  *     neighbours); then orient again;
- *  5. drop unused vertices. */
+ *  5. drop unused vertices.
+ * The caller's progress callback (opt->progress) is polled between the steps and every
+ * ACD_REPAIR_POLL_ITEMS items of their passes over the faces (orient's half-edges and breadth-first
+ * search, its parts' volumes and nesting rays, the degenerate test, the non-manifold split's and the
+ * hole walk's loops): 0.8 CPU-s without a poll at 832k triangles before (issue 4 item 7). The sorts
+ * (qsort of the faces' keys and corner edges) are not polled: 0.1-0.3 s at that size. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +47,41 @@
 #include "mesh/weld.h"
 #include "geom3/spatial.h"
 
+/* The caller's callback, polled by the steps (opt->progress; fn NULL: never stops). One thread. */
+typedef struct repair_poll {
+    acd_progress_fn fn;
+    void *user;
+    const char *stage; /* the step's */
+    int stop;          /* the callback asked to stop */
+} repair_poll;
+
+static int repair_stop(void *user) {
+    repair_poll *p = user;
+    if (p->fn && !p->stop && p->fn(p->user, -1.0, p->stage)) p->stop = 1;
+    return p->stop;
+}
+
+/* polled at item i of a pass: every ACD_REPAIR_POLL_ITEMS-th item */
+static int repair_stop_at(repair_poll *p, size_t i) { return i % ACD_REPAIR_POLL_ITEMS == 0 && repair_stop(p); }
+
+/* polled when the count of items done reaches *next, then ACD_REPAIR_POLL_ITEMS items further (a
+ * pass whose index moves by more than one) */
+static int repair_stop_after(repair_poll *p, size_t done, size_t *next) {
+    if (done < *next) return 0;
+    *next = done + ACD_REPAIR_POLL_ITEMS;
+    return repair_stop(p);
+}
+
+static acd_status repair_cancelled(const repair_poll *p, acd_error *err, size_t n, const char *what) {
+    return acd_fail(err, ACD_ERR_CANCELLED, "%s: cancelled by the progress callback (%zu %s)", p->stage, n, what);
+}
+
+/* The start of a step: its stage set, a poll */
+static acd_status repair_step(repair_poll *p, const char *stage, size_t nfaces, acd_error *err) {
+    p->stage = stage;
+    return repair_stop(p) ? repair_cancelled(p, err, nfaces, "faces") : ACD_OK;
+}
+
 acd_repair_options acd_repair_default_options(void) {
     acd_repair_options o;
     o.weld = 1;
@@ -52,6 +92,8 @@ acd_repair_options acd_repair_default_options(void) {
     o.fill_holes_max_edges = 0;
     o.drop_unused_vertices = 1;
     o.split_nonmanifold = 1;
+    o.progress = NULL;
+    o.progress_user = NULL;
     return o;
 }
 
@@ -119,7 +161,8 @@ static int cmp_key(const void *x, const void *y) {
     return a->t < b->t ? -1 : a->t > b->t;
 }
 
-static acd_status drop_faces(acd_mesh *m, int degenerate, int duplicates, acd_repair_stats *st, acd_error *err) {
+static acd_status drop_faces(acd_mesh *m, int degenerate, int duplicates, acd_repair_stats *st, repair_poll *poll,
+                             acd_error *err) {
     size_t nt = m->ntriangles;
     if (!nt) return ACD_OK;
     unsigned char *keep = malloc(nt);
@@ -130,6 +173,11 @@ static acd_status drop_faces(acd_mesh *m, int degenerate, int duplicates, acd_re
         return acd_fail(err, ACD_ERR_NOMEM, "out of memory repairing %zu faces", nt);
     }
     for (size_t t = 0; t < nt; t++) {
+        if (repair_stop_at(poll, t)) {
+            free(keep);
+            free(keys);
+            return repair_cancelled(poll, err, nt, "faces");
+        }
         const uint32_t *i = m->triangles + 3 * t;
         keep[t] = 1;
         if (degenerate && (i[0] == i[1] || i[1] == i[2] || i[0] == i[2] ||
@@ -226,9 +274,11 @@ static int nest_visit(void *user, uint32_t t) {
  * inside: a non-zero crossing count of that part's faces along the ray, the point not on them).
  * depth[] = -1 for open parts. One ray per sample through the mesh's BVH (before 2026-11-27: the
  * winding number summed over every face of every candidate part, 12 s for 600 cubes in an
- * 80,000-face sphere). Returns 0 when memory runs out (no depth known). */
+ * 80,000-face sphere). Returns 0 when memory runs out (no depth known), -1 when poll says stop
+ * (polled every ACD_REPAIR_POLL_ITEMS / NEST_SAMPLES closed parts, so every ACD_REPAIR_POLL_ITEMS
+ * rays). */
 static int nesting_depths(const acd_mesh *m, const uint32_t *queue, const unsigned char *flip, const orient_part *parts,
-                          size_t np, int *depth) {
+                          size_t np, int *depth, repair_poll *poll) {
     size_t nclosed = 0;
     for (size_t i = 0; i < np; i++) nclosed += parts[i].closed;
     for (size_t i = 0; i < np; i++) depth[i] = parts[i].closed ? 0 : -1;
@@ -245,8 +295,12 @@ static int nesting_depths(const acd_mesh *m, const uint32_t *queue, const unsign
     if (acd_spatial_build(&sp, m->vertices, m->nvertices, m->triangles, m->ntriangles, NULL) != ACD_OK) goto done;
     for (size_t i = 0; i < np; i++)
         for (size_t k = parts[i].start; k < parts[i].start + parts[i].n; k++) part_of[queue[k]] = (uint32_t)i;
-    for (size_t i = 0; i < np; i++) {
+    for (size_t i = 0, nc = 0; i < np; i++) {
         if (!parts[i].closed) continue;
+        if (repair_stop_at(poll, nc++ * NEST_SAMPLES)) {
+            ok = -1;
+            goto done;
+        }
         memset(cnt, 0, np * sizeof *cnt);
         for (size_t s = 0; s < NEST_SAMPLES; s++) {
             uint32_t t = queue[parts[i].start + s * parts[i].n / NEST_SAMPLES];
@@ -273,11 +327,13 @@ done:
     return ok;
 }
 
-static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorientable, acd_error *err) {
+static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorientable, repair_poll *poll,
+                         acd_error *err) {
     size_t nt = m->ntriangles;
     if (!nt) return ACD_OK;
     acd_halfedges he;
-    acd_status s = acd_halfedges_build(m, &he, err);
+    acd_status s = acd_halfedges_build_poll(m, &he, poll->fn ? repair_stop : NULL, poll, err);
+    if (s == ACD_ERR_CANCELLED) return repair_cancelled(poll, err, nt, "faces");
     if (s != ACD_OK) return s;
     unsigned char *flip = calloc(nt, 1), *seen = calloc(nt, 1);
     uint32_t *queue = malloc(nt * sizeof *queue);
@@ -298,6 +354,10 @@ static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorienta
         queue[qt++] = (uint32_t)t0;
         seen[t0] = 1;
         while (qh < qt) {
+            if (repair_stop_at(poll, qh)) {
+                s = repair_cancelled(poll, err, nt, "faces");
+                goto done;
+            }
             uint32_t t = queue[qh++];
             for (uint32_t k = 0; k < 3; k++) {
                 uint32_t h = 3 * t + k, g = he.twin[h];
@@ -336,6 +396,10 @@ static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorienta
         if (P->closed) {
             for (int k = 0; k < 3; k++) P->lo[k] = P->hi[k] = m->vertices[3 * (size_t)m->triangles[3 * (size_t)t0] + k];
             for (size_t i = start; i < qt; i++) {
+                if (repair_stop_at(poll, i)) {
+                    s = repair_cancelled(poll, err, nt, "faces");
+                    goto done;
+                }
                 double v = tet_volume(m, queue[i], o);
                 P->vol += flip[queue[i]] ? -v : v;
                 for (int c = 0; c < 3; c++)
@@ -357,7 +421,12 @@ static acd_status orient(acd_mesh *m, acd_repair_stats *st, int count_nonorienta
         goto done;
     }
     st->cavities = 0; /* counted by the last pass (orient runs again after hole filling) */
-    if (nesting_depths(m, queue, flip, parts, np, depth))
+    int nested = nesting_depths(m, queue, flip, parts, np, depth, poll);
+    if (nested < 0) {
+        s = repair_cancelled(poll, err, np, "parts");
+        goto done;
+    }
+    if (nested)
         for (size_t i = 0; i < np; i++)
             if (parts[i].closed && depth[i] % 2 == 1) {
                 parts[i].reverse = parts[i].vol > 0;
@@ -559,10 +628,11 @@ static int fill_loop(const acd_mesh *m, const uint32_t *v, size_t n, edge_set *e
     return 1;
 }
 
-static acd_status fill_holes(acd_mesh *m, size_t max_edges, acd_repair_stats *st, acd_error *err) {
+static acd_status fill_holes(acd_mesh *m, size_t max_edges, acd_repair_stats *st, repair_poll *poll, acd_error *err) {
     if (!max_edges || !m->ntriangles) return ACD_OK;
     acd_halfedges he;
-    acd_status s = acd_halfedges_build(m, &he, err);
+    acd_status s = acd_halfedges_build_poll(m, &he, poll->fn ? repair_stop : NULL, poll, err);
+    if (s == ACD_ERR_CANCELLED) return repair_cancelled(poll, err, m->ntriangles, "faces");
     if (s != ACD_OK) return s;
     size_t nh = he.nhalfedges, nv = m->nvertices;
     /* boundary half-edges by their start vertex (CSR over vertices) */
@@ -579,6 +649,10 @@ static acd_status fill_holes(acd_mesh *m, size_t max_edges, acd_repair_stats *st
         goto done;
     }
     for (size_t h = 0; h < nh; h++) {
+        if (repair_stop_at(poll, h)) {
+            s = repair_cancelled(poll, err, m->ntriangles, "faces");
+            goto done;
+        }
         if (!edge_set_add(&edges, acd_he_from(m, (uint32_t)h), acd_he_to(m, (uint32_t)h))) {
             s = acd_fail(err, ACD_ERR_NOMEM, "out of memory filling holes");
             goto done;
@@ -593,10 +667,17 @@ static acd_status fill_holes(acd_mesh *m, size_t max_edges, acd_repair_stats *st
     for (size_t v = 0; v < nv; v++) pos[v] = SIZE_MAX;
     /* Walk the boundary; whenever the walk returns to a vertex already on its path, the part
      * of the path since that vertex is a simple loop: close it and go on from that vertex. A
-     * boundary that passes twice through a vertex (a pinch) thus gives two simple loops. */
+     * boundary that passes twice through a vertex (a pinch) thus gives two simple loops. The poll
+     * counts the half-edges walked and n^2 per loop of n edges filled (its programme is n^3 steps
+     * of a few operations). m is changed only after the walk. */
+    size_t work = 0, next_poll = 0;
     for (size_t b = 0; b < start[nv]; b++) {
         uint32_t cur = list[b];
         if (used[cur]) continue;
+        if (repair_stop_after(poll, work, &next_poll)) {
+            s = repair_cancelled(poll, err, m->ntriangles, "faces");
+            goto done;
+        }
         size_t top = 0;
         pathv[0] = acd_he_from(m, cur);
         pos[pathv[0]] = 0;
@@ -611,6 +692,7 @@ static acd_status fill_holes(acd_mesh *m, size_t max_edges, acd_repair_stats *st
                         goto done;
                     }
                     st->holes_filled++;
+                    work += n * (n < FILL_DP_MAX_EDGES ? n : FILL_DP_MAX_EDGES);
                 }
                 for (size_t q = k + 1; q <= top; q++) pos[pathv[q]] = SIZE_MAX;
                 top = k;
@@ -623,6 +705,7 @@ static acd_status fill_holes(acd_mesh *m, size_t max_edges, acd_repair_stats *st
                 if (!used[list[j]]) next = list[j];
             if (next == ACD_HE_NONE) break; /* closed (top 0) or an open chain: stop the walk */
             cur = next;
+            work++;
         }
         for (size_t q = 0; q <= top; q++) pos[pathv[q]] = SIZE_MAX;
     }
@@ -720,7 +803,7 @@ static int fan_before(const acd_mesh *m, uint32_t lo, uint32_t hi, const fan_fac
     return a->t < b->t;
 }
 
-static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, acd_error *err) {
+static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, repair_poll *poll, acd_error *err) {
     size_t nt = m->ntriangles;
     if (nt == 0) return ACD_OK;
     if (nt > UINT32_MAX / 3) return acd_fail(err, ACD_ERR_INVALID_INPUT, "mesh too large to repair (%zu faces)", nt);
@@ -734,15 +817,25 @@ static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, acd_error
         s = acd_fail(err, ACD_ERR_NOMEM, "out of memory splitting non-manifold edges");
         goto done;
     }
-    for (size_t t = 0; t < nt; t++)
+    for (size_t t = 0; t < nt; t++) {
+        if (repair_stop_at(poll, t)) {
+            s = repair_cancelled(poll, err, nt, "faces");
+            goto done;
+        }
         for (int i = 0; i < 3; i++) {
             uint32_t u = m->triangles[3 * t + i], w = m->triangles[3 * t + (i + 1) % 3];
             ce[3 * t + i] = (corner_edge){u < w ? u : w, u < w ? w : u, (uint32_t)t, (uint8_t)(u < w)};
             par[3 * t + i] = (uint32_t)(3 * t + i);
         }
+    }
     qsort(ce, 3 * nt, sizeof *ce, cmp_corner_edge);
     const double PI2 = 2.0 * acos(-1.0);
+    size_t next_poll = 0;
     for (size_t i = 0, j; i < 3 * nt; i = j) {
+        if (repair_stop_after(poll, i, &next_poll)) {
+            s = repair_cancelled(poll, err, nt, "faces");
+            goto done;
+        }
         for (j = i + 1; j < 3 * nt && ce[j].lo == ce[i].lo && ce[j].hi == ce[i].hi;) j++;
         uint32_t lo = ce[i].lo, hi = ce[i].hi;
         size_t n = j - i;
@@ -815,6 +908,11 @@ static acd_status split_nonmanifold(acd_mesh *m, acd_repair_stats *st, acd_error
             goto done;
         }
         for (size_t c = 0; c < 3 * nt; c++) {
+            if (repair_stop_at(poll, c)) {
+                free(kept), free(copy);
+                s = repair_cancelled(poll, err, nt, "faces");
+                goto done;
+            }
             uint32_t v = m->triangles[c];
             if (acd_uf_find(par, (uint32_t)c) != c) continue; /* roots are the lowest corners: met first */
             if (!kept[v] || open[v]) kept[v] = 1, copy[c] = v;
@@ -863,23 +961,40 @@ acd_status acd_mesh_repair(acd_mesh *m, const acd_repair_options *opt, acd_repai
             return acd_fail(err, ACD_ERR_INVALID_INPUT, "triangle %zu refers to vertex %u of %zu", i / 3, m->triangles[i],
                             m->nvertices);
     acd_status s;
-    if (opt->weld && (s = acd_mesh_weld(m, opt->weld_tolerance, &st->vertices_merged, err)) != ACD_OK) return s;
-    if ((opt->drop_degenerate || opt->drop_duplicates) &&
-        (s = drop_faces(m, opt->drop_degenerate, opt->drop_duplicates, st, err)) != ACD_OK)
+    repair_poll poll = {opt->progress, opt->progress_user, "repair", 0};
+    const size_t nt = m->ntriangles; /* the input's, in the messages of the steps' polls */
+    if (opt->weld && ((s = repair_step(&poll, "repair: welding", nt, err)) != ACD_OK ||
+                      (s = acd_mesh_weld(m, opt->weld_tolerance, &st->vertices_merged, err)) != ACD_OK))
         return s;
-    if (opt->orient && (s = orient(m, st, opt->fill_holes_max_edges == 0, err)) != ACD_OK) return s;
+    if ((opt->drop_degenerate || opt->drop_duplicates) &&
+        ((s = repair_step(&poll, "repair: dropping degenerate and duplicate faces", nt, err)) != ACD_OK ||
+         (s = drop_faces(m, opt->drop_degenerate, opt->drop_duplicates, st, &poll, err)) != ACD_OK))
+        return s;
+    if (opt->orient && ((s = repair_step(&poll, "repair: orienting", nt, err)) != ACD_OK ||
+                        (s = orient(m, st, opt->fill_holes_max_edges == 0, &poll, err)) != ACD_OK))
+        return s;
     if (opt->split_nonmanifold) {
-        if ((s = split_nonmanifold(m, st, err)) != ACD_OK) return s;
+        if ((s = repair_step(&poll, "repair: splitting non-manifold edges", nt, err)) != ACD_OK ||
+            (s = split_nonmanifold(m, st, &poll, err)) != ACD_OK)
+            return s;
         /* shells closed by the split face outward now (cavities inward) */
         if (st->vertices_split && opt->orient && !opt->fill_holes_max_edges) {
             st->nonorientable_parts = 0; /* counted again */
-            if ((s = orient(m, st, 1, err)) != ACD_OK) return s;
+            if ((s = repair_step(&poll, "repair: orienting", nt, err)) != ACD_OK ||
+                (s = orient(m, st, 1, &poll, err)) != ACD_OK)
+                return s;
         }
     }
     if (opt->fill_holes_max_edges) {
-        if ((s = fill_holes(m, opt->fill_holes_max_edges, st, err)) != ACD_OK) return s;
-        if (opt->orient && (s = orient(m, st, 1, err)) != ACD_OK) return s;
+        if ((s = repair_step(&poll, "repair: filling holes", nt, err)) != ACD_OK ||
+            (s = fill_holes(m, opt->fill_holes_max_edges, st, &poll, err)) != ACD_OK)
+            return s;
+        if (opt->orient && ((s = repair_step(&poll, "repair: orienting", nt, err)) != ACD_OK ||
+                            (s = orient(m, st, 1, &poll, err)) != ACD_OK))
+            return s;
     }
-    if (opt->drop_unused_vertices && (s = drop_unused(m, st, err)) != ACD_OK) return s;
+    if (opt->drop_unused_vertices && ((s = repair_step(&poll, "repair: dropping unused vertices", nt, err)) != ACD_OK ||
+                                      (s = drop_unused(m, st, err)) != ACD_OK))
+        return s;
     return ACD_OK;
 }
