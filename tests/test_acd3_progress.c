@@ -123,6 +123,105 @@ static void test_cancel_in_each_stage(void **state) {
     acd_mesh_free(&m);
 }
 
+/* The stage of every call (static strings of the library), and a stop at call stop_at (1-based; 0:
+ * never) or at the first call of stage stop_stage (NULL: never). */
+#define LOG_CALLS 16384
+typedef struct call_log {
+    const char *stage[LOG_CALLS];
+    int n, stop_at, after_stop;
+    const char *stop_stage;
+    int stopped;
+} call_log;
+
+static int log_call(void *user, double fraction, const char *stage) {
+    (void)fraction;
+    call_log *l = user;
+    if (l->stopped) l->after_stop++;
+    if (l->n < LOG_CALLS) l->stage[l->n] = stage;
+    l->n++;
+    if ((l->stop_at && l->n == l->stop_at) || (l->stop_stage && !strcmp(stage, l->stop_stage))) l->stopped = 1;
+    return l->stopped;
+}
+
+static int log_count(const call_log *l, const char *stage) {
+    int c = 0;
+    for (int i = 0; i < l->n && i < LOG_CALLS; i++) c += !strcmp(l->stage[i], stage);
+    return c;
+}
+
+/* The merge pass's set-up calls the callback within its steps, not only between them: before each
+ * part's tree and hull ("merge: preparing the parts' hulls", from the calling thread: 2.3 CPU-s
+ * without a call at 832k faces before, with the input's tree: "merge: preparing the input's tree"
+ * before it) and between chunks of MERGE_SCORE_POLL_PAIRS pairs of the first scoring ("merge:
+ * scoring adjacent pairs", 0.5 CPU-s). On the bumpy sphere, default
+ * parameters (88 parts joined down to 48): with 1 thread a stop at the first, second, middle and
+ * last call of each of those stages returns ACD_ERR_CANCELLED at once (no call after it), with 2
+ * threads at the first call; a callback that never stops leaves the parts as without one. */
+static void test_cancel_in_merge_setup(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 32, mg_bumpy_r, NULL));
+    acd3d_params p = acd3d_default_params();
+    p.threads = 1;
+    static call_log all;
+    memset(&all, 0, sizeof all);
+    p.progress = log_call;
+    p.progress_user = &all;
+    acd3d_result r, q;
+    acd_error err;
+    assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+    assert_true(all.n < LOG_CALLS);
+    const char *within[] = {"merge: preparing the parts' hulls", "merge: scoring adjacent pairs",
+                            "merge: preparing the input's tree"};
+    for (int k = 0; k < 3; k++) print_message("%s: %d calls\n", within[k], log_count(&all, within[k]));
+    print_message("%d calls, %zu parts\n", all.n, r.nparts);
+    assert_true(log_count(&all, within[0]) >= 8);
+    assert_true(log_count(&all, within[1]) >= 2);
+    assert_int_equal(log_count(&all, within[2]), 1);
+    p.progress = NULL;
+    assert_int_equal(acd3d_decompose(&m, &p, &q, &err), ACD_OK);
+    assert_int_equal(q.nparts, r.nparts);
+    for (size_t i = 0; i < q.nparts; i++) {
+        assert_int_equal(q.parts[i].hull.nvertices, r.parts[i].hull.nvertices);
+        assert_memory_equal(q.parts[i].hull.vertices, r.parts[i].hull.vertices,
+                            3 * q.parts[i].hull.nvertices * sizeof(double));
+    }
+    acd3d_result_free(&q);
+    acd3d_result_free(&r);
+    static call_log c;
+    for (int k = 0; k < 3; k++) {
+        int first = 0, last = 0; /* 1-based call numbers; the stage's calls are consecutive */
+        for (int i = 1; i <= all.n; i++)
+            if (!strcmp(all.stage[i - 1], within[k])) {
+                if (!first) first = i;
+                last = i;
+            }
+        assert_int_equal(last - first + 1, log_count(&all, within[k]));
+        const int at[4] = {first, first + 1, (first + last) / 2, last};
+        for (int j = 0; j < 4 && at[j] <= last; j++) {
+            memset(&c, 0, sizeof c);
+            c.stop_at = at[j];
+            p.progress = log_call;
+            p.progress_user = &c;
+            assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_CANCELLED);
+            assert_int_equal(c.n, at[j]);
+            assert_string_equal(c.stage[at[j] - 1], within[k]);
+            assert_non_null(strstr(err.message, "cancelled"));
+            assert_non_null(strstr(err.message, within[k])); /* the stage it stopped in */
+        }
+    }
+    p.threads = 2;
+    for (int k = 0; k < 3; k++) {
+        memset(&c, 0, sizeof c);
+        c.stop_stage = within[k];
+        p.progress_user = &c;
+        assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_CANCELLED);
+        assert_int_equal(c.after_stop, 0);
+        assert_string_equal(c.stage[c.n - 1], within[k]);
+    }
+    acd_mesh_free(&m);
+}
+
 /* The tree polls the callback within a batch of nodes too (between candidate cuts, before each cut
  * try: the root's batch is most of a large mesh's run), not only once per batch: with one thread
  * every split node calls it at least three times (before its try, before claiming its first
@@ -286,6 +385,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stages_reported),
         cmocka_unit_test(test_cancel_in_each_stage),
+        cmocka_unit_test(test_cancel_in_merge_setup),
         cmocka_unit_test(test_cancel_within_batch),
         cmocka_unit_test(test_cancel_in_root_measure),
         cmocka_unit_test(test_measure_and_cut_graph_polls),
