@@ -471,6 +471,24 @@ static void test_screen_fallback(void **state) {
         }
     acd_mesh_free(&m[0]);
     acd_mesh_free(&m[1]);
+    /* a real mesh, when data/meshes has it: knot1 (budget 12), whose candidates' estimates are within
+     * 1e-9 of qhull's volumes, far inside the margin (1e-4 since 2026-11-27) */
+    char path[4096];
+    if (!tu_mesh_data(path, sizeof path, "knot1.off")) {
+        print_message("data/meshes/knot1.off missing (scripts/fetch-data.sh): not run on it\n");
+        return;
+    }
+    acd_mesh k;
+    assert_int_equal(acd_mesh_read(path, &k, &err), ACD_OK);
+    acd3_budget_result def, all;
+    assert_int_equal(acd3_budget_split(&k, 1, 12, 1e30, 0, 4.0, 2, &def, &err), ACD_OK);
+    assert_int_equal(acd3_budget_split_screen(&k, 1, 12, 1e30, 0, 4.0, 2, INFINITY, &all, &err), ACD_OK);
+    print_message("knot1: %zu cuts, fallbacks %zu\n", def.cuts, def.screen_fallbacks);
+    assert_true(def.cuts >= 1);
+    assert_same_result(&all, &def);
+    acd3_budget_result_free(&def);
+    acd3_budget_result_free(&all);
+    acd_mesh_free(&k);
 }
 
 /* The directions' bound (budget.c, BUDGET_BOUND_REL): a direction is scored on the whole sample

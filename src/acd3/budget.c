@@ -149,11 +149,14 @@ static void atom_cut_free(atom *A) { cut_with_hulls_free(&A->cut, &A->cut_hulls)
 /* An exact candidate cut whose pieces' hull volumes, as estimated (geom3/hull_volume), sum to more
  * than this fraction above the atom's best estimated sum is not given qhull hulls: it cannot be the
  * best by qhull's volumes unless an estimate is off by about as much (measured: within 1e-9
- * relative on knot1's sets, 2e-5 on fandisk's). The atom's chosen cut is still the best of its
- * candidates by qhull's volumes among those the screen leaves; when none of those is good, the rest
- * get their hulls too. On the armadillo's budget run about 3 in 4 of the candidates that were not
- * chosen fell out (their sums are 1e-4 to 1e-1 above the best). */
-#define BUDGET_SCREEN_REL 1e-3
+ * relative on knot1's sets, 2e-5 on fandisk's, 3e-15 on the armadillo's candidates: the margin is 5
+ * times the largest, as decompose's ACD3_VOLUME_SCREEN_REL). The atom's chosen cut is still the best
+ * of its candidates by qhull's volumes among those the screen leaves; when none of those is good,
+ * the rest get their hulls too. On the armadillo's trimmed run every candidate not chosen now falls
+ * out (by qhull's volumes their sums were 1.3e-4 to 1e-1 above the best; 1e-3 before 2026-11-27
+ * left 38 of them, a quarter of the candidates' qhull work: 2.5% of the run's instructions; the
+ * 21 settings of /work/ident.sh and the bench's budget column gave the same bytes). */
+#define BUDGET_SCREEN_REL 1e-4
 /* The directions' bound (direction_bound): a direction is scored only when a lower bound of its score,
  * the same sweeps over the sample's hull vertices alone, less BUDGET_BOUND_REL of it, is not above
  * the BUDGET_REFINE_DIRS-th lowest score of the directions scored before it (those the refinement
