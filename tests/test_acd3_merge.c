@@ -73,12 +73,22 @@ static void test_volume_order_skips_refused(void **state) {
         assert_true(b >= 0.75 - 1e-9 && b <= tau); /* an upper bound of the step's reach */
     }
     assert_memory_equal(r[0].group_of, r[1].group_of, 4 * sizeof *r[0].group_of);
-    /* without a stop: still only the step (the L is never joinable) */
+    /* without a stop: still only the step (the L is never joinable), with no limit on the volume a join
+     * adds; by default (at most 2% of the input's volume) not even the step (3 of 25) */
     mo.stop_at = 0;
+    mo.max_added = INFINITY;
     acd3_merge_result all;
     assert_int_equal(acd3_merge_adjacent(&in, parts, 4, tau, tol, &mo, 1, &all, &err), ACD_OK);
     assert_int_equal(all.ngroups, 3);
     assert_true(all.group_of[0] != all.group_of[1]);
+    acd3_merge_result_free(&all);
+    mo.max_added = 0;
+    assert_int_equal(acd3_merge_adjacent(&in, parts, 4, tau, tol, &mo, 1, &all, &err), ACD_OK);
+    assert_int_equal(all.ngroups, 4);
+    mo.max_added = 0.13; /* above 3 / 25 */
+    acd3_merge_result_free(&all);
+    assert_int_equal(acd3_merge_adjacent(&in, parts, 4, tau, tol, &mo, 1, &all, &err), ACD_OK);
+    assert_int_equal(all.ngroups, 3);
     /* with a tolerance above the L's reach both are joined, the L first (cheaper) */
     mo.stop_at = 3;
     acd3_merge_result wide;
@@ -121,7 +131,8 @@ static void test_kept_hulls_same_result(void **state) {
     const acd_hull *some[4] = {NULL, &H[1], &H[2], NULL};
     const acd_hull *wrong[4] = {&H[2], &H[1], &H[0], &H[3]}; /* 0 and 2 swapped: not theirs */
     const acd_hull *const *sets[3] = {all, some, wrong};
-    const acd3_merge_opts opts[4] = {{.by_volume = 1, .stop_at = 3}, {.by_volume = 1}, {.by_volume = 0}, {.stop_at = 3}};
+    const acd3_merge_opts opts[4] = {{.by_volume = 1, .stop_at = 3}, {.by_volume = 1, .max_added = INFINITY},
+                                     {.by_volume = 0, .max_added = INFINITY}, {.stop_at = 3}};
     const double taus[2] = {0.9, 1.5}, tol = 1e-9;
     for (int o = 0; o < 4; o++)
         for (int t = 0; t < 2; t++) {
@@ -178,7 +189,8 @@ static void test_kept_trees_tables_same_result(void **state) {
                 assert_true(memcmp(T[t][k].key + 9 * (f - 1), T[t][k].key + 9 * f, 9 * sizeof(double)) != 0);
         }
     }
-    const acd3_merge_opts opts[4] = {{.by_volume = 1, .stop_at = 3}, {.by_volume = 1}, {.by_volume = 0}, {.stop_at = 3}};
+    const acd3_merge_opts opts[4] = {{.by_volume = 1, .stop_at = 3}, {.by_volume = 1, .max_added = INFINITY},
+                                     {.by_volume = 0, .max_added = INFINITY}, {.stop_at = 3}};
     for (int o = 0; o < 4; o++)
         for (int t = 0; t < 2; t++) {
             acd3_merge_result ref;
@@ -211,7 +223,7 @@ static void test_kept_trees_tables_same_result(void **state) {
     /* used: the tables' bounds raised to 0.89 (within tau 0.9: trusted), the step joined with the
      * bound 0.89 where its own (an upper bound of its reach 0.75) is below */
     {
-        const acd3_merge_opts bo = {.by_volume = 0};
+        const acd3_merge_opts bo = {.by_volume = 0, .max_added = INFINITY};
         acd3_merge_result ref, r;
         assert_int_equal(acd3_merge_adjacent(&in, parts, 4, 0.9, tol, &bo, 1, &ref, &err), ACD_OK);
         acd3_merge_kept raised[4];

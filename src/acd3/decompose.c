@@ -1082,7 +1082,7 @@ static acd_status decompose_mesh(const acd_mesh *mesh, const acd_frame *frame, c
          * could not be their children) */
         const acd3_merge_opts mo = {params->merge_order == ACD3D_MERGE_VOLUME, params->merge_parts,
                                     params->max_hulls ? 0 : params->merge_refine, params->progress,
-                                    params->progress_user, params->trim_coverage > 0};
+                                    params->progress_user, params->trim_coverage > 0, 0};
         st = join_adjacent(&t, mesh, out->merge_tau, sc.dist, &mo, nthreads, &nleaves, err);
         if (st != ACD_OK) goto fail;
     } else if (params->merge) {

@@ -13,7 +13,11 @@
  *           closest to the piece's centroid or, without a query, the one its parent found; or
  *           refused as soon as one centroid is farther than tau.
  *
- * The pair is joinable when both are <= tau; its cost is max(d_in, d_out's bound), or (by_volume)
+ * The pair is joinable when both are <= tau and, without a stop (stop_at 0: the default pipeline),
+ * its joint hull adds at most 2% of the input's volume to the two hulls (vol H - vol conv A - vol conv
+ * B; opts.max_added; the added volume: a thin wall joined to a stub of floor, or two prongs across a slot narrower
+ * than 2 tau, are within tau both ways, but their hull fills the wedge or the slot; GEB's default run
+ * lost 0.13 IoU by one such join). Its cost is max(d_in, d_out's bound), or (by_volume)
  * the hull volume the join adds. Cheapest first (ties: the lower group ids), greedily, until no
  * adjacent pair is joinable or stop_at groups remain; a joined group is a new group and its pairs
  * with its neighbours are scored again. Deterministic for any
@@ -80,6 +84,8 @@ typedef struct acd3_merge_opts {
     void *progress_user;
     int keep_trees; /* non-zero: the trees built are handed over (acd3_merge_result.input_bvh,
                        part_bvh), for acd3/trim */
+    double max_added; /* without a stop: the largest hull volume a join may add, as a fraction of the
+                         input's volume (0: the default, 0.02; INFINITY: no limit); with a stop none */
 } acd3_merge_opts;
 
 /* Joins the adjacent parts of the closed input mesh `input` (all parts closed, together tiling
