@@ -457,8 +457,8 @@ static void score_dout(const group *A, const group *B, double tau, int by_volume
 
 /* Scores the union of A and B (merge.h): ok and cost = max(d_in, bound of d_out). A pair whose
  * din_lo is above din_refuse (inherited, join_best) is refused without a hull, one whose joint hull
- * adds more than at->max_added to the two hulls' volume right after the hull (not inherited: a
- * larger group can add less). By volume, the cost
+ * adds more than at->max_added to the two hulls' volume after d_in (not inherited: a larger group can
+ * add less; checked after d_in so that a depth above tau is still found and inherited). By volume, the cost
  * (the hull volume the join adds) does not depend on d_out: a pair within tau by d_in is left
  * pending (its hull kept), its d_out bounded when it comes up as the cheapest (finish_pair): the
  * same choices, without the facet bounds of the pairs never chosen. */
@@ -468,15 +468,11 @@ static void score(const group *A, const group *B, double tau, double din_refuse,
     if (out->din_lo > din_refuse) return;
     acd_hull H;
     if (!joint_hull(A, B, &H)) return;
-    if (H.volume - A->hvol - B->hvol > A->at->max_added) {
-        acd_hull_free(&H);
-        return;
-    }
     size_t start = 0;
     double din = depth_in_hull(A, &H, 0.0, tau, &start);
     if (din <= tau) din = depth_in_hull(B, &H, din, tau, &start);
-    if (!(din <= tau)) {
-        out->din_lo = din;
+    if (!(din <= tau) || H.volume - A->hvol - B->hvol > A->at->max_added) {
+        if (!(din <= tau)) out->din_lo = din; /* (inherited by the joined groups' pairs: join_best) */
         acd_hull_free(&H);
         return;
     }
