@@ -37,6 +37,7 @@ typedef struct trim_plane {
     double den[NDEPTHS];             /* with the losses: fmax(chg, the loss floor), choose's denominators */
     int have_loss;
     int facet;                       /* a facet plane of the initial hull */
+    int cut_id;                      /* not a facet plane: the cut it is the plane of (trim_hull.cutpl) */
     int wall_known, wall;            /* whether it holds an internal wall of the part (is_wall: then not
                                         cut), once asked */
     int dirty;                       /* gains measured before the last cuts: upper bounds */
@@ -88,10 +89,17 @@ typedef struct trim_hull {
     size_t nt_limit;  /* more triangles than this after a cut: the polytope re-hulled */
     int stale;        /* the best cut to choose again (the hull was cut) */
     int have;         /* best cut found */
-    double plane[3], off, gain, loss, full, ratio, depth; /* the best cut: loss its charge, full the
+    double plane[3], off, gain, loss, full, ratio, depth; /* the best cut: loss its charge's bound, full the
                                                              part volume beyond its plane */
     size_t bj, bk;    /* the best cut's plane and depth */
     double reach;     /* how far the part reaches beyond the best cut's plane (>= 0) */
+    double *cutpl;    /* 4 per cut made (n, off), in order: charge_cut's clips */
+    size_t ncut, cutcap;
+    double *capc;     /* 3 per corner: the corners of each cut's removed cap, cut c's from capoff[c] to
+                         capoff[c + 1] (charge_cut) */
+    size_t ncapc, capccap, *capoff;
+    double *rel;      /* charge_cut's scratch: the planes of the cuts that matter (4 per) */
+    double charge;    /* the last cut's charge (charge_cut: exact, at most loss) */
     unsigned char *tkind; /* per part triangle (wall_check, allocated at the first check): 0 not known,
                              1 an internal wall (off the input's surface), 2 on the surface */
     double maxdist;   /* a cut may leave no vertex of the part farther than this from the hull */
@@ -258,7 +266,8 @@ static int is_wall(const trim_hull *T, const trim_plane *P) {
 }
 
 /* The best cut of hull T among its planes' caps (largest gain / charge) charging at most `room` of
- * part volume. A cap's charge is its loss less the plane's base: the part volume beyond the plane's
+ * part volume. A cap's charge here is its loss less the plane's base, an upper bound of what the cut
+ * is then charged (charge_cut, exact): the part volume beyond the plane's
  * own level (off0), which is beyond each of its depths, was charged already when off0 is the plane
  * of a cut made on this hull (after_cut); 0 for a facet plane, which the part does not cross. The
  * cuts made along one normal thus charge, summed, the part volume beyond the deepest: each region
@@ -318,6 +327,79 @@ static void choose(trim_hull *T, double room, double min_gain, double ratio_floo
     }
 }
 
+/* The part volume the cut just made (T->plane, T->off) removed from the hull, exactly: the part
+ * beyond the plane and inside every earlier cut (acd3_trim_tree_charge), in T->charge; at most
+ * T->loss (the loss less the plane's base, an upper bound of it that counts a region beyond two
+ * cuts' planes twice: on the armadillo the charges summed 6% over the volume outside), which stands
+ * when the clipping gives up. Only the earlier cuts whose removed caps reach beyond the plane matter:
+ * a point of the part beyond the plane and outside the hull lies in the cap of the first cut that
+ * removed it, and beyond that cut's plane. None: the charge is the loss (a facet plane's, the part
+ * beyond it); only the cut whose plane this is, deeper: the loss less the base (the part between the
+ * two parallel planes), both exact. The cut's plane and cap's corners are then recorded for the next
+ * cuts. 0 out of memory. */
+static int charge_cut(trim_hull *T) {
+    if (!T->capoff) {
+        T->capoff = malloc(sizeof *T->capoff);
+        if (!T->capoff) return 0;
+        T->capoff[0] = 0;
+    }
+    if (T->ncut == T->cutcap) {
+        const size_t nc = T->cutcap ? 2 * T->cutcap : 16;
+        double *np = realloc(T->cutpl, 4 * nc * sizeof *np), *nr = np ? realloc(T->rel, 4 * nc * sizeof *nr) : NULL;
+        if (np) T->cutpl = np;
+        if (nr) T->rel = nr;
+        size_t *no = nr ? realloc(T->capoff, (nc + 1) * sizeof *no) : NULL;
+        if (!no) return 0;
+        T->capoff = no, T->cutcap = nc;
+    }
+    if (T->ncapc + T->ncorner > T->capccap) {
+        size_t nc = T->capccap ? 2 * T->capccap : 256;
+        while (nc < T->ncapc + T->ncorner) nc *= 2;
+        double *np = realloc(T->capc, 3 * nc * sizeof *np);
+        if (!np) return 0;
+        T->capc = np, T->capccap = nc;
+    }
+    const trim_plane *B = &T->pl[T->bj];
+    const size_t own = B->facet ? SIZE_MAX : (size_t)B->cut_id;
+    size_t nrel = 0, nother = 0;
+    for (size_t c = 0; c < T->ncut; c++) {
+        int meets = 0;
+        for (size_t v = T->capoff[c]; v < T->capoff[c + 1] && !meets; v++)
+            meets = acd_dot3(T->plane, T->capc + 3 * v) > T->off;
+        if (!meets) continue;
+        memcpy(T->rel + 4 * nrel++, T->cutpl + 4 * c, 4 * sizeof *T->rel);
+        nother += c != own;
+    }
+    T->charge = T->loss;
+    if (nother > 0) {
+        /* the apex: the centroid of the section (the cap's corners on the plane, its crossings), on
+         * the plane and inside the hull, so inside every earlier cut: a triangle's cone from it then
+         * needs clipping only where the triangle's part beyond the plane is not (most are) */
+        double apex[3] = {0, 0, 0}, m = 0;
+        const double tol = ACD3_TRIM_WALL_REL * T->unit;
+        for (size_t v = 0; v < T->ncorner; v++) {
+            const double *x = T->corner + 3 * v;
+            if (!(fabs(acd_dot3(T->plane, x) - T->off) <= tol)) continue;
+            for (int k = 0; k < 3; k++) apex[k] += x[k];
+            m++;
+        }
+        if (m > 0) {
+            for (int k = 0; k < 3; k++) apex[k] /= m;
+            apex_on(apex, T->plane, T->off, apex);
+        } else
+            apex_on(T->centre, T->plane, T->off, apex);
+        const double ex = acd3_trim_tree_charge(&T->tree, T->plane, T->off, apex, T->rel, nrel);
+        if (ex == ex) T->charge = fmin(fmax(ex, 0.0), T->loss);
+    }
+    double *c = T->cutpl + 4 * T->ncut;
+    memcpy(c, T->plane, 3 * sizeof *c);
+    c[3] = T->off;
+    memcpy(T->capc + 3 * T->ncapc, T->corner, 3 * T->ncorner * sizeof *T->capc);
+    T->ncapc += T->ncorner;
+    T->capoff[++T->ncut] = T->ncapc;
+    return 1;
+}
+
 static int after_cut(trim_hull *T, double min_gain) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < T->ncorner; v++)
@@ -335,6 +417,7 @@ static int after_cut(trim_hull *T, double min_gain) {
     }
     if (!add_plane(T, T->plane, T->off)) return 0;
     T->pl[T->npl - 1].base = T->full;
+    T->pl[T->npl - 1].cut_id = (int)T->ncut - 1; /* (charge_cut has recorded the cut) */
     plane_measure(T, &T->pl[T->npl - 1], min_gain, NULL, 0);
     return 1;
 }
@@ -905,7 +988,7 @@ acd_status acd3_trim_hulls_within(acd3d_part *parts, size_t nparts, double input
 #endif
         for (int b = 0; b < take; b++) {
             res[b] = cut_hull(&T[batch[b]], max_vertices);
-            if (res[b] == 1 && !after_cut(&T[batch[b]], min_gain)) res[b] = -1;
+            if (res[b] == 1 && (!charge_cut(&T[batch[b]]) || !after_cut(&T[batch[b]], min_gain))) res[b] = -1;
             T[batch[b]].stale = 1;
         }
         for (int b = 0; b < take; b++) {
@@ -920,11 +1003,11 @@ acd_status acd3_trim_hulls_within(acd3d_part *parts, size_t nparts, double input
                 continue;
             }
             if (res[b] == 2) continue; /* too far (far_check): its next best cut chosen next round */
-            spent += H->loss;
-            parts[i].trimmed_volume += H->loss;
+            spent += H->charge;
+            parts[i].trimmed_volume += H->charge;
             stats->cuts++;
             stats->removed_hull += H->gain;
-            stats->removed_part += H->loss;
+            stats->removed_part += H->charge;
             if (H->depth > stats->max_depth) stats->max_depth = H->depth;
         }
     }
@@ -959,6 +1042,7 @@ acd_status acd3_trim_hulls_within(acd3d_part *parts, size_t nparts, double input
         acd_bvh_free(&T[i].own_bvh);
         free(T[i].pl);
         free(T[i].corner);
+        free(T[i].cutpl), free(T[i].capc), free(T[i].capoff), free(T[i].rel);
         free(T[i].outside), free(T[i].closest), free(T[i].pend), free(T[i].pendq), free(T[i].tkind);
     }
     acd_bvh_free(&own_input);

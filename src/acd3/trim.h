@@ -7,10 +7,12 @@
  * by the ratio of the hull volume removed to the part volume removed, while the part volume
  * removed stays within `budget` (model units, summed over all parts). The union of the trimmed
  * hulls then covers all of the input but at most `budget` of its volume (each part is covered by
- * its own hull outside the caps cut from it; a cut made from an earlier cut's own plane, deeper,
- * charges only the part volume between the two planes, the part beyond the first plane lying beyond
- * the second; the sum counts a region beyond two cuts of different planes twice, so it is an upper
- * bound), and the hulls stay convex (each is the hull of its old vertices below the
+ * its own hull outside the caps cut from it; each cut charges the part volume it takes out of its
+ * hull exactly, the part beyond its plane and inside the hull's earlier cuts (acd3_trim_tree_charge),
+ * so the charges sum to the parts' volume outside their hulls, an upper bound of the union's; the
+ * choice scores a cap by an upper bound of that, its loss less its plane's base: a cut made from an
+ * earlier cut's own plane, deeper, holds the part beyond the first plane, which the first charged),
+ * and the hulls stay convex (each is the hull of its old vertices below the
  * plane and of its edges' crossings). A cut is taken only when it raises the IoU of input and union:
  * removing hull volume g holding part volume l does when g / l > 1 + U / V (U the hulls' volume
  * sum, V the input's), the floor used here. A cut is also refused when it would leave the part's
@@ -49,8 +51,9 @@
 typedef struct acd3_trim_stats {
     size_t cuts;          /* caps cut off */
     double removed_hull;  /* hull volume removed (sum over the cuts) */
-    double removed_part;  /* part volume beyond the cut planes (sum over the cuts: >= the volume the
-                             union of hulls leaves uncovered) */
+    double removed_part;  /* part volume the cuts took out of their hulls (sum over the cuts, each exact
+                             up to rounding: the parts' volume outside their trimmed hulls, >= the
+                             volume the union of hulls leaves uncovered) */
     double max_depth;     /* deepest cut, model units (how far below its old facet a plane went) */
     size_t skipped;       /* solid parts left whole because they intersect themselves */
     double max_distance;  /* the distance bound: no part vertex farther than this from its trimmed hull */

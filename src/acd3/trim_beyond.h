@@ -191,4 +191,19 @@ void acd3_trim_tree_free(acd3_trim_tree *R);
 void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd3_trim_levels *L, size_t k_lo,
                            double *v, double *top);
 
+/* The part volume a cut by the plane n.x = off removes from its hull exactly (up to rounding): the
+ * volume of the part beyond the plane and on the inner side (n_c.x <= off_c) of each of the hull's
+ * earlier cuts, cuts[4 c .. 4 c + 3] = (n_c, off_c), c < ncuts: the part's volume between the hull
+ * before the cut and after it (the part lies in the initial hull, whose facets need no clip). For a
+ * closed, outward mesh and any point o, the volume inside it of a region K is the sum over its
+ * triangles t of sign(t) x |tetrahedron (o, t) inside K| (winding numbers); with o = apex, on the
+ * plane, a triangle entirely below the plane adds nothing, so only the triangles reaching beyond it
+ * are visited (through R, as acd3_trim_tree_beyond), each tetrahedron clipped by the plane and by the
+ * cuts it crosses (a convex polytope as its faces' directed edges). acd3/trim charges this instead of
+ * the loss less the plane's base, an upper bound, which counts a region beyond two cuts' planes
+ * twice. NaN when out of memory or a polytope outgrows the clipper's fixed capacity (the caller then
+ * keeps the bound). */
+double acd3_trim_tree_charge(const acd3_trim_tree *R, const double n[3], double off, const double apex[3],
+                             const double *cuts, size_t ncuts);
+
 #endif
