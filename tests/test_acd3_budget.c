@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "acd/acd3d.h"
+#include "acd3d_check.h"
 #include "acd/hull.h"
 #include "acd3/budget.h"
 #include "shapes.h"
@@ -424,12 +425,7 @@ static void test_decompose_budget(void **state) {
         acd3d_result o;
         p.threads = t;
         assert_int_equal(acd3d_decompose(&m, &p, &o, &err), ACD_OK);
-        assert_int_equal(o.nparts, br.nparts);
-        for (size_t i = 0; i < o.nparts; i++) {
-            assert_int_equal(o.parts[i].hull.nvertices, br.parts[i].hull.nvertices);
-            assert_memory_equal(o.parts[i].hull.vertices, br.parts[i].hull.vertices,
-                                3 * o.parts[i].hull.nvertices * sizeof(double));
-        }
+        ck3_same_hulls(&o, &br);
         acd3d_result_free(&o);
     }
     acd3d_result_free(&tr);

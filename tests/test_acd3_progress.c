@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "acd/acd3d.h"
+#include "acd3d_check.h"
 #include "acd3/measure.h"
 #include "acd3/pocket_cut.h"
 #include "acd3/poll.h"
@@ -88,13 +89,7 @@ static void test_stages_reported(void **state) {
     /* without a callback: the same output */
     p.progress = NULL;
     assert_int_equal(acd3d_decompose(&m, &p, &q, &err), ACD_OK);
-    assert_int_equal(q.nparts, r.nparts);
-    for (size_t i = 0; i < q.nparts; i++) {
-        assert_true(q.parts[i].hull_volume == r.parts[i].hull_volume);
-        assert_int_equal(q.parts[i].hull.nvertices, r.parts[i].hull.nvertices);
-        assert_memory_equal(q.parts[i].hull.vertices, r.parts[i].hull.vertices,
-                            3 * q.parts[i].hull.nvertices * sizeof(double));
-    }
+    ck3_same_hulls(&q, &r);
     acd3d_result_free(&r);
     acd3d_result_free(&q);
     acd_mesh_free(&m);
@@ -180,12 +175,7 @@ static void test_cancel_in_merge_setup(void **state) {
     assert_int_equal(log_count(&all, within[2]), 1);
     p.progress = NULL;
     assert_int_equal(acd3d_decompose(&m, &p, &q, &err), ACD_OK);
-    assert_int_equal(q.nparts, r.nparts);
-    for (size_t i = 0; i < q.nparts; i++) {
-        assert_int_equal(q.parts[i].hull.nvertices, r.parts[i].hull.nvertices);
-        assert_memory_equal(q.parts[i].hull.vertices, r.parts[i].hull.vertices,
-                            3 * q.parts[i].hull.nvertices * sizeof(double));
-    }
+    ck3_same_hulls(&q, &r);
     acd3d_result_free(&q);
     acd3d_result_free(&r);
     static call_log c;

@@ -55,6 +55,16 @@ int acd3_trim_tree_build(acd3_trim_tree *R, const acd_bvh *b) {
     return 1;
 }
 
+/* A tree node's box's largest n.x, summed as acd_box_max_dot sums it (from 0; c0..c2: the box corner
+ * of each coordinate, chosen by n's signs once by the caller). */
+static inline double node_top(const acd3_trim_tree_node *nd, const double n[3], int c0, int c1, int c2) {
+    double top = 0;
+    top += n[0] * nd->box[c0][0];
+    top += n[1] * nd->box[c1][1];
+    top += n[2] * nd->box[c2][2];
+    return top;
+}
+
 /* (The query also tests each triangle's box; every triangle reaching beyond passes it: the box's
  * n.x is rounded from products no smaller than each corner's, term by term, so it is no smaller
  * than the corner's n.x. The triangles it drops add nothing here.) */
@@ -70,11 +80,7 @@ void acd3_trim_tree_beyond(const acd3_trim_tree *R, const double n[3], const acd
     size_t i = 0;
     while (i < R->nnode) {
         const acd3_trim_tree_node *nd = &R->node[i];
-        double top = 0;
-        top += n[0] * nd->box[c0][0];
-        top += n[1] * nd->box[c1][1];
-        top += n[2] * nd->box[c2][2];
-        if (!(top > deepest)) {
+        if (!(node_top(nd, n, c0, c1, c2) > deepest)) {
             i = nd->skip;
             continue;
         }
@@ -210,11 +216,7 @@ double acd3_trim_tree_charge(const acd3_trim_tree *R, const double n[3], double 
     size_t i = 0;
     while (i < R->nnode) {
         const acd3_trim_tree_node *nd = &R->node[i];
-        double top = 0;
-        top += n[0] * nd->box[c0][0];
-        top += n[1] * nd->box[c1][1];
-        top += n[2] * nd->box[c2][2];
-        if (!(top > off)) {
+        if (!(node_top(nd, n, c0, c1, c2) > off)) {
             i = nd->skip;
             continue;
         }
