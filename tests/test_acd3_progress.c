@@ -125,6 +125,7 @@ typedef struct call_log {
     const char *stage[LOG_CALLS];
     int n, stop_at, after_stop;
     const char *stop_stage;
+    int stop_stage_nth, stage_seen; /* stop at the stop_stage_nth call of stop_stage (0: the first) */
     int stopped;
 } call_log;
 
@@ -134,7 +135,10 @@ static int log_call(void *user, double fraction, const char *stage) {
     if (l->stopped) l->after_stop++;
     if (l->n < LOG_CALLS) l->stage[l->n] = stage;
     l->n++;
-    if ((l->stop_at && l->n == l->stop_at) || (l->stop_stage && !strcmp(stage, l->stop_stage))) l->stopped = 1;
+    if (l->stop_stage && !strcmp(stage, l->stop_stage)) l->stage_seen++;
+    if ((l->stop_at && l->n == l->stop_at) ||
+        (l->stop_stage && !strcmp(stage, l->stop_stage) && l->stage_seen >= l->stop_stage_nth))
+        l->stopped = 1;
     return l->stopped;
 }
 
@@ -208,6 +212,68 @@ static void test_cancel_in_merge_setup(void **state) {
         assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_CANCELLED);
         assert_int_equal(c.after_stop, 0);
         assert_string_equal(c.stage[c.n - 1], within[k]);
+    }
+    acd_mesh_free(&m);
+}
+
+/* The trim's set-up (acd3/trim: each part's hull, tree and planes, the input's self-crossing test)
+ * calls the callback before each task and between a part's steps ("trim: preparing", from the
+ * calling thread: 3.3 CPU-s without a call at 832k faces before the first "trim" call). On the bumpy
+ * sphere, the budget pipeline with trim_coverage 0.005: with 1 and 2 threads a stop at the stage's
+ * first and middle (2 threads: second) call returns ACD_ERR_CANCELLED at once (no call after it) naming the stage (the
+ * ASan build checks everything is freed); a callback that never stops leaves the trimmed hulls as
+ * without one. */
+static void test_cancel_in_trim_setup(void **state) {
+    (void)state;
+    acd_mesh m;
+    assert_true(mg_radial(&m, 48, 32, mg_bumpy_r, NULL));
+    const char *stage = "trim: preparing";
+    for (int threads = 1; threads <= 2; threads++) {
+        acd3d_params p = budget_params();
+        p.trim_coverage = 0.005;
+        p.threads = threads;
+        static call_log all, c;
+        memset(&all, 0, sizeof all);
+        p.progress = log_call;
+        p.progress_user = &all;
+        acd3d_result r, q;
+        acd_error err;
+        assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_OK);
+        assert_true(all.n < LOG_CALLS);
+        assert_true(r.trim_cuts > 0);
+        int first = 0, last = 0; /* 1-based call numbers; the stage's calls are consecutive */
+        for (int i = 1; i <= all.n; i++)
+            if (!strcmp(all.stage[i - 1], stage)) {
+                if (!first) first = i;
+                last = i;
+            }
+        print_message("%d threads: %s: %d calls (%d to %d of %d), %zu trim cuts\n", threads, stage,
+                      log_count(&all, stage), first, last, all.n, r.trim_cuts);
+        assert_true(log_count(&all, stage) >= 8);
+        assert_int_equal(last - first + 1, log_count(&all, stage));
+        assert_string_equal(all.stage[last], "trim"); /* the set-up's calls come right before the trim's */
+        p.progress = NULL;
+        assert_int_equal(acd3d_decompose(&m, &p, &q, &err), ACD_OK);
+        ck3_same_hulls(&q, &r);
+        acd3d_result_free(&q);
+        acd3d_result_free(&r);
+        /* the stage's first call, and its middle one (2 threads: its second; the calling thread's
+         * share of the tasks varies, the calls before and after them do not) */
+        const int nth[2] = {1, threads == 1 ? (last - first) / 2 + 1 : 2};
+        for (int k = 0; k < 2; k++) {
+            memset(&c, 0, sizeof c);
+            c.stop_stage = stage;
+            c.stop_stage_nth = nth[k];
+            p.progress = log_call;
+            p.progress_user = &c;
+            assert_int_equal(acd3d_decompose(&m, &p, &r, &err), ACD_ERR_CANCELLED);
+            if (threads == 1) assert_int_equal(c.n, first + nth[k] - 1);
+            assert_int_equal(c.stage_seen, nth[k]);
+            assert_int_equal(c.after_stop, 0);
+            assert_string_equal(c.stage[c.n - 1], stage);
+            assert_non_null(strstr(err.message, "cancelled"));
+            assert_non_null(strstr(err.message, stage));
+        }
     }
     acd_mesh_free(&m);
 }
@@ -376,6 +442,7 @@ int main(void) {
         cmocka_unit_test(test_stages_reported),
         cmocka_unit_test(test_cancel_in_each_stage),
         cmocka_unit_test(test_cancel_in_merge_setup),
+        cmocka_unit_test(test_cancel_in_trim_setup),
         cmocka_unit_test(test_cancel_within_batch),
         cmocka_unit_test(test_cancel_in_root_measure),
         cmocka_unit_test(test_measure_and_cut_graph_polls),
