@@ -1523,7 +1523,7 @@ acd_status acd3_merge_adjacent(const acd_mesh *input, const acd_mesh *parts, siz
  * pairs took 0.5 CPU-s without a call at 832k faces. */
 #define MERGE_SCORE_POLL_PAIRS 16
 
-/* The set-up's error when its poll says stop in stage (as merge_progress's). */
+/* The merge's error when the caller's callback says stop in stage (the set-up's poll, merge_progress). */
 static acd_status setup_cancelled(acd_error *err, const char *stage) {
     return acd_fail(err, ACD_ERR_CANCELLED, "cancelled (%s)", stage);
 }
@@ -1531,7 +1531,7 @@ static acd_status setup_cancelled(acd_error *err, const char *stage) {
 /* The caller's progress callback (opts may be NULL), between steps: ACD_ERR_CANCELLED when it asks. */
 static acd_status merge_progress(const acd3_merge_opts *opts, double fraction, const char *stage, acd_error *err) {
     if (opts && opts->progress && opts->progress(opts->progress_user, fraction, stage))
-        return acd_fail(err, ACD_ERR_CANCELLED, "cancelled (%s)", stage);
+        return setup_cancelled(err, stage);
     return ACD_OK;
 }
 
